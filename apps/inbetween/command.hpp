@@ -1,0 +1,70 @@
+#pragma once
+// Subcommand registry of the inbetween tool.  Each apps/inbetween/cmd_*.cpp registers itself with a
+// static RegisterCommand object, so adding a command touches no shared file.  Commands only parse
+// arguments, call the library and format output: no maths here.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace inbetween::cli {
+
+/// Exit codes of the tool.
+enum ExitCode : int {
+  kOk = 0,
+  kInternal = 1,   ///< a bug: an unexpected exception
+  kUserError = 2,  ///< bad arguments or bad input data (the message names the place)
+};
+
+/// Thrown by a command to stop with a message on stderr and an exit code; nothing has been written
+/// to the output yet when it is thrown.
+struct CommandError {
+  std::string message;
+  int exit_code = kUserError;
+};
+
+/// A subcommand: `setup` adds it to the root app; its callback does the work and may throw
+/// CommandError.  `order` sorts the help listing.
+struct CommandSpec {
+  std::string name;
+  int order = 0;
+  std::function<void(CLI::App& root)> setup;
+};
+
+/// All registered subcommands.
+std::vector<CommandSpec>& command_registry();
+
+/// Registers a subcommand at static-initialisation time.
+struct RegisterCommand {
+  explicit RegisterCommand(CommandSpec spec) { command_registry().push_back(std::move(spec)); }
+};
+
+/// A section of `inbetween demo`; sections print in `order`.
+struct DemoSection {
+  std::string title;
+  int order = 0;
+  std::function<void(std::ostream& out)> run;
+};
+
+/// All registered demo sections.
+std::vector<DemoSection>& demo_registry();
+
+/// Registers a demo section at static-initialisation time.
+struct RegisterDemo {
+  explicit RegisterDemo(DemoSection section) { demo_registry().push_back(std::move(section)); }
+};
+
+/// Writes `content` to `path` whole or not at all (temporary file in the same folder, then rename);
+/// "-" or "" means standard output.  Throws CommandError naming the file on failure.
+void write_output(const std::string& path, const std::string& content);
+
+/// Reads a whole file ("-" means standard input); throws CommandError naming the file on failure.
+std::string read_input(const std::string& path);
+
+/// Formats a double with the shortest text that reads back to the same value.
+std::string format_number(double v);
+
+}  // namespace inbetween::cli

@@ -1,0 +1,11 @@
+#pragma once
+/// Umbrella header: every public header of the core library (math → curves → arclength → timing →
+/// tracks → paths).  Include single headers instead where compile time matters.
+
+// math
+#include "inbetween/math/assert.hpp"
+#include "inbetween/math/expected.hpp"
+#include "inbetween/math/mat.hpp"
+#include "inbetween/math/quat.hpp"
+#include "inbetween/math/scalar.hpp"
+#include "inbetween/math/vec.hpp"
