@@ -9,3 +9,6 @@
 #include "inbetween/math/quat.hpp"
 #include "inbetween/math/scalar.hpp"
 #include "inbetween/math/vec.hpp"
+
+// curves
+#include "inbetween/curves/curve.hpp"

@@ -1,0 +1,72 @@
+#pragma once
+/// The contract every curve of the library meets, so that arc length, timing and paths work with
+/// any of them: a parameter domain split into segments, the point and its derivatives at u.
+
+#include <concepts>
+
+#include "inbetween/math/vec.hpp"
+
+namespace inbetween {
+
+/// A closed parameter interval [lo, hi].
+template <Real T>
+struct Interval {
+  T lo{}, hi{};
+  /// hi − lo.
+  constexpr T length() const noexcept { return hi - lo; }
+  /// True when lo ≤ u ≤ hi.
+  constexpr bool contains(T u) const noexcept { return lo <= u && u <= hi; }
+  /// u clamped into [lo, hi].
+  constexpr T clamp(T u) const noexcept { return u < lo ? lo : (hi < u ? hi : u); }
+  friend constexpr bool operator==(const Interval&, const Interval&) = default;
+};
+
+/// A parametric curve P(u) over point type `point_type` (a Real or Vec2/3/4).
+/// - `domain()` is the parameter interval; `point(u)` and `derivative(u, k)` clamp u into it and are
+///   total (never NaN for a built curve).
+/// - `derivative(u, k)` is the k-th derivative d^kP/du^k for k = 1, 2, 3 (0 gives the point).  At a
+///   joint between segments it is the derivative of the segment that starts there (right limit),
+///   except at the end of the domain.
+/// - `segment_count()` and `segment_domain(i)` describe the pieces; arc-length code integrates each
+///   piece separately because derivatives may jump at joints.
+template <class C>
+concept Curve = requires(const C& c, typename C::scalar_type u, int i) {
+  typename C::point_type;
+  typename C::scalar_type;
+  { c.domain() } -> std::same_as<Interval<typename C::scalar_type>>;
+  { c.point(u) } -> std::same_as<typename C::point_type>;
+  { c.derivative(u, i) } -> std::same_as<typename C::point_type>;
+  { c.segment_count() } -> std::convertible_to<int>;
+  { c.segment_domain(i) } -> std::same_as<Interval<typename C::scalar_type>>;
+};
+
+/// A cubic in power form P(v) = a v³ + b v² + c v + d for a local parameter v ∈ [0, 1].
+template <Point P>
+struct PowerCubic {
+  P a{}, b{}, c{}, d{};
+  using point_type = P;
+  using scalar_type = scalar_of<P>;
+  /// P(v), by Horner's rule.
+  constexpr P point(scalar_type v) const noexcept { return ((a * v + b) * v + c) * v + d; }
+  /// k-th derivative at v (k = 0..3; higher orders are zero).
+  constexpr P derivative(scalar_type v, int k) const noexcept {
+    using T = scalar_type;
+    switch (k) {
+      case 0: return point(v);
+      case 1: return (a * T(3) * v + b * T(2)) * v + c;
+      case 2: return a * (T(6) * v) + b * T(2);
+      case 3: return a * T(6);
+      default: return P{};
+    }
+  }
+};
+
+/// A curve made of cubic pieces that can expose each piece in power form over its local
+/// parameter v ∈ [0, 1], with u = lo + v·(hi − lo) on segment_domain(i).  Analytic arc length
+/// (texts 004 Eqs. 3.3–3.7) uses this.
+template <class C>
+concept PiecewiseCubicCurve = Curve<C> && requires(const C& c, int i) {
+  { c.segment_power_form(i) } -> std::same_as<PowerCubic<typename C::point_type>>;
+};
+
+}  // namespace inbetween
