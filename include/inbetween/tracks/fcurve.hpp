@@ -1,0 +1,158 @@
+#pragma once
+/// Scalar animation curves with Blender's F-curve semantics (Blender 3.4): per-key interpolation of
+/// the segment to the key's right (constant, linear, Bézier, Penner easings), Bézier handle types
+/// recomputed as Blender recomputes them (including auto-smoothing "continuous acceleration"),
+/// overshooting handles corrected, constant/linear extrapolation and the Cycles modifier.
+///
+/// Blender stores and evaluates F-curves in single precision, and its results depend on that
+/// rounding (key snapping, Cycles boundaries, the Bézier root finder).  A built FCurve therefore
+/// keeps its keys in float and evaluates in float in Blender's order of operations; docs/tracks.md
+/// lists what is reproduced and the measured agreement.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "inbetween/math/expected.hpp"
+#include "inbetween/math/vec.hpp"
+#include "inbetween/timing/penner.hpp"
+
+namespace inbetween {
+
+/// How the segment that starts at a key is interpolated (Blender's key "interpolation").
+enum class Interpolation : std::uint8_t {
+  constant,  ///< hold the key's value until the next key
+  linear,    ///< straight line to the next key
+  bezier,    ///< cubic Bézier through this key's right handle and the next key's left handle
+  back, bounce, circ, cubic, elastic, expo, quad, quart, quint, sine,  ///< Penner easings (penner.hpp)
+};
+
+/// Easing direction stored on a key; `automatic` is Blender's "AUTO" (see automatic_direction()).
+enum class KeyEasing : std::uint8_t { automatic, ease_in, ease_out, ease_in_out };
+
+/// Bézier handle types (Blender's vocabulary).
+enum class HandleType : std::uint8_t {
+  free,          ///< kept as given
+  aligned,       ///< kept collinear with the opposite handle through the key, each keeping its length
+  vector,        ///< points at the neighbouring key, a third of the way
+  automatic,     ///< smooth: slope from the neighbours (Blender "AUTO")
+  auto_clamped,  ///< automatic, but flat at extremes and never past the neighbours' values
+};
+
+/// Value outside the keyed range (Blender's F-curve "extrapolation").
+enum class Extrapolation : std::uint8_t {
+  constant,  ///< the end key's value
+  linear,    ///< continue along the end key's handle (Bézier/easing) or end segment (linear)
+};
+
+/// Curve-level smoothing of automatic handles (Blender's "auto_smoothing").
+enum class AutoSmoothing : std::uint8_t {
+  none,        ///< each automatic key on its own (Blender's classic handles)
+  cont_accel,  ///< solve for continuous acceleration across runs of automatic keys
+};
+
+/// Repetition mode on one side of a Cycles modifier.
+enum class CycleMode : std::uint8_t {
+  none,           ///< no cycling on this side
+  repeat,         ///< repeat the keyed range
+  repeat_offset,  ///< repeat, shifted by (last value − first value) per cycle
+  mirror,         ///< alternate forwards and backwards copies
+};
+
+/// Blender's Cycles modifier (as the first and only modifier, full influence, no frame range).
+struct FCurveCycles {
+  CycleMode before = CycleMode::repeat;  ///< before the first key
+  CycleMode after = CycleMode::repeat;   ///< after the last key
+  int count_before = 0;                  ///< number of copies before; 0 = forever (0..32767)
+  int count_after = 0;                   ///< number of copies after; 0 = forever (0..32767)
+};
+
+/// One key as authored.  Frames and values are in the curve's units; handles are absolute
+/// (frame, value) points.  Handles of free and aligned sides are used as given (aligned ones
+/// re-aligned); those of vector, automatic and auto_clamped sides are recomputed when built.
+struct FCurveKey {
+  double frame = 0;                                        ///< key time in frames
+  double value = 0;                                        ///< key value
+  Interpolation interpolation = Interpolation::bezier;     ///< of the segment to the right
+  KeyEasing easing = KeyEasing::automatic;                 ///< for the easing interpolations
+  HandleType handle_left_type = HandleType::auto_clamped;  ///< type of the left handle
+  HandleType handle_right_type = HandleType::auto_clamped; ///< type of the right handle
+  Vec2d handle_left{};                                     ///< (frame, value) of the left handle
+  Vec2d handle_right{};                                    ///< (frame, value) of the right handle
+  double back = 1.70158;                                   ///< overshoot of `back` easing
+  double amplitude = 0.8;                                  ///< amplitude of `elastic` (value units)
+  double period = 4.1;                                     ///< period of `elastic` (frames)
+};
+
+/// A curve as authored: keys in strictly increasing frame order and curve-level settings.
+struct RawFCurve {
+  std::vector<FCurveKey> keys;                            ///< at least one key
+  Extrapolation extrapolation = Extrapolation::constant;  ///< outside the keyed range
+  AutoSmoothing auto_smoothing = AutoSmoothing::none;     ///< for automatic handles
+  std::optional<FCurveCycles> cycles;                     ///< the Cycles modifier, if any
+};
+
+/// A built F-curve: validated keys (single precision, as Blender stores them) with their handles
+/// recomputed.  Evaluation is total and noexcept.
+class FCurve {
+ public:
+  /// One key as stored after building (single precision, handles recomputed).
+  struct Key {
+    float x = 0, y = 0;    ///< frame, value
+    Vec2f left{}, right{}; ///< absolute handle positions
+    Interpolation interpolation = Interpolation::bezier;
+    KeyEasing easing = KeyEasing::automatic;
+    HandleType left_type = HandleType::auto_clamped, right_type = HandleType::auto_clamped;
+    float back = 0, amplitude = 0, period = 0;
+    bool locked = false;   ///< Blender's LOCKED auto-handle state (flat end or extreme)
+  };
+
+  /// The value at `frame` (frames are single precision, as Blender's evaluate() takes them).
+  /// Any finite frame is valid; NaN gives the first key's value.
+  [[nodiscard]] float evaluate(float frame) const noexcept;
+
+  /// Fills out[i] = evaluate(frames[i]); the spans must have equal sizes.
+  void evaluate(std::span<const float> frames, std::span<float> out) const noexcept;
+
+  /// The stored keys, with recomputed handles.
+  [[nodiscard]] std::span<const Key> keys() const noexcept { return keys_; }
+  /// Curve-level extrapolation.
+  [[nodiscard]] Extrapolation extrapolation() const noexcept { return extrapolation_; }
+  /// Curve-level handle smoothing.
+  [[nodiscard]] AutoSmoothing auto_smoothing() const noexcept { return smoothing_; }
+  /// The Cycles modifier, if any.
+  [[nodiscard]] const std::optional<FCurveCycles>& cycles() const noexcept { return cycles_; }
+
+ private:
+  friend Expected<FCurve> build_fcurve(const RawFCurve& raw);
+  float evaluate_keys(float t) const noexcept;
+  float extrapolate(float t, bool before) const noexcept;
+  float interpolate(float t) const noexcept;
+
+  std::vector<Key> keys_;
+  Extrapolation extrapolation_ = Extrapolation::constant;
+  AutoSmoothing smoothing_ = AutoSmoothing::none;
+  std::optional<FCurveCycles> cycles_;
+};
+
+/// Validates `raw` (≥ 1 key; frames finite and strictly increasing, also after rounding to single
+/// precision; values, handles and easing parameters finite; cycle counts in 0..32767) and builds
+/// the curve: handles clamped to their key's side, then recomputed as Blender's FCurve.update()
+/// does.  Errors name the key ("key 3").
+[[nodiscard]] Expected<FCurve> build_fcurve(const RawFCurve& raw);
+
+/// The lower-case Blender name of each enumerator ("auto_clamped", "repeat_offset", …).
+[[nodiscard]] std::string_view to_string(Interpolation v) noexcept;
+[[nodiscard]] std::string_view to_string(KeyEasing v) noexcept;      ///< "auto", "ease_in", …
+[[nodiscard]] std::string_view to_string(HandleType v) noexcept;     ///< "free", "auto", …
+[[nodiscard]] std::string_view to_string(Extrapolation v) noexcept;  ///< "constant", "linear"
+[[nodiscard]] std::string_view to_string(AutoSmoothing v) noexcept;  ///< "none", "cont_accel"
+[[nodiscard]] std::string_view to_string(CycleMode v) noexcept;      ///< "none", "repeat", …
+
+/// Parses the names written by to_string(); nullopt for an unknown name.
+template <class Enum>
+[[nodiscard]] std::optional<Enum> enum_from_string(std::string_view name) noexcept;
+
+}  // namespace inbetween

@@ -1,0 +1,326 @@
+// Reads the inbetween scene JSON format (docs/scene-format.md) into built tracks.  nlohmann_json
+// stays inside this file; every error carries the JSON pointer of the offending value.
+#include "inbetween/io/scene.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace inbetween {
+
+namespace {
+
+using nlohmann::json;
+
+// A JSON pointer built while descending.
+std::string child(const std::string& ptr, std::string_view key) {
+  std::string escaped;
+  for (char ch : key) {
+    if (ch == '~') escaped += "~0";
+    else if (ch == '/') escaped += "~1";
+    else escaped += ch;
+  }
+  return ptr + "/" + escaped;
+}
+std::string child(const std::string& ptr, std::size_t index) { return ptr + "/" + std::to_string(index); }
+
+std::string type_name(const json& j) { return j.type_name(); }
+
+Error error_at(ErrorCode code, std::string message, std::string where) {
+  return Error{code, std::move(message), where.empty() ? std::string("/") : std::move(where)};
+}
+
+// Rejects members not in `allowed` (catches misspelt field names).
+Expected<void> only_members(const json& obj, const std::string& ptr, std::initializer_list<std::string_view> allowed) {
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    bool known = false;
+    for (std::string_view a : allowed) known = known || (it.key() == a);
+    if (!known) {
+      std::string list;
+      for (std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      return error_at(ErrorCode::InvalidArgument, "unknown member \"" + it.key() + "\" (expected one of: " + list + ")",
+                      child(ptr, it.key()));
+    }
+  }
+  return {};
+}
+
+Expected<double> get_number(const json& j, const std::string& ptr) {
+  if (!j.is_number()) {
+    return error_at(ErrorCode::InvalidArgument, "expected a number, found " + type_name(j), ptr);
+  }
+  const double v = j.get<double>();
+  if (!std::isfinite(v)) return error_at(ErrorCode::NotFinite, "number is not finite", ptr);
+  return v;
+}
+
+// Reads a number; JSON has no NaN, but the strings "nan"/"inf" are reported as non-finite numbers
+// so that a scene written by a careless exporter gets a clear message.
+Expected<double> number_member(const json& obj, const std::string& ptr, std::string_view name,
+                               std::optional<double> fallback) {
+  const std::string p = child(ptr, name);
+  auto it = obj.find(std::string(name));
+  if (it == obj.end()) {
+    if (fallback) return *fallback;
+    return error_at(ErrorCode::InvalidArgument, "missing required member \"" + std::string(name) + "\"", p);
+  }
+  if (it->is_string()) {
+    const std::string s = it->get<std::string>();
+    if (s == "nan" || s == "NaN" || s == "inf" || s == "-inf" || s == "Infinity" || s == "-Infinity") {
+      return error_at(ErrorCode::NotFinite, "number is not finite (\"" + s + "\")", p);
+    }
+  }
+  return get_number(*it, p);
+}
+
+template <class Enum>
+Expected<Enum> enum_member(const json& obj, const std::string& ptr, std::string_view name, Enum fallback,
+                           const std::vector<std::string_view>& names) {
+  const std::string p = child(ptr, name);
+  auto it = obj.find(std::string(name));
+  if (it == obj.end()) return fallback;
+  if (!it->is_string()) return error_at(ErrorCode::InvalidArgument, "expected a string, found " + type_name(*it), p);
+  const std::string s = it->get<std::string>();
+  if (auto v = enum_from_string<Enum>(s)) return *v;
+  std::string list;
+  for (std::string_view a : names) list += (list.empty() ? "" : ", ") + std::string(a);
+  return error_at(ErrorCode::InvalidArgument, "unknown " + std::string(name) + " \"" + s + "\" (expected one of: " + list + ")",
+                  p);
+}
+
+Expected<Vec2d> point_member(const json& obj, const std::string& ptr, std::string_view name, bool required) {
+  const std::string p = child(ptr, name);
+  auto it = obj.find(std::string(name));
+  if (it == obj.end()) {
+    if (!required) return Vec2d{};
+    return error_at(ErrorCode::InvalidArgument, "missing \"" + std::string(name) + "\" (required for free and aligned handles)", p);
+  }
+  if (!it->is_array()) return error_at(ErrorCode::WrongArity, "expected [frame, value], found " + type_name(*it), p);
+  if (it->size() != 2) {
+    return error_at(ErrorCode::WrongArity, "expected 2 numbers [frame, value], found " + std::to_string(it->size()), p);
+  }
+  auto x = get_number((*it)[0], child(p, std::size_t{0}));
+  if (!x) return x.error();
+  auto y = get_number((*it)[1], child(p, std::size_t{1}));
+  if (!y) return y.error();
+  return Vec2d{*x, *y};
+}
+
+const std::vector<std::string_view> kInterp = {"constant", "linear", "bezier", "back",  "bounce",
+                                                               "circ",     "cubic",  "elastic", "expo", "quad",
+                                                               "quart",    "quint",  "sine"};
+const std::vector<std::string_view> kEasing = {"auto", "ease_in", "ease_out", "ease_in_out"};
+const std::vector<std::string_view> kHandles = {"free", "aligned", "vector", "auto", "auto_clamped"};
+const std::vector<std::string_view> kExtrap = {"constant", "linear"};
+const std::vector<std::string_view> kSmooth = {"none", "cont_accel"};
+const std::vector<std::string_view> kCycle = {"none", "repeat", "repeat_offset", "mirror"};
+
+Expected<FCurveKey> parse_key(const json& j, const std::string& ptr) {
+  if (!j.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(j), ptr);
+  if (auto ok = only_members(j, ptr, {"frame", "value", "interpolation", "easing", "handle_left_type",
+                                      "handle_right_type", "handle_left", "handle_right", "back", "amplitude",
+                                      "period"});
+      !ok) {
+    return ok.error();
+  }
+  FCurveKey k;
+  auto frame = number_member(j, ptr, "frame", std::nullopt);
+  if (!frame) return frame.error();
+  auto value = number_member(j, ptr, "value", std::nullopt);
+  if (!value) return value.error();
+  k.frame = *frame;
+  k.value = *value;
+  auto interp = enum_member(j, ptr, "interpolation", Interpolation::bezier, kInterp);
+  if (!interp) return interp.error();
+  auto easing = enum_member(j, ptr, "easing", KeyEasing::automatic, kEasing);
+  if (!easing) return easing.error();
+  auto hl = enum_member(j, ptr, "handle_left_type", HandleType::auto_clamped, kHandles);
+  if (!hl) return hl.error();
+  auto hr = enum_member(j, ptr, "handle_right_type", HandleType::auto_clamped, kHandles);
+  if (!hr) return hr.error();
+  k.interpolation = *interp;
+  k.easing = *easing;
+  k.handle_left_type = *hl;
+  k.handle_right_type = *hr;
+  auto needs = [](HandleType h) { return h == HandleType::free || h == HandleType::aligned; };
+  auto pl = point_member(j, ptr, "handle_left", needs(k.handle_left_type));
+  if (!pl) return pl.error();
+  auto pr = point_member(j, ptr, "handle_right", needs(k.handle_right_type));
+  if (!pr) return pr.error();
+  // Handles not given (automatic types) start flat at one frame from the key, as Blender's insert() does.
+  k.handle_left = j.contains("handle_left") ? *pl : Vec2d{k.frame - 1, k.value};
+  k.handle_right = j.contains("handle_right") ? *pr : Vec2d{k.frame + 1, k.value};
+  auto back = number_member(j, ptr, "back", 1.70158);
+  if (!back) return back.error();
+  auto amp = number_member(j, ptr, "amplitude", 0.8);
+  if (!amp) return amp.error();
+  auto period = number_member(j, ptr, "period", 4.1);
+  if (!period) return period.error();
+  k.back = *back;
+  k.amplitude = *amp;
+  k.period = *period;
+  return k;
+}
+
+Expected<int> count_member(const json& obj, const std::string& ptr, std::string_view name) {
+  auto v = number_member(obj, ptr, name, 0.0);
+  if (!v) return v.error();
+  if (*v < 0 || *v > 32767 || std::floor(*v) != *v) {
+    return error_at(ErrorCode::InvalidArgument, "expected a whole number in 0..32767 (0 = forever)", child(ptr, name));
+  }
+  return int(*v);
+}
+
+Expected<SceneScalarTrack> parse_scalar_track(const json& j, const std::string& ptr) {
+  if (auto ok = only_members(j, ptr, {"name", "kind", "keys", "extrapolation", "auto_smoothing", "cycles"}); !ok) {
+    return ok.error();
+  }
+  SceneScalarTrack track;
+  auto name_it = j.find("name");
+  if (name_it == j.end() || !name_it->is_string() || name_it->get<std::string>().empty()) {
+    return error_at(ErrorCode::InvalidArgument, "a track needs a non-empty string \"name\"", child(ptr, "name"));
+  }
+  track.name = name_it->get<std::string>();
+  RawFCurve raw;
+  auto extrap = enum_member(j, ptr, "extrapolation", Extrapolation::constant, kExtrap);
+  if (!extrap) return extrap.error();
+  auto smooth = enum_member(j, ptr, "auto_smoothing", AutoSmoothing::none, kSmooth);
+  if (!smooth) return smooth.error();
+  raw.extrapolation = *extrap;
+  raw.auto_smoothing = *smooth;
+  if (auto c = j.find("cycles"); c != j.end()) {
+    const std::string cp = child(ptr, "cycles");
+    if (!c->is_object()) return error_at(ErrorCode::InvalidArgument, "\"cycles\" must be an object", cp);
+    if (auto ok = only_members(*c, cp, {"before", "after", "count_before", "count_after"}); !ok) return ok.error();
+    FCurveCycles cyc;
+    auto before = enum_member(*c, cp, "before", CycleMode::repeat, kCycle);
+    if (!before) return before.error();
+    auto after = enum_member(*c, cp, "after", CycleMode::repeat, kCycle);
+    if (!after) return after.error();
+    auto nb = count_member(*c, cp, "count_before");
+    if (!nb) return nb.error();
+    auto na = count_member(*c, cp, "count_after");
+    if (!na) return na.error();
+    cyc.before = *before;
+    cyc.after = *after;
+    cyc.count_before = *nb;
+    cyc.count_after = *na;
+    raw.cycles = cyc;
+  }
+  const std::string kp = child(ptr, "keys");
+  auto keys = j.find("keys");
+  if (keys == j.end()) return error_at(ErrorCode::InvalidArgument, "missing required member \"keys\"", kp);
+  if (!keys->is_array()) return error_at(ErrorCode::InvalidArgument, "\"keys\" must be an array", kp);
+  if (keys->empty()) return error_at(ErrorCode::TooFewPoints, "a track needs at least one key", kp);
+  for (std::size_t i = 0; i < keys->size(); ++i) {
+    auto key = parse_key((*keys)[i], child(kp, i));
+    if (!key) return key.error();
+    if (i > 0 && !(key->frame > raw.keys.back().frame)) {
+      return error_at(ErrorCode::KeysNotIncreasing,
+                      "frame " + std::to_string(key->frame) + " is not after the previous key's frame " +
+                          std::to_string(raw.keys.back().frame) + " (keys must be sorted by strictly increasing frame)",
+                      child(child(kp, i), "frame"));
+    }
+    raw.keys.push_back(*key);
+  }
+  auto built = build_fcurve(raw);
+  if (!built) {
+    Error e = built.error();
+    // "key 3" from the builder → the pointer of that key.
+    if (e.where.rfind("key ", 0) == 0) e.where = child(kp, std::size_t(std::stoul(e.where.substr(4))));
+    else if (e.where == "cycles") e.where = child(ptr, "cycles");
+    else e.where = ptr;
+    return e;
+  }
+  track.curve = std::move(*built);
+  return track;
+}
+
+Expected<Scene> parse_scene_json(const json& root) {
+  if (!root.is_object()) return error_at(ErrorCode::InvalidArgument, "a scene must be a JSON object", "");
+  if (auto ok = only_members(root, "", {"inbetween", "fps", "range", "tracks", "objects"}); !ok) return ok.error();
+  Scene scene;
+  auto version = root.find("inbetween");
+  if (version == root.end()) {
+    return error_at(ErrorCode::InvalidArgument, "missing \"inbetween\": 1 (the format version)", "/inbetween");
+  }
+  if (!version->is_number_integer() || version->get<long long>() != 1) {
+    return error_at(ErrorCode::Unsupported, "unsupported format version " + version->dump() + " (this reader knows 1)",
+                    "/inbetween");
+  }
+  auto fps = number_member(root, "", "fps", 24.0);
+  if (!fps) return fps.error();
+  if (!(*fps > 0)) return error_at(ErrorCode::InvalidArgument, "fps must be positive", "/fps");
+  scene.fps = *fps;
+  if (auto r = root.find("range"); r != root.end()) {
+    if (!r->is_array() || r->size() != 2) {
+      return error_at(ErrorCode::WrongArity, "\"range\" must be [first_frame, last_frame]", "/range");
+    }
+    auto a = get_number((*r)[0], "/range/0");
+    if (!a) return a.error();
+    auto b = get_number((*r)[1], "/range/1");
+    if (!b) return b.error();
+    if (*b < *a) return error_at(ErrorCode::InvalidArgument, "range end is before its start", "/range/1");
+    scene.range_start = *a;
+    scene.range_end = *b;
+  }
+  if (auto t = root.find("tracks"); t != root.end()) {
+    if (!t->is_array()) return error_at(ErrorCode::InvalidArgument, "\"tracks\" must be an array", "/tracks");
+    for (std::size_t i = 0; i < t->size(); ++i) {
+      const json& tj = (*t)[i];
+      const std::string tp = child(std::string("/tracks"), i);
+      if (!tj.is_object()) return error_at(ErrorCode::InvalidArgument, "a track must be an object", tp);
+      std::string kind = "scalar";
+      if (auto k = tj.find("kind"); k != tj.end()) {
+        if (!k->is_string()) return error_at(ErrorCode::InvalidArgument, "\"kind\" must be a string", child(tp, "kind"));
+        kind = k->get<std::string>();
+      }
+      if (kind != "scalar") {
+        return error_at(ErrorCode::InvalidArgument, "unknown track kind \"" + kind + "\" (expected one of: scalar)",
+                        child(tp, "kind"));
+      }
+      auto track = parse_scalar_track(tj, tp);
+      if (!track) return track.error();
+      for (const auto& other : scene.scalar_tracks) {
+        if (other.name == track->name) {
+          return error_at(ErrorCode::InvalidArgument, "duplicate track name \"" + track->name + "\"", child(tp, "name"));
+        }
+      }
+      scene.scalar_tracks.push_back(std::move(*track));
+    }
+  }
+  if (auto o = root.find("objects"); o != root.end()) {
+    if (!o->is_array()) return error_at(ErrorCode::InvalidArgument, "\"objects\" must be an array", "/objects");
+    if (!o->empty()) return error_at(ErrorCode::Unsupported, "objects are not supported by this reader yet", "/objects/0");
+  }
+  return scene;
+}
+
+}  // namespace
+
+Expected<Scene> parse_scene(std::string_view json_text) {
+  json root;
+  try {
+    root = json::parse(json_text.begin(), json_text.end());
+  } catch (const json::parse_error& e) {
+    // Convert the byte offset into line and column for the message.
+    std::size_t line = 1, col = 1;
+    const std::size_t upto = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, json_text.size());
+    for (std::size_t i = 0; i < upto; ++i) {
+      if (json_text[i] == '\n') {
+        ++line;
+        col = 1;
+      } else {
+        ++col;
+      }
+    }
+    return Error{ErrorCode::Parse, "not valid JSON", "line " + std::to_string(line) + ", column " + std::to_string(col)};
+  }
+  return parse_scene_json(root);
+}
+
+}  // namespace inbetween

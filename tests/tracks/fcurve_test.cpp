@@ -1,0 +1,3 @@
+#include "inbetween/tracks/fcurve.hpp"
+#include <gtest/gtest.h>
+TEST(FCurve, Smoke) { EXPECT_TRUE(true); }
