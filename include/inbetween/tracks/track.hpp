@@ -1,0 +1,311 @@
+#pragma once
+/// A keyframed track for any vector-like value (a scalar, Vec2/3/4, or a colour held as Vec4
+/// r, g, b, a): cubic Hermite segments whose tangents come from each key's tangent kind
+/// (explicit Hermite, Catmull-Rom, Kochanek–Bartels, Maya's flat / linear / clamped / plateau /
+/// stepped), and Maya-style behaviour before and after the keys (constant, linear, cycle,
+/// cycle with offset, oscillate).  docs/tracks.md gives each definition with its formula.
+///
+/// Sampling is noexcept and total.  A TrackCursor remembers the last segment, so sequential
+/// playback costs O(1) per sample whatever the number of keys; without a cursor a sample is a
+/// binary search.
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "inbetween/math/assert.hpp"
+#include "inbetween/math/expected.hpp"
+#include "inbetween/math/vec.hpp"
+
+namespace inbetween {
+
+/// How a key's tangents are obtained (slopes in value units per frame).
+enum class TangentKind : std::uint8_t {
+  explicit_hermite,  ///< in_tangent / out_tangent given by the key
+  catmull_rom,       ///< (p[i+1] − p[i−1]) / (t[i+1] − t[i−1]); one-sided chord at the ends
+  kochanek_bartels,  ///< TCB: tension, continuity, bias (see TrackKey)
+  flat,              ///< zero slope on both sides
+  linear,            ///< each side's slope is its own segment's chord slope
+  clamped,           ///< Catmull-Rom, but flat when the key equals a neighbour (per component)
+  plateau,           ///< Catmull-Rom limited so no segment overshoots its keys; flat at extremes and ends
+  stepped,           ///< the segment after this key holds the key's value (in tangent: chord)
+};
+
+/// Behaviour before the first or after the last key (Maya's pre/post infinity).
+enum class TrackExtend : std::uint8_t {
+  constant,      ///< the end key's value
+  linear,        ///< continue along the end key's outer tangent
+  cycle,         ///< repeat the keyed range
+  cycle_offset,  ///< repeat, shifted by (last − first value) per cycle
+  oscillate,     ///< repeat alternately forwards and backwards
+};
+
+/// One authored key of a Track<V>.
+template <class V>
+struct TrackKey {
+  using T = scalar_of<V>;
+  T frame{};                                     ///< time in frames (any real number)
+  V value{};                                     ///< value at the key
+  TangentKind tangent = TangentKind::catmull_rom;  ///< how this key's tangents are made
+  V in_tangent{};                                ///< slope arriving (explicit_hermite only)
+  V out_tangent{};                               ///< slope leaving (explicit_hermite only)
+  T tension{};      ///< TCB tension in [−1, 1]: 1 → zero tangent, −1 → doubled (kochanek_bartels only)
+  T continuity{};   ///< TCB continuity in [−1, 1]: ≠ 0 makes in and out tangents differ
+  T bias{};         ///< TCB bias in [−1, 1]: > 0 weights the incoming chord, < 0 the outgoing
+};
+
+/// A remembered segment index that makes sequential sampling O(1); one per playback stream.
+struct TrackCursor {
+  std::size_t segment = 0;  ///< index of the key that starts the last segment used
+};
+
+/// A built track: keys with strictly increasing frames and resolved tangents.
+template <class V>
+class Track {
+ public:
+  using T = scalar_of<V>;
+
+  /// Number of keys (≥ 1).
+  [[nodiscard]] std::size_t size() const noexcept { return frames_.size(); }
+  /// Key frames, strictly increasing.
+  [[nodiscard]] std::span<const T> frames() const noexcept { return frames_; }
+  /// Key values.
+  [[nodiscard]] std::span<const V> values() const noexcept { return values_; }
+  /// Resolved incoming slope of each key (value per frame).
+  [[nodiscard]] std::span<const V> in_tangents() const noexcept { return in_; }
+  /// Resolved outgoing slope of each key (value per frame).
+  [[nodiscard]] std::span<const V> out_tangents() const noexcept { return out_; }
+
+  /// Value at `frame`; outside the keys the extend modes apply.  NaN gives the first value.
+  [[nodiscard]] V sample(T frame) const noexcept {
+    TrackCursor cursor;
+    return sample(frame, cursor, false);
+  }
+  /// Value at `frame`, starting the segment search from `cursor` and updating it: O(1) when
+  /// frames advance (or go back) by less than a segment per call.
+  [[nodiscard]] V sample(T frame, TrackCursor& cursor) const noexcept { return sample(frame, cursor, true); }
+  /// out[i] = sample(frames[i], cursor); spans of equal size; no allocation.
+  void sample(std::span<const T> frames, std::span<V> out, TrackCursor& cursor) const noexcept {
+    INBETWEEN_ASSERT(frames.size() == out.size());
+    for (std::size_t i = 0; i < frames.size(); ++i) out[i] = sample(frames[i], cursor, true);
+  }
+
+ private:
+  template <class W>
+  friend Expected<Track<W>> build_track(std::span<const TrackKey<W>> keys, TrackExtend before, TrackExtend after);
+
+  V sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept;
+  V evaluate_inside(T frame, TrackCursor& cursor, bool use_cursor) const noexcept;
+
+  std::vector<T> frames_;
+  std::vector<V> values_, in_, out_;
+  std::vector<std::uint8_t> stepped_;
+  TrackExtend before_ = TrackExtend::constant, after_ = TrackExtend::constant;
+};
+
+/// Validates and builds a track: ≥ 1 key, finite frames strictly increasing, finite values,
+/// tangents and TCB parameters, TCB parameters in [−1, 1].  Errors name the key ("key 2").
+template <class V>
+[[nodiscard]] Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys,
+                                             TrackExtend before = TrackExtend::constant,
+                                             TrackExtend after = TrackExtend::constant);
+
+/// Convenience overload for a vector of keys.
+template <class V>
+[[nodiscard]] Expected<Track<V>> build_track(const std::vector<TrackKey<V>>& keys,
+                                             TrackExtend before = TrackExtend::constant,
+                                             TrackExtend after = TrackExtend::constant) {
+  return build_track(std::span<const TrackKey<V>>(keys), before, after);
+}
+
+// ============================================================================ implementation
+namespace track_detail {
+
+template <class V>
+V component_map(const V& a, auto&& f) {
+  V r = a;
+  for (int i = 0; i < PointTraits<V>::dim; ++i) PointTraits<V>::set(r, i, f(i));
+  return r;
+}
+
+template <class V>
+bool finite(const V& v) noexcept {
+  for (int i = 0; i < PointTraits<V>::dim; ++i)
+    if (!std::isfinite(PointTraits<V>::get(v, i))) return false;
+  return true;
+}
+
+}  // namespace track_detail
+
+template <class V>
+Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend before, TrackExtend after) {
+  using T = scalar_of<V>;
+  using PT = PointTraits<V>;
+  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a track needs at least one key", ""};
+  const std::size_t n = keys.size();
+  auto where = [](std::size_t i) { return "key " + std::to_string(i); };
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& k = keys[i];
+    if (!std::isfinite(k.frame)) return Error{ErrorCode::NotFinite, "frame is not finite", where(i)};
+    if (!track_detail::finite(k.value)) return Error{ErrorCode::NotFinite, "value is not finite", where(i)};
+    if (!track_detail::finite(k.in_tangent) || !track_detail::finite(k.out_tangent)) {
+      return Error{ErrorCode::NotFinite, "a tangent is not finite", where(i)};
+    }
+    for (T p : {k.tension, k.continuity, k.bias}) {
+      if (!(p >= T(-1) && p <= T(1))) {
+        return Error{ErrorCode::InvalidArgument, "tension, continuity and bias must be in [-1, 1]", where(i)};
+      }
+    }
+    if (i > 0 && !(k.frame > keys[i - 1].frame)) {
+      return Error{ErrorCode::KeysNotIncreasing,
+                   "frame " + std::to_string(double(k.frame)) + " is not after frame " +
+                       std::to_string(double(keys[i - 1].frame)) + " of key " + std::to_string(i - 1),
+                   where(i)};
+    }
+  }
+  Track<V> tr;
+  tr.before_ = before;
+  tr.after_ = after;
+  tr.frames_.resize(n);
+  tr.values_.resize(n);
+  tr.in_.assign(n, V{});
+  tr.out_.assign(n, V{});
+  tr.stepped_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    tr.frames_[i] = keys[i].frame;
+    tr.values_[i] = keys[i].value;
+  }
+  // Chord slopes of the segments on each side (one-sided at the ends).
+  auto chord = [&](std::size_t a, std::size_t b) -> V {
+    return (tr.values_[b] - tr.values_[a]) / (tr.frames_[b] - tr.frames_[a]);
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& k = keys[i];
+    const bool has_prev = i > 0, has_next = i + 1 < n;
+    if (n == 1) break;  // a single key: zero tangents
+    const V left = has_prev ? chord(i - 1, i) : chord(i, i + 1);
+    const V right = has_next ? chord(i, i + 1) : chord(i - 1, i);
+    // Non-uniform Catmull-Rom: the chord over both neighbours; one-sided chord at the ends.
+    const V cr = (has_prev && has_next) ? (tr.values_[i + 1] - tr.values_[i - 1]) / (tr.frames_[i + 1] - tr.frames_[i - 1])
+                                        : (has_prev ? left : right);
+    V in{}, out{};
+    switch (k.tangent) {
+      case TangentKind::explicit_hermite:
+        in = k.in_tangent;
+        out = k.out_tangent;
+        break;
+      case TangentKind::catmull_rom:
+        in = out = cr;
+        break;
+      case TangentKind::kochanek_bartels: {
+        // Kochanek & Bartels (1984) on chord slopes, which makes them valid for uneven key spacing:
+        // out = ((1−t)(1+c)(1+b)/2)·left + ((1−t)(1−c)(1−b)/2)·right, in with c → −c.
+        const T t = k.tension, c = k.continuity, b = k.bias;
+        out = left * ((1 - t) * (1 + c) * (1 + b) / 2) + right * ((1 - t) * (1 - c) * (1 - b) / 2);
+        in = left * ((1 - t) * (1 - c) * (1 + b) / 2) + right * ((1 - t) * (1 + c) * (1 - b) / 2);
+        break;
+      }
+      case TangentKind::flat:
+        break;
+      case TangentKind::linear:
+        in = left;
+        out = right;
+        break;
+      case TangentKind::stepped:
+        in = left;
+        tr.stepped_[i] = 1;
+        break;
+      case TangentKind::clamped:
+        in = out = track_detail::component_map(cr, [&](int d) {
+          const T v = PT::get(tr.values_[i], d);
+          const bool eq_prev = has_prev && PT::get(tr.values_[i - 1], d) == v;
+          const bool eq_next = has_next && PT::get(tr.values_[i + 1], d) == v;
+          return (eq_prev || eq_next) ? T(0) : PT::get(cr, d);
+        });
+        break;
+      case TangentKind::plateau:
+        in = out = track_detail::component_map(cr, [&](int d) {
+          if (!has_prev || !has_next) return T(0);
+          const T sl = PT::get(left, d), sr = PT::get(right, d);
+          if (sl * sr <= T(0)) return T(0);  // extreme or flat neighbour
+          // Fritsch–Carlson: |m| ≤ 3·min(|left|, |right|) keeps both Hermite segments monotone.
+          const T m = PT::get(cr, d);
+          const T lim = T(3) * std::min(std::abs(sl), std::abs(sr));
+          return std::clamp(m, -lim, lim);
+        });
+        break;
+    }
+    tr.in_[i] = in;
+    tr.out_[i] = out;
+  }
+  return tr;
+}
+
+template <class V>
+V Track<V>::evaluate_inside(T frame, TrackCursor& cursor, bool use_cursor) const noexcept {
+  const std::size_t n = frames_.size();
+  // Segment i covers [frames_[i], frames_[i+1]); the last key's frame belongs to segment n − 2.
+  std::size_t i = use_cursor ? std::min(cursor.segment, n - 2) : 0;
+  if (use_cursor && frame >= frames_[i] && frame <= frames_[i + 1]) {
+    // cursor hit
+  } else if (use_cursor && i + 2 < n && frame >= frames_[i + 1] && frame <= frames_[i + 2]) {
+    ++i;
+  } else if (use_cursor && i > 0 && frame >= frames_[i - 1] && frame <= frames_[i]) {
+    --i;
+  } else {
+    const auto it = std::upper_bound(frames_.begin(), frames_.end(), frame);
+    i = std::size_t(it - frames_.begin());
+    i = i == 0 ? 0 : std::min(i - 1, n - 2);
+  }
+  cursor.segment = i;
+  const T t0 = frames_[i], t1 = frames_[i + 1];
+  if (frame <= t0) return values_[i];
+  if (frame >= t1) return values_[i + 1];
+  if (stepped_[i]) return values_[i];
+  const T h = t1 - t0;
+  const T u = (frame - t0) / h;
+  const T u2 = u * u, u3 = u2 * u;
+  const T h00 = T(2) * u3 - T(3) * u2 + T(1);
+  const T h10 = u3 - T(2) * u2 + u;
+  const T h01 = T(-2) * u3 + T(3) * u2;
+  const T h11 = u3 - u2;
+  return values_[i] * h00 + out_[i] * (h10 * h) + values_[i + 1] * h01 + in_[i + 1] * (h11 * h);
+}
+
+template <class V>
+V Track<V>::sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept {
+  const std::size_t n = frames_.size();
+  if (std::isnan(frame) || n == 1) return values_[0];
+  const T first = frames_[0], last = frames_[n - 1];
+  const T span = last - first;
+  if (frame < first || frame > last) {
+    const bool is_before = frame < first;
+    const TrackExtend mode = is_before ? before_ : after_;
+    switch (mode) {
+      case TrackExtend::constant:
+        return is_before ? values_[0] : values_[n - 1];
+      case TrackExtend::linear:
+        if (is_before) return values_[0] + in_[0] * (frame - first) * T(stepped_[0] ? 0 : 1);
+        return values_[n - 1] + out_[n - 1] * (frame - last) * T(stepped_[n - 1] ? 0 : 1);
+      case TrackExtend::cycle:
+      case TrackExtend::cycle_offset:
+      case TrackExtend::oscillate: {
+        const T rel = frame - first;
+        const T k = std::floor(rel / span);  // cycle number (…, −1 before, 1, 2 … after)
+        T local = rel - k * span;            // in [0, span] up to rounding
+        local = std::clamp(local, T(0), span);
+        if (mode == TrackExtend::oscillate && std::fmod(std::abs(k), T(2)) == T(1)) local = span - local;
+        const V v = evaluate_inside(first + local, cursor, use_cursor);
+        if (mode == TrackExtend::cycle_offset) return v + (values_[n - 1] - values_[0]) * k;
+        return v;
+      }
+    }
+  }
+  return evaluate_inside(frame, cursor, use_cursor);
+}
+
+}  // namespace inbetween

@@ -1,0 +1,230 @@
+// Generic keyframed tracks.  Sources: Hermite basis and Catmull-Rom closed forms (texts 000 §2.2,
+// 004 §3.1), Kochanek–Bartels (1984) special cases, Fritsch–Carlson monotonicity (plateau), and
+// equality with the track's own uncached evaluation for the cursor.
+#include "inbetween/tracks/track.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "support/random.hpp"
+#include "support/tolerances.hpp"
+
+namespace inbetween {
+namespace {
+
+template <class T>
+class TrackTest : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(TrackTest, Scalars);
+
+// A cubic in a handful of operations on values ~10: a few hundred ulp of magnitude 1.
+template <class T>
+constexpr T kEvalTol = T(512) * std::numeric_limits<T>::epsilon();
+
+template <class V>
+TrackKey<V> key(scalar_of<V> f, V v, TangentKind kind = TangentKind::catmull_rom) {
+  TrackKey<V> k;
+  k.frame = f;
+  k.value = v;
+  k.tangent = kind;
+  return k;
+}
+
+TYPED_TEST(TrackTest, UniformCatmullRomMatchesTheClassicFormula) {
+  using T = TypeParam;
+  // Uniform keys at frames 0..4: on segment 1→2, CR(u) = ½[2p1 + (p2 − p0)u + (2p0 − 5p1 + 4p2 − p3)u²
+  // + (−p0 + 3p1 − 3p2 + p3)u³]  (text 000 §2.2).
+  const T p[] = {1, 4, 2, 5, 3};
+  std::vector<TrackKey<T>> keys;
+  for (int i = 0; i < 5; ++i) keys.push_back(key<T>(T(i), p[i]));
+  auto tr = build_track(keys);
+  ASSERT_TRUE(tr.has_value());
+  for (T u = 0; u <= 1; u += T(0.125)) {
+    const T expected = T(0.5) * (2 * p[1] + (p[2] - p[0]) * u + (2 * p[0] - 5 * p[1] + 4 * p[2] - p[3]) * u * u +
+                                 (-p[0] + 3 * p[1] - 3 * p[2] + p[3]) * u * u * u);
+    EXPECT_NEAR(tr->sample(1 + u), expected, kEvalTol<T> * 10);
+  }
+}
+
+TYPED_TEST(TrackTest, ExplicitHermitePassesThroughKeysWithTheGivenSlopes) {
+  using T = TypeParam;
+  std::vector<TrackKey<T>> keys;
+  const T frames[] = {0, 3, 7};
+  const T values[] = {1, -2, 4};
+  const T slopes[] = {0.5, -1, 2};
+  for (int i = 0; i < 3; ++i) {
+    auto k = key<T>(frames[i], values[i], TangentKind::explicit_hermite);
+    k.in_tangent = k.out_tangent = slopes[i];
+    keys.push_back(k);
+  }
+  auto tr = build_track(keys);
+  ASSERT_TRUE(tr.has_value());
+  const T h = std::is_same_v<T, float> ? T(1e-2) : T(1e-5);  // central difference step
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(tr->sample(frames[i]), values[i], kEvalTol<T>);
+    if (i > 0 && i < 2) {
+      // One-sided second-order differences on each side (the second derivative jumps at a key):
+      // error h^2 |f'''|/3 with |f'''| < 10 here, plus rounding eps |f|/h.
+      const T t = frames[i];
+      const T right = (-3 * tr->sample(t) + 4 * tr->sample(t + h) - tr->sample(t + 2 * h)) / (2 * h);
+      const T left = (3 * tr->sample(t) - 4 * tr->sample(t - h) + tr->sample(t - 2 * h)) / (2 * h);
+      EXPECT_NEAR(right, slopes[i], T(4) * h * h + T(1e-3));
+      EXPECT_NEAR(left, slopes[i], T(4) * h * h + T(1e-3));
+    }
+  }
+}
+
+TYPED_TEST(TrackTest, LinearSteppedAndFlatKinds) {
+  using T = TypeParam;
+  auto tr = build_track(std::vector<TrackKey<T>>{key<T>(0, 0, TangentKind::linear), key<T>(4, 8, TangentKind::stepped),
+                                                 key<T>(6, 1, TangentKind::flat), key<T>(10, 5, TangentKind::flat)});
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_NEAR(tr->sample(T(1)), T(2), kEvalTol<T>);  // linear ends on both sides of [0, 4] (chord 2/frame)
+  EXPECT_NEAR(tr->sample(T(3)), T(6), kEvalTol<T>);
+  EXPECT_EQ(tr->sample(T(5.5)), T(8));               // stepped holds
+  EXPECT_EQ(tr->sample(T(6)), T(1));
+  // Flat–flat segment is the smoothstep: 1 + 4·(3u² − 2u³) at u = ½ → 3.
+  EXPECT_NEAR(tr->sample(T(8)), T(3), kEvalTol<T>);
+}
+
+TYPED_TEST(TrackTest, KochanekBartelsSpecialCases) {
+  using T = TypeParam;
+  test::Random rng(test::seed_for(5020));
+  SCOPED_TRACE(rng.trace());
+  std::vector<TrackKey<T>> cr, tcb0, tense, flat;
+  for (int i = 0; i < 6; ++i) {
+    const T v = rng.uniform<T>(-3, 3);
+    cr.push_back(key<T>(T(2 * i), v));
+    tcb0.push_back(key<T>(T(2 * i), v, TangentKind::kochanek_bartels));
+    auto k = key<T>(T(2 * i), v, TangentKind::kochanek_bartels);
+    k.tension = 1;
+    tense.push_back(k);
+    flat.push_back(key<T>(T(2 * i), v, TangentKind::flat));
+  }
+  auto a = build_track(cr), b = build_track(tcb0), c = build_track(tense), d = build_track(flat);
+  ASSERT_TRUE(a && b && c && d);
+  // Interior keys: with t = c = b = 0 on even spacing TCB is Catmull-Rom; tension 1 is flat.
+  for (T f = 2; f <= 8; f += T(0.25)) {
+    EXPECT_NEAR(b->sample(f), a->sample(f), kEvalTol<T> * 4) << f;
+    EXPECT_NEAR(c->sample(f), d->sample(f), kEvalTol<T> * 4) << f;
+  }
+}
+
+TYPED_TEST(TrackTest, PlateauNeverOvershootsAndIsFlatAtExtremes) {
+  using T = TypeParam;
+  test::Random rng(test::seed_for(5021));
+  SCOPED_TRACE(rng.trace());
+  for (int trial = 0; trial < 50; ++trial) {
+    std::vector<TrackKey<T>> keys;
+    T f = 0;
+    for (int i = 0; i < 8; ++i) {
+      keys.push_back(key<T>(f, rng.uniform<T>(-5, 5), TangentKind::plateau));
+      f += rng.uniform<T>(T(0.2), T(5));
+    }
+    auto tr = build_track(keys);
+    ASSERT_TRUE(tr.has_value());
+    for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+      const T lo = std::min(keys[i].value, keys[i + 1].value), hi = std::max(keys[i].value, keys[i + 1].value);
+      for (int s = 1; s < 32; ++s) {
+        const T t = keys[i].frame + (keys[i + 1].frame - keys[i].frame) * T(s) / 32;
+        const T v = tr->sample(t);
+        EXPECT_GE(v, lo - kEvalTol<T> * 10);
+        EXPECT_LE(v, hi + kEvalTol<T> * 10);
+      }
+    }
+  }
+}
+
+TYPED_TEST(TrackTest, ClampedIsFlatNextToAnEqualNeighbour) {
+  using T = TypeParam;
+  auto tr = build_track(std::vector<TrackKey<T>>{key<T>(0, 0, TangentKind::clamped), key<T>(2, 3, TangentKind::clamped),
+                                                 key<T>(4, 3, TangentKind::clamped), key<T>(6, 0, TangentKind::clamped)});
+  ASSERT_TRUE(tr.has_value());
+  EXPECT_EQ(tr->out_tangents()[1], T(0));
+  EXPECT_EQ(tr->in_tangents()[2], T(0));
+  for (T f = 2; f <= 4; f += T(0.25)) EXPECT_NEAR(tr->sample(f), T(3), kEvalTol<T>);  // no bump on the plateau
+}
+
+TYPED_TEST(TrackTest, ExtendModes) {
+  using T = TypeParam;
+  const std::vector<TrackKey<T>> keys = {key<T>(0, 1, TangentKind::linear), key<T>(4, 3, TangentKind::linear)};
+  auto cyc = build_track(keys, TrackExtend::cycle, TrackExtend::cycle);
+  auto off = build_track(keys, TrackExtend::cycle_offset, TrackExtend::cycle_offset);
+  auto osc = build_track(keys, TrackExtend::oscillate, TrackExtend::oscillate);
+  auto lin = build_track(keys, TrackExtend::linear, TrackExtend::linear);
+  auto con = build_track(keys);
+  ASSERT_TRUE(cyc && off && osc && lin && con);
+  // Line v = 1 + f/2 on [0, 4].  Closed forms of each extension:
+  EXPECT_NEAR(cyc->sample(T(5)), T(1.5), kEvalTol<T>);   // 5 → 1
+  EXPECT_NEAR(cyc->sample(T(-1)), T(2.5), kEvalTol<T>);  // −1 → 3
+  EXPECT_NEAR(off->sample(T(5)), T(3.5), kEvalTol<T>);   // 1.5 + 2
+  EXPECT_NEAR(off->sample(T(-1)), T(0.5), kEvalTol<T>);  // 2.5 − 2
+  EXPECT_NEAR(osc->sample(T(5)), T(2.5), kEvalTol<T>);   // mirrored: 5 → 3
+  EXPECT_NEAR(osc->sample(T(-1)), T(1.5), kEvalTol<T>);  // mirrored: −1 → 1
+  EXPECT_NEAR(osc->sample(T(9)), T(1.5), kEvalTol<T>);   // second copy forwards again: 9 → 1
+  EXPECT_NEAR(lin->sample(T(6)), T(4), kEvalTol<T>);
+  EXPECT_NEAR(lin->sample(T(-2)), T(0), kEvalTol<T>);
+  EXPECT_EQ(con->sample(T(100)), T(3));
+  EXPECT_EQ(con->sample(T(-100)), T(1));
+}
+
+TYPED_TEST(TrackTest, CursorAndBatchAgreeWithPlainSampling) {
+  using T = TypeParam;
+  test::Random rng(test::seed_for(5022));
+  SCOPED_TRACE(rng.trace());
+  std::vector<TrackKey<Vec3<T>>> keys;
+  T f = 0;
+  for (int i = 0; i < 40; ++i) {
+    auto k = key<Vec3<T>>(f, rng.vec3<T>(T(-5), T(5)), TangentKind(rng.integer(1, 7)));
+    keys.push_back(k);
+    f += rng.uniform<T>(T(0.1), T(3));
+  }
+  auto tr = build_track(keys, TrackExtend::oscillate, TrackExtend::cycle_offset);
+  ASSERT_TRUE(tr.has_value());
+  std::vector<T> frames;
+  for (T t = -20; t < f + 20; t += T(0.37)) frames.push_back(t);            // forwards
+  for (T t = f + 5; t > -5; t -= T(0.9)) frames.push_back(t);               // backwards
+  for (int i = 0; i < 200; ++i) frames.push_back(rng.uniform<T>(-30, f + 30));  // jumps
+  std::vector<Vec3<T>> batch(frames.size());
+  TrackCursor cursor, batch_cursor;
+  tr->sample(frames, batch, batch_cursor);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const Vec3<T> plain = tr->sample(frames[i]);
+    EXPECT_EQ(tr->sample(frames[i], cursor), plain) << frames[i];
+    EXPECT_EQ(batch[i], plain) << frames[i];
+  }
+}
+
+TEST(TrackBuild, RejectsBadKeysNamingTheKey) {
+  std::vector<TrackKey<double>> keys = {key<double>(0, 0), key<double>(1, 1), key<double>(1, 2)};
+  auto r = build_track(keys);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(r.error().where, "key 2");
+  keys[2].frame = 2;
+  keys[1].value = std::numeric_limits<double>::infinity();
+  r = build_track(keys);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(r.error().where, "key 1");
+  keys[1].value = 0;
+  keys[1].tangent = TangentKind::kochanek_bartels;
+  keys[1].bias = 2;
+  r = build_track(keys);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
+  EXPECT_FALSE(build_track(std::vector<TrackKey<double>>{}).has_value());
+}
+
+TEST(TrackBuild, SingleKeyIsConstantEverywhere) {
+  auto tr = build_track(std::vector<TrackKey<Vec4f>>{key<Vec4f>(3, Vec4f{0.1f, 0.2f, 0.3f, 1})}, TrackExtend::linear,
+                        TrackExtend::oscillate);
+  ASSERT_TRUE(tr.has_value());
+  for (float f : {-1e6f, 0.f, 3.f, 7.5f, 1e6f}) EXPECT_EQ(tr->sample(f), (Vec4f{0.1f, 0.2f, 0.3f, 1}));
+}
+
+}  // namespace
+}  // namespace inbetween
