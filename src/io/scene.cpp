@@ -240,6 +240,120 @@ Expected<SceneScalarTrack> parse_scalar_track(const json& j, const std::string& 
   return track;
 }
 
+const std::vector<std::string_view> kTangents = {"hermite", "catmull_rom", "kochanek_bartels", "flat",
+                                                 "linear",  "clamped",     "plateau",          "stepped"};
+const std::vector<std::string_view> kExtend = {"constant", "linear", "cycle", "cycle_offset", "oscillate"};
+
+template <class Enum>
+Expected<Enum> name_member(const json& obj, const std::string& ptr, std::string_view name, Enum fallback,
+                           const std::vector<std::string_view>& names) {
+  const std::string p = child(ptr, name);
+  auto it = obj.find(std::string(name));
+  if (it == obj.end()) return fallback;
+  if (!it->is_string()) return error_at(ErrorCode::InvalidArgument, "expected a string, found " + type_name(*it), p);
+  const std::string s = it->get<std::string>();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (names[i] == s) return static_cast<Enum>(i);
+  std::string list;
+  for (std::string_view a : names) list += (list.empty() ? "" : ", ") + std::string(a);
+  return error_at(ErrorCode::InvalidArgument, "unknown " + std::string(name) + " \"" + s + "\" (expected one of: " + list + ")",
+                  p);
+}
+
+Expected<Vec4d> vector_member(const json& obj, const std::string& ptr, std::string_view name, int dim, bool required) {
+  const std::string p = child(ptr, name);
+  auto it = obj.find(std::string(name));
+  if (it == obj.end()) {
+    if (!required) return Vec4d{};
+    return error_at(ErrorCode::InvalidArgument, "missing required member \"" + std::string(name) + "\"", p);
+  }
+  if (!it->is_array() || int(it->size()) != dim) {
+    return error_at(ErrorCode::WrongArity,
+                    "expected an array of " + std::to_string(dim) + " numbers, found " +
+                        (it->is_array() ? std::to_string(it->size()) + " elements" : type_name(*it)),
+                    p);
+  }
+  Vec4d v{};
+  for (int i = 0; i < dim; ++i) {
+    auto x = get_number((*it)[std::size_t(i)], child(p, std::size_t(i)));
+    if (!x) return x.error();
+    v[i] = *x;
+  }
+  return v;
+}
+
+Expected<SceneVectorTrack> parse_vector_track(const json& j, const std::string& ptr, const std::string& kind) {
+  if (auto ok = only_members(j, ptr, {"name", "kind", "keys", "before", "after"}); !ok) return ok.error();
+  SceneVectorTrack track;
+  auto name_it = j.find("name");
+  if (name_it == j.end() || !name_it->is_string() || name_it->get<std::string>().empty()) {
+    return error_at(ErrorCode::InvalidArgument, "a track needs a non-empty string \"name\"", child(ptr, "name"));
+  }
+  track.name = name_it->get<std::string>();
+  track.dim = kind == "vec2" ? 2 : (kind == "vec3" ? 3 : 4);
+  track.components = kind == "color" ? "rgba" : std::string("xyzw").substr(0, std::size_t(track.dim));
+  auto before = name_member(j, ptr, "before", TrackExtend::constant, kExtend);
+  if (!before) return before.error();
+  auto after = name_member(j, ptr, "after", TrackExtend::constant, kExtend);
+  if (!after) return after.error();
+  const std::string kp = child(ptr, "keys");
+  auto keys = j.find("keys");
+  if (keys == j.end()) return error_at(ErrorCode::InvalidArgument, "missing required member \"keys\"", kp);
+  if (!keys->is_array()) return error_at(ErrorCode::InvalidArgument, "\"keys\" must be an array", kp);
+  if (keys->empty()) return error_at(ErrorCode::TooFewPoints, "a track needs at least one key", kp);
+  std::vector<TrackKey<Vec4d>> raw;
+  for (std::size_t i = 0; i < keys->size(); ++i) {
+    const json& kj = (*keys)[i];
+    const std::string p = child(kp, i);
+    if (!kj.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(kj), p);
+    if (auto ok = only_members(kj, p, {"frame", "value", "tangent", "in_tangent", "out_tangent", "tension",
+                                       "continuity", "bias"});
+        !ok) {
+      return ok.error();
+    }
+    TrackKey<Vec4d> k;
+    auto frame = number_member(kj, p, "frame", std::nullopt);
+    if (!frame) return frame.error();
+    auto value = vector_member(kj, p, "value", track.dim, true);
+    if (!value) return value.error();
+    auto tangent = name_member(kj, p, "tangent", TangentKind::catmull_rom, kTangents);
+    if (!tangent) return tangent.error();
+    const bool hermite = *tangent == TangentKind::explicit_hermite;
+    auto tin = vector_member(kj, p, "in_tangent", track.dim, hermite);
+    if (!tin) return tin.error();
+    auto tout = vector_member(kj, p, "out_tangent", track.dim, hermite);
+    if (!tout) return tout.error();
+    k.frame = *frame;
+    k.value = *value;
+    k.tangent = *tangent;
+    k.in_tangent = *tin;
+    k.out_tangent = *tout;
+    for (auto [field, target] : {std::pair<std::string_view, double*>{"tension", &k.tension},
+                                 {"continuity", &k.continuity}, {"bias", &k.bias}}) {
+      auto v = number_member(kj, p, field, 0.0);
+      if (!v) return v.error();
+      if (*v < -1 || *v > 1) return error_at(ErrorCode::InvalidArgument, "must be in [-1, 1]", child(p, field));
+      *target = *v;
+    }
+    if (i > 0 && !(k.frame > raw.back().frame)) {
+      return error_at(ErrorCode::KeysNotIncreasing,
+                      "frame " + std::to_string(k.frame) + " is not after the previous key's frame " +
+                          std::to_string(raw.back().frame) + " (keys must be sorted by strictly increasing frame)",
+                      child(p, "frame"));
+    }
+    raw.push_back(k);
+  }
+  auto built = build_track(raw, *before, *after);
+  if (!built) {
+    Error e = built.error();
+    if (e.where.rfind("key ", 0) == 0) e.where = child(kp, std::size_t(std::stoul(e.where.substr(4))));
+    else e.where = ptr;
+    return e;
+  }
+  track.track = std::move(*built);
+  return track;
+}
+
 Expected<Scene> parse_scene_json(const json& root) {
   if (!root.is_object()) return error_at(ErrorCode::InvalidArgument, "a scene must be a JSON object", "");
   if (auto ok = only_members(root, "", {"inbetween", "fps", "range", "tracks", "objects"}); !ok) return ok.error();
@@ -279,18 +393,31 @@ Expected<Scene> parse_scene_json(const json& root) {
         if (!k->is_string()) return error_at(ErrorCode::InvalidArgument, "\"kind\" must be a string", child(tp, "kind"));
         kind = k->get<std::string>();
       }
-      if (kind != "scalar") {
-        return error_at(ErrorCode::InvalidArgument, "unknown track kind \"" + kind + "\" (expected one of: scalar)",
+      std::string name;
+      if (kind == "scalar") {
+        auto track = parse_scalar_track(tj, tp);
+        if (!track) return track.error();
+        name = track->name;
+        scene.track_order.emplace_back(false, scene.scalar_tracks.size());
+        scene.scalar_tracks.push_back(std::move(*track));
+      } else if (kind == "vec2" || kind == "vec3" || kind == "vec4" || kind == "color") {
+        auto track = parse_vector_track(tj, tp, kind);
+        if (!track) return track.error();
+        name = track->name;
+        scene.track_order.emplace_back(true, scene.vector_tracks.size());
+        scene.vector_tracks.push_back(std::move(*track));
+      } else {
+        return error_at(ErrorCode::InvalidArgument,
+                        "unknown track kind \"" + kind + "\" (expected one of: scalar, vec2, vec3, vec4, color)",
                         child(tp, "kind"));
       }
-      auto track = parse_scalar_track(tj, tp);
-      if (!track) return track.error();
-      for (const auto& other : scene.scalar_tracks) {
-        if (other.name == track->name) {
-          return error_at(ErrorCode::InvalidArgument, "duplicate track name \"" + track->name + "\"", child(tp, "name"));
+      for (std::size_t k = 0; k + 1 < scene.track_order.size(); ++k) {
+        const auto [is_vec, idx] = scene.track_order[k];
+        const std::string& other = is_vec ? scene.vector_tracks[idx].name : scene.scalar_tracks[idx].name;
+        if (other == name) {
+          return error_at(ErrorCode::InvalidArgument, "duplicate track name \"" + name + "\"", child(tp, "name"));
         }
       }
-      scene.scalar_tracks.push_back(std::move(*track));
     }
   }
   if (auto o = root.find("objects"); o != root.end()) {
@@ -321,6 +448,34 @@ Expected<Scene> parse_scene(std::string_view json_text) {
     return Error{ErrorCode::Parse, "not valid JSON", "line " + std::to_string(line) + ", column " + std::to_string(col)};
   }
   return parse_scene_json(root);
+}
+
+std::vector<SceneColumn> scene_columns(const Scene& scene) {
+  std::vector<SceneColumn> cols;
+  for (const auto& [is_vec, idx] : scene.track_order) {
+    if (!is_vec) {
+      cols.push_back({scene.scalar_tracks[idx].name, true});
+    } else {
+      const auto& t = scene.vector_tracks[idx];
+      for (char c : t.components) cols.push_back({t.name + "." + c, false});
+    }
+  }
+  return cols;
+}
+
+void evaluate_scene(const Scene& scene, double frame, std::span<double> out) noexcept {
+  std::size_t col = 0;
+  for (const auto& [is_vec, idx] : scene.track_order) {
+    if (!is_vec) {
+      if (col < out.size()) out[col] = scene.scalar_tracks[idx].curve.evaluate(float(frame));
+      ++col;
+    } else {
+      const auto& t = scene.vector_tracks[idx];
+      const Vec4d v = t.track.sample(frame);
+      for (int c = 0; c < t.dim; ++c, ++col)
+        if (col < out.size()) out[col] = v[c];
+    }
+  }
 }
 
 }  // namespace inbetween

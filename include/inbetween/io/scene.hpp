@@ -3,12 +3,15 @@
 /// document with named animation tracks and objects, read into built, ready-to-evaluate tracks.
 /// Every error names its place with a JSON pointer ("/tracks/2/keys/3/frame").
 
+#include <span>
 #include <string>
+#include <utility>
 #include <string_view>
 #include <vector>
 
 #include "inbetween/math/expected.hpp"
 #include "inbetween/tracks/fcurve.hpp"
+#include "inbetween/tracks/track.hpp"
 
 namespace inbetween {
 
@@ -18,13 +21,38 @@ struct SceneScalarTrack {
   FCurve curve;      ///< the built curve
 };
 
+/// A named vector or colour track ("vec2", "vec3", "vec4", "color"): held as Track<Vec4d>, the
+/// components beyond `dim` being zero.
+struct SceneVectorTrack {
+  std::string name;        ///< column prefix, e.g. "cube.color"
+  int dim = 3;             ///< number of components (2, 3 or 4)
+  std::string components;  ///< component letters for column names: "xy", "xyz", "xyzw" or "rgba"
+  Track<Vec4d> track;      ///< the built track
+};
+
 /// A parsed scene.
 struct Scene {
   int version = 1;                        ///< the "inbetween" format version
   double fps = 24;                        ///< frames per second (> 0)
   double range_start = 1, range_end = 1;  ///< default frame range for baking (start ≤ end)
   std::vector<SceneScalarTrack> scalar_tracks;  ///< "tracks" with kind "scalar" (the default)
+  std::vector<SceneVectorTrack> vector_tracks;  ///< "tracks" with kind vec2, vec3, vec4 or color
+  /// File order of all tracks: (is_vector, index into scalar_tracks or vector_tracks).
+  std::vector<std::pair<bool, std::size_t>> track_order;
 };
+
+/// One output column of a baked scene.
+struct SceneColumn {
+  std::string name;               ///< "<track>" for scalar tracks, "<track>.<component>" otherwise
+  bool single_precision = false;  ///< true for F-curve columns (their values are exact floats)
+};
+
+/// Columns of a baked scene after "frame" and "time", in the order the tracks appear in the file.
+[[nodiscard]] std::vector<SceneColumn> scene_columns(const Scene& scene);
+
+/// Evaluates every track at `frame`; `out` has scene_columns(scene).size() entries, filled in
+/// that order.  Scalar tracks are evaluated in single precision (Blender semantics).
+void evaluate_scene(const Scene& scene, double frame, std::span<double> out) noexcept;
 
 /// Parses scene JSON text.  Errors carry ErrorCode::Parse for malformed JSON (where = "line L,
 /// column C") and otherwise the code of the failed check with `where` = the JSON pointer.

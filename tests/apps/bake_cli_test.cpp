@@ -1,0 +1,164 @@
+// `inbetween bake`: output shape, agreement with the library, and one clear message with a JSON
+// pointer and exit code 2 for each kind of malformed scene.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+
+#include "inbetween/io/scene.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+fs::path temp_dir() {
+  const fs::path d = fs::path(INBETWEEN_BINARY_DIR) / "bake-cli-test";
+  fs::create_directories(d);
+  return d;
+}
+
+CliRun run(const std::string& args) {
+  const fs::path d = temp_dir();
+  const std::string cmd = std::string("\"") + INBETWEEN_CLI + "\" " + args + " > \"" + (d / "stdout").string() +
+                          "\" 2> \"" + (d / "stderr").string() + "\"";
+  const int status = std::system(cmd.c_str());
+  CliRun r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(d / "stdout");
+  r.err = slurp(d / "stderr");
+  return r;
+}
+
+fs::path write_scene(const std::string& name, const std::string& text) {
+  const fs::path p = temp_dir() / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+const std::string kExample = std::string(INBETWEEN_SOURCE_DIR) + "/examples/scenes/bouncing_cube.json";
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string l; std::getline(ss, l);) out.push_back(l);
+  return out;
+}
+
+TEST(BakeCli, CsvHeaderAndRowsFollowTheIssue) {
+  const CliRun r = run("bake \"" + kExample + "\" --frames 1:3:0.5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ls = lines(r.out);
+  ASSERT_EQ(ls.size(), 6u);  // header + frames 1, 1.5, 2, 2.5, 3
+  EXPECT_EQ(ls[0],
+            "frame,time,cube.location.z,cube.location.x,cube.scale.y,cube.color.r,cube.color.g,cube.color.b,"
+            "cube.color.a,camera.target.x,camera.target.y,camera.target.z");
+  EXPECT_EQ(ls[2].substr(0, ls[2].find(',', 4)), "1.5,0.0625");  // time = frame / fps = 1.5 / 24
+}
+
+TEST(BakeCli, ValuesAreTheLibrarysValues) {
+  const CliRun r = run("bake \"" + kExample + "\" --frames 0:60:0.7 --fps 30");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto scene = inbetween::parse_scene(slurp(kExample));
+  ASSERT_TRUE(scene.has_value());
+  const auto cols = inbetween::scene_columns(*scene);
+  const auto ls = lines(r.out);
+  ASSERT_EQ(ls.size(), 1u + 86u);  // frames 0, 0.7, …, 59.5
+  std::vector<double> expected(cols.size());
+  for (std::size_t i = 1; i < ls.size(); ++i) {
+    std::vector<double> cells;
+    std::stringstream ss(ls[i]);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(std::strtod(c.c_str(), nullptr));
+    ASSERT_EQ(cells.size(), cols.size() + 2);
+    inbetween::evaluate_scene(*scene, cells[0], expected);
+    EXPECT_DOUBLE_EQ(cells[1], cells[0] / 30);
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      // Shortest round-trip text: float columns read back to the same float, double ones exactly.
+      if (cols[c].single_precision) EXPECT_EQ(float(cells[c + 2]), float(expected[c])) << cols[c].name;
+      else EXPECT_EQ(cells[c + 2], expected[c]) << cols[c].name;
+    }
+  }
+}
+
+TEST(BakeCli, JsonFormat) {
+  const CliRun r = run("bake \"" + kExample + "\" --frames 1:2 --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"columns\": [\"frame\", \"time\", \"cube.location.z\""), std::string::npos);
+  EXPECT_NE(r.out.find("[2, 0.08333333333333333, "), std::string::npos);
+}
+
+struct Malformed {
+  const char* what;
+  const char* scene;
+  const char* pointer;
+};
+
+TEST(BakeCli, MalformedScenesGiveOneMessageWithPointerAndExitTwo) {
+  const Malformed cases[] = {
+      {"unsorted keys",
+       R"({"inbetween": 1, "tracks": [{"name": "a", "keys": [{"frame": 5, "value": 0}, {"frame": 2, "value": 1}]}]})",
+       "/tracks/0/keys/1/frame"},
+      {"unknown interpolation",
+       R"({"inbetween": 1, "tracks": [{"name": "a", "keys": [{"frame": 1, "value": 0, "interpolation": "smooth"}]}]})",
+       "/tracks/0/keys/0/interpolation"},
+      {"NaN value", R"({"inbetween": 1, "tracks": [{"name": "a", "keys": [{"frame": 1, "value": "NaN"}]}]})",
+       "/tracks/0/keys/0/value"},
+      {"wrong arity of a handle",
+       R"({"inbetween": 1, "tracks": [{"name": "a", "keys": [{"frame": 1, "value": 0, "handle_left_type": "free",
+          "handle_right_type": "free", "handle_left": [0], "handle_right": [2, 0]}]}]})",
+       "/tracks/0/keys/0/handle_left"},
+      {"wrong arity of a vector value",
+       R"({"inbetween": 1, "tracks": [{"name": "p", "kind": "vec3", "keys": [{"frame": 1, "value": [1, 2]}]}]})",
+       "/tracks/0/keys/0/value"},
+      {"unknown kind", R"({"inbetween": 1, "tracks": [{"name": "p", "kind": "vec5", "keys": []}]})", "/tracks/0/kind"},
+      {"missing version", R"({"tracks": []})", "/inbetween"},
+      {"misspelt member",
+       R"({"inbetween": 1, "tracks": [{"name": "a", "keys": [{"frame": 1, "value": 0, "interpolaton": "linear"}]}]})",
+       "/tracks/0/keys/0/interpolaton"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.what);
+    const fs::path scene = write_scene("bad.json", c.scene);
+    const fs::path out = temp_dir() / "never-written.csv";
+    fs::remove(out);
+    const CliRun r = run("bake \"" + scene.string() + "\" -o \"" + out.string() + "\"");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find(std::string(c.pointer) + ": "), std::string::npos) << r.err;
+    EXPECT_EQ(lines(r.err).size(), 1u) << r.err;  // one message
+    EXPECT_FALSE(fs::exists(out));                // nothing written
+  }
+}
+
+TEST(BakeCli, BadFramesAndUnreadableJson) {
+  CliRun r = run("bake \"" + kExample + "\" --frames 5:1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--frames"), std::string::npos);
+  r = run("bake \"" + kExample + "\" --frames 1:5:0");
+  EXPECT_EQ(r.exit_code, 2);
+  r = run("bake \"" + kExample + "\" --frames a:5");
+  EXPECT_EQ(r.exit_code, 2);
+  const fs::path broken = write_scene("broken.json", "{\"inbetween\": 1,\n \"tracks\": [}");
+  r = run("bake \"" + broken.string() + "\"");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("line 2"), std::string::npos) << r.err;
+}
+
+}  // namespace
