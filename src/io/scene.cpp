@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <charconv>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -13,6 +14,13 @@
 namespace inbetween {
 
 namespace {
+
+// Shortest text that reads back to the same double ("2", "0.1").
+std::string num(double v) {
+  char buf[32];
+  auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
 
 using nlohmann::json;
 
@@ -221,8 +229,8 @@ Expected<SceneScalarTrack> parse_scalar_track(const json& j, const std::string& 
     if (!key) return key.error();
     if (i > 0 && !(key->frame > raw.keys.back().frame)) {
       return error_at(ErrorCode::KeysNotIncreasing,
-                      "frame " + std::to_string(key->frame) + " is not after the previous key's frame " +
-                          std::to_string(raw.keys.back().frame) + " (keys must be sorted by strictly increasing frame)",
+                      "frame " + num(key->frame) + " is not after the previous key's frame " +
+                          num(raw.keys.back().frame) + " (keys must be sorted by strictly increasing frame)",
                       child(child(kp, i), "frame"));
     }
     raw.keys.push_back(*key);
@@ -337,8 +345,8 @@ Expected<SceneVectorTrack> parse_vector_track(const json& j, const std::string& 
     }
     if (i > 0 && !(k.frame > raw.back().frame)) {
       return error_at(ErrorCode::KeysNotIncreasing,
-                      "frame " + std::to_string(k.frame) + " is not after the previous key's frame " +
-                          std::to_string(raw.back().frame) + " (keys must be sorted by strictly increasing frame)",
+                      "frame " + num(k.frame) + " is not after the previous key's frame " +
+                          num(raw.back().frame) + " (keys must be sorted by strictly increasing frame)",
                       child(p, "frame"));
     }
     raw.push_back(k);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cfloat>
+#include <charconv>
 #include <cmath>
 #include <string>
 
@@ -14,6 +15,13 @@
 namespace inbetween {
 
 namespace {
+
+// Shortest text that reads back to the same double ("2", "0.1").
+std::string num(double v) {
+  char buf[32];
+  auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
 
 using Key = FCurve::Key;
 
@@ -774,13 +782,13 @@ Expected<FCurve> build_fcurve(const RawFCurve& raw) {
       const FCurveKey& p = raw.keys[i - 1];
       if (!(k.frame > p.frame)) {
         return Error{ErrorCode::KeysNotIncreasing,
-                     "frame " + std::to_string(k.frame) + " is not after frame " + std::to_string(p.frame) +
+                     "frame " + num(k.frame) + " is not after frame " + num(p.frame) +
                          " of key " + std::to_string(i - 1),
                      where(i)};
       }
       if (!(float(k.frame) > float(p.frame))) {
         return Error{ErrorCode::KeysNotIncreasing,
-                     "frame " + std::to_string(k.frame) + " rounds to the same single-precision frame as key " +
+                     "frame " + num(k.frame) + " rounds to the same single-precision frame as key " +
                          std::to_string(i - 1),
                      where(i)};
       }

@@ -10,6 +10,7 @@
 /// binary search.
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -132,6 +133,12 @@ V component_map(const V& a, auto&& f) {
   return r;
 }
 
+inline std::string num(double v) {
+  char buf[32];
+  auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
+
 template <class V>
 bool finite(const V& v) noexcept {
   for (int i = 0; i < PointTraits<V>::dim; ++i)
@@ -162,8 +169,8 @@ Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend be
     }
     if (i > 0 && !(k.frame > keys[i - 1].frame)) {
       return Error{ErrorCode::KeysNotIncreasing,
-                   "frame " + std::to_string(double(k.frame)) + " is not after frame " +
-                       std::to_string(double(keys[i - 1].frame)) + " of key " + std::to_string(i - 1),
+                   "frame " + track_detail::num(double(k.frame)) + " is not after frame " +
+                       track_detail::num(double(keys[i - 1].frame)) + " of key " + std::to_string(i - 1),
                    where(i)};
     }
   }
