@@ -12,3 +12,10 @@
 
 // curves
 #include "inbetween/curves/curve.hpp"
+
+// timing
+#include "inbetween/timing/penner.hpp"
+
+// tracks
+#include "inbetween/tracks/fcurve.hpp"
+#include "inbetween/tracks/track.hpp"
