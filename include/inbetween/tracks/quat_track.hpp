@@ -1,0 +1,305 @@
+#pragma once
+/// Orientation tracks: unit-quaternion keys interpolated per segment by step, slerp, the Bézier
+/// quaternion spline of the texts (004 §3.3.1: automatic control points by "double" and
+/// "bisect", distance factor k of Eq. 3.30, de Casteljau with slerp), Shoemake's squad, or the
+/// glTF cubic form (4-D Hermite, then normalised).  docs/orientation.md derives each one.
+///
+/// Keys are normalised and their signs made continuous when the track is built (each key on the
+/// same side of the 4-D sphere as its predecessor, so every segment takes the short way), unless
+/// a key asks for the long way.  Sampling is noexcept and returns a unit quaternion.
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "inbetween/math/assert.hpp"
+#include "inbetween/math/expected.hpp"
+#include "inbetween/math/quat.hpp"
+#include "inbetween/tracks/track.hpp"
+
+namespace inbetween {
+
+/// Interpolation of the segment that starts at a quaternion key.
+enum class QuatInterpolation : std::uint8_t {
+  step,        ///< hold the key's orientation
+  slerp,       ///< constant-speed great arc (Eq. 3.29)
+  bezier,      ///< the Bézier quaternion spline with automatic control points (§3.3.1)
+  squad,       ///< Shoemake's spherical quadrangle interpolation
+  gltf_cubic,  ///< glTF CUBICSPLINE: 4-D Hermite with the keys' tangents, then normalised
+};
+
+/// One authored orientation key.
+template <Real T>
+struct QuatKey {
+  T frame{};                                                ///< time in frames
+  Quat<T> value{};                                          ///< orientation (normalised when built)
+  QuatInterpolation interpolation = QuatInterpolation::slerp;  ///< of the segment to the right
+  bool long_way = false;  ///< the segment arriving at this key takes the long way round
+  Quat<T> in_tangent = Quat<T>::from_wxyz(0, 0, 0, 0);   ///< glTF in-tangent (per frame), gltf_cubic only
+  Quat<T> out_tangent = Quat<T>::from_wxyz(0, 0, 0, 0);  ///< glTF out-tangent (per frame), gltf_cubic only
+};
+
+/// Options of the Bézier quaternion spline.
+template <Real T>
+struct QuatSplineOptions {
+  /// k of Eq. 3.30: control points at fraction k of the constructed ones (1/3 makes the spline
+  /// Catmull-Rom on the angle for keys about one axis).
+  T distance_factor = T(1) / T(3);
+  /// Scale each side's control point by its segment's share of the two neighbouring intervals, so
+  /// the angular velocity is continuous in time with unevenly spaced keys (no effect when even).
+  bool time_aware = true;
+};
+
+namespace quat_track_detail {
+
+/// slerp of unit quaternions a → b (no sign flip: the caller chose the signs).  The angle comes
+/// from 2·atan2(|a − b|, |a + b|), accurate near 0 and near π; sin(kω)/sin(ω) is evaluated through
+/// sinc so tiny angles lose nothing.  Antipodal inputs (ω = π, a full turn) rotate about the
+/// fixed perpendicular (−x, w, −z, y) of a (documented fallback).  The result is renormalised.
+template <Real T>
+Quat<T> slerp_unit(const Quat<T>& a, const Quat<T>& b, T u) noexcept {
+  if (u == T(0)) return a;
+  if (u == T(1)) return b;
+  const T omega = T(2) * std::atan2(norm(a - b), norm(a + b));
+  const T s = std::sin(omega);
+  Quat<T> r;
+  if (omega < T(1e-4)) {
+    // sin(kω)/sin(ω) → k as ω → 0; first-order correction keeps the error ~ω⁴.
+    const T w0 = (T(1) - u) * (T(1) + (T(1) - (T(1) - u) * (T(1) - u)) * omega * omega / T(6));
+    const T w1 = u * (T(1) + (T(1) - u * u) * omega * omega / T(6));
+    r = a * w0 + b * w1;
+  } else if (s < T(1e-6)) {
+    const Quat<T> perp = Quat<T>::from_wxyz(-a.x, a.w, -a.z, a.y);
+    const T ang = omega * u;
+    r = a * std::cos(ang) + perp * std::sin(ang);
+  } else {
+    r = a * (std::sin((T(1) - u) * omega) / s) + b * (std::sin(u * omega) / s);
+  }
+  return normalized(r);
+}
+
+/// (a + b)/|a + b|: slerp at ½ without trigonometry (the text's bisect); a or b if they cancel.
+template <Real T>
+Quat<T> bisect(const Quat<T>& a, const Quat<T>& b) noexcept {
+  const Quat<T> s = a + b;
+  const T n = norm(s);
+  if (!(n > T(1e-12))) return slerp_unit(a, b, T(0.5));
+  return s / n;
+}
+
+/// Eq. 3.31: r = 2(p·q)q − p, the reflection of p through q ("p to q, continued by as much").
+template <Real T>
+Quat<T> double_through(const Quat<T>& p, const Quat<T>& q) noexcept {
+  return normalized(q * (T(2) * dot(p, q)) - p);
+}
+
+/// slerp(a, b, j/2^m) by m bisections (the text's fast evaluation at dyadic parameters).
+template <Real T>
+Quat<T> slerp_dyadic(Quat<T> a, Quat<T> b, std::uint64_t j, int m) noexcept {
+  if (j == 0) return a;
+  if (j >= (std::uint64_t(1) << m)) return b;
+  for (int bit = m - 1; bit >= 0; --bit) {
+    const Quat<T> mid = bisect(a, b);
+    if ((j >> bit) & 1U) a = mid;
+    else b = mid;
+  }
+  return a;  // after m halvings [a, b] spans [j/2^m, (j+1)/2^m]
+}
+
+}  // namespace quat_track_detail
+
+/// A built orientation track.
+template <Real T>
+class QuatTrack {
+ public:
+  /// Number of keys (≥ 1).
+  [[nodiscard]] std::size_t size() const noexcept { return frames_.size(); }
+  /// Key frames (strictly increasing).
+  [[nodiscard]] std::span<const T> frames() const noexcept { return frames_; }
+  /// Keys after normalisation and sign continuity.
+  [[nodiscard]] std::span<const Quat<T>> keys() const noexcept { return keys_; }
+  /// Bézier control point after key i (a'_i of §3.3.1, scaled by the distance factor).
+  [[nodiscard]] const Quat<T>& control_after(std::size_t i) const noexcept { return after_[i]; }
+  /// Bézier control point before key i (b'_i).
+  [[nodiscard]] const Quat<T>& control_before(std::size_t i) const noexcept { return before_[i]; }
+
+  /// Orientation at `frame` (clamped to the keyed range); a unit quaternion.
+  [[nodiscard]] Quat<T> sample(T frame) const noexcept {
+    TrackCursor c;
+    return sample(frame, c, false);
+  }
+  /// Orientation at `frame`, using and updating `cursor` (O(1) for sequential playback).
+  [[nodiscard]] Quat<T> sample(T frame, TrackCursor& cursor) const noexcept { return sample(frame, cursor, true); }
+  /// out[i] = sample(frames[i], cursor); equal sizes; no allocation.
+  void sample(std::span<const T> frames, std::span<Quat<T>> out, TrackCursor& cursor) const noexcept {
+    INBETWEEN_ASSERT(frames.size() == out.size());
+    for (std::size_t i = 0; i < frames.size(); ++i) out[i] = sample(frames[i], cursor, true);
+  }
+
+  /// The point of segment i at u = j/2^m of the Bézier spline, computed by bisections only
+  /// (the text's fast evaluation); i < size() − 1, 0 ≤ j ≤ 2^m, m ≤ 30.
+  [[nodiscard]] Quat<T> bezier_dyadic(std::size_t i, std::uint64_t j, int m) const noexcept {
+    INBETWEEN_ASSERT(i + 1 < keys_.size() && m >= 0 && m <= 30);
+    using quat_track_detail::slerp_dyadic;
+    const Quat<T> p1 = slerp_dyadic(keys_[i], after_[i], j, m);
+    const Quat<T> p2 = slerp_dyadic(after_[i], before_[i + 1], j, m);
+    const Quat<T> p3 = slerp_dyadic(before_[i + 1], keys_[i + 1], j, m);
+    const Quat<T> p12 = slerp_dyadic(p1, p2, j, m);
+    const Quat<T> p23 = slerp_dyadic(p2, p3, j, m);
+    return slerp_dyadic(p12, p23, j, m);
+  }
+
+  /// The Bézier spline of segment i at parameter u in [0, 1] by de Casteljau with slerp.
+  [[nodiscard]] Quat<T> bezier(std::size_t i, T u) const noexcept {
+    using quat_track_detail::slerp_unit;
+    const Quat<T> p1 = slerp_unit(keys_[i], after_[i], u);
+    const Quat<T> p2 = slerp_unit(after_[i], before_[i + 1], u);
+    const Quat<T> p3 = slerp_unit(before_[i + 1], keys_[i + 1], u);
+    return slerp_unit(slerp_unit(p1, p2, u), slerp_unit(p2, p3, u), u);
+  }
+
+ private:
+  template <Real U>
+  friend Expected<QuatTrack<U>> build_quat_track(std::span<const QuatKey<U>> keys, const QuatSplineOptions<U>& options);
+
+  Quat<T> sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept;
+
+  std::vector<T> frames_;
+  std::vector<Quat<T>> keys_, after_, before_, squad_, tin_, tout_;
+  std::vector<QuatInterpolation> mode_;
+};
+
+/// Validates (≥ 1 key; finite frames strictly increasing; finite, non-zero quaternions and
+/// tangents; distance factor in (0, 1]) and builds a quaternion track.  Errors name the key.
+template <Real T>
+[[nodiscard]] Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys,
+                                                      const QuatSplineOptions<T>& options = {});
+
+/// Convenience overload for a vector of keys.
+template <Real T>
+[[nodiscard]] Expected<QuatTrack<T>> build_quat_track(const std::vector<QuatKey<T>>& keys,
+                                                      const QuatSplineOptions<T>& options = {}) {
+  return build_quat_track(std::span<const QuatKey<T>>(keys), options);
+}
+
+// ============================================================================ implementation
+template <Real T>
+Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const QuatSplineOptions<T>& options) {
+  using namespace quat_track_detail;
+  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a quaternion track needs at least one key", ""};
+  if (!(options.distance_factor > T(0) && options.distance_factor <= T(1))) {
+    return Error{ErrorCode::InvalidArgument, "distance factor must be in (0, 1]", ""};
+  }
+  const std::size_t n = keys.size();
+  auto where = [](std::size_t i) { return "key " + std::to_string(i); };
+  QuatTrack<T> tr;
+  tr.frames_.resize(n);
+  tr.keys_.resize(n);
+  tr.mode_.resize(n);
+  tr.tin_.resize(n);
+  tr.tout_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& k = keys[i];
+    if (!std::isfinite(k.frame)) return Error{ErrorCode::NotFinite, "frame is not finite", where(i)};
+    if (!is_finite(k.value) || !is_finite(k.in_tangent) || !is_finite(k.out_tangent)) {
+      return Error{ErrorCode::NotFinite, "quaternion or tangent is not finite", where(i)};
+    }
+    const T len = norm(k.value);
+    if (!(len > T(0))) return Error{ErrorCode::InvalidArgument, "zero quaternion is not a rotation", where(i)};
+    if (i > 0 && !(k.frame > keys[i - 1].frame)) {
+      return Error{ErrorCode::KeysNotIncreasing,
+                   "frame " + track_detail::num(double(k.frame)) + " is not after frame " +
+                       track_detail::num(double(keys[i - 1].frame)) + " of key " + std::to_string(i - 1),
+                   where(i)};
+    }
+    tr.frames_[i] = k.frame;
+    Quat<T> q = k.value / len;
+    T sign = T(1);
+    if (i > 0) {
+      const bool negative = dot(tr.keys_[i - 1], q) < T(0);
+      if (negative != k.long_way) sign = T(-1);
+    }
+    tr.keys_[i] = q * sign;
+    tr.tin_[i] = k.in_tangent * sign;
+    tr.tout_[i] = k.out_tangent * sign;
+    tr.mode_[i] = k.interpolation;
+  }
+  // Bézier control points (§3.3.1): a_i = bisect(double(q_{i−1}, q_i), q_{i+1}), b_i = double(a_i, q_i);
+  // at the ends the missing neighbour is the reflection of the other one through the end key.
+  tr.after_.resize(n);
+  tr.before_.resize(n);
+  tr.squad_.resize(n);
+  const T k = options.distance_factor;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Quat<T>& q = tr.keys_[i];
+    if (n == 1) {
+      tr.after_[i] = tr.before_[i] = tr.squad_[i] = q;
+      break;
+    }
+    const Quat<T> prev = i > 0 ? tr.keys_[i - 1] : double_through(tr.keys_[i + 1], q);
+    const Quat<T> next = i + 1 < n ? tr.keys_[i + 1] : double_through(tr.keys_[i - 1], q);
+    const Quat<T> a = bisect(double_through(prev, q), next);
+    const Quat<T> b = double_through(a, q);
+    T ka = k, kb = k;
+    if (options.time_aware && i > 0 && i + 1 < n) {
+      const T hl = tr.frames_[i] - tr.frames_[i - 1], hr = tr.frames_[i + 1] - tr.frames_[i];
+      ka = k * T(2) * hr / (hl + hr);
+      kb = k * T(2) * hl / (hl + hr);
+    }
+    tr.after_[i] = slerp_unit(q, a, ka);
+    tr.before_[i] = slerp_unit(q, b, kb);
+    // Squad's inner quadrangle point s_i = q_i exp(−(log(q_i⁻¹ q_{i+1}) + log(q_i⁻¹ q_{i−1}))/4);
+    // the end keys use s = q.
+    if (i == 0 || i + 1 == n) {
+      tr.squad_[i] = q;
+    } else {
+      const Quat<T> inv = conjugate(q);
+      const Quat<T> l = log(inv * tr.keys_[i + 1]) + log(inv * tr.keys_[i - 1]);
+      tr.squad_[i] = normalized(q * exp(l * T(-0.25)));
+    }
+  }
+  return tr;
+}
+
+template <Real T>
+Quat<T> QuatTrack<T>::sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept {
+  using namespace quat_track_detail;
+  const std::size_t n = frames_.size();
+  if (n == 1 || std::isnan(frame) || frame <= frames_[0]) return keys_[0];
+  if (frame >= frames_[n - 1]) return keys_[n - 1];
+  std::size_t i = use_cursor ? std::min(cursor.segment, n - 2) : 0;
+  if (use_cursor && frame >= frames_[i] && frame <= frames_[i + 1]) {
+  } else if (use_cursor && i + 2 < n && frame >= frames_[i + 1] && frame <= frames_[i + 2]) {
+    ++i;
+  } else {
+    const auto it = std::upper_bound(frames_.begin(), frames_.end(), frame);
+    i = std::min(std::size_t(it - frames_.begin()) - 1, n - 2);
+  }
+  cursor.segment = i;
+  const T h = frames_[i + 1] - frames_[i];
+  const T u = std::clamp((frame - frames_[i]) / h, T(0), T(1));
+  switch (mode_[i]) {
+    case QuatInterpolation::step:
+      return keys_[i];
+    case QuatInterpolation::slerp:
+      return slerp_unit(keys_[i], keys_[i + 1], u);
+    case QuatInterpolation::bezier:
+      return bezier(i, u);
+    case QuatInterpolation::squad:
+      return slerp_unit(slerp_unit(keys_[i], keys_[i + 1], u), slerp_unit(squad_[i], squad_[i + 1], u),
+                        T(2) * u * (T(1) - u));
+    case QuatInterpolation::gltf_cubic: {
+      const T u2 = u * u, u3 = u2 * u;
+      const Quat<T> v = keys_[i] * (T(2) * u3 - T(3) * u2 + T(1)) + tout_[i] * ((u3 - T(2) * u2 + u) * h) +
+                        keys_[i + 1] * (T(-2) * u3 + T(3) * u2) + tin_[i + 1] * ((u3 - u2) * h);
+      return normalized(v);
+    }
+  }
+  return keys_[i];
+}
+
+}  // namespace inbetween

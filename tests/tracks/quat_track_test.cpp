@@ -1,0 +1,222 @@
+// Orientation tracks.  Sources: the errata's closed form (with k = 1/3 the Bézier quaternion spline
+// of keys about one axis is Catmull-Rom on the angle, checked against Track<double>'s
+// catmull_rom), slerp's closed form for rotations about one axis, and measured one-sided angular
+// velocities at the keys.
+#include "inbetween/tracks/quat_track.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "support/museum.hpp"
+#include "support/random.hpp"
+#include "support/tolerances.hpp"
+
+namespace inbetween {
+namespace {
+
+using Q = Quatd;
+const Vec3d kZ{0, 0, 1};
+
+// Rotation-angle agreement for results of a few dozen slerps (each a few ulp): 1e-12 rad.
+constexpr double kAngleTol = 1e-12;
+
+QuatKey<double> qkey(double frame, const Q& q, QuatInterpolation mode = QuatInterpolation::bezier) {
+  QuatKey<double> k;
+  k.frame = frame;
+  k.value = q;
+  k.interpolation = mode;
+  return k;
+}
+
+// Signed rotation angle about z of a quaternion whose axis is z (continuous branch near `near`).
+double z_angle(const Q& q, double near) {
+  double a = 2 * std::atan2(q.z, q.w);
+  while (a - near > pi_v<double>) a -= 2 * pi_v<double>;
+  while (a - near < -pi_v<double>) a += 2 * pi_v<double>;
+  return a;
+}
+
+TEST(QuatTrack, OneAxisBezierIsCatmullRomOnTheAngle) {
+  test::Random rng(test::seed_for(5030));
+  SCOPED_TRACE(rng.trace());
+  for (int trial = 0; trial < 20; ++trial) {
+    const bool uniform = trial % 2 == 0;
+    std::vector<QuatKey<double>> qkeys;
+    std::vector<TrackKey<double>> akeys;
+    double frame = 0, angle = rng.uniform(-1.0, 1.0);
+    for (int i = 0; i < 7; ++i) {
+      qkeys.push_back(qkey(frame, Q::from_axis_angle(kZ, angle)));
+      TrackKey<double> a;
+      a.frame = frame;
+      a.value = angle;
+      akeys.push_back(a);
+      frame += uniform ? 1.0 : rng.uniform(0.3, 3.0);
+      angle += rng.uniform(-2.0, 2.0);  // successive keys < 180° apart: the short way is the keyed way
+    }
+    auto qt = build_quat_track(qkeys);
+    auto at = build_track(akeys);
+    ASSERT_TRUE(qt && at);
+    for (double f = 0; f <= qkeys.back().frame; f += 0.01) {
+      const double expected = at->sample(f);
+      EXPECT_NEAR(z_angle(qt->sample(f), expected), expected, 1e-11) << "frame " << f;
+    }
+  }
+}
+
+TEST(QuatTrack, PassesThroughKeysWithUnitNormInEveryMode) {
+  test::Random rng(test::seed_for(5031));
+  SCOPED_TRACE(rng.trace());
+  for (auto mode : {QuatInterpolation::step, QuatInterpolation::slerp, QuatInterpolation::bezier,
+                    QuatInterpolation::squad, QuatInterpolation::gltf_cubic}) {
+    std::vector<QuatKey<double>> keys;
+    for (int i = 0; i < 8; ++i) {
+      auto k = qkey(i * 1.5, rng.rotation() * rng.uniform(0.5, 2.0), mode);  // not unit on input
+      k.in_tangent = Q::from_wxyz(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), 0.1, 0.2);
+      k.out_tangent = k.in_tangent;
+      keys.push_back(k);
+    }
+    auto tr = build_quat_track(keys);
+    ASSERT_TRUE(tr.has_value());
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      EXPECT_TRUE(same_rotation(tr->sample(keys[i].frame), normalized(keys[i].value), kAngleTol)) << int(mode);
+    }
+    for (double f = -1; f < 12; f += 0.013) EXPECT_NEAR(norm(tr->sample(f)), 1.0, test::few_ulp<double>) << f;
+  }
+}
+
+// Angular velocity (rad/frame, world frame) from q(t) to q(t + h): 2·log(q(t+h) q(t)⁻¹)/h.
+Vec3d angular_velocity(const QuatTrack<double>& tr, double t, double h) {
+  Q d = tr.sample(t + h) * conjugate(tr.sample(t));
+  if (d.w < 0) d = -d;
+  return log(d).vec() * (2 / h);
+}
+
+TEST(QuatTrack, BezierAngularVelocityIsContinuousAtKeys) {
+  test::Random rng(test::seed_for(5032));
+  SCOPED_TRACE(rng.trace());
+  double worst_bezier = 0, worst_slerp_min = 1e9;
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<QuatKey<double>> bez, lin;
+    double f = 0;
+    Q q = rng.rotation();
+    for (int i = 0; i < 6; ++i) {
+      bez.push_back(qkey(f, q));
+      lin.push_back(qkey(f, q, QuatInterpolation::slerp));
+      f += rng.uniform(0.5, 3.0);  // uneven spacing: the time-aware control points keep C¹ in time
+      q = normalized(Q::from_axis_angle(rng.unit_vec3(), rng.uniform(0.3, 1.2)) * q);
+    }
+    auto b = build_quat_track(bez);
+    auto l = build_quat_track(lin);
+    ASSERT_TRUE(b && l);
+    const double h = 1e-4;
+    for (std::size_t i = 1; i + 1 < bez.size(); ++i) {
+      const double t = bez[i].frame;
+      // Richardson extrapolation of the one-sided differences removes their O(h) term.
+      const Vec3d left = angular_velocity(*b, t - h / 2, h / 2) * 2.0 - angular_velocity(*b, t - h, h);
+      const Vec3d right = angular_velocity(*b, t, h / 2) * 2.0 - angular_velocity(*b, t, h);
+      worst_bezier = std::max(worst_bezier, norm(right - left) / norm(right));
+      const Vec3d ll = angular_velocity(*l, t - h, h), lr = angular_velocity(*l, t, h);
+      worst_slerp_min = std::min(worst_slerp_min, norm(lr - ll) / norm(lr));
+    }
+  }
+  // Extrapolated one-sided differences with h = 1e-4 frame: O(h²·|ω''|/|ω|) ≈ 1e-8·100 plus
+  // rounding ~1e-16/1e-4.  Piecewise slerp, for contrast, jumps by a sizeable fraction at every key.
+  EXPECT_LT(worst_bezier, 1e-5);
+  EXPECT_GT(worst_slerp_min, 1e-2);
+  std::printf("relative angular-velocity jump at keys: bezier max %.3g, slerp min %.3g\n", worst_bezier,
+              worst_slerp_min);
+}
+
+TEST(QuatTrack, NoFlipsWhenNeighbouringKeysHaveOppositeSigns) {
+  test::Random rng(test::seed_for(5033));
+  SCOPED_TRACE(rng.trace());
+  for (auto mode : {QuatInterpolation::slerp, QuatInterpolation::bezier, QuatInterpolation::squad}) {
+    std::vector<QuatKey<double>> keys, flipped;
+    Q q = rng.rotation();
+    for (int i = 0; i < 10; ++i) {
+      keys.push_back(qkey(i, q, mode));
+      flipped.push_back(qkey(i, i % 2 ? -q : q, mode));  // every other key with the other sign
+      q = normalized(Q::from_axis_angle(rng.unit_vec3(), rng.uniform(0.2, 1.0)) * q);
+    }
+    auto a = build_quat_track(keys), b = build_quat_track(flipped);
+    ASSERT_TRUE(a && b);
+    Q prev = b->sample(0.0);
+    for (double f = 0.01; f <= 9; f += 0.01) {
+      const Q s = b->sample(f);
+      EXPECT_TRUE(same_rotation(s, a->sample(f), 1e-12)) << f;
+      // Steps of 0.01 frame at < 1.2 rad/frame (plus the spline's overshoot) never exceed 0.05 rad.
+      EXPECT_LT(angle_between(prev, s), 0.05) << f;
+      prev = s;
+    }
+  }
+}
+
+TEST(QuatTrack, LongWayKeyTurnsTheOtherWay) {
+  auto k1 = qkey(1, Q::from_axis_angle(kZ, pi_v<double> / 2), QuatInterpolation::slerp);
+  k1.long_way = true;
+  auto tr = build_quat_track(std::vector{qkey(0, Q{}, QuatInterpolation::slerp), k1});
+  ASSERT_TRUE(tr.has_value());
+  // 0 → +90° the long way is 0 → −270°: the midpoint is −135° about z.
+  EXPECT_TRUE(same_rotation(tr->sample(0.5), Q::from_axis_angle(kZ, -3 * pi_v<double> / 4), kAngleTol));
+}
+
+TEST(QuatTrack, DyadicEvaluationMatchesDeCasteljau) {
+  test::Random rng(test::seed_for(5034));
+  SCOPED_TRACE(rng.trace());
+  std::vector<QuatKey<double>> keys;
+  for (int i = 0; i < 5; ++i) keys.push_back(qkey(i, rng.rotation()));
+  auto tr = build_quat_track(keys);
+  ASSERT_TRUE(tr.has_value());
+  for (std::size_t seg = 0; seg < 4; ++seg) {
+    for (int m : {1, 2, 3, 5, 8}) {
+      for (std::uint64_t j = 0; j <= (std::uint64_t(1) << m); ++j) {
+        const double u = double(j) / double(std::uint64_t(1) << m);
+        EXPECT_TRUE(same_rotation(tr->bezier_dyadic(seg, j, m), tr->bezier(seg, u), 1e-13)) << seg << " " << j << "/" << m;
+      }
+    }
+  }
+}
+
+TEST(QuatTrack, SlerpSegmentsHaveConstantSpeedOnMuseumPairs) {
+  for (const auto& ex : test::museum_quat_pairs<double>()) {
+    SCOPED_TRACE(ex.name);
+    auto tr = build_quat_track(std::vector{qkey(0, ex.a, QuatInterpolation::slerp), qkey(1, ex.b, QuatInterpolation::slerp)});
+    ASSERT_TRUE(tr.has_value());
+    const double total = angle_between(ex.a, ex.b);
+    for (double u = 0; u <= 1; u += 0.125) {
+      const Q s = tr->sample(u);
+      EXPECT_NEAR(norm(s), 1.0, test::few_ulp<double>);
+      EXPECT_NEAR(angle_between(ex.a, s), u * total, 1e-9);  // slerp: angle grows linearly (Eq. 3.29)
+    }
+  }
+}
+
+TEST(QuatTrack, GltfCubicIsNormalisedHermite) {
+  auto a = qkey(0, Q{}, QuatInterpolation::gltf_cubic);
+  auto b = qkey(2, Q::from_axis_angle(Vec3d{1, 0, 0}, 1.0), QuatInterpolation::gltf_cubic);
+  a.out_tangent = Q::from_wxyz(0, 0.2, 0, 0);
+  b.in_tangent = Q::from_wxyz(0, 0.1, 0.1, 0);
+  auto tr = build_quat_track(std::vector{a, b});
+  ASSERT_TRUE(tr.has_value());
+  // u = ½: h00 = h01 = ½, h10 = ⅛, h11 = −⅛, frame step 2 (glTF's tangent scaling by the interval).
+  const Q expected = normalized(a.value * 0.5 + a.out_tangent * (0.125 * 2) + b.value * 0.5 + b.in_tangent * (-0.125 * 2));
+  EXPECT_TRUE(same_rotation(tr->sample(1.0), expected, kAngleTol));
+}
+
+TEST(QuatTrackBuild, RejectsBadKeys) {
+  auto r = build_quat_track(std::vector{qkey(0, Q{}), qkey(1, Q::from_wxyz(0, 0, 0, 0))});
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().where, "key 1");
+  r = build_quat_track(std::vector{qkey(0, Q{}), qkey(0, Q{})});
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);
+  r = build_quat_track(std::vector{qkey(0, Q::from_wxyz(std::nan(""), 0, 0, 0))});
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::NotFinite);
+  EXPECT_FALSE(build_quat_track(std::vector<QuatKey<double>>{}).has_value());
+}
+
+}  // namespace
+}  // namespace inbetween
