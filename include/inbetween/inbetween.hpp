@@ -18,4 +18,6 @@
 
 // tracks
 #include "inbetween/tracks/fcurve.hpp"
+#include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
+#include "inbetween/tracks/transform_track.hpp"
