@@ -5,10 +5,12 @@
 #include <nlohmann/json.hpp>
 
 #include <charconv>
+#include <array>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace inbetween {
@@ -290,28 +292,50 @@ Expected<Vec4d> vector_member(const json& obj, const std::string& ptr, std::stri
   return v;
 }
 
-Expected<SceneVectorTrack> parse_vector_track(const json& j, const std::string& ptr, const std::string& kind) {
-  if (auto ok = only_members(j, ptr, {"name", "kind", "keys", "before", "after"}); !ok) return ok.error();
-  SceneVectorTrack track;
+Expected<std::string> track_name(const json& j, const std::string& ptr) {
   auto name_it = j.find("name");
   if (name_it == j.end() || !name_it->is_string() || name_it->get<std::string>().empty()) {
     return error_at(ErrorCode::InvalidArgument, "a track needs a non-empty string \"name\"", child(ptr, "name"));
   }
-  track.name = name_it->get<std::string>();
-  track.dim = kind == "vec2" ? 2 : (kind == "vec3" ? 3 : 4);
-  track.components = kind == "color" ? "rgba" : std::string("xyzw").substr(0, std::size_t(track.dim));
-  auto before = name_member(j, ptr, "before", TrackExtend::constant, kExtend);
-  if (!before) return before.error();
-  auto after = name_member(j, ptr, "after", TrackExtend::constant, kExtend);
-  if (!after) return after.error();
+  return name_it->get<std::string>();
+}
+
+// Maps a builder error "key 3" to the pointer of that key.
+Error relocate(Error e, const std::string& keys_ptr, const std::string& fallback) {
+  if (e.where.rfind("key ", 0) == 0) e.where = child(keys_ptr, std::size_t(std::stoul(e.where.substr(4))));
+  else e.where = fallback;
+  return e;
+}
+
+Expected<const json*> keys_array(const json& j, const std::string& ptr) {
   const std::string kp = child(ptr, "keys");
   auto keys = j.find("keys");
   if (keys == j.end()) return error_at(ErrorCode::InvalidArgument, "missing required member \"keys\"", kp);
   if (!keys->is_array()) return error_at(ErrorCode::InvalidArgument, "\"keys\" must be an array", kp);
   if (keys->empty()) return error_at(ErrorCode::TooFewPoints, "a track needs at least one key", kp);
-  std::vector<TrackKey<Vec4d>> raw;
-  for (std::size_t i = 0; i < keys->size(); ++i) {
-    const json& kj = (*keys)[i];
+  return &*keys;
+}
+
+// Keys, before and after of a vector-valued track object (shared by vector tracks and the
+// translation/scale channels of objects).
+template <class V>
+V shrink(const Vec4d& v) {
+  if constexpr (std::is_same_v<V, Vec4d>) return v;
+  else return V{v.x, v.y, v.z};
+}
+
+template <class V>
+Expected<Track<V>> parse_vector_keys(const json& j, const std::string& ptr, int dim) {
+  auto before = name_member(j, ptr, "before", TrackExtend::constant, kExtend);
+  if (!before) return before.error();
+  auto after = name_member(j, ptr, "after", TrackExtend::constant, kExtend);
+  if (!after) return after.error();
+  auto keys = keys_array(j, ptr);
+  if (!keys) return keys.error();
+  const std::string kp = child(ptr, "keys");
+  std::vector<TrackKey<V>> raw;
+  for (std::size_t i = 0; i < (*keys)->size(); ++i) {
+    const json& kj = (**keys)[i];
     const std::string p = child(kp, i);
     if (!kj.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(kj), p);
     if (auto ok = only_members(kj, p, {"frame", "value", "tangent", "in_tangent", "out_tangent", "tension",
@@ -319,23 +343,23 @@ Expected<SceneVectorTrack> parse_vector_track(const json& j, const std::string& 
         !ok) {
       return ok.error();
     }
-    TrackKey<Vec4d> k;
+    TrackKey<V> k;
     auto frame = number_member(kj, p, "frame", std::nullopt);
     if (!frame) return frame.error();
-    auto value = vector_member(kj, p, "value", track.dim, true);
+    auto value = vector_member(kj, p, "value", dim, true);
     if (!value) return value.error();
     auto tangent = name_member(kj, p, "tangent", TangentKind::catmull_rom, kTangents);
     if (!tangent) return tangent.error();
     const bool hermite = *tangent == TangentKind::explicit_hermite;
-    auto tin = vector_member(kj, p, "in_tangent", track.dim, hermite);
+    auto tin = vector_member(kj, p, "in_tangent", dim, hermite);
     if (!tin) return tin.error();
-    auto tout = vector_member(kj, p, "out_tangent", track.dim, hermite);
+    auto tout = vector_member(kj, p, "out_tangent", dim, hermite);
     if (!tout) return tout.error();
     k.frame = *frame;
-    k.value = *value;
+    k.value = shrink<V>(*value);
     k.tangent = *tangent;
-    k.in_tangent = *tin;
-    k.out_tangent = *tout;
+    k.in_tangent = shrink<V>(*tin);
+    k.out_tangent = shrink<V>(*tout);
     for (auto [field, target] : {std::pair<std::string_view, double*>{"tension", &k.tension},
                                  {"continuity", &k.continuity}, {"bias", &k.bias}}) {
       auto v = number_member(kj, p, field, 0.0);
@@ -345,21 +369,200 @@ Expected<SceneVectorTrack> parse_vector_track(const json& j, const std::string& 
     }
     if (i > 0 && !(k.frame > raw.back().frame)) {
       return error_at(ErrorCode::KeysNotIncreasing,
-                      "frame " + num(k.frame) + " is not after the previous key's frame " +
-                          num(raw.back().frame) + " (keys must be sorted by strictly increasing frame)",
+                      "frame " + num(k.frame) + " is not after the previous key's frame " + num(raw.back().frame) +
+                          " (keys must be sorted by strictly increasing frame)",
                       child(p, "frame"));
     }
     raw.push_back(k);
   }
   auto built = build_track(raw, *before, *after);
+  if (!built) return relocate(built.error(), kp, ptr);
+  return std::move(*built);
+}
+
+Expected<SceneVectorTrack> parse_vector_track(const json& j, const std::string& ptr, const std::string& kind) {
+  if (auto ok = only_members(j, ptr, {"name", "kind", "keys", "before", "after"}); !ok) return ok.error();
+  SceneVectorTrack track;
+  auto name = track_name(j, ptr);
+  if (!name) return name.error();
+  track.name = *name;
+  track.dim = kind == "vec2" ? 2 : (kind == "vec3" ? 3 : 4);
+  track.components = kind == "color" ? "rgba" : std::string("xyzw").substr(0, std::size_t(track.dim));
+  auto built = parse_vector_keys<Vec4d>(j, ptr, track.dim);
+  if (!built) return built.error();
+  track.track = std::move(*built);
+  return track;
+}
+
+const std::vector<std::string_view> kQuatInterp = {"step", "slerp", "bezier", "squad", "gltf_cubic"};
+
+Quatd quat_from(const Vec4d& v) { return Quatd::from_wxyz(v.x, v.y, v.z, v.w); }
+
+// Keys and options of a quaternion track object (values and tangents as [w, x, y, z]).
+Expected<QuatTrack<double>> parse_quat_keys(const json& j, const std::string& ptr) {
+  QuatSplineOptions<double> options;
+  auto k = number_member(j, ptr, "distance_factor", 1.0 / 3.0);
+  if (!k) return k.error();
+  if (!(*k > 0 && *k <= 1)) return error_at(ErrorCode::InvalidArgument, "must be in (0, 1]", child(ptr, "distance_factor"));
+  options.distance_factor = *k;
+  if (auto ta = j.find("time_aware"); ta != j.end()) {
+    if (!ta->is_boolean()) return error_at(ErrorCode::InvalidArgument, "expected true or false", child(ptr, "time_aware"));
+    options.time_aware = ta->get<bool>();
+  }
+  auto keys = keys_array(j, ptr);
+  if (!keys) return keys.error();
+  const std::string kp = child(ptr, "keys");
+  std::vector<QuatKey<double>> raw;
+  for (std::size_t i = 0; i < (*keys)->size(); ++i) {
+    const json& kj = (**keys)[i];
+    const std::string p = child(kp, i);
+    if (!kj.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(kj), p);
+    if (auto ok = only_members(kj, p, {"frame", "value", "interpolation", "long_way", "in_tangent", "out_tangent"}); !ok) {
+      return ok.error();
+    }
+    QuatKey<double> q;
+    auto frame = number_member(kj, p, "frame", std::nullopt);
+    if (!frame) return frame.error();
+    auto value = vector_member(kj, p, "value", 4, true);
+    if (!value) return value.error();
+    auto interp = name_member(kj, p, "interpolation", QuatInterpolation::slerp, kQuatInterp);
+    if (!interp) return interp.error();
+    const bool gltf = *interp == QuatInterpolation::gltf_cubic;
+    auto tin = vector_member(kj, p, "in_tangent", 4, gltf);
+    if (!tin) return tin.error();
+    auto tout = vector_member(kj, p, "out_tangent", 4, gltf);
+    if (!tout) return tout.error();
+    if (auto lw = kj.find("long_way"); lw != kj.end()) {
+      if (!lw->is_boolean()) return error_at(ErrorCode::InvalidArgument, "expected true or false", child(p, "long_way"));
+      q.long_way = lw->get<bool>();
+    }
+    q.frame = *frame;
+    q.value = quat_from(*value);
+    q.interpolation = *interp;
+    q.in_tangent = quat_from(*tin);
+    q.out_tangent = quat_from(*tout);
+    if (i > 0 && !(q.frame > raw.back().frame)) {
+      return error_at(ErrorCode::KeysNotIncreasing,
+                      "frame " + num(q.frame) + " is not after the previous key's frame " + num(raw.back().frame) +
+                          " (keys must be sorted by strictly increasing frame)",
+                      child(p, "frame"));
+    }
+    raw.push_back(q);
+  }
+  auto built = build_quat_track(raw, options);
   if (!built) {
     Error e = built.error();
-    if (e.where.rfind("key ", 0) == 0) e.where = child(kp, std::size_t(std::stoul(e.where.substr(4))));
+    if (e.where.rfind("key ", 0) == 0) e.where = child(child(kp, std::size_t(std::stoul(e.where.substr(4)))), "value");
     else e.where = ptr;
     return e;
   }
+  return std::move(*built);
+}
+
+Expected<SceneQuatTrack> parse_quat_track(const json& j, const std::string& ptr) {
+  if (auto ok = only_members(j, ptr, {"name", "kind", "keys", "distance_factor", "time_aware"}); !ok) return ok.error();
+  SceneQuatTrack track;
+  auto name = track_name(j, ptr);
+  if (!name) return name.error();
+  track.name = *name;
+  auto built = parse_quat_keys(j, ptr);
+  if (!built) return built.error();
   track.track = std::move(*built);
   return track;
+}
+
+Vec3d xyz(const Vec4d& v) { return {v.x, v.y, v.z}; }
+
+// An object's channel: a constant array, or a track object without name and kind.
+Expected<std::optional<Track<Vec3d>>> vec3_channel(const json& obj, const std::string& ptr, std::string_view name,
+                                                   Vec3d& rest) {
+  auto it = obj.find(std::string(name));
+  if (it == obj.end()) return std::optional<Track<Vec3d>>{};
+  const std::string p = child(ptr, name);
+  if (it->is_array()) {
+    auto v = vector_member(obj, ptr, name, 3, true);
+    if (!v) return v.error();
+    rest = xyz(*v);
+    return std::optional<Track<Vec3d>>{};
+  }
+  if (!it->is_object()) return error_at(ErrorCode::InvalidArgument, "expected [x, y, z] or a track object", p);
+  if (auto ok = only_members(*it, p, {"keys", "before", "after"}); !ok) return ok.error();
+  auto built = parse_vector_keys<Vec3d>(*it, p, 3);
+  if (!built) return built.error();
+  return std::optional<Track<Vec3d>>{std::move(*built)};
+}
+
+Expected<TransformHierarchy<double>> parse_objects(const json& arr) {
+  if (!arr.is_array()) return error_at(ErrorCode::InvalidArgument, "\"objects\" must be an array", "/objects");
+  std::vector<HierarchyNode<double>> nodes;
+  std::vector<std::string> parents;
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const json& oj = arr[i];
+    const std::string p = child(std::string("/objects"), i);
+    if (!oj.is_object()) return error_at(ErrorCode::InvalidArgument, "an object must be a JSON object", p);
+    if (auto ok = only_members(oj, p, {"name", "parent", "translation", "rotation", "scale"}); !ok) return ok.error();
+    HierarchyNode<double> node;
+    auto name = track_name(oj, p);
+    if (!name) return name.error();
+    node.name = *name;
+    for (const auto& other : nodes) {
+      if (other.name == node.name) {
+        return error_at(ErrorCode::InvalidArgument, "duplicate object name \"" + node.name + "\"", child(p, "name"));
+      }
+    }
+    std::string parent;
+    if (auto pj = oj.find("parent"); pj != oj.end() && !pj->is_null()) {
+      if (!pj->is_string()) return error_at(ErrorCode::InvalidArgument, "\"parent\" must be an object name", child(p, "parent"));
+      parent = pj->get<std::string>();
+    }
+    parents.push_back(parent);
+    auto tr = vec3_channel(oj, p, "translation", node.local.rest.translation);
+    if (!tr) return tr.error();
+    node.local.translation = std::move(*tr);
+    auto sc = vec3_channel(oj, p, "scale", node.local.rest.scale);
+    if (!sc) return sc.error();
+    node.local.scale = std::move(*sc);
+    if (auto rj = oj.find("rotation"); rj != oj.end()) {
+      const std::string rp = child(p, "rotation");
+      if (rj->is_array()) {
+        auto v = vector_member(oj, p, "rotation", 4, true);
+        if (!v) return v.error();
+        const Quatd q = quat_from(*v);
+        if (!(norm(q) > 0)) return error_at(ErrorCode::InvalidArgument, "zero quaternion is not a rotation", rp);
+        node.local.rest.rotation = normalized(q);
+      } else if (rj->is_object()) {
+        if (auto ok = only_members(*rj, rp, {"keys", "distance_factor", "time_aware"}); !ok) return ok.error();
+        auto q = parse_quat_keys(*rj, rp);
+        if (!q) return q.error();
+        node.local.rotation = std::move(*q);
+      } else {
+        return error_at(ErrorCode::InvalidArgument, "expected [w, x, y, z] or a track object", rp);
+      }
+    }
+    nodes.push_back(std::move(node));
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (parents[i].empty()) continue;
+    bool found = false;
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      if (nodes[k].name == parents[i]) {
+        nodes[i].parent = k;
+        found = true;
+      }
+    }
+    if (!found) {
+      return error_at(ErrorCode::InvalidArgument, "no object named \"" + parents[i] + "\"",
+                      child(child(std::string("/objects"), i), "parent"));
+    }
+  }
+  auto h = build_hierarchy(std::move(nodes));
+  if (!h) {
+    Error e = h.error();
+    e.where = e.where.rfind("node ", 0) == 0 ? child(child(std::string("/objects"), std::size_t(std::stoul(e.where.substr(5)))), "parent")
+                                             : std::string("/objects");
+    return e;
+  }
+  return std::move(*h);
 }
 
 Expected<Scene> parse_scene_json(const json& root) {
@@ -390,6 +593,7 @@ Expected<Scene> parse_scene_json(const json& root) {
     scene.range_start = *a;
     scene.range_end = *b;
   }
+  std::vector<std::string> names;
   if (auto t = root.find("tracks"); t != root.end()) {
     if (!t->is_array()) return error_at(ErrorCode::InvalidArgument, "\"tracks\" must be an array", "/tracks");
     for (std::size_t i = 0; i < t->size(); ++i) {
@@ -406,31 +610,37 @@ Expected<Scene> parse_scene_json(const json& root) {
         auto track = parse_scalar_track(tj, tp);
         if (!track) return track.error();
         name = track->name;
-        scene.track_order.emplace_back(false, scene.scalar_tracks.size());
+        scene.track_order.emplace_back(SceneTrackKind::scalar, scene.scalar_tracks.size());
         scene.scalar_tracks.push_back(std::move(*track));
       } else if (kind == "vec2" || kind == "vec3" || kind == "vec4" || kind == "color") {
         auto track = parse_vector_track(tj, tp, kind);
         if (!track) return track.error();
         name = track->name;
-        scene.track_order.emplace_back(true, scene.vector_tracks.size());
+        scene.track_order.emplace_back(SceneTrackKind::vector, scene.vector_tracks.size());
         scene.vector_tracks.push_back(std::move(*track));
+      } else if (kind == "quaternion") {
+        auto track = parse_quat_track(tj, tp);
+        if (!track) return track.error();
+        name = track->name;
+        scene.track_order.emplace_back(SceneTrackKind::quaternion, scene.quat_tracks.size());
+        scene.quat_tracks.push_back(std::move(*track));
       } else {
         return error_at(ErrorCode::InvalidArgument,
-                        "unknown track kind \"" + kind + "\" (expected one of: scalar, vec2, vec3, vec4, color)",
+                        "unknown track kind \"" + kind + "\" (expected one of: scalar, vec2, vec3, vec4, color, quaternion)",
                         child(tp, "kind"));
       }
-      for (std::size_t k = 0; k + 1 < scene.track_order.size(); ++k) {
-        const auto [is_vec, idx] = scene.track_order[k];
-        const std::string& other = is_vec ? scene.vector_tracks[idx].name : scene.scalar_tracks[idx].name;
+      for (const auto& other : names) {
         if (other == name) {
           return error_at(ErrorCode::InvalidArgument, "duplicate track name \"" + name + "\"", child(tp, "name"));
         }
       }
+      names.push_back(name);
     }
   }
   if (auto o = root.find("objects"); o != root.end()) {
-    if (!o->is_array()) return error_at(ErrorCode::InvalidArgument, "\"objects\" must be an array", "/objects");
-    if (!o->empty()) return error_at(ErrorCode::Unsupported, "objects are not supported by this reader yet", "/objects/0");
+    auto h = parse_objects(*o);
+    if (!h) return h.error();
+    scene.objects = std::move(*h);
   }
   return scene;
 }
@@ -460,12 +670,24 @@ Expected<Scene> parse_scene(std::string_view json_text) {
 
 std::vector<SceneColumn> scene_columns(const Scene& scene) {
   std::vector<SceneColumn> cols;
-  for (const auto& [is_vec, idx] : scene.track_order) {
-    if (!is_vec) {
-      cols.push_back({scene.scalar_tracks[idx].name, true});
-    } else {
-      const auto& t = scene.vector_tracks[idx];
-      for (char c : t.components) cols.push_back({t.name + "." + c, false});
+  for (const auto& [kind, idx] : scene.track_order) {
+    switch (kind) {
+      case SceneTrackKind::scalar:
+        cols.push_back({scene.scalar_tracks[idx].name, true});
+        break;
+      case SceneTrackKind::vector:
+        for (char c : scene.vector_tracks[idx].components) cols.push_back({scene.vector_tracks[idx].name + "." + c, false});
+        break;
+      case SceneTrackKind::quaternion:
+        for (char c : std::string("wxyz")) cols.push_back({scene.quat_tracks[idx].name + "." + c, false});
+        break;
+    }
+  }
+  if (scene.objects) {
+    for (const auto& node : scene.objects->nodes()) {
+      for (char c : std::string("xyz")) cols.push_back({node.name + ".translation." + c, false});
+      for (char c : std::string("wxyz")) cols.push_back({node.name + ".rotation." + c, false});
+      for (char c : std::string("xyz")) cols.push_back({node.name + ".scale." + c, false});
     }
   }
   return cols;
@@ -473,15 +695,55 @@ std::vector<SceneColumn> scene_columns(const Scene& scene) {
 
 void evaluate_scene(const Scene& scene, double frame, std::span<double> out) noexcept {
   std::size_t col = 0;
-  for (const auto& [is_vec, idx] : scene.track_order) {
-    if (!is_vec) {
-      if (col < out.size()) out[col] = scene.scalar_tracks[idx].curve.evaluate(float(frame));
-      ++col;
+  auto put = [&](double v) {
+    if (col < out.size()) out[col] = v;
+    ++col;
+  };
+  for (const auto& [kind, idx] : scene.track_order) {
+    switch (kind) {
+      case SceneTrackKind::scalar:
+        put(scene.scalar_tracks[idx].curve.evaluate(float(frame)));
+        break;
+      case SceneTrackKind::vector: {
+        const auto& t = scene.vector_tracks[idx];
+        const Vec4d v = t.track.sample(frame);
+        for (int c = 0; c < t.dim; ++c) put(v[c]);
+        break;
+      }
+      case SceneTrackKind::quaternion: {
+        const Quatd q = scene.quat_tracks[idx].track.sample(frame);
+        put(q.w);
+        put(q.x);
+        put(q.y);
+        put(q.z);
+        break;
+      }
+    }
+  }
+  if (scene.objects) {
+    const auto nodes = scene.objects->nodes();
+    // Small scenes: a fixed buffer avoids allocating; larger ones fall back to a vector.
+    std::array<Trs<double>, 64> small;
+    std::vector<Trs<double>> large;
+    std::span<Trs<double>> world;
+    if (nodes.size() <= small.size()) {
+      world = std::span<Trs<double>>(small.data(), nodes.size());
     } else {
-      const auto& t = scene.vector_tracks[idx];
-      const Vec4d v = t.track.sample(frame);
-      for (int c = 0; c < t.dim; ++c, ++col)
-        if (col < out.size()) out[col] = v[c];
+      large.resize(nodes.size());
+      world = large;
+    }
+    scene.objects->sample_world(frame, world);
+    for (const auto& trs : world) {
+      put(trs.translation.x);
+      put(trs.translation.y);
+      put(trs.translation.z);
+      put(trs.rotation.w);
+      put(trs.rotation.x);
+      put(trs.rotation.y);
+      put(trs.rotation.z);
+      put(trs.scale.x);
+      put(trs.scale.y);
+      put(trs.scale.z);
     }
   }
 }

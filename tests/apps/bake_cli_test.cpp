@@ -70,7 +70,12 @@ TEST(BakeCli, CsvHeaderAndRowsFollowTheIssue) {
   ASSERT_EQ(ls.size(), 6u);  // header + frames 1, 1.5, 2, 2.5, 3
   EXPECT_EQ(ls[0],
             "frame,time,cube.location.z,cube.location.x,cube.scale.y,cube.color.r,cube.color.g,cube.color.b,"
-            "cube.color.a,camera.target.x,camera.target.y,camera.target.z");
+            "cube.color.a,camera.target.x,camera.target.y,camera.target.z,camera.orientation.w,camera.orientation.x,"
+            "camera.orientation.y,camera.orientation.z,"
+            "turntable.translation.x,turntable.translation.y,turntable.translation.z,turntable.rotation.w,"
+            "turntable.rotation.x,turntable.rotation.y,turntable.rotation.z,turntable.scale.x,turntable.scale.y,"
+            "turntable.scale.z,cube.translation.x,cube.translation.y,cube.translation.z,cube.rotation.w,"
+            "cube.rotation.x,cube.rotation.y,cube.rotation.z,cube.scale.x,cube.scale.y,cube.scale.z");
   EXPECT_EQ(ls[2].substr(0, ls[2].find(',', 4)), "1.5,0.0625");  // time = frame / fps = 1.5 / 24
 }
 
@@ -96,6 +101,24 @@ TEST(BakeCli, ValuesAreTheLibrarysValues) {
       else EXPECT_EQ(cells[c + 2], expected[c]) << cols[c].name;
     }
   }
+}
+
+TEST(BakeCli, ObjectsComposeWithTheirParent) {
+  const CliRun r = run("bake \"" + kExample + "\" --frames 25:25");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ls = lines(r.out);
+  ASSERT_EQ(ls.size(), 2u);
+  std::vector<std::string> cells;
+  std::stringstream ss(ls[1]);
+  for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+  // Frame 25: the turntable has turned 180° about z, so the cube at local (2, 0, 1) is at (−2, 0, 1)
+  // (closed form), with the turntable's rotation (0, 0, 0, 1) and its own scale ½.
+  const std::size_t cube = cells.size() - 10;
+  EXPECT_NEAR(std::strtod(cells[cube].c_str(), nullptr), -2, 1e-12);
+  EXPECT_NEAR(std::strtod(cells[cube + 1].c_str(), nullptr), 0, 1e-12);
+  EXPECT_NEAR(std::strtod(cells[cube + 2].c_str(), nullptr), 1, 1e-12);
+  EXPECT_NEAR(std::abs(std::strtod(cells[cube + 6].c_str(), nullptr)), 1, 1e-12);
+  EXPECT_EQ(cells[cube + 7], "0.5");
 }
 
 TEST(BakeCli, JsonFormat) {
@@ -130,6 +153,20 @@ TEST(BakeCli, MalformedScenesGiveOneMessageWithPointerAndExitTwo) {
        "/tracks/0/keys/0/value"},
       {"unknown kind", R"({"inbetween": 1, "tracks": [{"name": "p", "kind": "vec5", "keys": []}]})", "/tracks/0/kind"},
       {"missing version", R"({"tracks": []})", "/inbetween"},
+      {"quaternion with three numbers",
+       R"({"inbetween": 1, "tracks": [{"name": "q", "kind": "quaternion", "keys": [{"frame": 1, "value": [1, 0, 0]}]}]})",
+       "/tracks/0/keys/0/value"},
+      {"zero quaternion",
+       R"({"inbetween": 1, "tracks": [{"name": "q", "kind": "quaternion", "keys": [{"frame": 1, "value": [0, 0, 0, 0]}]}]})",
+       "/tracks/0/keys/0/value"},
+      {"unknown parent", R"({"inbetween": 1, "objects": [{"name": "a", "parent": "nobody"}]})", "/objects/0/parent"},
+      {"parent cycle",
+       R"({"inbetween": 1, "objects": [{"name": "a", "parent": "b"}, {"name": "b", "parent": "a"}]})",
+       "/objects/0/parent"},
+      {"unsorted object keys",
+       R"({"inbetween": 1, "objects": [{"name": "a", "translation": {"keys": [{"frame": 2, "value": [0, 0, 0]},
+          {"frame": 1, "value": [1, 0, 0]}]}}]})",
+       "/objects/0/translation/keys/1/frame"},
       {"misspelt member",
        R"({"inbetween": 1, "tracks": [{"name": "a", "keys": [{"frame": 1, "value": 0, "interpolaton": "linear"}]}]})",
        "/tracks/0/keys/0/interpolaton"},

@@ -136,7 +136,7 @@ template <Real T>
       if (!nodes[i].parent) break;
       i = *nodes[i].parent;
       if (state[i] == 1) {
-        return Error{ErrorCode::InvalidArgument, "node \"" + nodes[i].name + "\" is its own ancestor",
+        return Error{ErrorCode::InvalidArgument, "\"" + nodes[i].name + "\" is its own ancestor (the parent links form a cycle)",
                      "node " + std::to_string(i)};
       }
     }
