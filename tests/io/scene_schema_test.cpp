@@ -1,0 +1,65 @@
+// The JSON Schema (docs/scene.schema.json) and the reader agree: the example scene validates
+// against the schema and parses; the schema's enumerations are exactly the reader's names.  The
+// schema check uses Python's jsonschema (an independent validator) and skips without it.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "inbetween/io/scene.hpp"
+
+namespace {
+
+std::string slurp(const std::string& p) {
+  std::ifstream in(p);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+const std::string kSchema = std::string(INBETWEEN_SOURCE_DIR) + "/docs/scene.schema.json";
+const std::string kExample = std::string(INBETWEEN_SOURCE_DIR) + "/examples/scenes/bouncing_cube.json";
+
+TEST(SceneSchema, ExampleValidatesAndParses) {
+  auto scene = inbetween::parse_scene(slurp(kExample));
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  if (std::system("python3 -c 'import jsonschema' > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "python3 jsonschema not installed; schema validation not checked";
+  }
+  const std::string cmd = "python3 -c \"import json, jsonschema, sys; jsonschema.validate(json.load(open(sys.argv[2])), "
+                          "json.load(open(sys.argv[1])), cls=jsonschema.Draft202012Validator)\" '" +
+                          kSchema + "' '" + kExample + "'";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+}
+
+std::set<std::string> enum_of(const nlohmann::json& node) {
+  std::set<std::string> out;
+  for (const auto& v : node.at("enum")) out.insert(v.get<std::string>());
+  return out;
+}
+
+TEST(SceneSchema, EnumerationsMatchTheReader) {
+  const auto schema = nlohmann::json::parse(slurp(kSchema));
+  const auto& defs = schema.at("$defs");
+  std::set<std::string> interp;
+  for (int i = 0; i <= int(inbetween::Interpolation::sine); ++i) {
+    interp.insert(std::string(inbetween::to_string(inbetween::Interpolation(i))));
+  }
+  EXPECT_EQ(enum_of(defs.at("fcurve_key").at("properties").at("interpolation")), interp);
+  std::set<std::string> handles;
+  for (int i = 0; i <= int(inbetween::HandleType::auto_clamped); ++i) {
+    handles.insert(std::string(inbetween::to_string(inbetween::HandleType(i))));
+  }
+  EXPECT_EQ(enum_of(defs.at("handle_type")), handles);
+  std::set<std::string> cycles;
+  for (int i = 0; i <= int(inbetween::CycleMode::mirror); ++i) {
+    cycles.insert(std::string(inbetween::to_string(inbetween::CycleMode(i))));
+  }
+  EXPECT_EQ(enum_of(defs.at("scalar_track").at("properties").at("cycles").at("properties").at("after")), cycles);
+}
+
+}  // namespace
