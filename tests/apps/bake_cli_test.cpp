@@ -30,8 +30,10 @@ std::string slurp(const fs::path& p) {
   return ss.str();
 }
 
+// One folder per test, so that ctest -j runs do not share files.
 fs::path temp_dir() {
-  const fs::path d = fs::path(INBETWEEN_BINARY_DIR) / "bake-cli-test";
+  const fs::path d = fs::path(INBETWEEN_BINARY_DIR) / "bake-cli-test" /
+                     ::testing::UnitTest::GetInstance()->current_test_info()->name();
   fs::create_directories(d);
   return d;
 }
