@@ -16,6 +16,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "inbetween/io/scene.hpp"
 
@@ -59,8 +60,21 @@ TEST(BlenderAgreement, EveryModeMatchesBlenderEvaluate) {
   ASSERT_TRUE(scene.has_value()) << scene.error().describe();
   const auto reference = nlohmann::json::parse(slurp(dir / "reference.json"));
 
+  // The exporter's command-line path on a saved .blend: names and values.
+  auto exported = inbetween::parse_scene(slurp(dir / "exported.json"));
+  ASSERT_TRUE(exported.has_value()) << exported.error().describe();
+  std::vector<std::string> names;
+  for (const auto& t : exported->scalar_tracks) names.push_back(t.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"Animated.location.x", "Animated.location.y", "Animated.location.z",
+                                             "Animated.rotation_quaternion.w", "Animated.rotation_quaternion.x",
+                                             "Animated.rotation_quaternion.y", "Animated.rotation_quaternion.z"}));
+  std::vector<const inbetween::SceneScalarTrack*> all;
+  for (const auto& t : scene->scalar_tracks) all.push_back(&t);
+  for (const auto& t : exported->scalar_tracks) all.push_back(&t);
+
   std::map<std::string, GroupStats> groups;
-  for (const auto& track : scene->scalar_tracks) {
+  for (const auto* track_ptr : all) {
+    const auto& track = *track_ptr;
     const auto& ref = reference.at(track.name);
     const auto& frames = ref.at("frames");
     const auto& values = ref.at("values");

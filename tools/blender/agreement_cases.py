@@ -136,6 +136,29 @@ def main(outdir, seed):
         tracks.append(export_fcurves.fcurve_to_track(fc, name))
         xs = sample_frames(rng, [k.co[0] for k in fc.keyframe_points], span_out)
         reference[name] = {"group": group, "frames": xs, "values": [fc.evaluate(x) for x in xs]}
+    # The command-line path of the exporter on a saved .blend: an animated object, saved, reloaded
+    # and exported by export_fcurves.py's main(), with Blender's values for its curves.
+    obj = bpy.data.objects.new("Animated", None)
+    bpy.context.scene.collection.objects.link(obj)
+    for f, loc in [(1, (0, 0, 0)), (12, (2, -1, 3)), (30, (5, 4, 1))]:
+        obj.location = loc
+        obj.keyframe_insert("location", frame=f)
+    obj.rotation_mode = "QUATERNION"
+    obj.rotation_quaternion = (1, 0, 0, 0)
+    obj.keyframe_insert("rotation_quaternion", frame=1)
+    obj.rotation_quaternion = (0.5, 0.5, 0.5, 0.5)
+    obj.keyframe_insert("rotation_quaternion", frame=20)
+    blend = os.path.join(outdir, "saved.blend")
+    os.makedirs(outdir, exist_ok=True)
+    bpy.ops.wm.save_as_mainfile(filepath=blend)
+    bpy.ops.wm.open_mainfile(filepath=blend)
+    export_fcurves.main(["-o", os.path.join(outdir, "exported.json")])
+    obj = bpy.data.objects["Animated"]
+    for fc in obj.animation_data.action.fcurves:
+        name = export_fcurves.curve_name(obj.name, fc)
+        xs = [f32(x * 0.37) for x in range(-20, 120)]
+        reference[name] = {"group": "exported from a saved .blend", "frames": xs, "values": [fc.evaluate(x) for x in xs]}
+
     scene = {"inbetween": 1, "fps": 24, "range": [1, 100], "tracks": tracks}
     os.makedirs(outdir, exist_ok=True)
     with open(os.path.join(outdir, "scene.json"), "w") as f:
