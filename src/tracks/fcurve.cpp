@@ -133,6 +133,16 @@ void compute_key_handles(Key& key, const Key* prev, const Key* next, bool smooth
     return;
   }
   // Aligned: Blender's order for a key whose left handle is not selected (left from right first).
+  // Handles that are already collinear through the key (as Blender leaves them after any edit)
+  // are kept as they are: re-aligning them would only add a rounding that Blender's stored
+  // handles do not have.
+  {
+    const Vec2f l{key.left.x - p2.x, key.left.y - p2.y}, r{key.right.x - p2.x, key.right.y - p2.y};
+    const double cr = double(l.x) * r.y - double(l.y) * r.x;
+    const double scale = double(length2(l)) * double(length2(r));
+    const bool opposite = double(l.x) * r.x + double(l.y) * r.y < 0;
+    if (opposite && std::abs(cr) <= 4.0 * double(FLT_EPSILON) * scale) return;
+  }
   float la = length2(Vec2f{p2.x - key.left.x, p2.y - key.left.y});
   float lb = length2(Vec2f{p2.x - key.right.x, p2.y - key.right.y});
   if (la == 0.0f) la = 1.0f;

@@ -205,6 +205,41 @@ TEST(QuatTrack, GltfCubicIsNormalisedHermite) {
   EXPECT_TRUE(same_rotation(tr->sample(1.0), expected, kAngleTol));
 }
 
+template <class T>
+class QuatTrackTyped : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(QuatTrackTyped, Scalars);
+
+TYPED_TEST(QuatTrackTyped, EveryModeIsUnitAndThroughKeysWithoutFlips) {
+  using T = TypeParam;
+  // A few dozen slerps of unit quaternions: a few hundred ulp of angle.
+  const T angle_tol = T(256) * std::numeric_limits<T>::epsilon();
+  test::Random rng(test::seed_for(5035));
+  SCOPED_TRACE(rng.trace());
+  for (auto mode : {QuatInterpolation::slerp, QuatInterpolation::bezier, QuatInterpolation::squad}) {
+    std::vector<QuatKey<T>> keys;
+    Quat<T> q = rng.rotation<T>();
+    for (int i = 0; i < 8; ++i) {
+      QuatKey<T> k;
+      k.frame = T(i) * T(1.5);
+      k.value = i % 3 == 1 ? -q : q;
+      k.interpolation = mode;
+      keys.push_back(k);
+      q = normalized(Quat<T>::from_axis_angle(rng.unit_vec3<T>(), rng.uniform<T>(T(0.2), T(1))) * q);
+    }
+    auto tr = build_quat_track(keys);
+    ASSERT_TRUE(tr.has_value());
+    for (const auto& k : keys) EXPECT_TRUE(same_rotation(tr->sample(k.frame), k.value, angle_tol));
+    Quat<T> prev = tr->sample(T(0));
+    for (T f = 0; f < T(11); f += T(0.01)) {
+      const Quat<T> s = tr->sample(f);
+      EXPECT_NEAR(norm(s), T(1), test::few_ulp<T>);
+      EXPECT_LT(angle_between(prev, s), T(0.05));  // 0.01 frame at < 1 rad per 1.5 frames (+ overshoot)
+      prev = s;
+    }
+  }
+}
+
 TEST(QuatTrackBuild, RejectsBadKeys) {
   auto r = build_quat_track(std::vector{qkey(0, Q{}), qkey(1, Q::from_wxyz(0, 0, 0, 0))});
   ASSERT_FALSE(r.has_value());
