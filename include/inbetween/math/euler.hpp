@@ -81,11 +81,13 @@ struct EulerAngles {
 /// Options of the extraction.
 template <Real T>
 struct EulerOptions {
-  /// Width of the gimbal-lock band around the singular middle angle, in radians.  The default
-  /// 1e-7 is SciPy's.  Inside the band the third angle is 0 and the rebuilt rotation differs from
-  /// the input by at most about twice the distance to the singular value (so ≤ 2e-7 rad by
-  /// default); 0 gives the exact decomposition everywhere except exactly at the singular value.
-  T gimbal_tolerance_rad = T(1e-7);
+  /// Width of the gimbal-lock band around the singular middle angle, in radians.  The default for
+  /// double, 1e-7, is SciPy's.  For float it is 2e-6 (16 float eps): a float quaternion built at
+  /// exactly 90° is only known to within a few 1e-7 of the singular value.  Inside the band the
+  /// third angle is 0 and the rebuilt rotation differs from the input by at most about twice the
+  /// distance to the singular value; 0 gives the exact decomposition everywhere except exactly at
+  /// the singular value.
+  T gimbal_tolerance_rad = sizeof(T) >= 8 ? T(1e-7) : T(2e-6);
 };
 
 namespace detail {
@@ -152,11 +154,14 @@ EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
   } else {
     a = q.w - qj, b = qi + qk, c = qj + q.w, d = qk - qi;
   }
-  const T beta_shifted = T(2) * std::atan2(std::hypot(c, d), std::hypot(a, b));  // β' in [0, π]
+  // β' in [0, π] and its distance to π, each from its own atan2 so that both stay accurate (and
+  // a distance of 0 means exactly singular, not "rounded to π").
+  const T h_ab = std::hypot(a, b), h_cd = std::hypot(c, d);
+  const T to_zero = T(2) * std::atan2(h_cd, h_ab), to_pi = T(2) * std::atan2(h_ab, h_cd);
   const T theta_plus = std::atan2(b, a), theta_minus = std::atan2(d, c);
   const T tol = options.gimbal_tolerance_rad;
-  const bool lock_zero = beta_shifted <= tol;                 // θ− undetermined: only α1 + α3'
-  const bool lock_pi = beta_shifted >= pi_v<T> - tol;         // θ+ undetermined: only α3' − α1
+  const bool lock_zero = to_zero <= tol;           // θ− undetermined: only α1 + α3'
+  const bool lock_pi = !lock_zero && to_pi <= tol;  // θ+ undetermined: only α3' − α1
   T alpha1, alpha3p;
   if (lock_zero || lock_pi) {
     // The free angle: SciPy's choice, the third angle *in the order given* is 0.  For an extrinsic
@@ -173,7 +178,9 @@ EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
     alpha3p = theta_plus + theta_minus;
   }
   const T alpha3 = proper ? alpha3p : eps * alpha3p;
-  const T beta = proper ? beta_shifted : beta_shifted - pi_v<T> / T(2);
+  const T half_pi = pi_v<T> / T(2);
+  const T beta = proper ? (to_zero <= to_pi ? to_zero : pi_v<T> - to_pi)
+                        : (to_zero <= to_pi ? to_zero - half_pi : half_pi - to_pi);
   EulerAngles<T> out;
   out.gimbal_lock = lock_zero || lock_pi;
   const T first = wrap_angle(alpha1), third = wrap_angle(alpha3);
