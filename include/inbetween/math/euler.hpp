@@ -136,7 +136,12 @@ Mat3<T> matrix_from_euler(const EulerSequence& seq, const EulerTriple<T>& angles
 template <Real T>
 EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
                                const EulerOptions<T>& options = {}) noexcept {
-  const Quat<T> q = is_finite(q_in) && squared_norm(q_in) > T(0) ? q_in : Quat<T>{};
+  // Any scale is fine (atan2 ignores it); only a norm whose square would overflow or underflow
+  // is brought to 1 first, so that √(a² + b²) below needs no hypot.
+  const T n2 = squared_norm(q_in);
+  const Quat<T> q = !is_finite(q_in) || !(n2 > T(0)) ? Quat<T>{}
+                    : (std::isnormal(n2) && std::isfinite(n2) && n2 > T(1e-20) && n2 < T(1e20)) ? q_in
+                                                                                                : normalized(q_in);
   // Work with the extrinsic form: angles α1 (applied first) about i, β about j, α3 about k_last.
   const EulerSequence ext = seq.intrinsic ? seq.flipped() : seq;
   const int i = ext.axes[0], j = ext.axes[1];
@@ -156,7 +161,7 @@ EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
   }
   // β' in [0, π] and its distance to π, each from its own atan2 so that both stay accurate (and
   // a distance of 0 means exactly singular, not "rounded to π").
-  const T h_ab = std::hypot(a, b), h_cd = std::hypot(c, d);
+  const T h_ab = std::sqrt(a * a + b * b), h_cd = std::sqrt(c * c + d * d);
   const T to_zero = T(2) * std::atan2(h_cd, h_ab), to_pi = T(2) * std::atan2(h_ab, h_cd);
   const T theta_plus = std::atan2(b, a), theta_minus = std::atan2(d, c);
   const T tol = options.gimbal_tolerance_rad;
