@@ -3,6 +3,7 @@
 // output, standard error and the exit code.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +34,10 @@ std::string slurp(const std::filesystem::path& p) {
 
 CliRun run_cli(const std::string& args, const std::string& input) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::path(INBETWEEN_BINARY_DIR) / "rotation-cli-test";
+  // One folder per test and process: ctest runs the cases of this file in parallel.
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::path(INBETWEEN_BINARY_DIR) / "rotation-cli-test" /
+                       (std::string(info ? info->name() : "none") + "-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path in = dir / "in.txt", out = dir / "out.txt", err = dir / "err.txt";
   std::ofstream(in, std::ios::binary) << input;
@@ -44,6 +48,8 @@ CliRun run_cli(const std::string& args, const std::string& input) {
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = slurp(out);
   r.err = slurp(err);
+  std::error_code ec;
+  fs::remove_all(dir, ec);
   return r;
 }
 

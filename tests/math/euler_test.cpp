@@ -3,6 +3,7 @@
 // double, gimbal lock (flag, free-angle choice, rotation preserved), worst-case error against a
 // long-double evaluation, the Euler filter, and SciPy as an independent implementation.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -290,7 +291,7 @@ TEST(EulerScipyCrossCheck, AllTwentyFourConventionsAgreeWithScipy) {
   if (!fs::exists("/usr/bin/python3")) GTEST_SKIP() << "/usr/bin/python3 not found";
   if (std::system("/usr/bin/python3 -c 'import scipy.spatial.transform' >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "SciPy is not importable by /usr/bin/python3";
-  const fs::path dir = fs::path(INBETWEEN_BINARY_DIR) / "scipy-euler-check";
+  const fs::path dir = fs::path(INBETWEEN_BINARY_DIR) / ("scipy-euler-check-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path script = dir / "check.py", input = dir / "input.txt", output = dir / "output.txt";
   std::ofstream(script) << kScipyScript;
@@ -322,6 +323,13 @@ TEST(EulerScipyCrossCheck, AllTwentyFourConventionsAgreeWithScipy) {
   const std::string command = "/usr/bin/python3 '" + script.string() + "' '" + input.string() + "' '" + output.string() + "'";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
   std::ifstream out(output);
+  struct Cleanup {
+    fs::path dir;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  } cleanup{dir};
   std::size_t compared_angles = 0, compared_rotations = 0;
   for (const Case& c : cases) {
     SCOPED_TRACE(c.seq.name());
