@@ -106,6 +106,13 @@ template <Real T>
 constexpr T vec_component(const Quat<T>& q, int axis) noexcept {
   return axis == 0 ? q.x : (axis == 1 ? q.y : q.z);
 }
+/// Wraps an angle in [−2π, 2π] into (−π, π] with one exact subtraction (Sterbenz: |a| ≥ π there).
+template <Real T>
+constexpr T wrap_once(T a) noexcept {
+  if (a > pi_v<T>) return a - T(2) * pi_v<T>;
+  if (a <= -pi_v<T>) return a + T(2) * pi_v<T>;
+  return a;
+}
 /// +1 when e_i × e_j = +e_k for the three different axes i, j, k; −1 otherwise.
 constexpr int axis_parity(int i, int j) noexcept { return (j - i + 3) % 3 == 1 ? 1 : -1; }
 }  // namespace detail
@@ -188,7 +195,8 @@ EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
                         : (to_zero <= to_pi ? to_zero - half_pi : half_pi - to_pi);
   EulerAngles<T> out;
   out.gimbal_lock = lock_zero || lock_pi;
-  const T first = wrap_angle(alpha1), third = wrap_angle(alpha3);
+  // θ± ∈ [−π, π], so α1, α3 ∈ [−2π, 2π]: one shift wraps them.
+  const T first = detail::wrap_once(alpha1), third = detail::wrap_once(alpha3);
   out.angles_rad = seq.intrinsic ? EulerTriple<T>{third, beta, first} : EulerTriple<T>{first, beta, third};
   return out;
 }

@@ -33,8 +33,8 @@ struct AxisAngle {
   friend constexpr bool operator==(const AxisAngle&, const AxisAngle&) = default;
 };
 
-using AxisAnglef = AxisAngle<float>;
-using AxisAngled = AxisAngle<double>;
+using AxisAnglef = AxisAngle<float>;   ///< single-precision axis-angle
+using AxisAngled = AxisAngle<double>;  ///< double-precision axis-angle
 
 /// The representative of ±q with w > 0; when w == 0 the first non-zero of x, y, z is made
 /// positive.  Used for every quaternion this library returns from a conversion, so that printed

@@ -155,14 +155,15 @@ struct Transform {
     return rotate(normalized(rotation), hadamard(scale, d));
   }
 
+  /// Converts to another precision.
   template <Real U>
   [[nodiscard]] Transform<U> cast() const noexcept {
     return {translation.template cast<U>(), rotation.template cast<U>(), scale.template cast<U>()};
   }
 };
 
-using Transformf = Transform<float>;
-using Transformd = Transform<double>;
+using Transformf = Transform<float>;   ///< single-precision TRS transform
+using Transformd = Transform<double>;  ///< double-precision TRS transform
 
 /// Options of transform_from_matrix().
 template <Real T>
