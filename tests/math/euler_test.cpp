@@ -207,6 +207,7 @@ TYPED_TEST(EulerAnglesTest, FilterPicksTheClosestEquivalentTriple) {
   using T = TypeParam;
   test::Random rng(test::seed_for(205));
   SCOPED_TRACE(rng.trace());
+  int total_raw_jumps = 0;
   for (const EulerSequence& seq : all_euler_sequences()) {
     SCOPED_TRACE(seq.name());
     // A smooth tumble sampled finely: extraction jumps (±2π wraps, alternate solution), the
@@ -219,7 +220,10 @@ TYPED_TEST(EulerAnglesTest, FilterPicksTheClosestEquivalentTriple) {
       const Quat<T> q = Quat<T>::from_axis_angle(axis, T(n) * T(0.02)) * start;
       const EulerTriple<T> raw = euler_from_quat(seq, q).angles_rad;
       const EulerTriple<T> f = euler_filter(seq, prev, raw);
-      EXPECT_LE(angle_between(quat_from_euler(seq, f), q), T(64) * test::roundtrip_tol<T>);
+      // Unwrapped angles grow beyond ±π; sin/cos of an argument of size |a| carry eps·|a| of
+      // rounding, so the budget scales with the largest angle.
+      const T largest = std::fmax(std::abs(f[0]), std::fmax(std::abs(f[1]), std::abs(f[2])));
+      EXPECT_LE(angle_between(quat_from_euler(seq, f), q), test::roundtrip_tol<T> * std::fmax(T(1), largest));
       T raw_step = 0, step = 0;
       for (int k = 0; k < 3; ++k) {
         raw_step = std::fmax(raw_step, std::abs(raw[k] - prev[k]));
@@ -233,8 +237,11 @@ TYPED_TEST(EulerAnglesTest, FilterPicksTheClosestEquivalentTriple) {
       if (s > T(0.1)) EXPECT_LT(step, T(0.5)) << "step " << n;
       prev = f;
     }
-    if (raw_jumps > 0) std::printf("[ measured ] %s: %d jumps in the raw extraction removed by the filter\n", seq.name().c_str(), raw_jumps);
+    total_raw_jumps += raw_jumps;
   }
+  std::printf("[ measured ] Euler filter: %d jumps of the raw extraction over 24 x 400 steps, none after filtering\n",
+              total_raw_jumps);
+  EXPECT_GT(total_raw_jumps, 0);  // the tumble does exercise the filter
   // Worked cases (closed form): wrap — previous (3.1, 0.2, −3.1), current (−3.1, 0.2, 3.1) in xyz
   // is the same rotation as (−3.1 + 2π, 0.2, 3.1 − 2π).
   const EulerSequence xyz = *parse_euler_sequence("xyz");
