@@ -215,6 +215,7 @@ TYPED_TEST(EulerAnglesTest, FilterPicksTheClosestEquivalentTriple) {
     const Vec3<T> axis = rng.unit_vec3<T>();
     const Quat<T> start = rng.rotation<T>();
     EulerTriple<T> prev = euler_from_quat(seq, start).angles_rad;
+    EulerTriple<T> prev_raw = prev;
     int raw_jumps = 0;
     for (int n = 1; n <= 400; ++n) {
       const Quat<T> q = Quat<T>::from_axis_angle(axis, T(n) * T(0.02)) * start;
@@ -226,10 +227,11 @@ TYPED_TEST(EulerAnglesTest, FilterPicksTheClosestEquivalentTriple) {
       EXPECT_LE(angle_between(quat_from_euler(seq, f), q), test::roundtrip_tol<T> * std::fmax(T(1), largest));
       T raw_step = 0, step = 0;
       for (int k = 0; k < 3; ++k) {
-        raw_step = std::fmax(raw_step, std::abs(raw[k] - prev[k]));
+        raw_step = std::fmax(raw_step, std::abs(raw[k] - prev_raw[k]));
         step = std::fmax(step, std::abs(f[k] - prev[k]));
       }
       if (raw_step > T(1)) ++raw_jumps;
+      prev_raw = raw;
       // Away from gimbal lock a 0.02 rad turn moves the outer angles by about 0.02/s, s = |sin β|
       // (proper) or |cos β| (Tait–Bryan); with s > 0.1 a step stays below 0.5 rad, far below a
       // 2π wrap or an alternate-solution jump.
