@@ -241,7 +241,7 @@ TYPED_TEST(EulerAnglesTest, FilterPicksTheClosestEquivalentTriple) {
     }
     total_raw_jumps += raw_jumps;
   }
-  std::printf("[ measured ] Euler filter: %d jumps of the raw extraction over 24 x 400 steps, none after filtering\n",
+  std::printf("[ measured ] Euler filter: %d jumps of the raw extraction over 24 x 400 steps; filtered steps < 0.5 rad away from lock\n",
               total_raw_jumps);
   EXPECT_GT(total_raw_jumps, 0);  // the tumble does exercise the filter
   // Worked cases (closed form): wrap — previous (3.1, 0.2, −3.1), current (−3.1, 0.2, 3.1) in xyz
