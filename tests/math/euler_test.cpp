@@ -165,7 +165,7 @@ TYPED_TEST(EulerAnglesTest, WorstCaseAgainstLongDouble) {
   test::Random rng(test::seed_for(204));
   SCOPED_TRACE(rng.trace());
   test::WorstUlp<T> random_case("euler_from_quat, random rotations, 24 conventions");
-  test::WorstUlp<T> near_lock("euler_from_quat, middle angle 2^-k from lock, all k");
+  test::WorstUlp<T> near_lock("euler_from_quat, middle angle 2^-k from lock, all k, and below");
   test::WorstUlp<T> near_half("euler_from_quat, rotations within 2^-k of 180 degrees");
   test::WorstUlp<T> to_quat("quat_from_euler, 24 conventions");
   const EulerOptions<T> exact{.gimbal_tolerance_rad = T(0)};
@@ -192,6 +192,20 @@ TYPED_TEST(EulerAnglesTest, WorstCaseAgainstLongDouble) {
           const T mid = middle + side * std::ldexp(T(1), -k);
           measure(near_lock, seq, quat_from_euler(seq, EulerTriple<T>{rng.uniform<T>(-3, 3), mid, rng.uniform<T>(-3, 3)}));
         }
+      }
+    }
+    // Deeper than any angle in T can express: quaternion components far below eps (down to
+    // where their squares underflow) on the two axes that vanish at lock.
+    if (seq.proper()) {
+      const EulerSequence ext = seq.intrinsic ? seq.flipped() : seq;
+      for (const T tiny : {T(1e-12), T(1e-25), std::numeric_limits<T>::min() * T(1e6), std::numeric_limits<T>::denorm_min()}) {
+        const T t = rng.uniform<T>(-3, 3);
+        Quat<T> q{std::cos(t), T(0), T(0), T(0)};
+        T* comp[3] = {&q.x, &q.y, &q.z};
+        *comp[ext.axes[0]] = std::sin(t);
+        *comp[ext.axes[1]] = tiny;
+        *comp[3 - ext.axes[0] - ext.axes[1]] = -tiny * T(0.75);
+        measure(near_lock, seq, q);
       }
     }
     for (int k = 1; k <= std::numeric_limits<T>::digits; ++k)

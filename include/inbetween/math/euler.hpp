@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -113,6 +114,14 @@ constexpr T wrap_once(T a) noexcept {
   if (a <= -pi_v<T>) return a + T(2) * pi_v<T>;
   return a;
 }
+/// √(a² + b²): the plain formula where the squares are normal numbers, std::hypot below that
+/// (where a square would underflow and lose digits).
+template <Real T>
+T fast_hypot(T a, T b) noexcept {
+  const T s = a * a + b * b;
+  if (s >= std::numeric_limits<T>::min() / std::numeric_limits<T>::epsilon()) return std::sqrt(s);
+  return std::hypot(a, b);
+}
 /// +1 when e_i × e_j = +e_k for the three different axes i, j, k; −1 otherwise.
 constexpr int axis_parity(int i, int j) noexcept { return (j - i + 3) % 3 == 1 ? 1 : -1; }
 }  // namespace detail
@@ -144,7 +153,7 @@ template <Real T>
 EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
                                const EulerOptions<T>& options = {}) noexcept {
   // Any scale is fine (atan2 ignores it); only a norm whose square would overflow or underflow
-  // is brought to 1 first, so that √(a² + b²) below needs no hypot.
+  // is brought to 1 first.
   const T n2 = squared_norm(q_in);
   const Quat<T> q = !is_finite(q_in) || !(n2 > T(0)) ? Quat<T>{}
                     : (std::isnormal(n2) && std::isfinite(n2) && n2 > T(1e-20) && n2 < T(1e20)) ? q_in
@@ -154,11 +163,11 @@ EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
   const int i = ext.axes[0], j = ext.axes[1];
   const bool proper = ext.proper();
   const int k = proper ? 3 - i - j : ext.axes[2];
-  const T eps = T(detail::axis_parity(i, j));
+  const T parity = T(detail::axis_parity(i, j));
   const T qi = detail::vec_component(q, i), qj = detail::vec_component(q, j);
-  const T qk = detail::vec_component(q, k) * eps;
+  const T qk = detail::vec_component(q, k) * parity;
   // q = (cos(β'/2)·(cos θ+, sin θ+), sin(β'/2)·(cos θ−, sin θ−)) in the coordinates (a, b, c, d),
-  // with θ± = (α3' ± α1)/2 and α3' = α3 (proper) or eps·α3 (Tait–Bryan, where the coordinates are
+  // with θ± = (α3' ± α1)/2 and α3' = α3 (proper) or parity·α3 (Tait–Bryan, where the coordinates are
   // those of q multiplied by a quarter turn about j, which shifts the middle angle by π/2).
   T a, b, c, d;
   if (proper) {
@@ -168,7 +177,7 @@ EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
   }
   // β' in [0, π] and its distance to π, each from its own atan2 so that both stay accurate (and
   // a distance of 0 means exactly singular, not "rounded to π").
-  const T h_ab = std::sqrt(a * a + b * b), h_cd = std::sqrt(c * c + d * d);
+  const T h_ab = detail::fast_hypot(a, b), h_cd = detail::fast_hypot(c, d);
   const T to_zero = T(2) * std::atan2(h_cd, h_ab), to_pi = T(2) * std::atan2(h_ab, h_cd);
   const T theta_plus = std::atan2(b, a), theta_minus = std::atan2(d, c);
   const T tol = options.gimbal_tolerance_rad;
@@ -189,7 +198,7 @@ EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
     alpha1 = theta_plus - theta_minus;
     alpha3p = theta_plus + theta_minus;
   }
-  const T alpha3 = proper ? alpha3p : eps * alpha3p;
+  const T alpha3 = proper ? alpha3p : parity * alpha3p;
   const T half_pi = pi_v<T> / T(2);
   const T beta = proper ? (to_zero <= to_pi ? to_zero : pi_v<T> - to_pi)
                         : (to_zero <= to_pi ? to_zero - half_pi : half_pi - to_pi);
