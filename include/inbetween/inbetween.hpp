@@ -4,10 +4,14 @@
 
 // math
 #include "inbetween/math/assert.hpp"
+#include "inbetween/math/euler.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/mat.hpp"
+#include "inbetween/math/orientation_interp.hpp"
 #include "inbetween/math/quat.hpp"
+#include "inbetween/math/rotation.hpp"
 #include "inbetween/math/scalar.hpp"
+#include "inbetween/math/transform.hpp"
 #include "inbetween/math/vec.hpp"
 
 // curves
