@@ -723,11 +723,11 @@ void evaluate_scene(const Scene& scene, double frame, std::span<double> out) noe
   if (scene.objects) {
     const auto nodes = scene.objects->nodes();
     // Small scenes: a fixed buffer avoids allocating; larger ones fall back to a vector.
-    std::array<Trs<double>, 64> small;
-    std::vector<Trs<double>> large;
-    std::span<Trs<double>> world;
+    std::array<Transform<double>, 64> small;
+    std::vector<Transform<double>> large;
+    std::span<Transform<double>> world;
     if (nodes.size() <= small.size()) {
-      world = std::span<Trs<double>>(small.data(), nodes.size());
+      world = std::span<Transform<double>>(small.data(), nodes.size());
     } else {
       large.resize(nodes.size());
       world = large;

@@ -19,25 +19,25 @@ Vec3d apply(const Mat4d& m, const Vec3d& p) {
   return {r.x, r.y, r.z};
 }
 
-TEST(Trs, MatrixIsTranslationRotationScale) {
-  const Trs<double> trs{.translation = {1, 2, 3}, .rotation = Quatd::from_axis_angle(kZ, pi_v<double> / 2),
+TEST(TransformTrackTrs, MatrixIsTranslationRotationScale) {
+  const Transform<double> trs{.translation = {1, 2, 3}, .rotation = Quatd::from_axis_angle(kZ, pi_v<double> / 2),
                         .scale = {2, 1, 1}};
   // (1,0,0) scaled to (2,0,0), turned a quarter about z to (0,2,0), moved to (1,4,3).
-  const Vec3d p = apply(trs.to_mat4(), {1, 0, 0});
+  const Vec3d p = apply(trs.to_matrix(), {1, 0, 0});
   EXPECT_NEAR(p.x, 1, kTol);
   EXPECT_NEAR(p.y, 4, kTol);
   EXPECT_NEAR(p.z, 3, kTol);
 }
 
-TEST(Trs, ComposeEqualsMatrixProductWithUniformScale) {
+TEST(TransformTrackTrs, ComposeEqualsMatrixProductWithUniformScale) {
   test::Random rng(test::seed_for(5040));
   SCOPED_TRACE(rng.trace());
   for (int i = 0; i < 100; ++i) {
     const double sp = rng.uniform(0.5, 2.0), sc = rng.uniform(0.5, 2.0);
-    const Trs<double> parent{.translation = rng.vec3(), .rotation = rng.rotation(), .scale = {sp, sp, sp}};
-    const Trs<double> child{.translation = rng.vec3(), .rotation = rng.rotation(),
+    const Transform<double> parent{.translation = rng.vec3(), .rotation = rng.rotation(), .scale = {sp, sp, sp}};
+    const Transform<double> child{.translation = rng.vec3(), .rotation = rng.rotation(),
                             .scale = {sc, rng.uniform(0.5, 2.0), sc}};  // child may be non-uniform
-    EXPECT_LT(max_abs_diff(compose(parent, child).to_mat4(), parent.to_mat4() * child.to_mat4()), 1e-13);
+    EXPECT_LT(max_abs_diff(compose(parent, child).to_matrix(), parent.to_matrix() * child.to_matrix()), 1e-13);
   }
 }
 
@@ -54,15 +54,15 @@ TEST(TransformHierarchy, ChildFollowsRotatingParent) {
   nodes[1].local.rest.translation = {2, 0, 0};
   auto h = build_hierarchy(nodes);
   ASSERT_TRUE(h.has_value());
-  std::vector<Trs<double>> world(2);
+  std::vector<Transform<double>> world(2);
   std::vector<Mat4d> mats(2);
-  h->sample_world(10.0, std::span<Trs<double>>(world));
+  h->sample_world(10.0, std::span<Transform<double>>(world));
   h->sample_world(10.0, std::span<Mat4d>(mats));
   // After a quarter turn of the arm the hand at (2,0,0) is at (0,2,0).
   EXPECT_NEAR(world[1].translation.x, 0, kTol);
   EXPECT_NEAR(world[1].translation.y, 2, kTol);
   EXPECT_NEAR(mats[1].translation().y, 2, kTol);
-  h->sample_world(5.0, std::span<Trs<double>>(world));
+  h->sample_world(5.0, std::span<Transform<double>>(world));
   EXPECT_NEAR(world[1].translation.x, 2 * std::cos(pi_v<double> / 4), kTol);  // slerp halfway: 45°
 }
 
@@ -75,8 +75,8 @@ TEST(TransformHierarchy, ChildrenBeforeParentsInTheListAreFine) {
   nodes[0].local.rest.translation = {0, 0, 1};
   auto h = build_hierarchy(nodes);
   ASSERT_TRUE(h.has_value());
-  std::vector<Trs<double>> world(3);
-  h->sample_world(0.0, std::span<Trs<double>>(world));
+  std::vector<Transform<double>> world(3);
+  h->sample_world(0.0, std::span<Transform<double>>(world));
   EXPECT_EQ(world[0].translation, (Vec3d{1, 1, 1}));
 }
 

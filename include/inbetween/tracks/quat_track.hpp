@@ -18,6 +18,7 @@
 
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
+#include "inbetween/math/orientation_interp.hpp"
 #include "inbetween/math/quat.hpp"
 #include "inbetween/tracks/track.hpp"
 
@@ -56,30 +57,11 @@ struct QuatSplineOptions {
 
 namespace quat_track_detail {
 
-/// slerp of unit quaternions a → b (no sign flip: the caller chose the signs).  The angle comes
-/// from 2·atan2(|a − b|, |a + b|), accurate near 0 and near π; sin(kω)/sin(ω) is evaluated through
-/// sinc so tiny angles lose nothing.  Antipodal inputs (ω = π, a full turn) rotate about the
-/// fixed perpendicular (−x, w, −z, y) of a (documented fallback).  The result is renormalised.
+/// slerp of unit quaternions a → b along the arc exactly as given (the track chose the signs),
+/// by the math module's slerp (constant speed, accurate for tiny angles, never NaN).
 template <Real T>
 Quat<T> slerp_unit(const Quat<T>& a, const Quat<T>& b, T u) noexcept {
-  if (u == T(0)) return a;
-  if (u == T(1)) return b;
-  const T omega = T(2) * std::atan2(norm(a - b), norm(a + b));
-  const T s = std::sin(omega);
-  Quat<T> r;
-  if (omega < T(1e-4)) {
-    // sin(kω)/sin(ω) → k as ω → 0; first-order correction keeps the error ~ω⁴.
-    const T w0 = (T(1) - u) * (T(1) + (T(1) - (T(1) - u) * (T(1) - u)) * omega * omega / T(6));
-    const T w1 = u * (T(1) + (T(1) - u * u) * omega * omega / T(6));
-    r = a * w0 + b * w1;
-  } else if (s < T(1e-6)) {
-    const Quat<T> perp = Quat<T>::from_wxyz(-a.x, a.w, -a.z, a.y);
-    const T ang = omega * u;
-    r = a * std::cos(ang) + perp * std::sin(ang);
-  } else {
-    r = a * (std::sin((T(1) - u) * omega) / s) + b * (std::sin(u * omega) / s);
-  }
-  return normalized(r);
+  return slerp(a, b, u, SlerpOptions{.path = RotationPath::AsGiven});
 }
 
 /// (a + b)/|a + b|: slerp at ½ without trigonometry (the text's bisect); a or b if they cancel.

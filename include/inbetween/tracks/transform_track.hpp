@@ -1,6 +1,7 @@
 #pragma once
-/// Transform tracks: translation, rotation and scale tracks → a TRS transform and a Mat4 per frame,
-/// and a parent/child hierarchy that composes them (world_T_child = world_T_parent · parent_T_child).
+/// Transform tracks: translation, rotation and scale tracks → a TRS Transform (math/transform.hpp)
+/// and a Mat4 per frame, and a parent/child hierarchy that composes them
+/// (world_T_child = world_T_parent · parent_T_child).
 
 #include <cstddef>
 #include <optional>
@@ -11,59 +12,24 @@
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/mat.hpp"
 #include "inbetween/math/quat.hpp"
+#include "inbetween/math/transform.hpp"
 #include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace inbetween {
 
-/// Translation · rotation · scale, applied to a point as p' = t + R(s ⊙ p).  Identity by default.
-template <Real T>
-struct Trs {
-  Vec3<T> translation{};        ///< translation
-  Quat<T> rotation{};           ///< unit quaternion
-  Vec3<T> scale{T(1), T(1), T(1)};  ///< per-axis scale (in the object's own axes)
-
-  /// The homogeneous matrix T·R·S (column vectors; translation in the last column).
-  [[nodiscard]] Mat4<T> to_mat4() const noexcept {
-    const Quat<T>& q = rotation;
-    const T xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z;
-    const T xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z, wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
-    const T r[3][3] = {{T(1) - T(2) * (yy + zz), T(2) * (xy - wz), T(2) * (xz + wy)},
-                       {T(2) * (xy + wz), T(1) - T(2) * (xx + zz), T(2) * (yz - wx)},
-                       {T(2) * (xz - wy), T(2) * (yz + wx), T(1) - T(2) * (xx + yy)}};
-    Mat4<T> m;
-    for (int row = 0; row < 3; ++row) {
-      for (int col = 0; col < 3; ++col) m.m[row][col] = r[row][col] * scale[col];
-      m.m[row][3] = translation[row];
-    }
-    return m;
-  }
-};
-
-/// Composition of TRS transforms as used for a hierarchy: translation and rotation exact; the
-/// scale is the per-axis product, which is exact unless a parent with non-uniform scale has a
-/// rotated child (then the true product has shear, which TRS cannot hold; use the Mat4s).
-template <Real T>
-Trs<T> compose(const Trs<T>& parent, const Trs<T>& child) noexcept {
-  Trs<T> out;
-  out.translation = parent.translation + rotate(parent.rotation, hadamard(parent.scale, child.translation));
-  out.rotation = normalized(parent.rotation * child.rotation);
-  out.scale = hadamard(parent.scale, child.scale);
-  return out;
-}
-
 /// A transform animated by optional translation, rotation and scale tracks; channels without a
 /// track take their value from `rest`.
 template <Real T>
 struct TransformTrack {
-  Trs<T> rest{};                                 ///< value of channels without a track
+  Transform<T> rest{};                                 ///< value of channels without a track
   std::optional<Track<Vec3<T>>> translation;     ///< translation track, if animated
   std::optional<QuatTrack<T>> rotation;          ///< rotation track, if animated
   std::optional<Track<Vec3<T>>> scale;           ///< scale track, if animated
 
   /// The local transform at `frame`.
-  [[nodiscard]] Trs<T> sample(T frame) const noexcept {
-    Trs<T> out = rest;
+  [[nodiscard]] Transform<T> sample(T frame) const noexcept {
+    Transform<T> out = rest;
     if (translation) out.translation = translation->sample(frame);
     if (rotation) out.rotation = rotation->sample(frame);
     if (scale) out.scale = scale->sample(frame);
@@ -87,12 +53,13 @@ class TransformHierarchy {
   /// Nodes in the order given to build_hierarchy().
   [[nodiscard]] std::span<const HierarchyNode<T>> nodes() const noexcept { return nodes_; }
 
-  /// World TRS of every node at `frame` (compose() of the chain; see its note on shear);
+  /// World TRS of every node at `frame` (compose() of the chain: exact unless a parent with
+  /// non-uniform scale has a rotated child, see compose());
   /// `world` has one entry per node.
-  void sample_world(T frame, std::span<Trs<T>> world) const noexcept {
+  void sample_world(T frame, std::span<Transform<T>> world) const noexcept {
     INBETWEEN_ASSERT(world.size() == nodes_.size());
     for (std::size_t i : order_) {
-      const Trs<T> local = nodes_[i].local.sample(frame);
+      const Transform<T> local = nodes_[i].local.sample(frame);
       world[i] = nodes_[i].parent ? compose(world[*nodes_[i].parent], local) : local;
     }
   }
@@ -100,7 +67,7 @@ class TransformHierarchy {
   void sample_world(T frame, std::span<Mat4<T>> world) const noexcept {
     INBETWEEN_ASSERT(world.size() == nodes_.size());
     for (std::size_t i : order_) {
-      const Mat4<T> local = nodes_[i].local.sample(frame).to_mat4();
+      const Mat4<T> local = nodes_[i].local.sample(frame).to_matrix();
       world[i] = nodes_[i].parent ? world[*nodes_[i].parent] * local : local;
     }
   }
