@@ -21,6 +21,7 @@
 #include "inbetween/timing/penner.hpp"
 
 // tracks
+#include "inbetween/tracks/euler_track.hpp"
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
