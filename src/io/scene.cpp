@@ -471,6 +471,81 @@ Expected<SceneQuatTrack> parse_quat_track(const json& j, const std::string& ptr)
   return track;
 }
 
+const std::vector<std::string_view> kEulerModes = {"angles", "quaternion"};
+
+Expected<SceneEulerTrack> parse_euler_track(const json& j, const std::string& ptr) {
+  if (auto ok = only_members(j, ptr, {"name", "kind", "keys", "convention", "units", "mode", "filter"}); !ok) {
+    return ok.error();
+  }
+  SceneEulerTrack track;
+  auto name = track_name(j, ptr);
+  if (!name) return name.error();
+  track.name = *name;
+  EulerTrackOptions<double> options;
+  const std::string cp = child(ptr, "convention");
+  auto conv = j.find("convention");
+  if (conv == j.end() || !conv->is_string()) {
+    return error_at(ErrorCode::InvalidArgument, "an Euler track needs a \"convention\" such as \"XYZ\" or \"zxz\"", cp);
+  }
+  auto seq = parse_euler_sequence(conv->get<std::string>());
+  if (!seq) return error_at(ErrorCode::InvalidArgument, seq.error().message, cp);
+  options.sequence = *seq;
+  double unit = 1;
+  if (auto u = j.find("units"); u != j.end()) {
+    if (!u->is_string() || (u->get<std::string>() != "rad" && u->get<std::string>() != "deg")) {
+      return error_at(ErrorCode::InvalidArgument, "\"units\" must be \"rad\" or \"deg\"", child(ptr, "units"));
+    }
+    if (u->get<std::string>() == "deg") unit = pi_v<double> / 180;
+  }
+  auto mode = name_member(j, ptr, "mode", EulerTrackMode::angles, kEulerModes);
+  if (!mode) return mode.error();
+  options.mode = *mode;
+  if (auto f = j.find("filter"); f != j.end()) {
+    if (!f->is_boolean()) return error_at(ErrorCode::InvalidArgument, "expected true or false", child(ptr, "filter"));
+    options.filter = f->get<bool>();
+  }
+  auto keys = keys_array(j, ptr);
+  if (!keys) return keys.error();
+  const std::string kp = child(ptr, "keys");
+  std::vector<EulerKey<double>> raw;
+  for (std::size_t i = 0; i < (*keys)->size(); ++i) {
+    const json& kj = (**keys)[i];
+    const std::string p = child(kp, i);
+    if (!kj.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(kj), p);
+    if (auto ok = only_members(kj, p, {"frame", "value", "tangent", "interpolation"}); !ok) return ok.error();
+    EulerKey<double> k;
+    auto frame = number_member(kj, p, "frame", std::nullopt);
+    if (!frame) return frame.error();
+    auto value = vector_member(kj, p, "value", 3, true);
+    if (!value) return value.error();
+    auto tangent = name_member(kj, p, "tangent", TangentKind::catmull_rom, kTangents);
+    if (!tangent) return tangent.error();
+    if (*tangent == TangentKind::explicit_hermite) {
+      return error_at(ErrorCode::Unsupported, "Euler keys take no explicit tangents", child(p, "tangent"));
+    }
+    auto interp = name_member(kj, p, "interpolation", QuatInterpolation::slerp, kQuatInterp);
+    if (!interp) return interp.error();
+    if (*interp == QuatInterpolation::gltf_cubic) {
+      return error_at(ErrorCode::Unsupported, "Euler keys take no glTF tangents", child(p, "interpolation"));
+    }
+    if (i > 0 && !(*frame > raw.back().frame)) {
+      return error_at(ErrorCode::KeysNotIncreasing,
+                      "frame " + num(*frame) + " is not after the previous key's frame " + num(raw.back().frame) +
+                          " (keys must be sorted by strictly increasing frame)",
+                      child(p, "frame"));
+    }
+    k.frame = *frame;
+    k.angles_rad = {value->x * unit, value->y * unit, value->z * unit};
+    k.tangent = *tangent;
+    k.interpolation = *interp;
+    raw.push_back(k);
+  }
+  auto built = build_euler_track(raw, options);
+  if (!built) return relocate(built.error(), kp, ptr);
+  track.track = std::move(*built);
+  return track;
+}
+
 Vec3d xyz(const Vec4d& v) { return {v.x, v.y, v.z}; }
 
 // An object's channel: a constant array, or a track object without name and kind.
@@ -624,9 +699,15 @@ Expected<Scene> parse_scene_json(const json& root) {
         name = track->name;
         scene.track_order.emplace_back(SceneTrackKind::quaternion, scene.quat_tracks.size());
         scene.quat_tracks.push_back(std::move(*track));
+      } else if (kind == "euler") {
+        auto track = parse_euler_track(tj, tp);
+        if (!track) return track.error();
+        name = track->name;
+        scene.track_order.emplace_back(SceneTrackKind::euler, scene.euler_tracks.size());
+        scene.euler_tracks.push_back(std::move(*track));
       } else {
         return error_at(ErrorCode::InvalidArgument,
-                        "unknown track kind \"" + kind + "\" (expected one of: scalar, vec2, vec3, vec4, color, quaternion)",
+                        "unknown track kind \"" + kind + "\" (expected one of: scalar, vec2, vec3, vec4, color, quaternion, euler)",
                         child(tp, "kind"));
       }
       for (const auto& other : names) {
@@ -681,6 +762,9 @@ std::vector<SceneColumn> scene_columns(const Scene& scene) {
       case SceneTrackKind::quaternion:
         for (char c : std::string("wxyz")) cols.push_back({scene.quat_tracks[idx].name + "." + c, false});
         break;
+      case SceneTrackKind::euler:
+        for (char c : std::string("wxyz")) cols.push_back({scene.euler_tracks[idx].name + "." + c, false});
+        break;
     }
   }
   if (scene.objects) {
@@ -710,8 +794,10 @@ void evaluate_scene(const Scene& scene, double frame, std::span<double> out) noe
         for (int c = 0; c < t.dim; ++c) put(v[c]);
         break;
       }
-      case SceneTrackKind::quaternion: {
-        const Quatd q = scene.quat_tracks[idx].track.sample(frame);
+      case SceneTrackKind::quaternion:
+      case SceneTrackKind::euler: {
+        const Quatd q = kind == SceneTrackKind::quaternion ? scene.quat_tracks[idx].track.sample(frame)
+                                                          : scene.euler_tracks[idx].track.sample(frame);
         put(q.w);
         put(q.x);
         put(q.y);

@@ -73,7 +73,9 @@ TEST(BakeCli, CsvHeaderAndRowsFollowTheIssue) {
   EXPECT_EQ(ls[0],
             "frame,time,cube.location.z,cube.location.x,cube.scale.y,cube.color.r,cube.color.g,cube.color.b,"
             "cube.color.a,camera.target.x,camera.target.y,camera.target.z,camera.orientation.w,camera.orientation.x,"
-            "camera.orientation.y,camera.orientation.z,"
+            "camera.orientation.y,camera.orientation.z,lamp.euler_unfiltered.w,lamp.euler_unfiltered.x,"
+            "lamp.euler_unfiltered.y,lamp.euler_unfiltered.z,lamp.euler_slerp.w,lamp.euler_slerp.x,lamp.euler_slerp.y,"
+            "lamp.euler_slerp.z,"
             "turntable.translation.x,turntable.translation.y,turntable.translation.z,turntable.rotation.w,"
             "turntable.rotation.x,turntable.rotation.y,turntable.rotation.z,turntable.scale.x,turntable.scale.y,"
             "turntable.scale.z,cube.translation.x,cube.translation.y,cube.translation.z,cube.rotation.w,"
@@ -161,6 +163,9 @@ TEST(BakeCli, MalformedScenesGiveOneMessageWithPointerAndExitTwo) {
       {"zero quaternion",
        R"({"inbetween": 1, "tracks": [{"name": "q", "kind": "quaternion", "keys": [{"frame": 1, "value": [0, 0, 0, 0]}]}]})",
        "/tracks/0/keys/0/value"},
+      {"unknown Euler convention",
+       R"({"inbetween": 1, "tracks": [{"name": "e", "kind": "euler", "convention": "XXY", "keys": [{"frame": 1, "value": [0, 0, 0]}]}]})",
+       "/tracks/0/convention"},
       {"unknown parent", R"({"inbetween": 1, "objects": [{"name": "a", "parent": "nobody"}]})", "/objects/0/parent"},
       {"parent cycle",
        R"({"inbetween": 1, "objects": [{"name": "a", "parent": "b"}, {"name": "b", "parent": "a"}]})",

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "inbetween/math/expected.hpp"
+#include "inbetween/tracks/euler_track.hpp"
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
@@ -39,8 +40,14 @@ struct SceneQuatTrack {
   QuatTrack<double> track;  ///< the built track
 };
 
+/// A named Euler-angle track (kind "euler"); columns <name>.w .x .y .z of the orientation.
+struct SceneEulerTrack {
+  std::string name;          ///< column prefix
+  EulerTrack<double> track;  ///< the built track
+};
+
 /// Which list a track of the file went to.
-enum class SceneTrackKind : std::uint8_t { scalar, vector, quaternion };
+enum class SceneTrackKind : std::uint8_t { scalar, vector, quaternion, euler };
 
 /// A parsed scene.
 struct Scene {
@@ -50,6 +57,7 @@ struct Scene {
   std::vector<SceneScalarTrack> scalar_tracks;  ///< kind "scalar"
   std::vector<SceneVectorTrack> vector_tracks;  ///< kinds vec2, vec3, vec4, color
   std::vector<SceneQuatTrack> quat_tracks;      ///< kind quaternion
+  std::vector<SceneEulerTrack> euler_tracks;    ///< kind euler
   /// File order of the tracks: (kind, index into the list of that kind).
   std::vector<std::pair<SceneTrackKind, std::size_t>> track_order;
   /// The objects, in file order, with their parent links and animated local transforms.
