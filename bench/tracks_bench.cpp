@@ -77,6 +77,34 @@ void BM_TrackBatch1024(benchmark::State& state) {
 }
 BENCHMARK(BM_TrackBatch1024)->RangeMultiplier(16)->Range(16, 1 << 20);
 
+FCurve make_fcurve(int keys) {
+  RawFCurve raw{.auto_smoothing = AutoSmoothing::cont_accel};
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> v(-5, 5);
+  for (int i = 0; i < keys; ++i) {
+    FCurveKey k;
+    k.frame = double(i);
+    k.value = v(rng);
+    raw.keys.push_back(k);
+  }
+  return std::move(build_fcurve(raw)).value();
+}
+
+// Blender-compatible F-curve with a cursor (same values as Blender's search).
+void BM_FCurveSequentialCursor(benchmark::State& state) {
+  const int keys = int(state.range(0));
+  const FCurve c = make_fcurve(keys);
+  float t = 0.125f;
+  TrackCursor cursor;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(c.evaluate(t, cursor));
+    t += 0.25f;
+    if (t > float(keys - 1)) t = 0.125f;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_FCurveSequentialCursor)->RangeMultiplier(16)->Range(16, 1 << 16);
+
 // Blender-compatible F-curve (binary search per sample, as Blender does).
 void BM_FCurveSequential(benchmark::State& state) {
   const int keys = int(state.range(0));

@@ -646,8 +646,26 @@ float FCurve::extrapolate(float t, bool before) const noexcept {
   return e.y - (fac * dx);
 }
 
-float FCurve::interpolate(float t) const noexcept {
+float FCurve::interpolate(float t, std::size_t* cursor) const noexcept {
   const int n = int(keys_.size());
+  if (cursor != nullptr) {
+    // Sequential playback: try the remembered segment and its successor.  The result equals the
+    // binary search's whenever t is not within the snap distance of either end of its segment
+    // (the search then visits no key that could snap, and ends on the same segment); near a key
+    // the full search below decides, exactly as Blender does.
+    std::size_t k = std::min(*cursor, std::size_t(n - 2));
+    if (!(keys_[k].x <= t && t < keys_[k + 1].x) && k + 2 < std::size_t(n) && keys_[k + 1].x <= t &&
+        t < keys_[k + 2].x) {
+      ++k;
+    }
+    if (!(keys_[k].x <= t && t < keys_[k + 1].x)) {
+      k = std::size_t(std::upper_bound(keys_.begin(), keys_.end(), t, [](float v, const Key& key) { return v < key.x; }) -
+                      keys_.begin());
+      k = std::min(k == 0 ? 0 : k - 1, std::size_t(n - 2));
+    }
+    *cursor = k;
+    if (!near_frame(t, keys_[k].x) && !near_frame(t, keys_[k + 1].x)) return segment_value(int(k) + 1, t);
+  }
   // Blender's binary search with its 1e-4 "same frame" threshold (a hit returns that key's value).
   int index = 0;
   {
@@ -674,6 +692,10 @@ float FCurve::interpolate(float t) const noexcept {
     }
   }
   if (index >= n) index = n - 1;  // unreachable for t inside the keys; keeps the access in range
+  return segment_value(index, t);
+}
+
+float FCurve::segment_value(int index, float t) const noexcept {
   const Key& kb = keys_[index];
   const Key& ka = index > 0 ? keys_[index - 1] : kb;
   if (std::abs(kb.x - t) < 1.e-8f) return kb.y;
@@ -699,13 +721,19 @@ float FCurve::interpolate(float t) const noexcept {
   }
 }
 
-float FCurve::evaluate_keys(float t) const noexcept {
+float FCurve::evaluate_keys(float t, std::size_t* cursor) const noexcept {
   if (t <= keys_.front().x) return extrapolate(t, true);
   if (keys_.back().x <= t) return extrapolate(t, false);
-  return interpolate(t);
+  return interpolate(t, cursor);
 }
 
-float FCurve::evaluate(float frame) const noexcept {
+float FCurve::evaluate(float frame) const noexcept { return evaluate_impl(frame, nullptr); }
+
+float FCurve::evaluate(float frame, TrackCursor& cursor) const noexcept {
+  return evaluate_impl(frame, &cursor.segment);
+}
+
+float FCurve::evaluate_impl(float frame, std::size_t* cursor) const noexcept {
   if (keys_.empty()) return 0.0f;
   if (std::isnan(frame)) return keys_.front().y;
   float t = frame;
@@ -759,12 +787,12 @@ float FCurve::evaluate(float frame) const noexcept {
       }
     }
   }
-  return evaluate_keys(t) + offset;
+  return evaluate_keys(t, cursor) + offset;
 }
 
-void FCurve::evaluate(std::span<const float> frames, std::span<float> out) const noexcept {
+void FCurve::evaluate(std::span<const float> frames, std::span<float> out, TrackCursor& cursor) const noexcept {
   INBETWEEN_ASSERT(frames.size() == out.size());
-  for (std::size_t i = 0; i < frames.size(); ++i) out[i] = evaluate(frames[i]);
+  for (std::size_t i = 0; i < frames.size(); ++i) out[i] = evaluate_impl(frames[i], &cursor.segment);
 }
 
 // ------------------------------------------------------------------ building

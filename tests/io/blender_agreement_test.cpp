@@ -92,10 +92,12 @@ TEST(BlenderAgreement, EveryModeMatchesBlenderEvaluate) {
     const double range = hi - lo > 0 ? hi - lo : 1.0;
     GroupStats& g = groups[ref.at("group").get<std::string>()];
     ++g.curves;
+    inbetween::TrackCursor cursor;
     for (std::size_t i = 0; i < frames.size(); ++i) {
       const float frame = frames[i].get<float>();
       const double expected = values[i].get<double>();
       const double got = track.curve.evaluate(frame);
+      EXPECT_EQ(track.curve.evaluate(frame, cursor), float(got)) << track.name << " frame " << frame;
       const double err = std::abs(got - expected);
       ++g.samples;
       if (err > g.max_abs) g.max_abs = err;
