@@ -141,7 +141,7 @@ void compute_key_handles(Key& key, const Key* prev, const Key* next, bool smooth
     const double cr = double(l.x) * r.y - double(l.y) * r.x;
     const double scale = double(length2(l)) * double(length2(r));
     const bool opposite = double(l.x) * r.x + double(l.y) * r.y < 0;
-    if (opposite && std::abs(cr) <= 4.0 * double(FLT_EPSILON) * scale) return;
+    if (opposite && std::abs(cr) <= 64.0 * double(FLT_EPSILON) * scale) return;
   }
   float la = length2(Vec2f{p2.x - key.left.x, p2.y - key.left.y});
   float lb = length2(Vec2f{p2.x - key.right.x, p2.y - key.right.y});
