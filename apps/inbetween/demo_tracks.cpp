@@ -1,12 +1,15 @@
 // The "tracks" section of `inbetween demo`: Blender-compatible F-curves next to the numbers
 // Blender 3.4.1 prints for the same curves, and a generic track played back with a cursor.
 #include <charconv>
+#include <cmath>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "command.hpp"
 #include "inbetween/tracks/fcurve.hpp"
+#include "inbetween/tracks/euler_track.hpp"
+#include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace inbetween::cli {
@@ -65,6 +68,49 @@ void demo_tracks(std::ostream& out) {
   out << "Catmull-Rom Vec3 track with 1000 keys played at 4 samples per frame with a cursor:\n"
       << "  cursor ends at segment " << cursor.segment << "; mean sample (" << format_number(sum.x / 3996) << ", "
       << format_number(sum.y / 3996) << ", " << format_number(sum.z / 3996) << ")\n";
+
+  // Bézier quaternion spline about one axis = Catmull-Rom of the angle (k = 1/3).
+  std::vector<QuatKey<double>> qkeys;
+  const double angles[] = {0.0, 0.9, 1.2, 2.6};
+  for (int i = 0; i < 4; ++i) {
+    QuatKey<double> k;
+    k.frame = i;
+    k.value = Quatd::from_axis_angle(Vec3d{0, 0, 1}, angles[i]);
+    k.interpolation = QuatInterpolation::bezier;
+    qkeys.push_back(k);
+  }
+  const QuatTrack<double> spline = std::move(build_quat_track(qkeys)).value();
+  const Quatd mid = spline.sample(1.5);
+  // Catmull-Rom of the angles at u = ½ of segment 1: (−p0 + 9p1 + 9p2 − p3)/16.
+  const double cr = (-angles[0] + 9 * angles[1] + 9 * angles[2] - angles[3]) / 16;
+  out << "Bezier quaternion spline about z, keys 0, 0.9, 1.2, 2.6 rad at frames 0..3:\n"
+      << "  angle at frame 1.5 = " << format_number(2 * std::atan2(mid.z, mid.w)) << " rad; Catmull-Rom of the angles "
+      << format_number(cr) << "\n";
+
+  // Euler filter: two keys less than a degree apart, written with the two Euler solutions.
+  const double pi = 3.14159265358979323846;
+  std::vector<EulerKey<double>> ekeys(2);
+  ekeys[0].angles_rad = {0.3, 1.2, -0.4};
+  ekeys[1].frame = 1;
+  ekeys[1].angles_rad = {0.3 + pi + 0.02, pi - 1.2 - 0.01, -0.4 + pi - 0.015};
+  for (auto& k : ekeys) k.tangent = TangentKind::linear;
+  EulerTrackOptions<double> raw_angles;
+  raw_angles.filter = false;
+  const EulerTrack<double> unfiltered = std::move(build_euler_track(ekeys, raw_angles)).value();
+  const EulerTrack<double> filtered = std::move(build_euler_track(ekeys)).value();
+  auto turned = [](const EulerTrack<double>& tr) {
+    double len = 0;
+    Quatd prev = tr.sample(0.0);
+    for (int i = 1; i <= 1000; ++i) {
+      const Quatd q = tr.sample(i / 1000.0);
+      len += angle_between(prev, q);
+      prev = q;
+    }
+    return len;
+  };
+  out << "XYZ Euler keys (0.3, 1.2, -0.4) and its twin solution + <1 deg, interpolated as angles:\n"
+      << "  total turn without the Euler filter " << format_number(turned(unfiltered)) << " rad, with it "
+      << format_number(turned(filtered)) << " rad\n";
 }
 
 const RegisterDemo kTracksDemo{{"tracks", 50, demo_tracks}};

@@ -9,7 +9,7 @@
 /// Blender's to an ulp or two of sinf/powf.  Two of Blender's forms differ from Penner's originals:
 /// expo is rescaled so that it starts and ends exactly at begin and begin + change (Penner's jumps
 /// by 2⁻¹⁰·change), and elastic blends its amplitude in near the end where it would otherwise
-/// start with a jump (see PennerParams::amplitude).  docs/easing.md derives each one.
+/// start with a jump (see PennerParams::amplitude).  docs/tracks.md ("Penner easing") gives each form.
 
 #include <cmath>
 #include <cstdint>
