@@ -162,8 +162,8 @@ Expected<FCurveKey> parse_key(const json& j, const std::string& ptr) {
   auto pr = point_member(j, ptr, "handle_right", needs(k.handle_right_type));
   if (!pr) return pr.error();
   // Handles not given (automatic types) start flat at one frame from the key, as Blender's insert() does.
-  k.handle_left = j.contains("handle_left") ? *pl : Vec2d{k.frame - 1, k.value};
-  k.handle_right = j.contains("handle_right") ? *pr : Vec2d{k.frame + 1, k.value};
+  if (j.contains("handle_left")) k.handle_left = *pl;
+  if (j.contains("handle_right")) k.handle_right = *pr;
   auto back = number_member(j, ptr, "back", 1.70158);
   if (!back) return back.error();
   auto amp = number_member(j, ptr, "amplitude", 0.8);

@@ -807,7 +807,9 @@ Expected<FCurve> build_fcurve(const RawFCurve& raw) {
     const FCurveKey& k = raw.keys[i];
     if (!std::isfinite(k.frame)) return Error{ErrorCode::NotFinite, "frame is not finite", where(i)};
     if (!std::isfinite(k.value)) return Error{ErrorCode::NotFinite, "value is not finite", where(i)};
-    if (!is_finite(k.handle_left) || !is_finite(k.handle_right)) {
+    const Vec2d handle_left = k.handle_left.value_or(Vec2d{k.frame - 1, k.value});
+    const Vec2d handle_right = k.handle_right.value_or(Vec2d{k.frame + 1, k.value});
+    if (!is_finite(handle_left) || !is_finite(handle_right)) {
       return Error{ErrorCode::NotFinite, "a handle is not finite", where(i)};
     }
     if (!std::isfinite(k.back) || !std::isfinite(k.amplitude) || !std::isfinite(k.period)) {
@@ -834,8 +836,8 @@ Expected<FCurve> build_fcurve(const RawFCurve& raw) {
     FCurve::Key s;
     s.x = float(k.frame);
     s.y = float(k.value);
-    s.left = k.handle_left.cast<float>();
-    s.right = k.handle_right.cast<float>();
+    s.left = handle_left.cast<float>();
+    s.right = handle_right.cast<float>();
     s.interpolation = k.interpolation;
     s.easing = k.easing;
     s.left_type = k.handle_left_type;

@@ -72,7 +72,9 @@ struct FCurveCycles {
 
 /// One key as authored.  Frames and values are in the curve's units; handles are absolute
 /// (frame, value) points.  Handles of free and aligned sides are used as given (aligned ones
-/// re-aligned); those of vector, automatic and auto_clamped sides are recomputed when built.
+/// re-aligned); those of vector, automatic and auto_clamped sides are recomputed when the curve
+/// has two keys or more (a lone key keeps its handles, as in Blender: they set its linear
+/// extrapolation slope).
 struct FCurveKey {
   double frame = 0;                                        ///< key time in frames
   double value = 0;                                        ///< key value
@@ -80,8 +82,10 @@ struct FCurveKey {
   KeyEasing easing = KeyEasing::automatic;                 ///< for the easing interpolations
   HandleType handle_left_type = HandleType::auto_clamped;  ///< type of the left handle
   HandleType handle_right_type = HandleType::auto_clamped; ///< type of the right handle
-  Vec2d handle_left{};                                     ///< (frame, value) of the left handle
-  Vec2d handle_right{};                                    ///< (frame, value) of the right handle
+  /// (frame, value) of the left handle; absent means (frame − 1, value), what Blender's insert() stores.
+  std::optional<Vec2d> handle_left;
+  /// (frame, value) of the right handle; absent means (frame + 1, value).
+  std::optional<Vec2d> handle_right;
   double back = 1.70158;                                   ///< overshoot of `back` easing
   double amplitude = 0.8;                                  ///< amplitude of `elastic` (value units)
   double period = 4.1;                                     ///< period of `elastic` (frames)
