@@ -2,10 +2,13 @@
 // Museum exhibits of the tracks module: named degenerate-but-legal F-curves.  Every F-curve test
 // that checks a contract (finite values, passing through keys, no error) loops over these.
 
+#include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "inbetween/tracks/fcurve.hpp"
+#include "inbetween/tracks/track.hpp"
 
 namespace inbetween::test {
 
@@ -75,6 +78,46 @@ inline std::vector<FCurveExhibit> museum_fcurves() {
                                                             return k;
                                                           }(),
                                                           key(10, 1)}}});
+  return m;
+}
+
+/// A named set of generic-track keys (one tangent kind for all keys).
+struct TrackExhibit {
+  std::string name;
+  std::vector<TrackKey<double>> keys;
+};
+
+/// Single key, keys a float ulp apart at 1e7, huge frame numbers, flat runs, a spike between flat
+/// keys, tiny intervals next to long ones — for every tangent kind.
+inline std::vector<TrackExhibit> museum_track_keys() {
+  std::vector<TrackExhibit> m;
+  const std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>> shapes = {
+      {"single key", {{3, 1}}},
+      {"two keys one double ulp apart at 1e7", {{1e7, 0}, {std::nextafter(1e7, 2e7), 1}}},
+      {"huge frame numbers", {{1e12, 0}, {1e12 + 24, 3}, {1e12 + 48, -1}}},
+      {"flat run", {{0, 2}, {1, 2}, {2, 2}, {3, 2}}},
+      {"spike between flat keys", {{0, 0}, {1, 0}, {1.001, 50}, {1.002, 0}, {2, 0}}},
+      {"tiny interval next to long ones", {{0, 0}, {100, 10}, {100.000001, -10}, {200, 0}}},
+  };
+  const TangentKind kinds[] = {TangentKind::explicit_hermite, TangentKind::catmull_rom, TangentKind::kochanek_bartels,
+                               TangentKind::flat, TangentKind::linear, TangentKind::clamped, TangentKind::plateau,
+                               TangentKind::stepped};
+  for (const auto& [name, points] : shapes) {
+    for (TangentKind kind : kinds) {
+      TrackExhibit ex{name + " / tangent kind " + std::to_string(int(kind)), {}};
+      for (const auto& [f, v] : points) {
+        TrackKey<double> k;
+        k.frame = f;
+        k.value = v;
+        k.tangent = kind;
+        k.in_tangent = k.out_tangent = 1e3;  // steep explicit tangents
+        k.tension = 0.5;
+        k.bias = -0.5;
+        ex.keys.push_back(k);
+      }
+      m.push_back(std::move(ex));
+    }
+  }
   return m;
 }
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "support/museum_tracks.hpp"
 #include "support/random.hpp"
 #include "support/tolerances.hpp"
 
@@ -195,6 +196,26 @@ TYPED_TEST(TrackTest, CursorAndBatchAgreeWithPlainSampling) {
     const Vec3<T> plain = tr->sample(frames[i]);
     EXPECT_EQ(tr->sample(frames[i], cursor), plain) << frames[i];
     EXPECT_EQ(batch[i], plain) << frames[i];
+  }
+}
+
+TEST(TrackMuseum, EveryExhibitBuildsPassesThroughItsKeysAndStaysFinite) {
+  for (const auto& ex : test::museum_track_keys()) {
+    SCOPED_TRACE(ex.name);
+    for (auto extend : {TrackExtend::constant, TrackExtend::linear, TrackExtend::cycle, TrackExtend::cycle_offset,
+                        TrackExtend::oscillate}) {
+      auto tr = build_track(ex.keys, extend, extend);
+      ASSERT_TRUE(tr.has_value()) << tr.error().describe();
+      for (const auto& k : ex.keys) EXPECT_EQ(tr->sample(k.frame), k.value);  // exact at keys (u = 0 or 1)
+      const double lo = ex.keys.front().frame, hi = ex.keys.back().frame, w = std::max(hi - lo, 1.0);
+      TrackCursor cursor;
+      for (int i = -300; i <= 600; ++i) {
+        const double f = lo + w * i / 300.0;
+        const double v = tr->sample(f, cursor);
+        EXPECT_TRUE(std::isfinite(v)) << f;
+        EXPECT_EQ(v, tr->sample(f)) << f;
+      }
+    }
   }
 }
 
