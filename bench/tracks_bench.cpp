@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "inbetween/tracks/fcurve.hpp"
+#include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace {
@@ -76,6 +77,31 @@ void BM_TrackBatch1024(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * 1024);
 }
 BENCHMARK(BM_TrackBatch1024)->RangeMultiplier(16)->Range(16, 1 << 20);
+
+// Orientation playback: Bézier quaternion spline (six slerps per sample) with a cursor.
+void BM_QuatTrackBezierCursor(benchmark::State& state) {
+  const int keys = int(state.range(0));
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> g;
+  std::vector<QuatKey<double>> raw;
+  for (int i = 0; i < keys; ++i) {
+    QuatKey<double> k;
+    k.frame = double(i);
+    k.value = normalized(Quatd::from_wxyz(g(rng), g(rng), g(rng), g(rng)));
+    k.interpolation = QuatInterpolation::bezier;
+    raw.push_back(k);
+  }
+  const QuatTrack<double> tr = std::move(build_quat_track(raw)).value();
+  double t = 0;
+  TrackCursor cursor;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(tr.sample(t, cursor));
+    t += 0.25;
+    if (t > double(keys - 1)) t = 0;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_QuatTrackBezierCursor)->RangeMultiplier(16)->Range(16, 1 << 16);
 
 FCurve make_fcurve(int keys) {
   RawFCurve raw{.auto_smoothing = AutoSmoothing::cont_accel};
