@@ -107,10 +107,11 @@ class FCurve {
   struct Key {
     float x = 0, y = 0;    ///< frame, value
     Vec2f left{}, right{}; ///< absolute handle positions
-    Interpolation interpolation = Interpolation::bezier;
-    KeyEasing easing = KeyEasing::automatic;
-    HandleType left_type = HandleType::auto_clamped, right_type = HandleType::auto_clamped;
-    float back = 0, amplitude = 0, period = 0;
+    Interpolation interpolation = Interpolation::bezier;  ///< of the segment to the right
+    KeyEasing easing = KeyEasing::automatic;              ///< for the easing interpolations
+    HandleType left_type = HandleType::auto_clamped;      ///< left handle type
+    HandleType right_type = HandleType::auto_clamped;     ///< right handle type
+    float back = 0, amplitude = 0, period = 0;            ///< easing parameters (as authored)
     bool locked = false;   ///< Blender's LOCKED auto-handle state (flat end or extreme)
   };
 
