@@ -26,13 +26,15 @@ T bernstein(int n, int i, T u) noexcept {
   return r;
 }
 
-/// de Casteljau's algorithm on `scratch` (the control points, overwritten): the point at u.
+/// de Casteljau's algorithm on `scratch` (the control points, overwritten): the point at u.  Each
+/// step is the convex blend (1 − u)·a + u·b, so u = 0 and u = 1 return the end points exactly.
 /// Precondition: scratch is not empty.
 template <Point P>
 P de_casteljau(std::span<P> scratch, scalar_of<P> u) noexcept {
   const int n = int(scratch.size());
+  const scalar_of<P> v = scalar_of<P>(1) - u;
   for (int r = 1; r < n; ++r)
-    for (int i = 0; i < n - r; ++i) scratch[i] = scratch[i] + (scratch[i + 1] - scratch[i]) * u;
+    for (int i = 0; i < n - r; ++i) scratch[i] = scratch[i] * v + scratch[i + 1] * u;
   return scratch[0];
 }
 
