@@ -66,4 +66,47 @@ void expect_derivatives_match_differences(const C& c, Random& rng, int samples =
   }
 }
 
+/// Local control: for every control point i, moving it (by `offset`) leaves the curve unchanged
+/// (bitwise: the unaffected segments are rebuilt from the same inputs) at every sampled u outside
+/// influence(i), and changes it somewhere inside.  `build` maps control points to a curve.
+template <class Build, Point P>
+void expect_local_control(Build build, const std::vector<P>& pts, const P& offset) {
+  const auto before = build(pts);
+  const auto dom = before.domain();
+  for (int i = 0; i < int(pts.size()); ++i) {
+    auto moved = pts;
+    moved[i] = moved[i] + offset;
+    const auto after = build(moved);
+    ASSERT_EQ(after.domain(), dom);
+    const auto inf = before.influence(i);
+    bool changed_inside = false;
+    for (int s = 0; s <= 400; ++s) {
+      const auto u = dom.lo + dom.length() * scalar_of<P>(s) / scalar_of<P>(400);
+      if (u < inf.lo || u > inf.hi) {
+        EXPECT_EQ(after.point(u), before.point(u)) << "point " << i << " moved the curve at u=" << u;
+      } else if (!(after.point(u) == before.point(u))) {
+        changed_inside = true;
+      }
+    }
+    EXPECT_TRUE(changed_inside) << "point " << i << " changed nothing inside its influence";
+  }
+}
+
+/// Global control: moving any control point changes the curve inside every segment.
+template <class Build, Point P>
+void expect_global_control(Build build, const std::vector<P>& pts, const P& offset) {
+  const auto before = build(pts);
+  for (int i = 0; i < int(pts.size()); ++i) {
+    auto moved = pts;
+    moved[i] = moved[i] + offset;
+    const auto after = build(moved);
+    EXPECT_EQ(before.influence(i), before.domain());
+    for (int seg = 0; seg < before.segment_count(); ++seg) {
+      const auto d = before.segment_domain(seg);
+      const auto u = d.lo + d.length() * scalar_of<P>(0.37);
+      EXPECT_NE(after.point(u), before.point(u)) << "point " << i << " segment " << seg;
+    }
+  }
+}
+
 }  // namespace inbetween::test
