@@ -155,7 +155,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
   json doc;
   try {
     doc = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     return Error{ErrorCode::Parse, std::string("invalid JSON: ") + e.what(), r.source};
   }
   if (!doc.is_object()) return r.fail("", "expected a JSON object with a \"type\" field");
