@@ -5,6 +5,7 @@
 // spacing (for example arc length) is one more row there, returning the parameter values to sample.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <iomanip>
 #include <sstream>
@@ -101,15 +102,15 @@ std::string format_info(const std::string& path, const AnyCurve& c) {
         const auto joints = measure_continuity(curve);
         out << "joints: " << joints.size() << "\n";
         if (!joints.empty()) {
-          out << "  u            C0 jump      C1 jump      C2 jump      G1 angle(deg)  continuity\n";
+          out << "  (jumps are |right limit - left limit| of the position and derivatives dP/du, d2P/du2)\n";
+          out << "  u              C0 jump     C1 jump     C2 jump     G1 angle(deg)  G1   continuity\n";
           for (const auto& j : joints) {
-            std::ostringstream row;
-            row << std::setprecision(4) << std::left;
-            row << "  " << std::setw(12) << format_number(j.u) << " " << std::setw(12) << j.jump[0] << " "
-                << std::setw(12) << j.jump[1] << " " << std::setw(12) << j.jump[2] << " " << std::setw(14)
-                << (j.tangent_defined ? std::to_string(j.tangent_angle_rad * 180 / pi_v<double>) : std::string("undefined"))
-                << " " << continuity_label(j) << "\n";
-            out << row.str();
+            char row[200];
+            char angle[32] = "undefined";
+            if (j.tangent_defined) std::snprintf(angle, sizeof angle, "%.6g", j.tangent_angle_rad * 180 / pi_v<double>);
+            std::snprintf(row, sizeof row, "  %-14.9g %-11.4g %-11.4g %-11.4g %-14s %-4s %s\n", j.u, j.jump[0],
+                          j.jump[1], j.jump[2], angle, j.g1 ? "yes" : "no", continuity_label(j).c_str());
+            out << row;
           }
         }
       },
