@@ -29,19 +29,14 @@ AnyCurve load_curve(const std::string& path) {
   return std::move(curve).value();
 }
 
-// Point of any family at u.
-Vec3d point_at(const AnyCurve& c, double u) {
-  return std::visit([u](const auto& curve) { return curve.point(u); }, c.curve);
-}
+Vec3d point_at(const AnyCurve& c, double u) { return c.point(u); }
 
-Interval<double> domain_of(const AnyCurve& c) {
-  return std::visit([](const auto& curve) { return curve.domain(); }, c.curve);
-}
+Interval<double> domain_of(const AnyCurve& c) { return c.domain(); }
 
 std::vector<Vec3d> control_points_of(const AnyCurve& c) {
-  return std::visit(
-      [](const auto& curve) { return std::vector<Vec3d>(curve.control_points().begin(), curve.control_points().end()); },
-      c.curve);
+  std::vector<Vec3d> pts;
+  for (int i = 0; i < c.control_point_count(); ++i) pts.push_back(c.control_point(i));
+  return pts;
 }
 
 // Length by 5-point Gauss–Legendre on 16 equal pieces of every segment (provisional: the arc-length

@@ -2,6 +2,7 @@
 // through write_curve_json; errors name the JSON pointer.
 #include <gtest/gtest.h>
 
+#include "inbetween/curves/continuity.hpp"
 #include "inbetween/io/curve_file.hpp"
 
 namespace inbetween {
@@ -45,6 +46,21 @@ TEST(CurveFile, EveryKindRoundTripsThroughTheWriter) {
       EXPECT_EQ(at(*back, u), at(*c, u)) << u;  // same inputs (shortest round-trip numbers), same arithmetic
     }
   }
+}
+
+static_assert(Curve<AnyCurve> && SegmentedCurve<AnyCurve> && ControlledCurve<AnyCurve>);
+
+TEST(CurveFile, AnyCurveForwardsToTheHeldCurve) {
+  const auto c = parse_curve_json(R"({"type": "catmull-rom", "points": [[0,0],[1,2],[3,3],[4,1]], "closed": true})", "x");
+  ASSERT_TRUE(c.has_value());
+  const auto direct = build_catmull_rom(std::vector<Vec3d>{{0, 0, 0}, {1, 2, 0}, {3, 3, 0}, {4, 1, 0}}, {.closed = true}).value();
+  EXPECT_TRUE(c->closed());
+  EXPECT_EQ(c->segment_count(), 4);
+  EXPECT_EQ(c->domain(), direct.domain());
+  EXPECT_EQ(c->derivative(1.3, 2), direct.derivative(1.3, 2));
+  EXPECT_EQ(c->segment_derivative(2, 3.0, 1), direct.segment_derivative(2, 3.0, 1));
+  EXPECT_EQ(c->influence(1), direct.influence(1));
+  EXPECT_EQ(measure_continuity(*c).size(), 4u);  // three joints and the seam
 }
 
 TEST(CurveFile, OneAndTwoDimensionalPointsArePadded) {

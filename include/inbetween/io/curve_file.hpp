@@ -46,11 +46,66 @@ using AnyCurveVariant =
                  LagrangeCurve<Vec3d>>;
 
 /// A curve read from a file: its kind, the dimension of its points in the file (1, 2 or 3) and the
-/// built curve.  Use std::visit on `curve` to reach the concrete type.
+/// built curve.  Use std::visit on `curve` to reach the concrete type; the members below forward
+/// to it, so AnyCurve itself satisfies Curve, SegmentedCurve and ControlledCurve (over Vec3d) and
+/// generic code (arc length, sampling) can take it directly.
 struct AnyCurve {
+  using point_type = Vec3d;
+  using scalar_type = double;
+
   CurveKind kind = CurveKind::Bezier;  ///< the family
   int dimension = 3;                   ///< 1, 2 or 3: components written back and printed
   AnyCurveVariant curve{};             ///< the built curve (padded points)
+
+  /// Parameter domain of the held curve.
+  Interval<double> domain() const noexcept {
+    return std::visit([](const auto& c) { return c.domain(); }, curve);
+  }
+  /// P(u), u clamped.
+  Vec3d point(double u) const noexcept {
+    return std::visit([u](const auto& c) { return c.point(u); }, curve);
+  }
+  /// d^kP/du^k, u clamped (right limit at joints).
+  Vec3d derivative(double u, int k) const noexcept {
+    return std::visit([u, k](const auto& c) { return c.derivative(u, k); }, curve);
+  }
+  /// Number of pieces.
+  int segment_count() const noexcept {
+    return std::visit([](const auto& c) { return c.segment_count(); }, curve);
+  }
+  /// Domain of piece i.
+  Interval<double> segment_domain(int i) const noexcept {
+    return std::visit([i](const auto& c) { return c.segment_domain(i); }, curve);
+  }
+  /// d^kP/du^k of piece i at u clamped into its domain.
+  Vec3d segment_derivative(int i, double u, int k) const noexcept {
+    return std::visit([i, u, k](const auto& c) { return c.segment_derivative(i, u, k); }, curve);
+  }
+  /// Number of control points.
+  int control_point_count() const noexcept {
+    return std::visit([](const auto& c) { return c.control_point_count(); }, curve);
+  }
+  /// Control point i (clamped index).
+  Vec3d control_point(int i) const noexcept {
+    return std::visit([i](const auto& c) { return c.control_point(i); }, curve);
+  }
+  /// True when the curve passes through every control point.
+  bool interpolates_control_points() const noexcept {
+    return std::visit([](const auto& c) { return c.interpolates_control_points(); }, curve);
+  }
+  /// Parameter range influenced by control point i.
+  Interval<double> influence(int i) const noexcept {
+    return std::visit([i](const auto& c) { return c.influence(i); }, curve);
+  }
+  /// True for a closed curve (closed Catmull-Rom, periodic B-spline).
+  bool closed() const noexcept {
+    return std::visit(
+        [](const auto& c) {
+          if constexpr (requires { c.closed(); }) return c.closed();
+          else return false;
+        },
+        curve);
+  }
 };
 
 /// Parses and builds a curve file.  Errors carry `where` = "<source_name>:<JSON pointer>" (for
