@@ -112,3 +112,21 @@ TEST(BezierDouble, RejectsTooFewAndNonFinitePoints) {
 
 }  // namespace
 }  // namespace inbetween
+
+namespace inbetween {
+namespace {
+
+TEST(BezierDouble, LowDegreesConvertToPiecewiseCubic) {
+  test::Random rng(test::seed_for(316));
+  SCOPED_TRACE(rng.trace());
+  for (int degree = 1; degree <= 3; ++degree) {
+    const auto c = build_bezier(test::random_points<Vec2d>(rng, degree + 1)).value();
+    const auto pc = to_piecewise_cubic(c).value();
+    for (double u : {0.0, 0.3, 0.77, 1.0})
+      for (int k = 0; k <= 3; ++k) EXPECT_LT(test::max_abs_diff(pc.derivative(u, k), c.derivative(u, k)), 1e-13) << degree;
+  }
+  EXPECT_FALSE(to_piecewise_cubic(build_bezier(test::random_points<Vec2d>(rng, 5)).value()).has_value());
+}
+
+}  // namespace
+}  // namespace inbetween

@@ -79,3 +79,30 @@ TEST(BSplineDouble, DerivativesMatchCentralDifferencesAndPeriodicCurveCloses) {
 
 }  // namespace
 }  // namespace inbetween
+
+namespace inbetween {
+namespace {
+
+TEST(BSplineDouble, ToPiecewiseCubicIsTheSameCurve) {
+  test::Random rng(test::seed_for(345));
+  SCOPED_TRACE(rng.trace());
+  for (int degree = 1; degree <= 3; ++degree) {
+    const std::vector<double> cubic_knots{0, 0, 0, 0, 1, 1, 2.5, 3, 3, 3, 3};  // a double knot at 1
+    const std::vector<double> knots(cubic_knots.begin() + (3 - degree), cubic_knots.end() - (3 - degree));
+    const auto pts = test::random_points<Vec3d>(rng, int(knots.size()) - degree - 1);
+    const auto b = build_bspline(pts, degree, knots).value();
+    const auto pc = to_piecewise_cubic(b);
+    ASSERT_TRUE(pc.has_value()) << pc.error().describe();
+    static_assert(PiecewiseCubicCurve<PiecewiseCubic<Vec3d>>);
+    EXPECT_EQ(pc->segment_count(), b.segment_count());
+    for (int s = 0; s <= 60; ++s) {
+      const double u = 3.0 * s / 60;
+      // Taylor coefficients from de Boor derivatives, re-evaluated by Horner: ~100 ulp of O(10) values.
+      for (int k = 0; k <= 2; ++k) EXPECT_LT(test::max_abs_diff(pc->derivative(u, k), b.derivative(u, k)), 1e-12) << u;
+    }
+  }
+  EXPECT_FALSE(to_piecewise_cubic(build_bspline(test::random_points<Vec3d>(rng, 6), 4).value()).has_value());
+}
+
+}  // namespace
+}  // namespace inbetween

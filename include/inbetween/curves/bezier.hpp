@@ -160,6 +160,22 @@ class BezierCurve {
   std::array<T, 3> falling_{};                ///< n, n(n−1), n(n−1)(n−2)
 };
 
+/// The same curve as a one-segment PiecewiseCubic over [0, 1], for degree ≤ 3 (power form from the
+/// Bernstein coefficients).  Error Unsupported at "degree" for degree > 3.
+template <Point P>
+Expected<PiecewiseCubic<P>> to_piecewise_cubic(const BezierCurve<P>& bezier) {
+  using T = scalar_of<P>;
+  if (bezier.degree() > 3)
+    return Error{ErrorCode::Unsupported,
+                 "only Bezier curves of degree <= 3 are cubics, got degree " + std::to_string(bezier.degree()), "degree"};
+  const auto e = bezier.degree() == 3 ? bezier : bezier.degree() == 2 ? bezier.elevate_degree()
+                                                                      : bezier.elevate_degree().elevate_degree();
+  const auto p = e.control_points();
+  // Bézier basis matrix rows (000 §2.3.2): a = −P0 + 3P1 − 3P2 + P3, b = 3P0 − 6P1 + 3P2, c = −3P0 + 3P1, d = P0.
+  PowerCubic<P> g{p[3] - p[0] + (p[1] - p[2]) * T(3), (p[0] - p[1] * T(2) + p[2]) * T(3), (p[1] - p[0]) * T(3), p[0]};
+  return PiecewiseCubic<P>::from_power_forms(std::vector<T>{T(0), T(1)}, std::vector<PowerCubic<P>>{g});
+}
+
 /// Builds a Bézier curve of degree points.size() − 1; see BezierCurve::build.
 template <Point P>
 Expected<BezierCurve<P>> build_bezier(std::span<const P> points) {

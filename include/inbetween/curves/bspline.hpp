@@ -151,6 +151,31 @@ class BSpline {
   std::vector<int> spans_;
 };
 
+/// The same curve as a chain of power-form cubics (one per non-empty knot span, breakpoints at the
+/// knots), for degree ≤ 3; coefficients from the derivatives at each span start (d = P, c = P′h,
+/// b = P″h²/2, a = P‴h³/6).  Lets B-splines use code written for PiecewiseCubicCurve (analytic
+/// arc length).  Error Unsupported at "degree" for degree > 3.
+template <Point P>
+Expected<PiecewiseCubic<P>> to_piecewise_cubic(const BSpline<P>& spline) {
+  using T = scalar_of<P>;
+  if (spline.degree() > 3)
+    return Error{ErrorCode::Unsupported,
+                 "only B-splines of degree <= 3 are piecewise cubics, got degree " + std::to_string(spline.degree()),
+                 "degree"};
+  std::vector<T> breaks;
+  std::vector<PowerCubic<P>> segs;
+  for (int i = 0; i < spline.segment_count(); ++i) {
+    const auto d = spline.segment_domain(i);
+    const T h = d.length();
+    breaks.push_back(d.lo);
+    segs.push_back({spline.segment_derivative(i, d.lo, 3) * (h * h * h / T(6)),
+                    spline.segment_derivative(i, d.lo, 2) * (h * h / T(2)), spline.segment_derivative(i, d.lo, 1) * h,
+                    spline.segment_derivative(i, d.lo, 0)});
+  }
+  breaks.push_back(spline.domain().hi);
+  return PiecewiseCubic<P>::from_power_forms(std::move(breaks), std::move(segs));
+}
+
 /// Builds a B-spline; see BSpline::build (empty knots = clamped uniform).
 template <Point P>
 Expected<BSpline<P>> build_bspline(std::span<const P> points, int degree, std::span<const scalar_of<P>> knots = {}) {

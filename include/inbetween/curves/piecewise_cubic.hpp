@@ -6,6 +6,7 @@
 /// builder and inputs.  Also the input checks shared by the builders.
 
 #include <algorithm>
+#include <cmath>
 #include <span>
 #include <string>
 #include <vector>
@@ -27,6 +28,46 @@ class PiecewiseCubic {
   using T = scalar_type;
 
   PiecewiseCubic() = default;
+
+  /// A chain from breakpoints u_0 < … < u_n (finite, strictly increasing) and n power-form
+  /// segments over their local v ∈ [0, 1].  Its control points are the joints P(u_0), …, P(u_n)
+  /// (interpolated); joint i influences the segments that touch it.  Used to convert B-splines and
+  /// Bézier curves of degree ≤ 3.  Errors: WrongArity at "segments", KeysNotIncreasing or NotFinite
+  /// at "breakpoint i", NotFinite at "segment i".
+  static Expected<PiecewiseCubic> from_power_forms(std::vector<T> breakpoints, std::vector<PowerCubic<P>> segments) {
+    if (segments.empty() || breakpoints.size() != segments.size() + 1)
+      return Error{ErrorCode::WrongArity,
+                   "need n >= 1 segments and n + 1 breakpoints, got " + std::to_string(segments.size()) +
+                       " segments and " + std::to_string(breakpoints.size()) + " breakpoints",
+                   "segments"};
+    for (std::size_t i = 0; i < breakpoints.size(); ++i) {
+      if (!std::isfinite(breakpoints[i]))
+        return Error{ErrorCode::NotFinite, "breakpoint " + std::to_string(i) + " is not finite",
+                     "breakpoint " + std::to_string(i)};
+      if (i > 0 && !(breakpoints[i] > breakpoints[i - 1]))
+        return Error{ErrorCode::KeysNotIncreasing, "breakpoint " + std::to_string(i) + " is not after breakpoint " +
+                                                       std::to_string(i - 1),
+                     "breakpoint " + std::to_string(i)};
+    }
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+      const auto& g = segments[i];
+      if (!is_finite(g.a) || !is_finite(g.b) || !is_finite(g.c) || !is_finite(g.d))
+        return Error{ErrorCode::NotFinite, "segment " + std::to_string(i) + " has a non-finite coefficient",
+                     "segment " + std::to_string(i)};
+    }
+    PiecewiseCubic c;
+    c.breaks_ = std::move(breakpoints);
+    c.segments_ = std::move(segments);
+    const int n = c.segment_count();
+    c.controls_.clear();
+    c.influence_.clear();
+    for (int i = 0; i <= n; ++i) {
+      c.controls_.push_back(i < n ? c.segments_[i].d : c.segments_[n - 1].point(T(1)));
+      c.influence_.push_back(c.segments_range(i - 1, i));
+    }
+    c.interpolates_ = true;
+    return c;
+  }
 
   /// Parameter interval [u_0, u_n].
   Interval<T> domain() const noexcept { return {breaks_.front(), breaks_.back()}; }
