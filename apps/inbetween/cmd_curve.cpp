@@ -65,7 +65,10 @@ double approximate_length(const AnyCurve& c) {
 
 std::string format_point(const Vec3d& p, int dim, const char* sep = ",") {
   std::string s;
-  for (int i = 0; i < dim; ++i) s += (i ? sep : "") + format_number(p[i]);
+  for (int i = 0; i < dim; ++i) {
+    if (i) s.append(sep);
+    s.append(format_number(p[i]));
+  }
   return s;
 }
 

@@ -19,8 +19,18 @@ struct Reader {
   }
 };
 
-std::string ptr(std::string_view field) { return "/" + std::string(field); }
-std::string ptr(std::string_view field, std::size_t i) { return "/" + std::string(field) + "/" + std::to_string(i); }
+// JSON pointers are built with append() rather than "/" + … : GCC 12 warns (-Wrestrict, a known
+// false positive) on operator+ with a literal on the left.
+std::string ptr(std::string_view field) {
+  std::string s("/");
+  s.append(field);
+  return s;
+}
+std::string ptr(std::string_view field, std::size_t i) {
+  std::string s = ptr(field);
+  s.append("/").append(std::to_string(i));
+  return s;
+}
 
 // Reads a number; an error names the pointer.
 Expected<double> read_number(const Reader& r, const json& v, const std::string& pointer) {
@@ -97,14 +107,14 @@ Error relocate(const Reader& r, const Error& e) {
   std::string pointer;
   for (const auto& [prefix, field] : items) {
     const std::string p = prefix;
-    if (e.where.rfind(p, 0) == 0) pointer = "/" + std::string(field) + "/" + e.where.substr(p.size());
+    if (e.where.rfind(p, 0) == 0) pointer = ptr(field).append("/").append(e.where.substr(p.size()));
   }
   if (pointer.empty()) {
     if (e.where == "keys") pointer = "/tension";
     else if (e.where == "start_tangent" || e.where == "end_tangent" || e.where == "alpha" || e.where == "tension" ||
              e.where == "degree" || e.where == "knots" || e.where == "points" || e.where == "tangents" ||
              e.where == "params")
-      pointer = "/" + e.where;
+      pointer = ptr(e.where);
   }
   return Error{e.code, e.message, r.source + ":" + pointer};
 }
