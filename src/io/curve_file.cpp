@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -177,6 +178,27 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
   }
   if (!doc.contains("type") || !doc["type"].is_string()) return r.fail("/type", "missing or not a string");
   const std::string type = doc["type"].get<std::string>();
+  // Unknown fields are rejected, so a misspelt option ("tensoin") is not silently ignored.
+  static const std::vector<std::pair<std::string, std::vector<std::string>>> fields = {
+      {"bezier", {}},
+      {"bezier-path", {}},
+      {"hermite", {"tangents"}},
+      {"catmull-rom", {"alpha", "tension", "closed"}},
+      {"natural", {"start_tangent", "end_tangent"}},
+      {"kochanek-bartels", {"tension", "continuity", "bias"}},
+      {"parabolic", {}},
+      {"bspline", {"degree", "knots", "periodic"}},
+      {"lagrange", {"params"}},
+  };
+  for (const auto& [kind, extra] : fields) {
+    if (kind != type) continue;
+    for (const auto& item : doc.items()) {
+      const std::string& key = item.key();
+      if (key == "version" || key == "type" || key == "points") continue;
+      if (std::find(extra.begin(), extra.end(), key) == extra.end())
+        return r.fail(ptr(key), "unknown field for type \"" + type + "\"", ErrorCode::Parse);
+    }
+  }
 
   int dim = 0;
   auto points = read_points(r, doc, "points", dim);

@@ -91,6 +91,7 @@ TEST(CurveFile, ErrorsNameTheJsonPointer) {
       {R"({"type": "bezier-path", "points": [0, 1, 2, 3, 4]})", "f.json:/points"},
       {R"({"type": "kochanek-bartels", "points": [0, 1, 2], "bias": [0, 1]})", "f.json:/bias"},
       {R"({"version": 2, "type": "bezier", "points": [0, 1]})", "f.json:/version"},
+      {R"({"type": "catmull-rom", "points": [0, 1], "tensoin": 0.3})", "f.json:/tensoin"},
       {R"({"type": "bezier", "points": [0, 1e999]})", "f.json"},  // overflow is a JSON parse error
   };
   for (const auto& c : cases) {
