@@ -15,4 +15,17 @@
 #include "inbetween/math/vec.hpp"
 
 // curves
+#include "inbetween/curves/bezier.hpp"
+#include "inbetween/curves/bezier_path.hpp"
+#include "inbetween/curves/bspline.hpp"
+#include "inbetween/curves/bspline_basis.hpp"
+#include "inbetween/curves/catmull_rom.hpp"
+#include "inbetween/curves/continuity.hpp"
+#include "inbetween/curves/cubic_basis.hpp"
+#include "inbetween/curves/cubic_spline.hpp"
 #include "inbetween/curves/curve.hpp"
+#include "inbetween/curves/hermite_spline.hpp"
+#include "inbetween/curves/kochanek_bartels.hpp"
+#include "inbetween/curves/lagrange.hpp"
+#include "inbetween/curves/parabolic_blend.hpp"
+#include "inbetween/curves/piecewise_cubic.hpp"
