@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "inbetween/arclength/accuracy.hpp"
 #include "support/museum_arclength.hpp"
@@ -131,6 +133,32 @@ TEST(ArcLength, FloatPrecisionWorksOnTheMuseum) {
     const auto acc = measure_arc_length_accuracy(ex.curve, *arc, 33);
     // float: table tolerance 1e-5 relative and speeds rounded to float; measured worst is ~1e-6.
     EXPECT_LE(acc.worst_relative(), 2e-5f);
+  }
+}
+
+}  // namespace
+}  // namespace inbetween
+
+namespace inbetween {
+namespace {
+
+TEST(ArcLength, InverseIsAccurateRightAtZeroSpeedPoints) {
+  // Distances just around the places where P' = 0: the Newton step is replaced by bisection there.
+  for (const char* name : {"P0 = P1", "P2 = P3", "P1 = P2", "cusp", "straight line, stops", "straight line, doubles"}) {
+    SCOPED_TRACE(name);
+    const auto ex = test::museum_arc_length_exhibit<double>(name);
+    auto arc = make_arc_length(ex.curve);
+    ASSERT_TRUE(arc);
+    const double L = arc->length();
+    std::vector<double> targets = {0, 1e-12 * L, 1e-6 * L, L - 1e-6 * L, L - 1e-12 * L, L};
+    for (double m : detail::speed_minima(ex.curve, 0.0, 1.0)) {
+      const double sm = reference_length(ex.curve, 0.0, m);
+      for (double d : {-1e-6, -1e-10, 0.0, 1e-10, 1e-6}) targets.push_back(sm + d * L);
+    }
+    for (double s : targets) {
+      const double u = arc->u_at(s);
+      EXPECT_NEAR(reference_length(ex.curve, 0.0, u), std::clamp(s, 0.0, L), 1e-13 * L) << s;
+    }
   }
 }
 

@@ -80,3 +80,35 @@ TEST(ReferenceLength, FloatCurvesWork) {
 
 }  // namespace
 }  // namespace inbetween
+
+namespace inbetween {
+namespace {
+
+TEST(SpeedMinima, FindsZeroSpeedPointsWhereTheIntegrandHasKinks) {
+  // Line doubling back: x'(u) = 6(5u² − 5u + 1) vanishes at u = (5 ∓ √5)/10 (closed form).
+  const auto back = test::museum_arc_length_exhibit<double>("straight line, doubles back");
+  const auto m = detail::speed_minima(back.curve, 0.0, 1.0);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_NEAR(m[0], (5 - std::sqrt(5.0)) / 10, 1e-14);
+  EXPECT_NEAR(m[1], (5 + std::sqrt(5.0)) / 10, 1e-14);
+  // Cusp: P'(1/2) = 0.
+  const auto cusp = test::museum_arc_length_exhibit<double>("cusp");
+  const auto c = detail::speed_minima(cusp.curve, 0.0, 1.0);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_NEAR(c[0], 0.5, 1e-14);
+  // A parabola's speed only grows on [0, 1]: no interior minimum.
+  EXPECT_TRUE(detail::speed_minima(test::museum_arc_length_exhibit<double>("parabola").curve, 0.0, 1.0).empty());
+}
+
+TEST(ReferenceLength, IsNotFooledByAKinkInsideTheRange) {
+  // LENGTH(0, u) across the cusp equals LENGTH(0, 1/2) + LENGTH(1/2, u): without the split at the
+  // speed minimum the adaptive test accepted a 3e-8 error here (found while writing this module).
+  const auto cusp = test::museum_arc_length_exhibit<double>("cusp");
+  const double u = 0.66676202426596765;
+  const double split = gauss_length(cusp.curve, 0.0, 0.5, 64) + gauss_length(cusp.curve, 0.5, u, 64);
+  EXPECT_NEAR(reference_length(cusp.curve, 0.0, u), split, 1e-15);
+  EXPECT_NEAR(adaptive_gauss_length(cusp.curve, 0.0, u, {.tolerance = 1e-12, .order = 10}), split, 1e-12);
+}
+
+}  // namespace
+}  // namespace inbetween

@@ -13,6 +13,7 @@
 /// rule), so a u(s) query costs about order + 8 derivative evaluations.  In double precision u(s) lands within 1e-9·length of the requested s (the
 /// tests measure 1e-13 or better on the museum curves; see docs/arclength.md).
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -108,8 +109,6 @@ class ArcLength {
     const T slope = (s1 - s0) / (u1 - u0);         // mean speed on the interval
     const T tiny_speed = T(1e-8) * slope;           // "near zero" for the Newton step
     const T tol = T(16) * std::numeric_limits<T>::epsilon() * length();
-    // Once |f| is this small, the Newton step just taken is accurate to ~|f|²: accept it unchecked.
-    const T accept = std::sqrt(std::numeric_limits<T>::epsilon()) * (s1 - s0);
     T a = u0, b = u1;
     T u = seed(i, target);
     // LENGTH(u0, u) is kept for the last iterate; a nearby next iterate adds a 3-point Gauss rule
@@ -128,7 +127,15 @@ class ArcLength {
       const T speed = speed_at(curve_, u);
       T next = u - f / speed;
       const bool newton_ok = speed > tiny_speed && a < next && next < b;
-      if (newton_ok && std::fabs(f) <= accept) return next;
+      // Newton's next error is about ½·|speed'|·step² (in length units); when that is below the
+      // tolerance, accept the step without integrating again.  |speed'| is estimated by the
+      // steepest secant from u to the interval's ends.
+      if (newton_ok) {
+        const T lo_slope = u > u0 ? std::fabs(speed - speed_lo_[i]) / (u - u0) : T(0);
+        const T hi_slope = u < u1 ? std::fabs(speed_hi_[i] - speed) / (u1 - u) : T(0);
+        const T step = next - u;
+        if (T(0.5) * std::max(lo_slope, hi_slope) * step * step <= tol) return next;
+      }
       if (!newton_ok) next = a + (b - a) / T(2);  // bisection fallback
       if (next == u || !(a < next && next < b)) return u;
       u = next;
