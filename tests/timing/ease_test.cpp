@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -129,6 +130,47 @@ TEST(Ease, FloatInstantiationsWork) {
   auto e = ConstantAccelerationEase<float>::make(0.25f, 0.75f);
   ASSERT_TRUE(e);
   EXPECT_NEAR((*e)(1.0f), 1.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace inbetween
+
+namespace inbetween {
+namespace {
+
+// Every ease, in float and double: passes (0, 0) and (1, 1) with its stated end slopes, and the
+// reported velocity is the derivative of s (central difference; step and tolerance per precision:
+// h = eps^(1/3) balances truncation h² against rounding eps/h).
+template <class T>
+class EaseTyped : public ::testing::Test {};
+using Precisions = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(EaseTyped, Precisions);
+
+template <class T, class E>
+void check_ease(const E& e, T v0, T v1, const char* name) {
+  SCOPED_TRACE(name);
+  const T eps = std::numeric_limits<T>::epsilon();
+  EXPECT_NEAR(e.sample(T(0)).s, T(0), 4 * eps);
+  EXPECT_NEAR(e.sample(T(1)).s, T(1), 4 * eps);
+  EXPECT_NEAR(e.sample(T(0)).velocity, v0, 16 * eps);
+  EXPECT_NEAR(e.sample(T(1)).velocity, v1, 16 * eps);
+  const T h = std::cbrt(eps);
+  // |s'''| ≤ ~30 for these eases (π³ for the sine), plus rounding eps/h; the probes stay away from
+  // the phase joints (0.25, 0.65), where s'' jumps.
+  const T tol = T(50) * h * h;
+  for (T t = T(0.1); t < T(0.95); t += T(0.1)) {
+    const T fd = (e.sample(t + h).s - e.sample(t - h).s) / (2 * h);
+    EXPECT_NEAR(fd, e.sample(t).velocity, tol) << "t=" << t;
+  }
+}
+
+TYPED_TEST(EaseTyped, EndpointsSlopesAndVelocity) {
+  using T = TypeParam;
+  check_ease<T>(LinearEase<T>{}, T(1), T(1), "linear");
+  check_ease<T>(SineEase<T>{}, T(0), T(0), "sine");
+  check_ease<T>(CubicEase<T>{}, T(0), T(0), "cubic");
+  check_ease<T>(*SineAccelDecelEase<T>::make(T(0.25), T(0.65)), T(0), T(0), "sine accel/decel");
+  check_ease<T>(*ConstantAccelerationEase<T>::make(T(0.25), T(0.65)), T(0), T(0), "constant acceleration");
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "inbetween/arclength/arc_length_table.hpp"
 #include "inbetween/arclength/quadrature_length.hpp"
 #include "inbetween/timing/cubic_bezier_timing.hpp"
 #include "inbetween/timing/distance_time.hpp"
@@ -68,6 +69,19 @@ TEST(Motion, VelocityProfileOfEachEaseMatchesItsFormula) {
   expect_speed_profile(CubicBezierTiming<double>::css_ease(), "css ease");
   const std::vector<TimeDistanceVelocityKey<double>> keys = {{0, 0, 0}, {0.4, 0.5, 1.2}, {1, 1, 0}};
   expect_speed_profile(*DistanceTimeCurve<double>::from_constraints(keys), "distance-time curve");
+}
+
+TEST(Motion, WorksWithThePrecomputedTableOfTheLectureNotes) {
+  // 000 §2.4 step 4 looks u up in a 1000-sample forward-difference table: the motion is then as
+  // accurate as that table (~1e-7 of the length on the parabola, see docs/arclength.md).
+  const auto ex = test::museum_arc_length_exhibit<double>("parabola");
+  auto table = forward_difference_table(ex.curve, {.entries = 1001});
+  ASSERT_TRUE(table);
+  const double L = reference_length(ex.curve, 0.0, 1.0);
+  for (int f = 0; f <= 10; ++f) {
+    const auto m = motion_at_frame(ex.curve, *table, LinearEase<double>{}, {.start = 0, .end = 10}, double(f));
+    EXPECT_NEAR(reference_length(ex.curve, 0.0, m.u), L * f / 10, 2e-7 * L) << f;
+  }
 }
 
 TEST(Motion, FiveStepsAreVisibleInTheSample) {
