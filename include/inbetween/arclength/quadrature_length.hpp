@@ -212,11 +212,11 @@ typename C::scalar_type gauss_length(const C& curve, typename C::scalar_type ua,
 /// |whole − halves| test, tolerance halved per level, and a forced minimum depth).  The initial
 /// intervals are the segments split at their speed minima (detail::speed_minima), where the
 /// integrand has kinks that fool the halves test.  Parameters are
-/// clamped; u_b < u_a gives the negative length.
+/// clamped; u_b < u_a gives the negative length.  Allocates a little (the speed minima per segment).
 template <Curve C>
 typename C::scalar_type adaptive_gauss_length(const C& curve, typename C::scalar_type ua,
                                               typename C::scalar_type ub,
-                                              const AdaptiveGaussOptions<typename C::scalar_type>& opt = {}) noexcept {
+                                              const AdaptiveGaussOptions<typename C::scalar_type>& opt = {}) {
   using T = typename C::scalar_type;
   const auto dom = curve.domain();
   ua = dom.clamp(ua);
@@ -272,7 +272,7 @@ typename C::scalar_type analytic_cubic_length(const C& curve, typename C::scalar
 /// it down).  Not meant for per-frame use.
 template <Curve C>
 typename C::scalar_type reference_length(const C& curve, typename C::scalar_type ua,
-                                         typename C::scalar_type ub) noexcept {
+                                         typename C::scalar_type ub) {
   using T = typename C::scalar_type;
   using R = long double;
   const auto dom = curve.domain();

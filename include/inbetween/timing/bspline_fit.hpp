@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/vec.hpp"
 
@@ -41,6 +42,7 @@ struct FittedBSpline {
   /// well-formed spline (as fit_bspline returns).
   P point(T t) const noexcept {
     const int k = degree, n = int(control_points.size());
+    INBETWEEN_ASSERT(k >= 1 && k <= kMaxFitDegree && n >= k + 1 && knots.size() == std::size_t(n + k + 1));
     const T lo = knots[std::size_t(k)], hi = knots[std::size_t(n)];
     t = t < lo ? lo : (t > hi ? hi : t);
     if (!(t == t)) t = lo;
