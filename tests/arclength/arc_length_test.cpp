@@ -164,3 +164,26 @@ TEST(ArcLength, InverseIsAccurateRightAtZeroSpeedPoints) {
 
 }  // namespace
 }  // namespace inbetween
+
+namespace inbetween {
+namespace {
+
+TEST(ArcLength, UniformArcLengthParametersAreEvenlySpacedAlongTheCurve) {
+  const auto ex = test::museum_arc_length_exhibit<double>("fast middle");
+  auto arc = make_arc_length(ex.curve);
+  ASSERT_TRUE(arc);
+  std::vector<double> u(11);
+  uniform_arc_length_parameters(*arc, std::span<double>(u));
+  const double L = arc->length();
+  EXPECT_EQ(u.front(), 0.0);
+  EXPECT_EQ(u.back(), 1.0);
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    EXPECT_NEAR(reference_length(ex.curve, 0.0, u[i]), L * double(i) / 10, 1e-12 * L) << i;
+  }
+  std::vector<double> one(1);
+  uniform_arc_length_parameters(*arc, std::span<double>(one));
+  EXPECT_EQ(one[0], 0.0);
+}
+
+}  // namespace
+}  // namespace inbetween

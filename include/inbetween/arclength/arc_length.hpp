@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -193,6 +194,21 @@ class ArcLength {
   GaussLegendreRule rule_;
   std::vector<T> speed_lo_, speed_hi_;  // speed at the start and end of each table interval
 };
+
+/// Fills u_out with the parameters of N = u_out.size() points evenly spaced along the curve:
+/// u_i = u(i·L/(N − 1)), so u_out.front() is the start and u_out.back() the end (N = 1 gives the
+/// start).  For `curve sample --by arclength`.  Does not allocate.
+template <Curve C>
+void uniform_arc_length_parameters(const ArcLength<C>& arc, std::span<typename C::scalar_type> u_out) noexcept {
+  using T = typename C::scalar_type;
+  const std::size_t n = u_out.size();
+  if (n == 0) return;
+  if (n == 1) { u_out[0] = arc.domain().lo; return; }
+  const T L = arc.length();
+  for (std::size_t i = 0; i < n; ++i) {
+    u_out[i] = i + 1 == n ? arc.domain().hi : arc.u_at(L * (T(i) / T(n - 1)));
+  }
+}
 
 /// Builds the default arc-length object: ArcLength<C>::build(curve, opt).
 template <Curve C>
