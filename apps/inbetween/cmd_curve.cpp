@@ -1,18 +1,20 @@
 // `inbetween curve info|sample|plot FILE`: reads a curve file (docs/curve-format.md) and reports,
 // samples or draws it.  Argument parsing and formatting only; the maths is in the curves module.
 //
-// Extension point for sampling: `curve sample --by NAME` looks NAME up in sample_spacings(); a new
-// spacing (for example arc length) is one more row there, returning the parameter values to sample.
+// Sampling: `curve sample --by NAME` looks NAME up in sample_spacings() (parameter, arclength); a
+// new spacing is one more row there, returning the parameters (and arc lengths) to sample.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <iomanip>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "command.hpp"
+#include "inbetween/arclength/arc_length.hpp"
 #include "inbetween/curves/continuity.hpp"
 #include "inbetween/io/curve_file.hpp"
 #include "svg.hpp"
@@ -39,28 +41,12 @@ std::vector<Vec3d> control_points_of(const AnyCurve& c) {
   return pts;
 }
 
-// Length by 5-point Gauss–Legendre on 16 equal pieces of every segment (provisional: the arc-length
-// module provides the adaptive, error-controlled length).
-double approximate_length(const AnyCurve& c) {
-  static const double x[5] = {0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640, 0.9061798459386640};
-  static const double w[5] = {0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891,
-                              0.2369268850561891};
-  return std::visit(
-      [&](const auto& curve) {
-        double total = 0;
-        for (int s = 0; s < curve.segment_count(); ++s) {
-          const auto d = curve.segment_domain(s);
-          const int pieces = 16;
-          const double h = d.length() / pieces;
-          for (int p = 0; p < pieces; ++p) {
-            const double mid = d.lo + (p + 0.5) * h;
-            for (int k = 0; k < 5; ++k)
-              total += w[k] * h / 2 * norm(curve.segment_derivative(s, mid + x[k] * h / 2, 1));
-          }
-        }
-        return total;
-      },
-      c.curve);
+// The default arc-length object of the arclength module (adaptive Gauss–Legendre table, u(s) by
+// safeguarded Newton; docs/arclength.md).  A curve whose speed is not finite is a user error.
+ArcLength<AnyCurve> arc_length_of(const AnyCurve& c, const std::string& path) {
+  auto arc = make_arc_length(c);
+  if (!arc) throw CommandError{path + ": cannot measure arc length: " + arc.error().describe()};
+  return std::move(arc).value();
 }
 
 std::string format_point(const Vec3d& p, int dim, const char* sep = ",") {
@@ -86,6 +72,7 @@ std::string continuity_label(const JointContinuity<double>& j) {
 
 std::string format_info(const std::string& path, const AnyCurve& c) {
   std::ostringstream out;
+  const double length = arc_length_of(c, path).length();
   const auto dom = domain_of(c);
   out << "file: " << path << "\n";
   out << "kind: " << curve_kind_name(c.kind) << "\n";
@@ -96,7 +83,8 @@ std::string format_info(const std::string& path, const AnyCurve& c) {
         out << "interpolates control points: " << (curve.interpolates_control_points() ? "yes" : "no") << "\n";
         out << "domain: [" << format_number(dom.lo) << ", " << format_number(dom.hi) << "]\n";
         out << "segments: " << curve.segment_count() << "\n";
-        out << "length (Gauss-Legendre, 16x5 points per segment): " << format_number(approximate_length(c)) << "\n";
+        out << "length: " << format_number(length) << "  (adaptive Gauss-Legendre, relative tolerance "
+            << format_number(default_arc_length_tolerance<double>) << ")\n";
         const auto joints = measure_continuity(curve);
         out << "joints: " << joints.size() << "\n";
         if (!joints.empty()) {
@@ -118,24 +106,44 @@ std::string format_info(const std::string& path, const AnyCurve& c) {
 
 // ------------------------------------------------------------------ sample
 
-/// How `curve sample --by NAME` spaces its samples: the parameter values u to evaluate.
+/// Where `curve sample` evaluates: the parameters u, and the arc lengths s when the spacing is by
+/// length (then the CSV gains an `s` column).
+struct SampleParameters {
+  std::vector<double> u;
+  std::vector<double> s;  ///< empty unless the spacing is by arc length
+};
+
+/// How `curve sample --by NAME` spaces its samples.
 struct SampleSpacing {
   std::string name;  ///< the --by value
   std::string help;  ///< one line for --help
-  std::function<std::vector<double>(const AnyCurve&, int count)> parameters;
+  std::function<SampleParameters(const AnyCurve&, const std::string& path, int count)> parameters;
 };
 
-std::vector<double> equal_parameter_steps(const AnyCurve& c, int count) {
+SampleParameters equal_parameter_steps(const AnyCurve& c, const std::string&, int count) {
   const auto d = domain_of(c);
-  std::vector<double> u(count);
-  for (int i = 0; i < count; ++i) u[i] = i + 1 == count ? d.hi : d.lo + d.length() * i / (count - 1);
-  return u;
+  SampleParameters out;
+  out.u.resize(count);
+  for (int i = 0; i < count; ++i) out.u[i] = i + 1 == count ? d.hi : d.lo + d.length() * i / (count - 1);
+  return out;
+}
+
+// s_i = i·L/(N − 1) and u_i = u(s_i) from the default arc-length object.
+SampleParameters equal_arc_length_steps(const AnyCurve& c, const std::string& path, int count) {
+  const auto arc = arc_length_of(c, path);
+  SampleParameters out;
+  out.u.resize(count);
+  uniform_arc_length_parameters(arc, std::span<double>(out.u));
+  out.s.resize(count);
+  for (int i = 0; i < count; ++i) out.s[i] = i + 1 == count ? arc.length() : arc.length() * (double(i) / (count - 1));
+  return out;
 }
 
 /// The registered spacings; the first is the default.
 const std::vector<SampleSpacing>& sample_spacings() {
   static const std::vector<SampleSpacing> table = {
       {"parameter", "equally spaced parameter values u over the domain", equal_parameter_steps},
+      {"arclength", "equally spaced arc lengths s_i = i*L/(N-1); adds an s column", equal_arc_length_steps},
   };
   return table;
 }
@@ -147,13 +155,18 @@ struct SampleOptions {
   std::string output = "-";
 };
 
-std::string format_samples(const AnyCurve& c, const std::vector<double>& us) {
+std::string format_samples(const AnyCurve& c, const SampleParameters& samples) {
   std::ostringstream out;
   static const char* names[3] = {"x", "y", "z"};
-  out << "u";
+  const bool with_s = !samples.s.empty();
+  out << (with_s ? "u,s" : "u");
   for (int i = 0; i < c.dimension; ++i) out << "," << names[i];
   out << "\n";
-  for (double u : us) out << format_number(u) << "," << format_point(point_at(c, u), c.dimension) << "\n";
+  for (std::size_t k = 0; k < samples.u.size(); ++k) {
+    out << format_number(samples.u[k]) << ",";
+    if (with_s) out << format_number(samples.s[k]) << ",";
+    out << format_point(point_at(c, samples.u[k]), c.dimension) << "\n";
+  }
   return out.str();
 }
 
@@ -163,7 +176,7 @@ void run_sample(const SampleOptions& o) {
   if (it == table.end()) throw CommandError{"--by: unknown spacing \"" + o.by + "\""};
   if (o.count < 2) throw CommandError{"--count: need at least 2 samples, got " + std::to_string(o.count)};
   const AnyCurve c = load_curve(o.file);
-  write_output(o.output, format_samples(c, it->parameters(c, o.count)));
+  write_output(o.output, format_samples(c, it->parameters(c, o.file, o.count)));
 }
 
 // ------------------------------------------------------------------ plot
@@ -178,7 +191,7 @@ std::string format_plot(const std::string& path, const AnyCurve& c, int samples)
     const double u = dom.lo + dom.length() * i / 400;
     curve_pts.push_back(to2d(u, point_at(c, u)));
   }
-  for (double u : equal_parameter_steps(c, samples)) sample_pts.push_back(to2d(u, point_at(c, u)));
+  for (double u : equal_parameter_steps(c, path, samples).u) sample_pts.push_back(to2d(u, point_at(c, u)));
   if (!graph)
     for (const auto& p : control_points_of(c)) polygon.push_back({p.x, p.y});
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;

@@ -9,44 +9,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include "support/cli.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-fs::path work_dir() {
-  const fs::path d = fs::path(INBETWEEN_BINARY_DIR) / "path-fit-cli-test";
-  fs::create_directories(d);
-  return d;
-}
-
-CliRun run_cli(const std::string& args) {
-  const fs::path out = work_dir() / "stdout.txt", err = work_dir() / "stderr.txt";
-  const std::string cmd = std::string(INBETWEEN_CLI) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream o(out), e(err);
-  std::stringstream so, se;
-  so << o.rdbuf();
-  se << e.rdbuf();
-  r.out = so.str();
-  r.err = se.str();
-  return r;
-}
-
-fs::path write_file(const std::string& name, const std::string& text) {
-  const fs::path p = work_dir() / name;
-  std::ofstream(p) << text;
-  return p;
-}
+using inbetween::test::CliRun;
+using inbetween::test::run_cli;
+using inbetween::test::test_dir;
 
 TEST(PathFitCli, InterpolatesByDefaultAndWritesABsplineCurveFile) {
-  const auto csv = write_file("square.csv", "t,x,y\n0,0,0\n1,1,2\n2,3,1\n3,4,4\n4,5,0\n");
+  const auto csv = inbetween::test::write_test_file("square.csv", "t,x,y\n0,0,0\n1,1,2\n2,3,1\n3,4,4\n4,5,0\n");
   const CliRun r = run_cli("path fit " + csv.string() + " --degree 3");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -63,8 +37,8 @@ TEST(PathFitCli, InterpolatesByDefaultAndWritesABsplineCurveFile) {
 }
 
 TEST(PathFitCli, LeastSquaresToAFileWithOutput) {
-  const auto csv = write_file("ls.csv", "1,1.6\n2,1.65\n3,1.6\n4,1.8\n5,2.1\n6,2.2\n7,2.0\n8,1.5\n9,1.3\n10,1.4\n");
-  const fs::path out = work_dir() / "ls.json";
+  const auto csv = inbetween::test::write_test_file("ls.csv", "1,1.6\n2,1.65\n3,1.6\n4,1.8\n5,2.1\n6,2.2\n7,2.0\n8,1.5\n9,1.3\n10,1.4\n");
+  const fs::path out = test_dir() / "ls.json";
   fs::remove(out);
   const CliRun r = run_cli("path fit " + csv.string() + " --degree 2 --control-points 5 -o " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -77,24 +51,54 @@ TEST(PathFitCli, LeastSquaresToAFileWithOutput) {
   EXPECT_DOUBLE_EQ(j["knots"][4].get<double>(), 7.0);
 }
 
+// The fitted file is a curve file: `curve sample` reads it, and (square case, B = N⁻¹P) the curve
+// passes through the data.  Source: the data rows themselves.
+TEST(PathFitCli, FittedFileIsAcceptedByCurveSample) {
+  const auto csv = inbetween::test::write_test_file("rows.csv", "t,x,y\n0,0,0\n1,1,2\n2,3,1\n3,4,4\n4,5,0\n");
+  const fs::path out = test_dir() / "fit.json";
+  CliRun r = run_cli("path fit " + csv.string() + " --degree 3 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli("curve sample " + out.string() + " --count 5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Knots span [0, 4] = [t_first, t_last], so equal parameter steps land on the data times.
+  const double expected[5][3] = {{0, 0, 0}, {1, 1, 2}, {2, 3, 1}, {3, 4, 4}, {4, 5, 0}};
+  std::istringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "u,x,y");
+  for (const auto& row : expected) {
+    ASSERT_TRUE(std::getline(in, line));
+    double u, x, y;
+    char c1, c2;
+    std::istringstream ls(line);
+    ls >> u >> c1 >> x >> c2 >> y;
+    EXPECT_NEAR(u, row[0], 1e-12);
+    EXPECT_NEAR(x, row[1], 1e-12) << line;
+    EXPECT_NEAR(y, row[2], 1e-12) << line;
+  }
+  r = run_cli("curve sample " + out.string() + " --count 4 --by arclength");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, 8), "u,s,x,y\n");
+}
+
 TEST(PathFitCli, BadRowsAndOptionsExitTwoNamingThePlace) {
-  const auto bad = write_file("bad.csv", "t,x\n0,1\n1,oops\n");
+  const auto bad = inbetween::test::write_test_file("bad.csv", "t,x\n0,1\n1,oops\n");
   CliRun r = run_cli("path fit " + bad.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
-  const auto ragged = write_file("ragged.csv", "0,1,2\n1,2\n");
+  const auto ragged = inbetween::test::write_test_file("ragged.csv", "0,1,2\n1,2\n");
   r = run_cli("path fit " + ragged.string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("line 2"), std::string::npos) << r.err;
-  const auto back = write_file("back.csv", "0,1\n2,2\n1,3\n3,3\n");
+  const auto back = inbetween::test::write_test_file("back.csv", "0,1\n2,2\n1,3\n3,3\n");
   r = run_cli("path fit " + back.string() + " --degree 1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;  // the row whose time goes back
-  const auto ok = write_file("ok.csv", "0,1\n1,2\n2,3\n");
+  const auto ok = inbetween::test::write_test_file("ok.csv", "0,1\n1,2\n2,3\n");
   r = run_cli("path fit " + ok.string() + " --degree 3");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--control-points"), std::string::npos) << r.err;
-  r = run_cli("path fit " + (work_dir() / "missing.csv").string());
+  r = run_cli("path fit " + (test_dir() / "missing.csv").string());
   EXPECT_EQ(r.exit_code, 2);
 }
 
