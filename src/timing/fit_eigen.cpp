@@ -1,5 +1,6 @@
 // B-spline fitting to position-time pairs (texts 004 §3.2.5) with Eigen's column-pivoted
-// Householder QR.  The basis functions come from a small Cox–de Boor evaluator kept private here.
+// Householder QR.  The basis functions are the curves module's (bspline_basis_all), so the fitted
+// curve is exactly the BSpline that `curve sample` evaluates.
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -9,45 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "inbetween/curves/bspline_basis.hpp"
 #include "inbetween/timing/bspline_fit.hpp"
 
 namespace inbetween {
-namespace detail {
-
-/// The degree-k B-spline basis functions N_{0..n−1,k}(t) over `knots` (n = knots.size() − k − 1),
-/// written into `out` (size n), by the Cox–de Boor recursion
-///   N_{i,0}(t) = 1 on [x_i, x_{i+1}),  N_{i,r} = (t − x_i)/(x_{i+r} − x_i) N_{i,r−1}
-///                                              + (x_{i+r+1} − t)/(x_{i+r+1} − x_{i+1}) N_{i+1,r−1},
-/// with 0/0 read as 0 and t = x_last assigned to the last non-empty interval (so the basis sums to
-/// one on the closed domain).
-void bspline_basis(std::span<const double> knots, int k, double t, std::span<double> out) {
-  const int m = int(knots.size());
-  const int n = m - k - 1;
-  std::vector<double> N(std::size_t(m - 1), 0.0);
-  // Degree 0: the interval holding t; at the right end, the last non-empty interval.
-  int span = -1;
-  for (int i = 0; i + 1 < m; ++i) {
-    if (knots[std::size_t(i)] <= t && t < knots[std::size_t(i) + 1]) { span = i; break; }
-  }
-  if (span < 0) {
-    for (int i = m - 2; i >= 0; --i) {
-      if (knots[std::size_t(i)] < knots[std::size_t(i) + 1]) { span = i; break; }
-    }
-  }
-  if (span >= 0) N[std::size_t(span)] = 1.0;
-  for (int r = 1; r <= k; ++r) {
-    for (int i = 0; i + r + 1 < m; ++i) {
-      const double x0 = knots[std::size_t(i)], xr = knots[std::size_t(i + r)];
-      const double x1 = knots[std::size_t(i + 1)], xr1 = knots[std::size_t(i + r + 1)];
-      const double left = xr > x0 ? (t - x0) / (xr - x0) * N[std::size_t(i)] : 0.0;
-      const double right = xr1 > x1 ? (xr1 - t) / (xr1 - x1) * N[std::size_t(i + 1)] : 0.0;
-      N[std::size_t(i)] = left + right;
-    }
-  }
-  for (int i = 0; i < n; ++i) out[std::size_t(i)] = N[std::size_t(i)];
-}
-
-}  // namespace detail
 
 namespace {
 
@@ -97,7 +63,7 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
   Eigen::MatrixXd rhs(j, dim);
   std::vector<double> row(static_cast<std::size_t>(n), 0.0);
   for (int i = 0; i < j; ++i) {
-    detail::bspline_basis(knots, k, double(data[std::size_t(i)].t), row);
+    bspline_basis_all<double>(knots, k, double(data[std::size_t(i)].t), 0, row);
     for (int c = 0; c < n; ++c) N(i, c) = row[std::size_t(c)];
     for (int d = 0; d < dim; ++d) rhs(i, d) = double(PointTraits<P>::get(data[std::size_t(i)].p, d));
   }

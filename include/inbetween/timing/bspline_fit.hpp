@@ -13,6 +13,8 @@
 #include <span>
 #include <vector>
 
+#include "inbetween/curves/bspline_basis.hpp"
+
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/vec.hpp"
@@ -82,11 +84,8 @@ struct BSplineFit {
 /// [t_first, t_last]: degree + 1 copies of each end, interior knots uniformly spaced.
 template <Real T>
 std::vector<T> clamped_uniform_knots(T t_first, T t_last, int degree, int control_points) {
-  std::vector<T> k;
-  const int interior = control_points - degree - 1;
-  for (int i = 0; i <= degree; ++i) k.push_back(t_first);
-  for (int i = 1; i <= interior; ++i) k.push_back(t_first + (t_last - t_first) * (T(i) / T(interior + 1)));
-  for (int i = 0; i <= degree; ++i) k.push_back(t_last);
+  std::vector<T> k = clamped_uniform_knots<T>(control_points, degree);  // on [0, 1]
+  for (T& x : k) x = x == T(1) ? t_last : t_first + (t_last - t_first) * x;  // ends exact
   return k;
 }
 
