@@ -15,9 +15,35 @@
 #include "inbetween/math/vec.hpp"
 
 // curves
+#include "inbetween/curves/bezier.hpp"
+#include "inbetween/curves/bezier_path.hpp"
+#include "inbetween/curves/bspline.hpp"
+#include "inbetween/curves/bspline_basis.hpp"
+#include "inbetween/curves/catmull_rom.hpp"
+#include "inbetween/curves/continuity.hpp"
+#include "inbetween/curves/cubic_basis.hpp"
+#include "inbetween/curves/cubic_spline.hpp"
 #include "inbetween/curves/curve.hpp"
+#include "inbetween/curves/hermite_spline.hpp"
+#include "inbetween/curves/kochanek_bartels.hpp"
+#include "inbetween/curves/lagrange.hpp"
+#include "inbetween/curves/parabolic_blend.hpp"
+#include "inbetween/curves/piecewise_cubic.hpp"
+
+// arclength
+#include "inbetween/arclength/accuracy.hpp"
+#include "inbetween/arclength/arc_length.hpp"
+#include "inbetween/arclength/arc_length_table.hpp"
+#include "inbetween/arclength/cubic_speed.hpp"
+#include "inbetween/arclength/gauss_legendre.hpp"
+#include "inbetween/arclength/quadrature_length.hpp"
 
 // timing
+#include "inbetween/timing/bspline_fit.hpp"  // implemented in inbetween_eigen (link inbetween::eigen)
+#include "inbetween/timing/cubic_bezier_timing.hpp"
+#include "inbetween/timing/distance_time.hpp"
+#include "inbetween/timing/ease.hpp"
+#include "inbetween/timing/motion.hpp"
 #include "inbetween/timing/penner.hpp"
 
 // tracks

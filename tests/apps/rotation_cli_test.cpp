@@ -16,42 +16,13 @@
 
 #include "inbetween/math/euler.hpp"
 #include "inbetween/math/rotation.hpp"
+#include "support/cli.hpp"
 
 namespace inbetween {
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-CliRun run_cli(const std::string& args, const std::string& input) {
-  namespace fs = std::filesystem;
-  // One folder per test and process: ctest runs the cases of this file in parallel.
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(INBETWEEN_BINARY_DIR) / "rotation-cli-test" /
-                       (std::string(info ? info->name() : "none") + "-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path in = dir / "in.txt", out = dir / "out.txt", err = dir / "err.txt";
-  std::ofstream(in, std::ios::binary) << input;
-  const std::string command = std::string("'") + INBETWEEN_CLI + "' " + args + " < '" + in.string() + "' > '" +
-                              out.string() + "' 2> '" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  CliRun r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  std::error_code ec;
-  fs::remove_all(dir, ec);
-  return r;
-}
+using test::CliRun;
+using test::run_cli;
 
 std::vector<std::vector<double>> numbers_of(const std::string& text) {
   std::vector<std::vector<double>> rows;

@@ -69,4 +69,23 @@ concept PiecewiseCubicCurve = Curve<C> && requires(const C& c, int i) {
   { c.segment_power_form(i) } -> std::same_as<PowerCubic<typename C::point_type>>;
 };
 
+/// The optional queries every curve of the curves module answers: its control points, whether it
+/// passes through all of them, and local control.  `influence(i)` is the parameter range outside
+/// of which moving control point i leaves the curve unchanged (the whole domain for global control).
+template <class C>
+concept ControlledCurve = Curve<C> && requires(const C& c, int i) {
+  { c.control_point_count() } -> std::convertible_to<int>;
+  { c.control_point(i) } -> std::same_as<typename C::point_type>;
+  { c.interpolates_control_points() } -> std::same_as<bool>;
+  { c.influence(i) } -> std::same_as<Interval<typename C::scalar_type>>;
+};
+
+/// A curve whose pieces can be evaluated one at a time: `segment_derivative(i, u, k)` is the k-th
+/// derivative of piece i's polynomial at u, with u clamped into segment_domain(i).  Evaluating piece
+/// i − 1 at the start of piece i gives the left limit at a joint (used to measure continuity).
+template <class C>
+concept SegmentedCurve = Curve<C> && requires(const C& c, int i, typename C::scalar_type u) {
+  { c.segment_derivative(i, u, i) } -> std::same_as<typename C::point_type>;
+};
+
 }  // namespace inbetween

@@ -1,0 +1,66 @@
+#pragma once
+/// Hermite splines: a cubic segment between each pair of consecutive points, given the positions
+/// and the tangents dP/du at every point (texts 000 §2.3.1).  Segment i runs over u ∈ [i, i + 1]
+/// and shares its end point and end tangent with segment i + 1, so the curve is C¹ by construction.
+
+#include <span>
+#include <vector>
+
+#include "inbetween/curves/cubic_basis.hpp"
+#include "inbetween/curves/piecewise_cubic.hpp"
+
+namespace inbetween {
+
+/// A C¹ piecewise Hermite cubic through points P_0..P_{n−1} with tangents T_0..T_{n−1}; domain
+/// [0, n − 1].  Interpolating; local control: point i (and tangent i) influence [i − 1, i + 1].
+template <Point P>
+class HermiteSpline : public PiecewiseCubic<P> {
+ public:
+  using T = scalar_of<P>;
+  HermiteSpline() = default;
+
+  /// Builds from positions and tangents (same count, ≥ 2, finite).  Errors name "point i" or
+  /// "tangent i"; a tangent count that differs from the point count is WrongArity at "tangents".
+  static Expected<HermiteSpline> build(std::span<const P> points, std::span<const P> tangents) {
+    if (auto ok = detail::check_points(points, 2, "hermite"); !ok) return ok.error();
+    if (tangents.size() != points.size()) {
+      return Error{ErrorCode::WrongArity,
+                   "hermite needs one tangent per point: " + std::to_string(points.size()) +
+                       " points but " + std::to_string(tangents.size()) + " tangents",
+                   "tangents"};
+    }
+    if (auto ok = detail::check_points(tangents, 2, "hermite", "tangent"); !ok) return ok.error();
+    HermiteSpline s;
+    const int n = int(points.size());
+    s.breaks_.clear();
+    s.segments_.clear();
+    for (int i = 0; i < n; ++i) s.breaks_.push_back(T(i));
+    for (int i = 0; i + 1 < n; ++i)
+      s.segments_.push_back(hermite_power_form(points[i], points[i + 1], tangents[i], tangents[i + 1]));
+    s.controls_.assign(points.begin(), points.end());
+    s.tangents_.assign(tangents.begin(), tangents.end());
+    s.influence_.clear();
+    for (int i = 0; i < n; ++i) s.influence_.push_back(s.segments_range(i - 1, i));
+    s.interpolates_ = true;
+    return s;
+  }
+
+  /// The tangents dP/du at the points.
+  std::span<const P> tangents() const noexcept { return tangents_; }
+
+ private:
+  std::vector<P> tangents_{P{}};
+};
+
+/// Builds a Hermite spline; see HermiteSpline::build.
+template <Point P>
+Expected<HermiteSpline<P>> build_hermite_spline(std::span<const P> points, std::span<const P> tangents) {
+  return HermiteSpline<P>::build(points, tangents);
+}
+/// Overload for vectors.
+template <Point P>
+Expected<HermiteSpline<P>> build_hermite_spline(const std::vector<P>& points, const std::vector<P>& tangents) {
+  return HermiteSpline<P>::build(points, tangents);
+}
+
+}  // namespace inbetween

@@ -1,0 +1,122 @@
+#pragma once
+/// Lagrange interpolation (004 §3.1, the texts' example of global control): the single polynomial
+/// of degree n − 1 through n points P_i at strictly increasing parameters u_i (default 0, 1, …,
+/// n − 1).  Stored in Newton's divided-difference form and evaluated by nested multiplication, with
+/// derivatives carried along.  With many equally spaced parameters it oscillates near the ends
+/// (Runge's phenomenon) — the reason animation uses piecewise cubics instead.
+
+#include <span>
+#include <vector>
+
+#include "inbetween/curves/piecewise_cubic.hpp"
+
+namespace inbetween {
+
+/// The interpolating polynomial through (u_i, P_i); domain [u_0, u_{n−1}], one segment.  Every
+/// point influences the whole domain (global control).
+template <Point P>
+class LagrangeCurve {
+ public:
+  using point_type = P;
+  using scalar_type = scalar_of<P>;
+  using T = scalar_type;
+
+  /// The segment from zero to zero over [0, 1].
+  LagrangeCurve() : params_{T(0), T(1)}, points_{P{}, P{}}, coeffs_{P{}, P{}} {}
+
+  /// Builds through `points` (≥ 2, finite) at `params` (same count, finite, strictly increasing;
+  /// empty = 0, 1, …, n − 1).  Errors name "point i" or "param i".
+  static Expected<LagrangeCurve> build(std::span<const P> points, std::span<const T> params = {}) {
+    if (auto ok = detail::check_points(points, 2, "lagrange"); !ok) return ok.error();
+    const int n = int(points.size());
+    LagrangeCurve c;
+    c.points_.assign(points.begin(), points.end());
+    if (params.empty()) {
+      c.params_.resize(n);
+      for (int i = 0; i < n; ++i) c.params_[i] = T(i);
+    } else {
+      if (int(params.size()) != n)
+        return Error{ErrorCode::WrongArity,
+                     "lagrange needs one param per point: " + std::to_string(n) + " points but " +
+                         std::to_string(params.size()) + " params",
+                     "params"};
+      for (int i = 0; i < n; ++i) {
+        if (!std::isfinite(params[i]))
+          return Error{ErrorCode::NotFinite, "param " + std::to_string(i) + " is not finite", "param " + std::to_string(i)};
+        if (i > 0 && !(params[i] > params[i - 1]))
+          return Error{ErrorCode::KeysNotIncreasing,
+                       "param " + std::to_string(i) + " (" + std::to_string(double(params[i])) +
+                           ") is not greater than param " + std::to_string(i - 1) + " (" +
+                           std::to_string(double(params[i - 1])) + ")",
+                       "param " + std::to_string(i)};
+      }
+      c.params_.assign(params.begin(), params.end());
+    }
+    // Divided differences in place: coeffs_[k] = P[u_0, …, u_k].
+    c.coeffs_ = c.points_;
+    for (int k = 1; k < n; ++k)
+      for (int i = n - 1; i >= k; --i)
+        c.coeffs_[i] = (c.coeffs_[i] - c.coeffs_[i - 1]) / (c.params_[i] - c.params_[i - k]);
+    return c;
+  }
+
+  /// [u_0, u_{n−1}].
+  Interval<T> domain() const noexcept { return {params_.front(), params_.back()}; }
+  /// 1.
+  int segment_count() const noexcept { return 1; }
+  /// The domain.
+  Interval<T> segment_domain(int) const noexcept { return domain(); }
+  /// P(u), u clamped.
+  P point(T u) const noexcept { return derivative(u, 0); }
+  /// d^kP/du^k for k = 0..3 (higher orders are not provided and return zero), u clamped.
+  P derivative(T u, int k) const noexcept {
+    u = domain().clamp(u);
+    P d0{}, d1{}, d2{}, d3{};
+    for (int i = int(coeffs_.size()) - 1; i >= 0; --i) {
+      const T x = u - params_[i];
+      d3 = d3 * x + d2 * T(3);
+      d2 = d2 * x + d1 * T(2);
+      d1 = d1 * x + d0;
+      d0 = d0 * x + coeffs_[i];
+    }
+    switch (k) {
+      case 0: return d0;
+      case 1: return d1;
+      case 2: return d2;
+      case 3: return d3;
+      default: return P{};
+    }
+  }
+  /// Same as derivative (one segment).
+  P segment_derivative(int, T u, int k) const noexcept { return derivative(u, k); }
+  /// Number of points.
+  int control_point_count() const noexcept { return int(points_.size()); }
+  /// Point i (clamped index).
+  P control_point(int i) const noexcept { return points_[std::clamp(i, 0, control_point_count() - 1)]; }
+  /// All points.
+  std::span<const P> control_points() const noexcept { return points_; }
+  /// The parameters u_i.
+  std::span<const T> params() const noexcept { return params_; }
+  /// True.
+  bool interpolates_control_points() const noexcept { return true; }
+  /// The whole domain (global control).
+  Interval<T> influence(int) const noexcept { return domain(); }
+
+ private:
+  std::vector<T> params_;
+  std::vector<P> points_;
+  std::vector<P> coeffs_;
+};
+
+/// Builds a Lagrange interpolating curve; see LagrangeCurve::build.
+template <Point P>
+Expected<LagrangeCurve<P>> build_lagrange(std::span<const P> points, std::span<const scalar_of<P>> params = {}) {
+  return LagrangeCurve<P>::build(points, params);
+}
+/// Overload for vectors.
+template <Point P>
+Expected<LagrangeCurve<P>> build_lagrange(const std::vector<P>& points, const std::vector<scalar_of<P>>& params = {}) {
+  return LagrangeCurve<P>::build(points, params);
+}
+
+}  // namespace inbetween

@@ -1,0 +1,168 @@
+#pragma once
+/// PiecewiseCubic: the shared representation of every piecewise-cubic spline (Hermite, natural and
+/// clamped C² splines, composite Bézier, Catmull-Rom, Kochanek–Bartels, parabolic blending): a
+/// strictly increasing list of breakpoints u_0 < … < u_n and one power-form cubic per segment over
+/// its local parameter v = (u − u_i)/(u_{i+1} − u_i).  Family types derive from it and add their
+/// builder and inputs.  Also the input checks shared by the builders.
+
+#include <algorithm>
+#include <cmath>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "inbetween/curves/curve.hpp"
+#include "inbetween/math/expected.hpp"
+#include "inbetween/math/vec.hpp"
+
+namespace inbetween {
+
+/// A C⁰ chain of cubic segments with the queries of the Curve, PiecewiseCubicCurve,
+/// ControlledCurve and SegmentedCurve concepts.  A default-constructed object is the constant zero
+/// curve on [0, 1] with one control point.
+template <Point P>
+class PiecewiseCubic {
+ public:
+  using point_type = P;
+  using scalar_type = scalar_of<P>;
+  using T = scalar_type;
+
+  PiecewiseCubic() = default;
+
+  /// A chain from breakpoints u_0 < … < u_n (finite, strictly increasing) and n power-form
+  /// segments over their local v ∈ [0, 1].  Its control points are the joints P(u_0), …, P(u_n)
+  /// (interpolated); joint i influences the segments that touch it.  Used to convert B-splines and
+  /// Bézier curves of degree ≤ 3.  Errors: WrongArity at "segments", KeysNotIncreasing or NotFinite
+  /// at "breakpoint i", NotFinite at "segment i".
+  static Expected<PiecewiseCubic> from_power_forms(std::vector<T> breakpoints, std::vector<PowerCubic<P>> segments) {
+    if (segments.empty() || breakpoints.size() != segments.size() + 1)
+      return Error{ErrorCode::WrongArity,
+                   "need n >= 1 segments and n + 1 breakpoints, got " + std::to_string(segments.size()) +
+                       " segments and " + std::to_string(breakpoints.size()) + " breakpoints",
+                   "segments"};
+    for (std::size_t i = 0; i < breakpoints.size(); ++i) {
+      if (!std::isfinite(breakpoints[i]))
+        return Error{ErrorCode::NotFinite, "breakpoint " + std::to_string(i) + " is not finite",
+                     "breakpoint " + std::to_string(i)};
+      if (i > 0 && !(breakpoints[i] > breakpoints[i - 1]))
+        return Error{ErrorCode::KeysNotIncreasing, "breakpoint " + std::to_string(i) + " is not after breakpoint " +
+                                                       std::to_string(i - 1),
+                     "breakpoint " + std::to_string(i)};
+    }
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+      const auto& g = segments[i];
+      if (!is_finite(g.a) || !is_finite(g.b) || !is_finite(g.c) || !is_finite(g.d))
+        return Error{ErrorCode::NotFinite, "segment " + std::to_string(i) + " has a non-finite coefficient",
+                     "segment " + std::to_string(i)};
+    }
+    PiecewiseCubic c;
+    c.breaks_ = std::move(breakpoints);
+    c.segments_ = std::move(segments);
+    const int n = c.segment_count();
+    c.controls_.clear();
+    c.influence_.clear();
+    for (int i = 0; i <= n; ++i) {
+      c.controls_.push_back(i < n ? c.segments_[i].d : c.segments_[n - 1].point(T(1)));
+      c.influence_.push_back(c.segments_range(i - 1, i));
+    }
+    c.interpolates_ = true;
+    return c;
+  }
+
+  /// Parameter interval [u_0, u_n].
+  Interval<T> domain() const noexcept { return {breaks_.front(), breaks_.back()}; }
+  /// Number of cubic segments (≥ 1).
+  int segment_count() const noexcept { return int(segments_.size()); }
+  /// [u_i, u_{i+1}] for segment i (i clamped into range).
+  Interval<T> segment_domain(int i) const noexcept {
+    i = std::clamp(i, 0, segment_count() - 1);
+    return {breaks_[i], breaks_[i + 1]};
+  }
+  /// The breakpoints u_0 < … < u_n.
+  std::span<const T> breakpoints() const noexcept { return breaks_; }
+  /// The segment whose half-open domain [u_i, u_{i+1}) holds u (the last segment at the end);
+  /// u is clamped into the domain first.
+  int segment_at(T u) const noexcept {
+    const auto it = std::upper_bound(breaks_.begin() + 1, breaks_.end() - 1, u);
+    return int(it - breaks_.begin()) - 1;
+  }
+  /// P(u), u clamped into domain().
+  P point(T u) const noexcept { return derivative(u, 0); }
+  /// d^kP/du^k (k = 0..3; zero beyond), right limit at joints, u clamped into domain().
+  P derivative(T u, int k) const noexcept {
+    u = domain().clamp(u);
+    return segment_derivative(segment_at(u), u, k);
+  }
+  /// d^kP/du^k of segment i's cubic at u clamped into segment_domain(i) (left limit at its end).
+  P segment_derivative(int i, T u, int k) const noexcept {
+    i = std::clamp(i, 0, segment_count() - 1);
+    const T lo = breaks_[i], h = breaks_[i + 1] - breaks_[i];
+    const T v = std::clamp((u - lo) / h, T(0), T(1));
+    P d = segments_[i].derivative(v, k);
+    for (int j = 0; j < k && j < 4; ++j) d = d / h;  // dv/du = 1/h
+    return d;
+  }
+  /// Segment i in power form over its local parameter v ∈ [0, 1].
+  PowerCubic<P> segment_power_form(int i) const noexcept {
+    return segments_[std::clamp(i, 0, segment_count() - 1)];
+  }
+  /// Number of control points (the inputs the user moves: points, or Bézier anchors and handles).
+  int control_point_count() const noexcept { return int(controls_.size()); }
+  /// Control point i (clamped index).
+  P control_point(int i) const noexcept { return controls_[std::clamp(i, 0, control_point_count() - 1)]; }
+  /// All control points.
+  std::span<const P> control_points() const noexcept { return controls_; }
+  /// True when the curve passes through every control point.
+  bool interpolates_control_points() const noexcept { return interpolates_; }
+  /// Parameter range whose shape depends on control point i (local control); moving the point
+  /// leaves the curve outside this range unchanged.
+  Interval<T> influence(int i) const noexcept {
+    return influence_[std::clamp(i, 0, int(influence_.size()) - 1)];
+  }
+
+ protected:
+  /// Influence of a control point that affects segments [first, last] (clamped to the curve).
+  Interval<T> segments_range(int first, int last) const noexcept {
+    first = std::clamp(first, 0, segment_count() - 1);
+    last = std::clamp(last, 0, segment_count() - 1);
+    return {breaks_[first], breaks_[last + 1]};
+  }
+
+  std::vector<T> breaks_{T(0), T(1)};
+  std::vector<PowerCubic<P>> segments_{PowerCubic<P>{}};
+  std::vector<P> controls_{P{}};
+  std::vector<Interval<T>> influence_{Interval<T>{T(0), T(1)}};
+  bool interpolates_ = true;
+};
+
+namespace detail {
+
+/// Checks that `points` has at least `min_count` entries and that each is finite.  Errors name the
+/// item as "<item> <index>" (for example "point 3"), which the file layer turns into a JSON pointer.
+template <Point P>
+Expected<void> check_points(std::span<const P> points, int min_count, const char* family,
+                            const char* item = "point") {
+  if (int(points.size()) < min_count) {
+    return Error{ErrorCode::TooFewPoints,
+                 std::string(family) + " needs at least " + std::to_string(min_count) + " " + item +
+                     "s, got " + std::to_string(points.size()),
+                 std::string(item) + "s"};
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!is_finite(points[i])) {
+      return Error{ErrorCode::NotFinite, std::string(item) + " " + std::to_string(i) + " is not finite",
+                   std::string(item) + " " + std::to_string(i)};
+    }
+  }
+  return {};
+}
+
+/// Checks that a scalar option is finite; `where` names it.
+template <Real T>
+Expected<void> check_finite(T value, const char* where) {
+  if (!std::isfinite(value)) return Error{ErrorCode::NotFinite, std::string(where) + " is not finite", where};
+  return {};
+}
+
+}  // namespace detail
+}  // namespace inbetween

@@ -1,0 +1,357 @@
+// Curve files: JSON → AnyCurve with errors that name the JSON pointer, and AnyCurve → JSON.
+#include "inbetween/io/curve_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+namespace inbetween {
+namespace {
+
+using json = nlohmann::json;
+
+struct Reader {
+  std::string source;
+  Error fail(std::string pointer, std::string message, ErrorCode code = ErrorCode::Parse) const {
+    return Error{code, std::move(message), source + ":" + pointer};
+  }
+};
+
+// JSON pointers are built with append() rather than "/" + … : GCC 12 warns (-Wrestrict, a known
+// false positive) on operator+ with a literal on the left.
+std::string ptr(std::string_view field) {
+  std::string s("/");
+  s.append(field);
+  return s;
+}
+std::string ptr(std::string_view field, std::size_t i) {
+  std::string s = ptr(field);
+  s.append("/").append(std::to_string(i));
+  return s;
+}
+
+// Reads a number; an error names the pointer.
+Expected<double> read_number(const Reader& r, const json& v, const std::string& pointer) {
+  if (!v.is_number()) return r.fail(pointer, "expected a number, got " + std::string(v.type_name()));
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) return r.fail(pointer, "number is not finite", ErrorCode::NotFinite);
+  return d;
+}
+
+// Reads an array of points, all of the same dimension (`dim` fixed by the first point when 0).
+Expected<std::vector<Vec3d>> read_points(const Reader& r, const json& doc, std::string_view field, int& dim,
+                                         bool required = true) {
+  std::vector<Vec3d> out;
+  if (!doc.contains(field)) {
+    if (required) return r.fail(ptr(field), "missing required field", ErrorCode::Parse);
+    return out;
+  }
+  const json& arr = doc.at(std::string(field));
+  if (!arr.is_array()) return r.fail(ptr(field), "expected an array of points");
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    const json& p = arr[i];
+    const std::string where = ptr(field, i);
+    std::vector<double> comps;
+    if (p.is_number()) {
+      auto d = read_number(r, p, where);
+      if (!d) return d.error();
+      comps.push_back(*d);
+    } else if (p.is_array()) {
+      for (std::size_t c = 0; c < p.size(); ++c) {
+        auto d = read_number(r, p[c], where + "/" + std::to_string(c));
+        if (!d) return d.error();
+        comps.push_back(*d);
+      }
+    } else {
+      return r.fail(where, "expected a point: a number or an array of 1 to 3 numbers");
+    }
+    if (comps.empty() || comps.size() > 3)
+      return r.fail(where, "expected 1 to 3 numbers, got " + std::to_string(comps.size()), ErrorCode::WrongArity);
+    if (dim == 0) dim = int(comps.size());
+    if (int(comps.size()) != dim)
+      return r.fail(where, "expected " + std::to_string(dim) + " number" + (dim == 1 ? "" : "s") +
+                               " (the dimension of the first point), got " + std::to_string(comps.size()),
+                    ErrorCode::WrongArity);
+    Vec3d v{};
+    for (int c = 0; c < dim; ++c) v[c] = comps[c];
+    out.push_back(v);
+  }
+  return out;
+}
+
+Expected<std::vector<double>> read_numbers(const Reader& r, const json& doc, std::string_view field) {
+  std::vector<double> out;
+  const json& arr = doc.at(std::string(field));
+  if (!arr.is_array()) return r.fail(ptr(field), "expected an array of numbers");
+  for (std::size_t i = 0; i < arr.size(); ++i) {
+    auto d = read_number(r, arr[i], ptr(field, i));
+    if (!d) return d.error();
+    out.push_back(*d);
+  }
+  return out;
+}
+
+Expected<std::optional<double>> read_optional_number(const Reader& r, const json& doc, std::string_view field) {
+  if (!doc.contains(field)) return std::optional<double>{};
+  auto d = read_number(r, doc.at(std::string(field)), ptr(field));
+  if (!d) return d.error();
+  return std::optional<double>{*d};
+}
+
+// Translates a library error location ("point 3", "knot 2", "alpha", …) into a JSON pointer.
+Error relocate(const Reader& r, const Error& e) {
+  static const std::pair<const char*, const char*> items[] = {
+      {"point ", "points"}, {"tangent ", "tangents"}, {"knot ", "knots"}, {"param ", "params"}, {"key ", "points"}};
+  std::string pointer;
+  for (const auto& [prefix, field] : items) {
+    const std::string p = prefix;
+    if (e.where.rfind(p, 0) == 0) pointer = ptr(field).append("/").append(e.where.substr(p.size()));
+  }
+  if (pointer.empty()) {
+    if (e.where == "keys") pointer = "/tension";
+    else if (e.where == "start_tangent" || e.where == "end_tangent" || e.where == "alpha" || e.where == "tension" ||
+             e.where == "degree" || e.where == "knots" || e.where == "points" || e.where == "tangents" ||
+             e.where == "params")
+      pointer = ptr(e.where);
+  }
+  return Error{e.code, e.message, r.source + ":" + pointer};
+}
+
+template <class C>
+Expected<AnyCurve> wrap(const Reader& r, CurveKind kind, int dim, Expected<C> built) {
+  if (!built) return relocate(r, built.error());
+  return AnyCurve{kind, dim, AnyCurveVariant{std::move(built).value()}};
+}
+
+// Kochanek–Bartels parameters: a number (shared) or an array with one number per point.
+Expected<std::vector<double>> read_tcb(const Reader& r, const json& doc, std::string_view field, std::size_t n) {
+  if (!doc.contains(field)) return std::vector<double>{0.0};
+  const json& v = doc.at(std::string(field));
+  if (v.is_number()) {
+    auto d = read_number(r, v, ptr(field));
+    if (!d) return d.error();
+    return std::vector<double>{*d};
+  }
+  auto arr = read_numbers(r, doc, field);
+  if (!arr) return arr.error();
+  if (arr->size() != n)
+    return r.fail(ptr(field), "expected a number or an array of " + std::to_string(n) + " numbers (one per point), got " +
+                                  std::to_string(arr->size()),
+                  ErrorCode::WrongArity);
+  return arr;
+}
+
+}  // namespace
+
+std::string_view curve_kind_name(CurveKind kind) noexcept {
+  switch (kind) {
+    case CurveKind::Bezier: return "bezier";
+    case CurveKind::BezierPath: return "bezier-path";
+    case CurveKind::Hermite: return "hermite";
+    case CurveKind::CatmullRom: return "catmull-rom";
+    case CurveKind::Natural: return "natural";
+    case CurveKind::KochanekBartels: return "kochanek-bartels";
+    case CurveKind::Parabolic: return "parabolic";
+    case CurveKind::BSpline: return "bspline";
+    case CurveKind::Lagrange: return "lagrange";
+  }
+  return "unknown";
+}
+
+Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view source_name) {
+  const Reader r{std::string(source_name)};
+  json doc;
+  try {
+    doc = json::parse(text.begin(), text.end());
+  } catch (const json::exception& e) {
+    return Error{ErrorCode::Parse, std::string("invalid JSON: ") + e.what(), r.source};
+  }
+  if (!doc.is_object()) return r.fail("", "expected a JSON object with a \"type\" field");
+  if (doc.contains("version")) {
+    const json& v = doc["version"];
+    if (!v.is_number_integer() || v.get<long long>() != curve_format_version)
+      return r.fail("/version", "unsupported version " + v.dump() + "; this reader knows version " +
+                                    std::to_string(curve_format_version), ErrorCode::Unsupported);
+  }
+  if (!doc.contains("type") || !doc["type"].is_string()) return r.fail("/type", "missing or not a string");
+  const std::string type = doc["type"].get<std::string>();
+  // Unknown fields are rejected, so a misspelt option ("tensoin") is not silently ignored.
+  static const std::vector<std::pair<std::string, std::vector<std::string>>> fields = {
+      {"bezier", {}},
+      {"bezier-path", {}},
+      {"hermite", {"tangents"}},
+      {"catmull-rom", {"alpha", "tension", "closed"}},
+      {"natural", {"start_tangent", "end_tangent"}},
+      {"kochanek-bartels", {"tension", "continuity", "bias"}},
+      {"parabolic", {}},
+      {"bspline", {"degree", "knots", "periodic"}},
+      {"lagrange", {"params"}},
+  };
+  for (const auto& [kind, extra] : fields) {
+    if (kind != type) continue;
+    for (const auto& item : doc.items()) {
+      const std::string& key = item.key();
+      if (key == "version" || key == "type" || key == "points") continue;
+      if (std::find(extra.begin(), extra.end(), key) == extra.end())
+        return r.fail(ptr(key), "unknown field for type \"" + type + "\"", ErrorCode::Parse);
+    }
+  }
+
+  int dim = 0;
+  auto points = read_points(r, doc, "points", dim);
+  if (!points) return points.error();
+  if (points->empty()) return r.fail("/points", "expected at least one point", ErrorCode::TooFewPoints);
+  const std::vector<Vec3d>& pts = *points;
+
+  if (type == "bezier") return wrap(r, CurveKind::Bezier, dim, build_bezier(pts));
+  if (type == "bezier-path") return wrap(r, CurveKind::BezierPath, dim, build_bezier_path(pts));
+  if (type == "parabolic") return wrap(r, CurveKind::Parabolic, dim, build_parabolic_blend(pts));
+  if (type == "hermite") {
+    auto tangents = read_points(r, doc, "tangents", dim);
+    if (!tangents) return tangents.error();
+    return wrap(r, CurveKind::Hermite, dim, build_hermite_spline(pts, *tangents));
+  }
+  if (type == "catmull-rom") {
+    CatmullRomOptions<double> o;
+    for (const char* f : {"alpha", "tension"}) {
+      auto v = read_optional_number(r, doc, f);
+      if (!v) return v.error();
+      if (v->has_value()) (std::string(f) == "alpha" ? o.alpha : o.tension) = **v;
+    }
+    if (doc.contains("closed")) {
+      if (!doc["closed"].is_boolean()) return r.fail("/closed", "expected true or false");
+      o.closed = doc["closed"].get<bool>();
+    }
+    return wrap(r, CurveKind::CatmullRom, dim, build_catmull_rom(pts, o));
+  }
+  if (type == "natural") {
+    const bool has_start = doc.contains("start_tangent"), has_end = doc.contains("end_tangent");
+    if (has_start != has_end)
+      return r.fail(has_start ? "/end_tangent" : "/start_tangent",
+                    "a clamped spline needs both start_tangent and end_tangent");
+    if (!has_start) return wrap(r, CurveKind::Natural, dim, build_natural_spline(pts));
+    json ends = json::object();
+    ends["points"] = json::array({doc["start_tangent"], doc["end_tangent"]});
+    auto t = read_points(r, ends, "points", dim);
+    if (!t) {
+      Error e = t.error();
+      e.where = r.source + (e.where.find("/points/0") != std::string::npos ? ":/start_tangent" : ":/end_tangent");
+      return e;
+    }
+    return wrap(r, CurveKind::Natural, dim, build_clamped_spline(pts, (*t)[0], (*t)[1]));
+  }
+  if (type == "kochanek-bartels") {
+    auto tension = read_tcb(r, doc, "tension", pts.size());
+    if (!tension) return tension.error();
+    auto continuity = read_tcb(r, doc, "continuity", pts.size());
+    if (!continuity) return continuity.error();
+    auto bias = read_tcb(r, doc, "bias", pts.size());
+    if (!bias) return bias.error();
+    const std::size_t n = std::max({tension->size(), continuity->size(), bias->size()});
+    std::vector<TcbParams<double>> keys(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      keys[i].tension = (*tension)[tension->size() == 1 ? 0 : i];
+      keys[i].continuity = (*continuity)[continuity->size() == 1 ? 0 : i];
+      keys[i].bias = (*bias)[bias->size() == 1 ? 0 : i];
+    }
+    return wrap(r, CurveKind::KochanekBartels, dim, build_kochanek_bartels(pts, keys));
+  }
+  if (type == "bspline") {
+    if (!doc.contains("degree") || !doc["degree"].is_number_integer())
+      return r.fail("/degree", "expected an integer degree");
+    const long long degree = doc["degree"].get<long long>();
+    if (degree < 1 || degree > BSpline<Vec3d>::max_degree)
+      return r.fail("/degree", "degree must be between 1 and " + std::to_string(BSpline<Vec3d>::max_degree) +
+                                   ", got " + std::to_string(degree), ErrorCode::InvalidArgument);
+    bool periodic = false;
+    if (doc.contains("periodic")) {
+      if (!doc["periodic"].is_boolean()) return r.fail("/periodic", "expected true or false");
+      periodic = doc["periodic"].get<bool>();
+    }
+    if (periodic) {
+      if (doc.contains("knots")) return r.fail("/knots", "a periodic bspline takes no knots (they are uniform)");
+      return wrap(r, CurveKind::BSpline, dim, build_periodic_bspline(pts, int(degree)));
+    }
+    std::vector<double> knots;
+    if (doc.contains("knots")) {
+      auto k = read_numbers(r, doc, "knots");
+      if (!k) return k.error();
+      knots = *k;
+      if (knots.empty()) return r.fail("/knots", "expected knots, got an empty array", ErrorCode::WrongArity);
+    }
+    return wrap(r, CurveKind::BSpline, dim, build_bspline(pts, int(degree), knots));
+  }
+  if (type == "lagrange") {
+    std::vector<double> params;
+    if (doc.contains("params")) {
+      auto k = read_numbers(r, doc, "params");
+      if (!k) return k.error();
+      params = *k;
+    }
+    return wrap(r, CurveKind::Lagrange, dim, build_lagrange(pts, params));
+  }
+  return r.fail("/type", "unknown curve type \"" + type +
+                             "\"; expected one of bezier, bezier-path, hermite, catmull-rom, natural, "
+                             "kochanek-bartels, parabolic, bspline, lagrange",
+                ErrorCode::Unsupported);
+}
+
+namespace {
+
+json point_json(const Vec3d& p, int dim) {
+  if (dim == 1) return p.x;
+  json a = json::array();
+  for (int c = 0; c < dim; ++c) a.push_back(p[c]);
+  return a;
+}
+
+json points_json(std::span<const Vec3d> pts, int dim) {
+  json a = json::array();
+  for (const auto& p : pts) a.push_back(point_json(p, dim));
+  return a;
+}
+
+}  // namespace
+
+std::string write_curve_json(const AnyCurve& any) {
+  json doc;
+  doc["version"] = curve_format_version;
+  doc["type"] = std::string(curve_kind_name(any.kind));
+  const int dim = any.dimension;
+  std::visit(
+      [&](const auto& c) {
+        using C = std::decay_t<decltype(c)>;
+        doc["points"] = points_json(c.control_points(), dim);
+        if constexpr (std::is_same_v<C, HermiteSpline<Vec3d>>) {
+          doc["tangents"] = points_json(c.tangents(), dim);
+        } else if constexpr (std::is_same_v<C, CatmullRomSpline<Vec3d>>) {
+          doc["alpha"] = c.options().alpha;
+          doc["tension"] = c.options().tension;
+          doc["closed"] = c.options().closed;
+        } else if constexpr (std::is_same_v<C, CubicSpline<Vec3d>>) {
+          if (c.end_condition() == CubicSplineEnd::Clamped) {
+            doc["start_tangent"] = point_json(c.tangents().front(), dim);
+            doc["end_tangent"] = point_json(c.tangents().back(), dim);
+          }
+        } else if constexpr (std::is_same_v<C, KochanekBartelsSpline<Vec3d>>) {
+          json t = json::array(), co = json::array(), b = json::array();
+          for (const auto& k : c.keys()) t.push_back(k.tension), co.push_back(k.continuity), b.push_back(k.bias);
+          const bool shared = c.keys().size() == 1;
+          doc["tension"] = shared ? t[0] : t;
+          doc["continuity"] = shared ? co[0] : co;
+          doc["bias"] = shared ? b[0] : b;
+        } else if constexpr (std::is_same_v<C, BSpline<Vec3d>>) {
+          doc["degree"] = c.degree();
+          doc["knots"] = std::vector<double>(c.knots().begin(), c.knots().end());
+        } else if constexpr (std::is_same_v<C, LagrangeCurve<Vec3d>>) {
+          doc["params"] = std::vector<double>(c.params().begin(), c.params().end());
+        }
+      },
+      any.curve);
+  return doc.dump(2) + "\n";
+}
+
+}  // namespace inbetween

@@ -1,0 +1,108 @@
+// B-spline fitting to position-time pairs (texts 004 §3.2.5) with Eigen's column-pivoted
+// Householder QR.  The basis functions are the curves module's (bspline_basis_all), so the fitted
+// curve is exactly the BSpline that `curve sample` evaluates.
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "inbetween/curves/bspline_basis.hpp"
+#include "inbetween/timing/bspline_fit.hpp"
+
+namespace inbetween {
+
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+}  // namespace
+
+template <Point P>
+Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSplineFitOptions options) {
+  using T = scalar_of<P>;
+  constexpr int dim = PointTraits<P>::dim;
+  const int j = int(data.size());
+  const int k = options.degree;
+  if (k < 1 || k > kMaxFitDegree) {
+    return Error{ErrorCode::InvalidArgument,
+                 "degree " + std::to_string(k) + " is outside [1, " + std::to_string(kMaxFitDegree) + "]", "degree"};
+  }
+  if (j < 2) return Error{ErrorCode::TooFewPoints, "needs at least 2 data points, got " + std::to_string(j), ""};
+  const int n = options.control_points == 0 ? j : options.control_points;
+  if (n < k + 1 || n > j) {
+    return Error{ErrorCode::InvalidArgument,
+                 std::to_string(n) + " control points: needs degree + 1 = " + std::to_string(k + 1) +
+                     " <= control points <= " + std::to_string(j) + " (the number of data)",
+                 "control_points"};
+  }
+  for (int i = 0; i < j; ++i) {
+    const std::string where = "point " + std::to_string(i);
+    if (!std::isfinite(data[std::size_t(i)].t) || !is_finite(data[std::size_t(i)].p)) {
+      return Error{ErrorCode::NotFinite, "a time or coordinate is not finite", where};
+    }
+    if (i > 0 && !(data[std::size_t(i - 1)].t < data[std::size_t(i)].t)) {
+      return Error{ErrorCode::KeysNotIncreasing,
+                   "time " + num(double(data[std::size_t(i)].t)) + " is not after " +
+                       num(double(data[std::size_t(i - 1)].t)),
+                   where};
+    }
+  }
+  const double t_first = double(data.front().t), t_last = double(data.back().t);
+  const std::vector<double> knots = clamped_uniform_knots(t_first, t_last, k, n);
+
+  // N (j × n) and the data (j × dim), in double whatever T is.
+  Eigen::MatrixXd N(j, n);
+  Eigen::MatrixXd rhs(j, dim);
+  std::vector<double> row(static_cast<std::size_t>(n), 0.0);
+  for (int i = 0; i < j; ++i) {
+    bspline_basis_all<double>(knots, k, double(data[std::size_t(i)].t), 0, row);
+    for (int c = 0; c < n; ++c) N(i, c) = row[std::size_t(c)];
+    for (int d = 0; d < dim; ++d) rhs(i, d) = double(PointTraits<P>::get(data[std::size_t(i)].p, d));
+  }
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(N);
+  if (qr.rank() < n) {
+    return Error{ErrorCode::InvalidArgument,
+                 "the basis matrix has rank " + std::to_string(qr.rank()) + " < " + std::to_string(n) +
+                     " control points: some knot span holds too few data times (Schoenberg-Whitney); "
+                     "use fewer control points or spread the times",
+                 "control_points"};
+  }
+  const Eigen::MatrixXd B = qr.solve(rhs);
+
+  BSplineFit<P> fit;
+  fit.square = n == j;
+  fit.curve.degree = k;
+  for (double x : knots) fit.curve.knots.push_back(T(x));
+  for (int c = 0; c < n; ++c) {
+    P p{};
+    for (int d = 0; d < dim; ++d) PointTraits<P>::set(p, d, T(B(c, d)));
+    fit.curve.control_points.push_back(p);
+  }
+  const Eigen::MatrixXd residual = N * B - rhs;
+  double sum = 0, worst = 0;
+  for (int i = 0; i < j; ++i) {
+    const double r = residual.row(i).norm();
+    sum += r * r;
+    worst = std::max(worst, r);
+  }
+  fit.rms_residual = T(std::sqrt(sum / j));
+  fit.max_residual = T(worst);
+  return fit;
+}
+
+template Expected<BSplineFit<float>> fit_bspline(std::span<const TimedPoint<float>>, BSplineFitOptions);
+template Expected<BSplineFit<double>> fit_bspline(std::span<const TimedPoint<double>>, BSplineFitOptions);
+template Expected<BSplineFit<Vec2f>> fit_bspline(std::span<const TimedPoint<Vec2f>>, BSplineFitOptions);
+template Expected<BSplineFit<Vec2d>> fit_bspline(std::span<const TimedPoint<Vec2d>>, BSplineFitOptions);
+template Expected<BSplineFit<Vec3f>> fit_bspline(std::span<const TimedPoint<Vec3f>>, BSplineFitOptions);
+template Expected<BSplineFit<Vec3d>> fit_bspline(std::span<const TimedPoint<Vec3d>>, BSplineFitOptions);
+
+}  // namespace inbetween

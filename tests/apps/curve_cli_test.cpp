@@ -1,0 +1,145 @@
+// `inbetween curve info|sample|plot`: output shape, measured continuity in `info`, and exit code 2
+// with the file and JSON pointer for bad input.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "support/cli.hpp"
+
+namespace {
+
+using inbetween::test::CliRun;
+using inbetween::test::run_cli;
+
+std::string example(const std::string& name) {
+  return std::string(INBETWEEN_SOURCE_DIR) + "/examples/curves/" + name;
+}
+
+std::string temp_file(const std::string& name, const std::string& content) {
+  return inbetween::test::write_test_file(name, content).string();
+}
+
+TEST(CurveCli, InfoReportsKindSegmentsAndContinuityPerJoint) {
+  const CliRun r = run_cli("curve info " + example("kochanek-bartels.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("kind: kochanek-bartels"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("segments: 4"), std::string::npos);
+  EXPECT_NE(r.out.find("joints: 3"), std::string::npos);
+  // Key 2 has continuity 0.8: a corner (C0, not G1); keys 1 and 3 are C1 (theory: S_i = E_i for c = 0).
+  EXPECT_NE(r.out.find(" C0\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" C1\n"), std::string::npos) << r.out;
+}
+
+TEST(CurveCli, InfoShowsC2ForNaturalAndBSpline) {
+  for (const char* f : {"natural.json", "bspline-cubic.json"}) {
+    const CliRun r = run_cli(std::string("curve info ") + example(f));
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find(" C2\n"), std::string::npos) << f << "\n" << r.out;
+    EXPECT_EQ(r.out.find(" C1\n"), std::string::npos) << f << "\n" << r.out;
+  }
+}
+
+TEST(CurveCli, SampleWritesHeaderAndEquallySpacedParameters) {
+  const CliRun r = run_cli("curve sample " + example("bezier-path.json") + " --count 5");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  // Domain [0, 2] (two segments); the anchors are exact: P(0) = (0,0), P(1) = (4,0), P(2) = (8,0).
+  std::istringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "u,x,y");
+  std::getline(in, line);
+  EXPECT_EQ(line, "0,0,0");
+  std::getline(in, line);
+  EXPECT_EQ(line.substr(0, 4), "0.5,");
+  int rows = 2;
+  while (std::getline(in, line)) ++rows;
+  EXPECT_EQ(rows, 5);
+}
+
+TEST(CurveCli, SampleOneDimensionalHasOnlyX) {
+  const CliRun r = run_cli("curve sample " + example("lagrange-runge.json") + " -n 3");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out.substr(0, 4), "u,x\n");
+}
+
+TEST(CurveCli, PlotWritesSvg) {
+  const auto out = (inbetween::test::test_dir() / "plot.svg").string();
+  std::filesystem::remove(out);
+  const CliRun r = run_cli("curve plot " + example("catmull-rom-centripetal.json") + " -o " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  std::ifstream in(out);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_NE(ss.str().find("<svg"), std::string::npos);
+  EXPECT_NE(ss.str().find("<polyline"), std::string::npos);
+  EXPECT_NE(ss.str().find("</svg>"), std::string::npos);
+}
+
+TEST(CurveCli, BadInputExitsTwoNamingFileAndPointer) {
+  const auto f = temp_file("bad_dim.json", R"({"type": "bezier", "points": [[0, 0, 0], [1, 2, 3], [1, 2]]})");
+  CliRun r = run_cli("curve info " + f);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(f + ":/points/2: expected 3 numbers"), std::string::npos) << r.err;
+
+  const auto g = temp_file("bad_knots.json", R"({"type": "bspline", "degree": 1, "points": [0, 1, 2], "knots": [0, 0, 2, 1, 3]})");
+  r = run_cli("curve sample " + g);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(":/knots/3"), std::string::npos) << r.err;
+
+  r = run_cli("curve info /nonexistent/curve.json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("/nonexistent/curve.json"), std::string::npos);
+
+  r = run_cli("curve sample " + example("natural.json") + " --count 1");
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+// `--by arclength`: s_i = i·L/(N−1), and the points are that far apart along the curve.  Source: on
+// the straight two-segment Bézier path of the test below the arc length between samples is the
+// chord, so consecutive sample points must be exactly L/(N−1) apart.
+TEST(CurveCli, SampleByArcLengthHasEqualArcSteps) {
+  // A straight line drawn as a cubic Bézier with uneven control points: equal u steps are uneven
+  // in length, equal s steps are not.
+  const auto f = temp_file("line.json", R"({"type": "bezier", "points": [[0, 0], [0.1, 0.2], [0.2, 0.4], [3, 6]]})");
+  const CliRun r = run_cli("curve sample " + f + " --count 7 --by arclength");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "u,s,x,y");
+  const double length = std::sqrt(3.0 * 3.0 + 6.0 * 6.0);  // closed form: the chord of a line
+  std::vector<std::array<double, 4>> rows;
+  while (std::getline(in, line)) {
+    std::array<double, 4> row{};
+    char comma;
+    std::istringstream ls(line);
+    ls >> row[0] >> comma >> row[1] >> comma >> row[2] >> comma >> row[3];
+    rows.push_back(row);
+  }
+  ASSERT_EQ(rows.size(), 7u);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double s_expected = length * double(i) / 6.0;
+    EXPECT_NEAR(rows[i][1], s_expected, 1e-12 * length) << "row " << i;
+    EXPECT_NEAR(std::hypot(rows[i][2], rows[i][3]), s_expected, 1e-9 * length) << "row " << i;  // default's 1e-9·L
+  }
+  // The same file sampled by parameter is uneven (the point of arc-length sampling).
+  const CliRun by_u = run_cli("curve sample " + f + " --count 7");
+  ASSERT_EQ(by_u.exit_code, 0) << by_u.err;
+  EXPECT_EQ(by_u.out.substr(0, 6), "u,x,y\n");
+}
+
+TEST(CurveCli, InfoLengthIsTheArcLength) {
+  const auto f = temp_file("line3.json", R"({"type": "bezier", "points": [[0, 0, 0], [1, 2, 2], [3, 6, 6]]})");
+  const CliRun r = run_cli("curve info " + f);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("length: 9 "), std::string::npos) << r.out;  // |(3,6,6)| = 9 (closed form)
+}
+
+}  // namespace

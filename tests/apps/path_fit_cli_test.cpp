@@ -1,0 +1,113 @@
+// `inbetween path fit`: runs the built CLI on small CSV files.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using inbetween::test::CliRun;
+using inbetween::test::run_cli;
+using inbetween::test::test_dir;
+
+TEST(PathFitCli, InterpolatesByDefaultAndWritesABsplineCurveFile) {
+  const auto csv = inbetween::test::write_test_file("square.csv", "t,x,y\n0,0,0\n1,1,2\n2,3,1\n3,4,4\n4,5,0\n");
+  const CliRun r = run_cli("path fit " + csv.string() + " --degree 3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["type"], "bspline");
+  EXPECT_EQ(j["degree"], 3);
+  EXPECT_EQ(j["points"].size(), 5u);         // square case: one control point per row
+  EXPECT_EQ(j["points"][0].size(), 2u);      // 2-D rows give 2-D points
+  EXPECT_EQ(j["knots"].size(), 5u + 3 + 1);  // n + k + 1
+  EXPECT_EQ(j["knots"][0], 0.0);
+  EXPECT_EQ(j["knots"][8], 4.0);
+  // Clamped: the first control point is the first data point.
+  EXPECT_NEAR(j["points"][0][0].template get<double>(), 0.0, 1e-12);
+  EXPECT_NEAR(j["points"][4][1].template get<double>(), 0.0, 1e-12);
+}
+
+TEST(PathFitCli, LeastSquaresToAFileWithOutput) {
+  const auto csv = inbetween::test::write_test_file("ls.csv", "1,1.6\n2,1.65\n3,1.6\n4,1.8\n5,2.1\n6,2.2\n7,2.0\n8,1.5\n9,1.3\n10,1.4\n");
+  const fs::path out = test_dir() / "ls.json";
+  fs::remove(out);
+  const CliRun r = run_cli("path fit " + csv.string() + " --degree 2 --control-points 5 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  std::ifstream in(out);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["points"].size(), 5u);
+  EXPECT_EQ(j["knots"].size(), 8u);
+  EXPECT_DOUBLE_EQ(j["knots"][3].get<double>(), 4.0);  // interior knots 1 + 9·{1/3, 2/3}
+  EXPECT_DOUBLE_EQ(j["knots"][4].get<double>(), 7.0);
+}
+
+// The fitted file is a curve file: `curve sample` reads it, and (square case, B = N⁻¹P) the curve
+// passes through the data.  Source: the data rows themselves.
+TEST(PathFitCli, FittedFileIsAcceptedByCurveSample) {
+  const auto csv = inbetween::test::write_test_file("rows.csv", "t,x,y\n0,0,0\n1,1,2\n2,3,1\n3,4,4\n4,5,0\n");
+  const fs::path out = test_dir() / "fit.json";
+  CliRun r = run_cli("path fit " + csv.string() + " --degree 3 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli("curve sample " + out.string() + " --count 5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Knots span [0, 4] = [t_first, t_last], so equal parameter steps land on the data times.
+  const double expected[5][3] = {{0, 0, 0}, {1, 1, 2}, {2, 3, 1}, {3, 4, 4}, {4, 5, 0}};
+  std::istringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "u,x,y");
+  for (const auto& row : expected) {
+    ASSERT_TRUE(std::getline(in, line));
+    double u, x, y;
+    char c1, c2;
+    std::istringstream ls(line);
+    ls >> u >> c1 >> x >> c2 >> y;
+    EXPECT_NEAR(u, row[0], 1e-12);
+    EXPECT_NEAR(x, row[1], 1e-12) << line;
+    EXPECT_NEAR(y, row[2], 1e-12) << line;
+  }
+  r = run_cli("curve sample " + out.string() + " --count 4 --by arclength");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, 8), "u,s,x,y\n");
+}
+
+TEST(PathFitCli, BadRowsAndOptionsExitTwoNamingThePlace) {
+  const auto bad = inbetween::test::write_test_file("bad.csv", "t,x\n0,1\n1,oops\n");
+  CliRun r = run_cli("path fit " + bad.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
+  const auto ragged = inbetween::test::write_test_file("ragged.csv", "0,1,2\n1,2\n");
+  r = run_cli("path fit " + ragged.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("line 2"), std::string::npos) << r.err;
+  const auto back = inbetween::test::write_test_file("back.csv", "0,1\n2,2\n1,3\n3,3\n");
+  r = run_cli("path fit " + back.string() + " --degree 1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;  // the row whose time goes back
+  const auto ok = inbetween::test::write_test_file("ok.csv", "0,1\n1,2\n2,3\n");
+  r = run_cli("path fit " + ok.string() + " --degree 3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--control-points"), std::string::npos) << r.err;
+  r = run_cli("path fit " + (test_dir() / "missing.csv").string());
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+TEST(PathFitCli, DemoHasTheSpeedControlSection) {
+  const CliRun r = run_cli("demo");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("== speed control =="), std::string::npos);
+  EXPECT_NE(r.out.find("s(0.73) = 0.953"), std::string::npos);
+  EXPECT_NE(r.out.find("u(0.75) = 0.41875"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,58 @@
+// Lagrange interpolation: passes through its points, global control, derivatives, and Runge's
+// oscillation on equally spaced samples of 1/(1 + 25x²).
+#include <gtest/gtest.h>
+
+#include "curve_test_util.hpp"
+#include "inbetween/curves/lagrange.hpp"
+
+namespace inbetween {
+namespace {
+
+double runge(double x) { return 1 / (1 + 25 * x * x); }
+
+// Max |p(x) − f(x)| over [−1, 1] of the interpolant on n equally spaced nodes.
+double runge_error(int n) {
+  std::vector<double> pts, params;
+  for (int i = 0; i < n; ++i) {
+    const double x = -1 + 2.0 * i / (n - 1);
+    params.push_back(x);
+    pts.push_back(runge(x));
+  }
+  const auto c = build_lagrange(pts, params).value();
+  double worst = 0;
+  for (int s = 0; s <= 2000; ++s) {
+    const double x = -1 + 2.0 * s / 2000;
+    worst = std::max(worst, std::abs(c.point(x) - runge(x)));
+  }
+  return worst;
+}
+
+TEST(LagrangeTest, RungeOscillationGrowsWithTheNumberOfEquallySpacedPoints) {
+  // Known behaviour (Runge 1901): the max error on equally spaced nodes grows without bound;
+  // independent evaluation with numpy.polyfit/polyval on the same nodes and 2001 sample points gives
+  // 0.4327 (6 nodes), 1.91564 (11), 59.82 (21).
+  const double e6 = runge_error(6), e11 = runge_error(11), e21 = runge_error(21);
+  EXPECT_GT(e11, e6);
+  EXPECT_GT(e21, 10 * e11);
+  EXPECT_NEAR(e6, 0.43269, 1e-4);
+  EXPECT_NEAR(e11, 1.91564, 1e-4);
+  EXPECT_NEAR(e21, 59.822, 0.01);
+}
+
+TEST(LagrangeTest, InterpolatesGlobalControlAndDerivatives) {
+  test::Random rng(test::seed_for(401));
+  SCOPED_TRACE(rng.trace());
+  const auto pts = test::random_points<Vec2d>(rng, 6);
+  const std::vector<double> params{0, 0.5, 1.5, 2, 3, 4.5};
+  const auto c = build_lagrange(pts, params).value();
+  for (int i = 0; i < 6; ++i) EXPECT_LT(test::max_abs_diff(c.point(params[i]), pts[i]), 1e-13);
+  test::expect_global_control([&](const std::vector<Vec2d>& p) { return build_lagrange(p, params).value(); }, pts,
+                              Vec2d{0.1, 0.1});
+  test::expect_derivatives_match_differences(c, rng);
+  const auto bad = build_lagrange(pts, std::vector<double>{0, 1, 1, 2, 3, 4});
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "param 2");
+}
+
+}  // namespace
+}  // namespace inbetween

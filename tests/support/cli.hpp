@@ -1,0 +1,66 @@
+#pragma once
+// Runs the built `inbetween` tool (INBETWEEN_CLI) from a test: standard input from a string,
+// standard output and standard error captured separately, and the exit code.  Every test gets its
+// own scratch folder (test name + process id), because ctest runs the cases in parallel.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace inbetween::test {
+
+/// What one run of the tool gave.
+struct CliRun {
+  int exit_code = -1;
+  std::string out;  ///< standard output
+  std::string err;  ///< standard error
+};
+
+/// The whole content of a file ("" when it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// This test's scratch folder, created on first use.
+inline std::filesystem::path test_dir() {
+  namespace fs = std::filesystem;
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "none";
+  for (char& c : name)
+    if (c == '/' || c == '<' || c == '>') c = '_';
+  const fs::path dir = fs::path(INBETWEEN_BINARY_DIR) / "cli-test" / (name + "-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// Writes `content` to `name` in this test's scratch folder and returns its path.
+inline std::filesystem::path write_test_file(const std::string& name, const std::string& content) {
+  const auto p = test_dir() / name;
+  std::ofstream(p, std::ios::binary) << content;
+  return p;
+}
+
+/// Runs `inbetween <args>` with `input` on standard input.
+inline CliRun run_cli(const std::string& args, const std::string& input = "") {
+  const auto dir = test_dir();
+  const auto in = dir / "stdin.txt", out = dir / "stdout.txt", err = dir / "stderr.txt";
+  std::ofstream(in, std::ios::binary) << input;
+  const std::string command = std::string("'") + INBETWEEN_CLI + "' " + args + " < '" + in.string() + "' > '" +
+                              out.string() + "' 2> '" + err.string() + "'";
+  const int status = std::system(command.c_str());
+  CliRun r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+}  // namespace inbetween::test
