@@ -4,10 +4,11 @@ PRESET ?= release
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 
-# Build and test dependencies (Debian 12 package names).  python3-scipy is the independent
-# reference that the rotation cross-check test uses (it skips when absent).
+# Build and test dependencies (Debian 12 package names).  python3-scipy and python3-jsonschema are
+# independent references (rotation conventions, least squares, the scene JSON Schema) that tests use
+# through /usr/bin/python3; those tests skip when they are absent.
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
-        nlohmann-json3-dev libeigen3-dev python3 python3-scipy
+        nlohmann-json3-dev libeigen3-dev python3 python3-scipy python3-jsonschema
 
 .PHONY: all deps configure build test demo bench asan clean
 

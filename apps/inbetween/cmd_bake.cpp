@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "inbetween/math/format.hpp"
 #include "inbetween/io/scene.hpp"
 
 namespace inbetween::cli {
@@ -55,9 +56,7 @@ std::vector<double> frame_list(const std::string& spec, double scene_start, doub
 }
 
 std::string format_float(float v) {
-  char buf[32];
-  auto res = std::to_chars(buf, buf + sizeof buf, v);
-  std::string s(buf, res.ptr);
+  std::string s = shortest_text(v);
   if (s == "-0") s = "0";
   return s;
 }

@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "command.hpp"
+#include "inbetween/math/format.hpp"
 
 namespace inbetween::cli {
 
@@ -67,9 +68,7 @@ std::string read_input(const std::string& path) {
 }
 
 std::string format_number(double v) {
-  char buf[64];
-  auto res = std::to_chars(buf, buf + sizeof buf, v);
-  std::string s(buf, res.ptr);
+  std::string s = shortest_text(v);
   if (s == "-0") s = "0";
   return s;
 }

@@ -1,4 +1,5 @@
 // ArcLengthTable: validation and the lookups of texts 004 Eqs. 3.8–3.11.
+#include "inbetween/math/format.hpp"
 #include "inbetween/arclength/arc_length_table.hpp"
 
 #include <algorithm>
@@ -9,10 +10,6 @@
 namespace inbetween {
 namespace {
 
-template <class T>
-std::string num(T v) {
-  return std::to_string(double(v));
-}
 
 }  // namespace
 
@@ -32,14 +29,14 @@ Expected<ArcLengthTable<T>> ArcLengthTable<T>::from_entries(std::span<const T> u
       return Error{ErrorCode::NotFinite, "u or s is not finite", where};
     }
     if (i == 0 && s[0] != T(0)) {
-      return Error{ErrorCode::InvalidArgument, "the first arc length must be 0, got " + num(s[0]), where};
+      return Error{ErrorCode::InvalidArgument, "the first arc length must be 0, got " + shortest_text(s[0]), where};
     }
     if (i > 0 && !(u[i - 1] < u[i])) {
       return Error{ErrorCode::KeysNotIncreasing,
-                   "u = " + num(u[i]) + " is not after u = " + num(u[i - 1]), where};
+                   "u = " + shortest_text(u[i]) + " is not after u = " + shortest_text(u[i - 1]), where};
     }
     if (i > 0 && s[i] < s[i - 1]) {
-      return Error{ErrorCode::NotMonotone, "s = " + num(s[i]) + " is less than s = " + num(s[i - 1]), where};
+      return Error{ErrorCode::NotMonotone, "s = " + shortest_text(s[i]) + " is less than s = " + shortest_text(s[i - 1]), where};
     }
   }
   ArcLengthTable t;

@@ -1,5 +1,6 @@
 // Reads the inbetween scene JSON format (docs/scene-format.md) into built tracks.  nlohmann_json
 // stays inside this file; every error carries the JSON pointer of the offending value.
+#include "inbetween/math/format.hpp"
 #include "inbetween/io/scene.hpp"
 
 #include <nlohmann/json.hpp>
@@ -17,12 +18,6 @@ namespace inbetween {
 
 namespace {
 
-// Shortest text that reads back to the same double ("2", "0.1").
-std::string num(double v) {
-  char buf[32];
-  auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
 
 using nlohmann::json;
 
@@ -70,6 +65,14 @@ Expected<double> get_number(const json& j, const std::string& ptr) {
 
 // Reads a number; JSON has no NaN, but the strings "nan"/"inf" are reported as non-finite numbers
 // so that a scene written by a careless exporter gets a clear message.
+// An optional true/false member; `fallback` when absent.
+Expected<bool> bool_member(const json& obj, const std::string& ptr, std::string_view name, bool fallback) {
+  auto it = obj.find(std::string(name));
+  if (it == obj.end()) return fallback;
+  if (!it->is_boolean()) return error_at(ErrorCode::InvalidArgument, "expected true or false", child(ptr, name));
+  return it->get<bool>();
+}
+
 Expected<double> number_member(const json& obj, const std::string& ptr, std::string_view name,
                                std::optional<double> fallback) {
   const std::string p = child(ptr, name);
@@ -231,8 +234,8 @@ Expected<SceneScalarTrack> parse_scalar_track(const json& j, const std::string& 
     if (!key) return key.error();
     if (i > 0 && !(key->frame > raw.keys.back().frame)) {
       return error_at(ErrorCode::KeysNotIncreasing,
-                      "frame " + num(key->frame) + " is not after the previous key's frame " +
-                          num(raw.keys.back().frame) + " (keys must be sorted by strictly increasing frame)",
+                      "frame " + shortest_text<double>(key->frame) + " is not after the previous key's frame " +
+                          shortest_text<double>(raw.keys.back().frame) + " (keys must be sorted by strictly increasing frame)",
                       child(child(kp, i), "frame"));
     }
     raw.keys.push_back(*key);
@@ -369,7 +372,7 @@ Expected<Track<V>> parse_vector_keys(const json& j, const std::string& ptr, int 
     }
     if (i > 0 && !(k.frame > raw.back().frame)) {
       return error_at(ErrorCode::KeysNotIncreasing,
-                      "frame " + num(k.frame) + " is not after the previous key's frame " + num(raw.back().frame) +
+                      "frame " + shortest_text<double>(k.frame) + " is not after the previous key's frame " + shortest_text<double>(raw.back().frame) +
                           " (keys must be sorted by strictly increasing frame)",
                       child(p, "frame"));
     }
@@ -405,10 +408,9 @@ Expected<QuatTrack<double>> parse_quat_keys(const json& j, const std::string& pt
   if (!k) return k.error();
   if (!(*k > 0 && *k <= 1)) return error_at(ErrorCode::InvalidArgument, "must be in (0, 1]", child(ptr, "distance_factor"));
   options.distance_factor = *k;
-  if (auto ta = j.find("time_aware"); ta != j.end()) {
-    if (!ta->is_boolean()) return error_at(ErrorCode::InvalidArgument, "expected true or false", child(ptr, "time_aware"));
-    options.time_aware = ta->get<bool>();
-  }
+  auto time_aware = bool_member(j, ptr, "time_aware", options.time_aware);
+  if (!time_aware) return time_aware.error();
+  options.time_aware = *time_aware;
   auto keys = keys_array(j, ptr);
   if (!keys) return keys.error();
   const std::string kp = child(ptr, "keys");
@@ -432,10 +434,9 @@ Expected<QuatTrack<double>> parse_quat_keys(const json& j, const std::string& pt
     if (!tin) return tin.error();
     auto tout = vector_member(kj, p, "out_tangent", 4, gltf);
     if (!tout) return tout.error();
-    if (auto lw = kj.find("long_way"); lw != kj.end()) {
-      if (!lw->is_boolean()) return error_at(ErrorCode::InvalidArgument, "expected true or false", child(p, "long_way"));
-      q.long_way = lw->get<bool>();
-    }
+    auto long_way = bool_member(kj, p, "long_way", false);
+    if (!long_way) return long_way.error();
+    q.long_way = *long_way;
     q.frame = *frame;
     q.value = quat_from(*value);
     q.interpolation = *interp;
@@ -443,7 +444,7 @@ Expected<QuatTrack<double>> parse_quat_keys(const json& j, const std::string& pt
     q.out_tangent = quat_from(*tout);
     if (i > 0 && !(q.frame > raw.back().frame)) {
       return error_at(ErrorCode::KeysNotIncreasing,
-                      "frame " + num(q.frame) + " is not after the previous key's frame " + num(raw.back().frame) +
+                      "frame " + shortest_text<double>(q.frame) + " is not after the previous key's frame " + shortest_text<double>(raw.back().frame) +
                           " (keys must be sorted by strictly increasing frame)",
                       child(p, "frame"));
     }
@@ -500,10 +501,9 @@ Expected<SceneEulerTrack> parse_euler_track(const json& j, const std::string& pt
   auto mode = name_member(j, ptr, "mode", EulerTrackMode::angles, kEulerModes);
   if (!mode) return mode.error();
   options.mode = *mode;
-  if (auto f = j.find("filter"); f != j.end()) {
-    if (!f->is_boolean()) return error_at(ErrorCode::InvalidArgument, "expected true or false", child(ptr, "filter"));
-    options.filter = f->get<bool>();
-  }
+  auto filter = bool_member(j, ptr, "filter", options.filter);
+  if (!filter) return filter.error();
+  options.filter = *filter;
   auto keys = keys_array(j, ptr);
   if (!keys) return keys.error();
   const std::string kp = child(ptr, "keys");
@@ -530,7 +530,7 @@ Expected<SceneEulerTrack> parse_euler_track(const json& j, const std::string& pt
     }
     if (i > 0 && !(*frame > raw.back().frame)) {
       return error_at(ErrorCode::KeysNotIncreasing,
-                      "frame " + num(*frame) + " is not after the previous key's frame " + num(raw.back().frame) +
+                      "frame " + shortest_text<double>(*frame) + " is not after the previous key's frame " + shortest_text<double>(raw.back().frame) +
                           " (keys must be sorted by strictly increasing frame)",
                       child(p, "frame"));
     }

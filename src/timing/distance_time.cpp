@@ -1,5 +1,6 @@
 // DistanceTimeCurve: builders from keys and velocity curves, the backing-up check and the
 // Fritsch–Carlson monotone repair.
+#include "inbetween/math/format.hpp"
 #include "inbetween/timing/distance_time.hpp"
 
 #include <algorithm>
@@ -12,12 +13,6 @@
 namespace inbetween {
 namespace {
 
-template <class T>
-std::string num(T v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", double(v));
-  return buf;
-}
 
 // Checks ≥ 2 keys, finite values and strictly increasing times; `values(i)` lists key i's numbers.
 template <class T, class Get>
@@ -32,7 +27,7 @@ Expected<void> check_keys(std::size_t n, Get&& get) {
     if (i > 0) {
       const T prev = std::get<0>(get(i - 1));
       if (!(prev < t)) {
-        return Error{ErrorCode::KeysNotIncreasing, "time " + num(t) + " is not after " + num(prev), where};
+        return Error{ErrorCode::KeysNotIncreasing, "time " + shortest_text(t) + " is not after " + shortest_text(prev), where};
       }
     }
   }
@@ -223,8 +218,8 @@ Expected<void> DistanceTimeCurve<T>::check_monotone() const {
   const auto b = find_backing_up();
   if (!b) return {};
   return Error{ErrorCode::NotMonotone,
-               "the object backs up from t = " + num(b->t_begin) + " to t = " + num(b->t_end) +
-                   " (velocity down to " + num(b->min_velocity) + " at t = " + num(b->t_min_velocity) + ")",
+               "the object backs up from t = " + shortest_text(b->t_begin) + " to t = " + shortest_text(b->t_end) +
+                   " (velocity down to " + shortest_text(b->min_velocity) + " at t = " + shortest_text(b->t_min_velocity) + ")",
                "segment " + std::to_string(b->segment)};
 }
 
@@ -234,7 +229,7 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::monotone_repair() const {
   for (std::size_t i = 1; i < n; ++i) {
     if (s_[i] < s_[i - 1]) {
       return Error{ErrorCode::NotMonotone,
-                   "distance " + num(s_[i]) + " at t = " + num(t_[i]) + " is less than " + num(s_[i - 1]) +
+                   "distance " + shortest_text(s_[i]) + " at t = " + shortest_text(t_[i]) + " is less than " + shortest_text(s_[i - 1]) +
                        " at the key before: no monotone curve passes through the keys",
                    "key " + std::to_string(i)};
     }

@@ -10,20 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "inbetween/math/format.hpp"
 #include "inbetween/curves/bspline_basis.hpp"
 #include "inbetween/timing/bspline_fit.hpp"
 
 namespace inbetween {
-
-namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
-}
-
-}  // namespace
 
 template <Point P>
 Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSplineFitOptions options) {
@@ -50,8 +41,8 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
     }
     if (i > 0 && !(data[std::size_t(i - 1)].t < data[std::size_t(i)].t)) {
       return Error{ErrorCode::KeysNotIncreasing,
-                   "time " + num(double(data[std::size_t(i)].t)) + " is not after " +
-                       num(double(data[std::size_t(i - 1)].t)),
+                   "time " + shortest_text<double>(double(data[std::size_t(i)].t)) + " is not after " +
+                       shortest_text<double>(double(data[std::size_t(i - 1)].t)),
                    where};
     }
   }

@@ -1,6 +1,7 @@
 // Blender-compatible F-curve building (handle recomputation) and evaluation.  Every computation on
 // stored data is done in float in the order Blender 3.4 does it, because Blender's results depend
 // on that rounding; see docs/tracks.md for the facts reproduced here.
+#include "inbetween/math/format.hpp"
 #include "inbetween/tracks/fcurve.hpp"
 
 #include <algorithm>
@@ -16,12 +17,6 @@ namespace inbetween {
 
 namespace {
 
-// Shortest text that reads back to the same double ("2", "0.1").
-std::string num(double v) {
-  char buf[32];
-  auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
 
 using Key = FCurve::Key;
 
@@ -822,13 +817,13 @@ Expected<FCurve> build_fcurve(const RawFCurve& raw) {
       const FCurveKey& p = raw.keys[i - 1];
       if (!(k.frame > p.frame)) {
         return Error{ErrorCode::KeysNotIncreasing,
-                     "frame " + num(k.frame) + " is not after frame " + num(p.frame) +
+                     "frame " + shortest_text<double>(k.frame) + " is not after frame " + shortest_text<double>(p.frame) +
                          " of key " + std::to_string(i - 1),
                      where(i)};
       }
       if (!(float(k.frame) > float(p.frame))) {
         return Error{ErrorCode::KeysNotIncreasing,
-                     "frame " + num(k.frame) + " rounds to the same single-precision frame as key " +
+                     "frame " + shortest_text<double>(k.frame) + " rounds to the same single-precision frame as key " +
                          std::to_string(i - 1),
                      where(i)};
       }

@@ -13,47 +13,21 @@
 #include <sys/wait.h>
 
 #include "inbetween/io/scene.hpp"
+#include "support/cli.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out, err;
-};
+using inbetween::test::CliRun;
+using inbetween::test::slurp;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+CliRun run(const std::string& args) { return inbetween::test::run_cli(args); }
 
-// One folder per test, so that ctest -j runs do not share files.
-fs::path temp_dir() {
-  const fs::path d = fs::path(INBETWEEN_BINARY_DIR) / "bake-cli-test" /
-                     ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  fs::create_directories(d);
-  return d;
-}
-
-CliRun run(const std::string& args) {
-  const fs::path d = temp_dir();
-  const std::string cmd = std::string("\"") + INBETWEEN_CLI + "\" " + args + " > \"" + (d / "stdout").string() +
-                          "\" 2> \"" + (d / "stderr").string() + "\"";
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(d / "stdout");
-  r.err = slurp(d / "stderr");
-  return r;
-}
+fs::path temp_dir() { return inbetween::test::test_dir(); }
 
 fs::path write_scene(const std::string& name, const std::string& text) {
-  const fs::path p = temp_dir() / name;
-  std::ofstream(p) << text;
-  return p;
+  return inbetween::test::write_test_file(name, text);
 }
 
 const std::string kExample = std::string(INBETWEEN_SOURCE_DIR) + "/examples/scenes/bouncing_cube.json";

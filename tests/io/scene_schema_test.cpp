@@ -27,10 +27,10 @@ const std::string kExample = std::string(INBETWEEN_SOURCE_DIR) + "/examples/scen
 TEST(SceneSchema, ExampleValidatesAndParses) {
   auto scene = inbetween::parse_scene(slurp(kExample));
   ASSERT_TRUE(scene.has_value()) << scene.error().describe();
-  if (std::system("python3 -c 'import jsonschema' > /dev/null 2>&1") != 0) {
-    GTEST_SKIP() << "python3 jsonschema not installed; schema validation not checked";
+  if (std::system("/usr/bin/python3 -c 'import jsonschema' > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "Debian's python3-jsonschema (/usr/bin/python3) not installed; schema validation not checked";
   }
-  const std::string cmd = "python3 -c \"import json, jsonschema, sys; jsonschema.validate(json.load(open(sys.argv[2])), "
+  const std::string cmd = "/usr/bin/python3 -c \"import json, jsonschema, sys; jsonschema.validate(json.load(open(sys.argv[2])), "
                           "json.load(open(sys.argv[1])), cls=jsonschema.Draft202012Validator)\" '" +
                           kSchema + "' '" + kExample + "'";
   EXPECT_EQ(std::system(cmd.c_str()), 0);

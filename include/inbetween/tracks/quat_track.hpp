@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "inbetween/math/format.hpp"
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/orientation_interp.hpp"
@@ -194,8 +195,8 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const 
     if (!(len > T(0))) return Error{ErrorCode::InvalidArgument, "zero quaternion is not a rotation", where(i)};
     if (i > 0 && !(k.frame > keys[i - 1].frame)) {
       return Error{ErrorCode::KeysNotIncreasing,
-                   "frame " + track_detail::num(double(k.frame)) + " is not after frame " +
-                       track_detail::num(double(keys[i - 1].frame)) + " of key " + std::to_string(i - 1),
+                   "frame " + shortest_text(double(k.frame)) + " is not after frame " +
+                       shortest_text(double(keys[i - 1].frame)) + " of key " + std::to_string(i - 1),
                    where(i)};
     }
     tr.frames_[i] = k.frame;

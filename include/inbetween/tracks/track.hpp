@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "inbetween/math/format.hpp"
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/vec.hpp"
@@ -133,11 +134,6 @@ V component_map(const V& a, auto&& f) {
   return r;
 }
 
-inline std::string num(double v) {
-  char buf[32];
-  auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
 
 template <class V>
 bool finite(const V& v) noexcept {
@@ -169,8 +165,8 @@ Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend be
     }
     if (i > 0 && !(k.frame > keys[i - 1].frame)) {
       return Error{ErrorCode::KeysNotIncreasing,
-                   "frame " + track_detail::num(double(k.frame)) + " is not after frame " +
-                       track_detail::num(double(keys[i - 1].frame)) + " of key " + std::to_string(i - 1),
+                   "frame " + shortest_text(double(k.frame)) + " is not after frame " +
+                       shortest_text(double(keys[i - 1].frame)) + " of key " + std::to_string(i - 1),
                    where(i)};
     }
   }
