@@ -44,3 +44,14 @@
 #include "inbetween/timing/distance_time.hpp"
 #include "inbetween/timing/ease.hpp"
 #include "inbetween/timing/motion.hpp"
+
+// paths
+#include "inbetween/paths/camera.hpp"
+#include "inbetween/paths/frenet_frames.hpp"
+#include "inbetween/paths/path_finding.hpp"
+#include "inbetween/paths/path_frame.hpp"
+#include "inbetween/paths/path_pose.hpp"
+#include "inbetween/paths/rotation_minimizing_frames.hpp"
+#include "inbetween/paths/smooth_bspline.hpp"  // uses fit_bspline from inbetween_eigen (link inbetween::eigen)
+#include "inbetween/paths/smoothing.hpp"
+#include "inbetween/paths/surface_path.hpp"

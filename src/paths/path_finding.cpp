@@ -11,7 +11,12 @@
 namespace inbetween {
 namespace {
 
-std::string cell_text(GridCell c) { return "(" + std::to_string(c.x) + ", " + std::to_string(c.y) + ")"; }
+// Built with append(): GCC 12 gives a false -Wrestrict warning for "(" + std::to_string(…).
+std::string cell_text(GridCell c) {
+  std::string s("(");
+  s.append(std::to_string(c.x)).append(", ").append(std::to_string(c.y)).append(")");
+  return s;
+}
 
 constexpr double kSqrt2 = 1.4142135623730951;
 
