@@ -135,5 +135,26 @@ TEST(LookAhead, MuseumPathsGiveFiniteCameras) {
   }
 }
 
+TEST(CameraBetweenPaths, EyeOnOneLineLooksAtAPointOnAnother) {
+  // Eye on the line (0,0,0) → (10,0,0), centre of interest on (0,0,−5) → (20,0,−5): at fraction
+  // 0.5 the eye is (5, 0, 0) and the COI (10, 0, −5); view (5, 0, −5)/√50.  Up path
+  // (0,10,0) → (10,10,0): U − P = (0, 10, 0), so the camera up is the y-ward perpendicular.
+  const std::vector<Vec3d> a{{0, 0, 0}, {10, 0, 0}}, b{{0, 0, -5}, {20, 0, -5}}, c{{0, 10, 0}, {10, 10, 0}};
+  auto pa = make_arc_length(*build_catmull_rom(a));
+  auto pb = make_arc_length(*build_catmull_rom(b));
+  auto pc = make_arc_length(*build_catmull_rom(c));
+  ASSERT_TRUE(pa && pb && pc);
+  const double r = std::sqrt(0.5);
+  const CameraPosed cam = camera_between_paths(*pa, *pb, 0.5);
+  expect_vec_near(cam.eye, Vec3d{5, 0, 0}, 1e-12);
+  expect_vec_near(cam.forward, Vec3d{r, 0, -r}, 1e-12);
+  expect_vec_near(cam.up, Vec3d{0, 1, 0}, 1e-12);
+  const CameraPosed up = camera_between_paths(*pa, *pb, *pc, 0.5);
+  expect_vec_near(up.up, Vec3d{0, 1, 0}, 1e-12);
+  expect_vec_near(up.right, Vec3d{r, 0, r}, 1e-12);  // forward × up = (r,0,−r) × (0,1,0)
+  const CameraPosed end = camera_between_paths(*pa, *pb, 7.0);  // clamped to 1
+  expect_vec_near(end.eye, Vec3d{10, 0, 0}, 1e-12);
+}
+
 }  // namespace
 }  // namespace inbetween

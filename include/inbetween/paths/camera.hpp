@@ -118,4 +118,36 @@ CameraPose<typename C::scalar_type> look_ahead_camera(const ArcLength<C>& path, 
   return look_at(eye, coi, options.up, look);
 }
 
+/// The camera on one path looking at a point on a second path (texts: position P(s), centre of
+/// interest C(s)).  Both paths are traversed by the same normalised distance: with `fraction` f in
+/// [0, 1] (clamped; NaN reads as 0) the eye is P(f·L_P) and the centre of interest C(f·L_C), so
+/// both move at constant speed when f does.  `up` is the general up direction (Eq. 3.33).
+template <Curve CP, Curve CC>
+  requires std::same_as<typename CP::point_type, Vec3<typename CP::scalar_type>> &&
+           std::same_as<typename CC::point_type, typename CP::point_type>
+CameraPose<typename CP::scalar_type> camera_between_paths(
+    const ArcLength<CP>& position, const ArcLength<CC>& target, typename CP::scalar_type fraction,
+    const Vec3<typename CP::scalar_type>& up = {0, 1, 0},
+    const LookAtOptions<typename CP::scalar_type>& options = {}) noexcept {
+  using T = typename CP::scalar_type;
+  const T f = std::isnan(fraction) ? T(0) : clamp(fraction, T(0), T(1));
+  return look_at(position.point_at_length(f * position.length()), target.point_at_length(f * target.length()), up,
+                 options);
+}
+
+/// As above with an up path U (Eq. 3.34): the general up direction is U(f·L_U) − P(f·L_P).
+template <Curve CP, Curve CC, Curve CU>
+  requires std::same_as<typename CP::point_type, Vec3<typename CP::scalar_type>> &&
+           std::same_as<typename CC::point_type, typename CP::point_type> &&
+           std::same_as<typename CU::point_type, typename CP::point_type>
+CameraPose<typename CP::scalar_type> camera_between_paths(
+    const ArcLength<CP>& position, const ArcLength<CC>& target, const ArcLength<CU>& up_path,
+    typename CP::scalar_type fraction, const LookAtOptions<typename CP::scalar_type>& options = {}) noexcept {
+  using T = typename CP::scalar_type;
+  const T f = std::isnan(fraction) ? T(0) : clamp(fraction, T(0), T(1));
+  const Vec3<T> eye = position.point_at_length(f * position.length());
+  return look_at(eye, target.point_at_length(f * target.length()),
+                 Vec3<T>(up_path.point_at_length(f * up_path.length()) - eye), options);
+}
+
 }  // namespace inbetween
