@@ -137,6 +137,27 @@ TEST(SurfacePath, BadInputIsNamed) {
   EXPECT_EQ(f.error().where, "up");
 }
 
+template <class T>
+class SurfaceTyped : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(SurfaceTyped, Scalars);
+
+// Both walks keep every point on the unit sphere to the projection tolerance (1e-6 in float,
+// 1e-13 in double: ProjectionOptions defaults), with a few ulp of |p| on top.
+TYPED_TEST(SurfaceTyped, WalksStayOnTheSphere) {
+  using T = TypeParam;
+  const T tol = sizeof(T) == 4 ? T(2e-6) : T(1e-12);
+  auto s = make_implicit_surface<T>([](const Vec3<T>& p) { return dot(p, p) - T(1); },
+                                    [](const Vec3<T>& p) { return p * T(2); });
+  for (auto mode : {SurfaceWalk::Downhill, SurfaceWalk::Heading}) {
+    auto path = walk_on_surface(s, Vec3<T>{T(0.3), T(0.9), T(-0.2)},
+                                {.mode = mode, .heading = {0, 0, 1}, .step = T(0.05), .max_steps = 300});
+    ASSERT_TRUE(path);
+    EXPECT_GT(path->size(), 10u);
+    for (const auto& p : *path) EXPECT_NEAR(norm(p), T(1), tol);
+  }
+}
+
 TEST(SurfacePath, StartingAtTheBottomStopsAtOnce) {
   auto path = walk_on_surface(sphere(), Vec3d{0, -3, 0});
   ASSERT_TRUE(path);

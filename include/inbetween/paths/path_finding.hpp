@@ -36,6 +36,7 @@ struct GridCell {
 /// A width × height grid of free and blocked cells.
 class OccupancyGrid {
  public:
+  /// An empty 0 × 0 grid (every cell counts as blocked); use build() or from_rows().
   OccupancyGrid() = default;
 
   /// From a row-major list of width·height flags (true = blocked).  Errors: width or height < 1,
