@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <numeric>
 
 #include "support/museum_paths.hpp"
@@ -189,6 +190,24 @@ TEST(SmoothConvolution, ALineStaysALineAwayFromTheEnds) {
   for (int i = 0; i < 30; ++i) {
     EXPECT_NEAR(distance((*l)[i], line[i]), 0.0, 1e-13) << i;
     EXPECT_NEAR(distance((*c)[i], line[i]), 0.0, 1e-13) << i;
+  }
+}
+
+TEST(SmoothConvolution, HugeRadiusLumpsTheTailsIntoTheEnds) {
+  // Box r = 1e9 over 10 points: every offset beyond ±9 clamps to an end point, so each result is
+  // ½·(first + last) = 1.5 up to the interior weights, each 1/(2r) = 5e-10 (19 of them, values
+  // ≤ 2.2: the deviation is below 19 · 5e-10 · 2.2 ≈ 2.1e-8).  Nothing of size r is allocated.
+  auto s = smooth_convolution(kY, {.kernel = SmoothingKernel::Box, .radius = 1e9});
+  ASSERT_TRUE(s);
+  for (double v : *s) EXPECT_NEAR(v, 1.5, 2.1e-8);
+  // Lumping is exact: radius 20 (K = 20 > 9) agrees with the explicit sum over offsets ±20.
+  const auto w = kernel_weights(SmoothingKernel::Tent, 20.0);
+  auto t = smooth_convolution(kY, {.kernel = SmoothingKernel::Tent, .radius = 20.0});
+  ASSERT_TRUE(t);
+  for (int i = 0; i < 10; ++i) {
+    double want = 0;
+    for (int k = -20; k <= 20; ++k) want += w[std::size_t(k + 20)] * kY[std::size_t(std::clamp(i + k, 0, 9))];
+    EXPECT_NEAR((*t)[std::size_t(i)], want, 1e-14) << i;
   }
 }
 

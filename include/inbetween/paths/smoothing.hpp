@@ -17,7 +17,9 @@
 /// - smooth_convolution: the points as a step function (value P_j on [j − ½, j + ½]) convolved with a
 ///   kernel of area 1 on [−r, r] (Eq. 3.39, integrated exactly per step): P′_i = Σ_k w_k P_{i+k} with
 ///   w_k = ∫_{k−½}^{k+½} g(x) dx.  At the ends the step function is extended by repeating the first
-///   and last points; `fix_ends` keeps the first and last points unchanged.
+///   and last points; `fix_ends` keeps the first and last points unchanged.  Offsets beyond the
+///   number of points always land on an end point, so their mass is added to the outermost weight:
+///   any finite radius costs at most 2n − 1 weights.
 /// Errors: no points (TooFewPoints, where "points"), a non-finite point (NotFinite, where
 /// "point i"), bad options (InvalidArgument naming the option).
 
@@ -121,33 +123,50 @@ struct ConvolutionOptions {
   bool fix_ends = false; ///< keep the first and last points (animation constraints)
 };
 
+namespace detail {
+/// G(x) = ∫_{−r}^{x} g: the kernel's integral from the left end of its support, x clamped into
+/// [−r, r] (0 at −r, 1 at r).
+template <Real T>
+T kernel_integral(SmoothingKernel kernel, T radius, T x) noexcept {
+  x = clamp(x, -radius, radius);
+  switch (kernel) {
+    case SmoothingKernel::Box: return (x + radius) / (T(2) * radius);
+    case SmoothingKernel::Tent: {
+      const T d = radius - std::abs(x);  // the tail beyond |x| has area d²/(2r²)
+      const T tail = d * d / (T(2) * radius * radius);
+      return x < T(0) ? tail : T(1) - tail;
+    }
+    case SmoothingKernel::Gaussian: {
+      const T scale = T(3) / (radius * std::sqrt(T(2)));  // 1/(σ√2) with σ = r/3
+      const T total = std::erf(T(3) / std::sqrt(T(2)));  // mass on [−r, r] before rescaling
+      return (std::erf(x * scale) + total) / (T(2) * total);
+    }
+  }
+  return T(0);
+}
+
+/// The weights w_{−K} … w_K of a kernel, with the mass beyond ±K lumped into the outermost
+/// weights (exact for an input of K + 1 points or fewer, where every index past K clamps to an end).
+template <Real T>
+std::vector<T> lumped_kernel_weights(SmoothingKernel kernel, T radius, int K) {
+  std::vector<T> w(std::size_t(2 * K + 1));
+  for (int k = -K; k <= K; ++k) {
+    const T lo = k == -K ? -radius : T(k) - T(0.5);
+    const T hi = k == K ? radius : T(k) + T(0.5);
+    w[std::size_t(k + K)] = kernel_integral(kernel, radius, hi) - kernel_integral(kernel, radius, lo);
+  }
+  return w;
+}
+}  // namespace detail
+
 /// The discrete weights w_{−K} … w_K (K = ⌈r − ½⌉) of a kernel of radius r > 0 (finite):
 /// w_k = ∫_{k−½}^{k+½} g(x) dx, computed from the kernel's closed-form integral.  They sum to 1 up
-/// to rounding (exactly 1 for the rescaled Gaussian by construction).  r ≤ ½ gives {1}.
+/// to rounding.  r ≤ ½ gives {1}.  Allocates 2K + 1 values (smooth_convolution itself needs at
+/// most twice the number of points, whatever the radius).
 template <Real T>
 std::vector<T> kernel_weights(SmoothingKernel kernel, T radius) {
   const int K = radius > T(0.5) ? int(std::ceil(radius - T(0.5))) : 0;
-  // G(x): the integral of g from −r to x, for x clamped into [−r, r].
-  auto G = [&](T x) -> T {
-    x = clamp(x, -radius, radius);
-    switch (kernel) {
-      case SmoothingKernel::Box: return (x + radius) / (T(2) * radius);
-      case SmoothingKernel::Tent: {
-        const T d = radius - std::abs(x);  // area of the tail beyond |x| is d²/(2r²)
-        const T tail = d * d / (T(2) * radius * radius);
-        return x < T(0) ? tail : T(1) - tail;
-      }
-      case SmoothingKernel::Gaussian: {
-        const T sigma = radius / T(3);
-        const T total = std::erf(radius / (sigma * std::sqrt(T(2))));
-        return (std::erf(x / (sigma * std::sqrt(T(2)))) + total) / (T(2) * total);
-      }
-    }
-    return T(0);
-  };
-  std::vector<T> w(std::size_t(2 * K + 1));
-  for (int k = -K; k <= K; ++k) w[std::size_t(k + K)] = G(T(k) + T(0.5)) - G(T(k) - T(0.5));
-  return w;
+  return detail::lumped_kernel_weights(kernel, radius, K);
 }
 
 /// Convolution smoothing (Eq. 3.39 on the step function of the points); see file comment.
@@ -158,8 +177,11 @@ Expected<std::vector<P>> smooth_convolution(std::span<const P> points,
   if (auto ok = detail::check_path_points(points); !ok) return ok.error();
   if (!(options.radius > T(0)) || !std::isfinite(options.radius))
     return Error{ErrorCode::InvalidArgument, "radius must be finite and > 0", "radius"};
-  const std::vector<T> w = kernel_weights(options.kernel, options.radius);
-  const int K = int(w.size() / 2), n = int(points.size());
+  const int n = int(points.size());
+  // Offsets beyond n − 1 always clamp to an end point, so their mass is lumped (any radius works).
+  const T reach = std::ceil(options.radius - T(0.5));
+  const int K = options.radius > T(0.5) ? int(std::fmin(reach, T(n - 1))) : 0;
+  const std::vector<T> w = detail::lumped_kernel_weights(options.kernel, options.radius, K);
   std::vector<P> out(points.size());
   for (int i = 0; i < n; ++i) {
     P acc{};
