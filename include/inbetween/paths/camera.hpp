@@ -8,8 +8,9 @@
 ///
 /// Degenerate but legal input has documented fallbacks, never NaN:
 ///   - target at the eye (zero view vector): forward = options.fallback_forward;
-///   - up parallel to the view vector (or zero): options.fallback_up is used instead; if that is
-///     parallel too, any_perpendicular(forward).
+///   - up parallel to the view vector (the sine of the angle between them at most √ε: 1.5e-8 in
+///     double, 3.5e-4 in float) or zero: options.fallback_up is used instead; if that is parallel
+///     too, any_perpendicular(forward).
 
 #include <cmath>
 
