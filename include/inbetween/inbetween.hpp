@@ -46,6 +46,7 @@
 #include "inbetween/timing/motion.hpp"
 
 // paths
+#include "inbetween/paths/banking.hpp"
 #include "inbetween/paths/camera.hpp"
 #include "inbetween/paths/frenet_frames.hpp"
 #include "inbetween/paths/path_finding.hpp"
