@@ -15,6 +15,7 @@
 /// Fallbacks: travel parallel to U (no horizontal plane to turn in) and a zero P′ give β = 0.
 
 #include <cmath>
+#include <limits>
 
 #include "inbetween/paths/path_frame.hpp"
 
