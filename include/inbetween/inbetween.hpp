@@ -49,6 +49,7 @@
 #include "inbetween/paths/banking.hpp"
 #include "inbetween/paths/camera.hpp"
 #include "inbetween/paths/frenet_frames.hpp"
+#include "inbetween/paths/graph_path.hpp"
 #include "inbetween/paths/path_finding.hpp"
 #include "inbetween/paths/path_frame.hpp"
 #include "inbetween/paths/path_pose.hpp"
