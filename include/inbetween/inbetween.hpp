@@ -52,3 +52,16 @@
 #include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
 #include "inbetween/tracks/transform_track.hpp"
+
+// paths
+#include "inbetween/paths/banking.hpp"
+#include "inbetween/paths/camera.hpp"
+#include "inbetween/paths/frenet_frames.hpp"
+#include "inbetween/paths/graph_path.hpp"
+#include "inbetween/paths/path_finding.hpp"
+#include "inbetween/paths/path_frame.hpp"
+#include "inbetween/paths/path_pose.hpp"
+#include "inbetween/paths/rotation_minimizing_frames.hpp"
+#include "inbetween/paths/smooth_bspline.hpp"  // uses fit_bspline from inbetween_eigen (link inbetween::eigen)
+#include "inbetween/paths/smoothing.hpp"
+#include "inbetween/paths/surface_path.hpp"

@@ -1,0 +1,182 @@
+// `inbetween path smooth FILE.csv --method M [--radius R] [--iterations N] [--fix-ends]
+// [--smooth-ends] [--control-points K] [--degree D] [--function] [-o FILE]`: smooths the rows of a
+// CSV file as an ordered list of 1- to 3-D points (texts 004 §3.4.3) and writes them back as CSV
+// with the same columns.  With --function the first column is the independent variable x of
+// y = f(x) data and is copied unchanged.  Parsing and formatting only; the maths is
+// inbetween/paths/smoothing.hpp and smooth_bspline.hpp.
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "command.hpp"
+#include "inbetween/paths/smooth_bspline.hpp"
+#include "inbetween/paths/smoothing.hpp"
+
+namespace inbetween::cli {
+namespace {
+
+struct Table {
+  std::string header;                     // the header line, or empty
+  std::vector<std::vector<double>> rows;  // numbers per row
+  std::vector<int> lines;                 // 1-based line of each row
+};
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+bool parse_number(const std::string& field, double& out) {
+  const std::string f = trim(field);
+  if (f.empty()) return false;
+  const char* first = f.data() + (f[0] == '+' ? 1 : 0);
+  const auto [ptr, ec] = std::from_chars(first, f.data() + f.size(), out);
+  return ec == std::errc() && ptr == f.data() + f.size() && std::isfinite(out);
+}
+
+// Rows of 1 to 4 comma-separated numbers, all with the first row's count; blank lines skipped; the
+// first non-blank line may be a header.  Errors name the file and line.
+Table read_table(const std::string& text, const std::string& path) {
+  Table t;
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  bool first = true;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (trim(line).empty()) continue;
+    std::vector<double> row;
+    bool numeric = true;
+    std::stringstream fields(line);
+    std::string f;
+    while (std::getline(fields, f, ',')) {
+      double v = 0;
+      if (!parse_number(f, v)) { numeric = false; break; }
+      row.push_back(v);
+    }
+    if (!line.empty() && line.back() == ',') numeric = false;
+    const std::string where = path + ": line " + std::to_string(line_no);
+    if (!numeric) {
+      if (first) { t.header = trim(line); first = false; continue; }
+      throw CommandError{where + ": expected finite numbers separated by commas, got \"" + trim(line) + "\""};
+    }
+    first = false;
+    if (row.empty() || row.size() > 4) throw CommandError{where + ": expected 1 to 4 columns, got " + std::to_string(row.size())};
+    if (!t.rows.empty() && row.size() != t.rows[0].size())
+      throw CommandError{where + ": " + std::to_string(row.size()) + " columns, but the first row has " +
+                         std::to_string(t.rows[0].size())};
+    t.rows.push_back(std::move(row));
+    t.lines.push_back(line_no);
+  }
+  if (t.rows.empty()) throw CommandError{path + ": no data rows"};
+  return t;
+}
+
+struct Args {
+  std::string input, output = "-", method = "linear";
+  double radius = 1;
+  int iterations = 1, degree = 3, control_points = 0;
+  bool fix_ends = false, smooth_ends = false, function = false;
+};
+
+// Translates a library error's "point i" into the file's line.
+[[noreturn]] void fail(Error e, const Table& t, const Args& a) {
+  if (e.where.rfind("point ", 0) == 0) {
+    const std::size_t i = std::stoul(e.where.substr(6));
+    if (i < t.lines.size()) e.where = a.input + ": line " + std::to_string(t.lines[i]);
+  } else if (e.where == "radius" || e.where == "iterations" || e.where == "degree") {
+    e.where.insert(0, "--");
+  } else if (e.where == "control_points") {
+    e.where = "--control-points";
+  }
+  throw CommandError{e.describe()};
+}
+
+template <class P>
+std::vector<P> smooth_points(const std::vector<P>& pts, const Table& t, const Args& a) {
+  Expected<std::vector<P>> r = Error{};
+  if (a.method == "linear") {
+    r = smooth_linear(pts, {.iterations = a.iterations});
+  } else if (a.method == "cubic") {
+    r = smooth_cubic(pts, {.iterations = a.iterations, .smooth_ends = a.smooth_ends});
+  } else if (a.method == "bspline") {
+    auto b = smooth_bspline(pts, {.degree = a.degree, .control_points = a.control_points});
+    if (!b) fail(b.error(), t, a);
+    return b->points;
+  } else {
+    const SmoothingKernel k = a.method == "box" ? SmoothingKernel::Box
+                              : a.method == "tent" ? SmoothingKernel::Tent : SmoothingKernel::Gaussian;
+    std::vector<P> cur = pts;
+    for (int i = 0; i < a.iterations; ++i) {
+      r = smooth_convolution(cur, {.kernel = k, .radius = a.radius, .fix_ends = a.fix_ends});
+      if (!r) break;
+      cur = *r;
+    }
+    if (a.iterations < 0) r = Error{ErrorCode::InvalidArgument, "iterations must be >= 0", "iterations"};
+    if (a.iterations == 0) r = cur;
+  }
+  if (!r) fail(r.error(), t, a);
+  return *r;
+}
+
+template <class P>
+void smooth_columns(Table& t, const Args& a, std::size_t first) {
+  std::vector<P> pts(t.rows.size());
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    for (int k = 0; k < PointTraits<P>::dim; ++k) PointTraits<P>::set(pts[i], k, t.rows[i][first + std::size_t(k)]);
+  const std::vector<P> out = smooth_points(pts, t, a);
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    for (int k = 0; k < PointTraits<P>::dim; ++k) t.rows[i][first + std::size_t(k)] = PointTraits<P>::get(out[i], k);
+}
+
+void setup(CLI::App& root) {
+  // `path` may already exist (path fit); share it.
+  CLI::App* path = nullptr;
+  for (CLI::App* sub : root.get_subcommands([](CLI::App* s) { return s->get_name() == "path"; })) path = sub;
+  if (path == nullptr) path = root.add_subcommand("path", "Paths: fitting and smoothing");
+  path->require_subcommand(1);
+  auto* smooth = path->add_subcommand("smooth", "Smooth CSV rows as an ordered list of points (texts 004 section 3.4.3)");
+  auto args = std::make_shared<Args>();
+  smooth->add_option("FILE", args->input, "CSV of rows with 1 to 4 numbers (a header line is allowed); - for stdin")
+      ->required();
+  smooth->add_option("--method", args->method, "linear (Eq. 3.35), cubic (Eqs. 3.36-3.38), box, tent, gaussian, bspline")
+      ->check(CLI::IsMember({"linear", "cubic", "box", "tent", "gaussian", "bspline"}))
+      ->capture_default_str();
+  smooth->add_option("--radius", args->radius, "kernel half-width in rows (box, tent, gaussian)")->capture_default_str();
+  smooth->add_option("--iterations", args->iterations, "passes (linear, cubic, kernels)")->capture_default_str();
+  smooth->add_flag("--fix-ends", args->fix_ends, "kernels: keep the first and last rows");
+  smooth->add_flag("--smooth-ends", args->smooth_ends, "cubic: parabolic estimates for the first and last rows");
+  smooth->add_option("--degree", args->degree, "bspline: degree")->capture_default_str();
+  smooth->add_option("--control-points", args->control_points, "bspline: control points (default: one per row)");
+  smooth->add_flag("--function", args->function, "the first column is x of y = f(x) data: copy it, smooth the rest");
+  smooth->add_option("-o,--output", args->output, "output CSV (default: standard output)");
+  smooth->callback([args] {
+    Table t = read_table(read_input(args->input), args->input);
+    const std::size_t first = args->function ? 1 : 0;
+    const std::size_t dim = t.rows[0].size() - first;
+    if (dim == 0) throw CommandError{args->input + ": --function needs at least 2 columns"};
+    if (dim == 1) smooth_columns<double>(t, *args, first);
+    else if (dim == 2) smooth_columns<Vec2d>(t, *args, first);
+    else if (dim == 3) smooth_columns<Vec3d>(t, *args, first);
+    else throw CommandError{args->input + ": 4 columns are only accepted with --function (x plus a 3-D point)"};
+    std::string text = t.header.empty() ? "" : t.header + "\n";
+    for (const auto& row : t.rows) {
+      for (std::size_t k = 0; k < row.size(); ++k) {
+        if (k > 0) text += ',';
+        text += format_number(row[k]);
+      }
+      text += '\n';
+    }
+    write_output(args->output, text);
+  });
+}
+
+const RegisterCommand kRegister{{"path smooth", 61, setup}};
+
+}  // namespace
+}  // namespace inbetween::cli

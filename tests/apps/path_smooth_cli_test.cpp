@@ -1,0 +1,126 @@
+// `inbetween path smooth` and the "paths" demo section: runs the built CLI on small CSV files.
+// Expected numbers: the texts' §3.4.3 formulas worked by hand (see tests/paths/smoothing_test.cpp).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/cli.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using inbetween::test::CliRun;
+using inbetween::test::run_cli;
+using inbetween::test::test_dir;
+using inbetween::test::write_test_file;
+
+const char* kData = "x,y\n1,1.6\n2,1.65\n3,1.6\n4,1.8\n5,2.1\n6,2.2\n7,2.0\n8,1.5\n9,1.3\n10,1.4\n";
+
+std::vector<std::vector<double>> parse_csv(const std::string& text, bool header) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(text);
+  std::string line;
+  bool skip = header;
+  while (std::getline(in, line)) {
+    if (skip) { skip = false; continue; }
+    std::vector<double> row;
+    std::stringstream f(line);
+    std::string cell;
+    while (std::getline(f, cell, ',')) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(PathSmoothCli, TentOnTheTextsDataSetKeepsX) {
+  const auto csv = write_test_file("data.csv", kData);
+  const CliRun r = run_cli("path smooth " + csv.string() + " --method tent --radius 1 --function");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, 4), "x,y\n");  // the header is kept
+  const auto rows = parse_csv(r.out, true);
+  ASSERT_EQ(rows.size(), 10u);
+  // Weights 1/8, 3/4, 1/8, ends extended: y0 = .2 + 1.2 + .20625 = 1.60625, y4 = 2.075.
+  const std::vector<double> want{1.60625, 1.6375, 1.63125, 1.8125, 2.075, 2.1625, 1.9625, 1.5375, 1.3375, 1.3875};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i][0], double(i + 1));
+    EXPECT_NEAR(rows[i][1], want[i], 1e-14) << i;
+  }
+}
+
+TEST(PathSmoothCli, CubicWithParabolicEndsAndLinearToAFile) {
+  const auto csv = write_test_file("data.csv", kData);
+  CliRun r = run_cli("path smooth " + csv.string() + " --method cubic --smooth-ends --function");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto rows = parse_csv(r.out, true);
+  EXPECT_NEAR(rows[0][1], 1.775, 1e-14);  // (1.6 + (1.8 + 3·0.05))/2
+  EXPECT_NEAR(rows[4][1], 2.0833333333333333, 1e-14);
+  const fs::path out = test_dir() / "lin.csv";
+  fs::remove(out);
+  r = run_cli("path smooth " + csv.string() + " --method linear -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  std::ifstream in(out);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  rows = parse_csv(ss.str(), true);
+  ASSERT_EQ(rows.size(), 10u);
+  // Without --function both columns are smoothed; x is equally spaced, so Eq. 3.35 keeps it.
+  EXPECT_NEAR(rows[1][0], 2.0, 1e-15);
+  EXPECT_NEAR(rows[1][1], 1.625, 1e-15);
+}
+
+TEST(PathSmoothCli, BSplineMatchesTheLibraryFit) {
+  const auto csv = write_test_file("data.csv", kData);
+  const CliRun r = run_cli("path smooth " + csv.string() + " --method bspline --control-points 6 --function");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = parse_csv(r.out, true);
+  EXPECT_NEAR(rows[0][1], 1.6178071725977305, 1e-12);  // scipy make_lsq_spline (smooth_bspline_test.cpp)
+  EXPECT_NEAR(rows[8][1], 1.2218199012727096, 1e-12);
+}
+
+TEST(PathSmoothCli, BadInputIsNamedAndExitsTwo) {
+  const auto bad = write_test_file("bad.csv", "x,y\n1,2\n2,oops\n");
+  CliRun r = run_cli("path smooth " + bad.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
+  const auto csv = write_test_file("data.csv", kData);
+  r = run_cli("path smooth " + csv.string() + " --method gaussian --radius 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--radius"), std::string::npos) << r.err;
+  r = run_cli("path smooth " + csv.string() + " --method bspline --control-points 2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--control-points"), std::string::npos) << r.err;
+  r = run_cli("path smooth " + csv.string() + " --method spline");
+  EXPECT_NE(r.exit_code, 0);
+  const auto ragged = write_test_file("ragged.csv", "1,2\n3\n");
+  r = run_cli("path smooth " + ragged.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("line 2"), std::string::npos) << r.err;
+  // Output is written whole or not at all: a failed run leaves no file.
+  const fs::path out = test_dir() / "never.csv";
+  fs::remove(out);
+  r = run_cli("path smooth " + bad.string() + " -o " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(PathSmoothCli, PathFitStillWorksAlongside) {
+  const auto csv = write_test_file("data.csv", kData);
+  const CliRun r = run_cli("path fit " + csv.string() + " --degree 2 --control-points 4");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(PathsDemo, ShowsFramesSmoothingAndAFoundPath) {
+  const CliRun r = run_cli("demo");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("== paths =="), std::string::npos);
+  EXPECT_NE(r.out.find("0.400000"), std::string::npos);  // the helix's Frenet twist = torsion 0.4
+  EXPECT_NE(r.out.find("1.775"), std::string::npos);     // cubic with parabolic ends, row 1
+  EXPECT_NE(r.out.find("length 20.82842712474619 cells"), std::string::npos);  // 18 + 2√2: 18 straight moves and 2 diagonals, counted on the printed grid
+}
+
+}  // namespace

@@ -1,0 +1,81 @@
+#pragma once
+// Analytic test curves for the paths tests, each with closed-form derivatives.
+
+#include <cmath>
+
+#include "inbetween/curves/curve.hpp"
+
+namespace inbetween::test {
+
+/// Helix P(u) = (a cos u, a sin u, b u) on [0, turns·2π], split into `segments` equal pieces.
+/// Curvature a/(a² + b²), torsion b/(a² + b²), speed √(a² + b²).
+template <class T>
+struct Helix {
+  using point_type = Vec3<T>;
+  using scalar_type = T;
+  T a = 1, b = T(0.5), turns = 2;
+  int segments = 8;
+  Interval<T> domain() const noexcept { return {T(0), turns * 2 * pi_v<T>}; }
+  int segment_count() const noexcept { return segments; }
+  Interval<T> segment_domain(int i) const noexcept {
+    const T h = domain().hi / T(segments);
+    return {h * T(i), i + 1 == segments ? domain().hi : h * T(i + 1)};
+  }
+  Vec3<T> point(T u) const noexcept { return derivative(u, 0); }
+  Vec3<T> derivative(T u, int k) const noexcept {
+    u = domain().clamp(u);
+    const T c = std::cos(u), s = std::sin(u);
+    switch (k) {
+      case 0: return {a * c, a * s, b * u};
+      case 1: return {-a * s, a * c, b};
+      case 2: return {-a * c, -a * s, T(0)};
+      case 3: return {a * s, -a * c, T(0)};
+      default: return {};
+    }
+  }
+};
+
+/// Three pieces, C¹: u ∈ [0, 1] a quarter circle of radius 1 in the xy plane ending at the origin
+/// heading +x (centre (0, 1, 0), Frenet normal +y at its end); u ∈ [1, 2] the straight segment
+/// (π/2)(u − 1)·x; u ∈ [2, 3] a quarter circle in the xz plane (centre (π/2, 0, −1), Frenet normal
+/// −z at its start).  Speed π/2 throughout.  The straight middle has no Frenet frame.
+template <class T>
+struct ArcLineArc {
+  using point_type = Vec3<T>;
+  using scalar_type = T;
+  Interval<T> domain() const noexcept { return {T(0), T(3)}; }
+  int segment_count() const noexcept { return 3; }
+  Interval<T> segment_domain(int i) const noexcept { return {T(i), T(i + 1)}; }
+  Vec3<T> point(T u) const noexcept { return derivative(u, 0); }
+  Vec3<T> derivative(T u, int k) const noexcept {
+    u = domain().clamp(u);
+    const T w = pi_v<T> / 2;
+    if (u < T(1)) {  // φ = w(u − 1) ∈ [−π/2, 0]: (sin φ, 1 − cos φ, 0)
+      const T f = w * (u - 1), c = std::cos(f), s = std::sin(f);
+      switch (k) {
+        case 0: return {s, 1 - c, 0};
+        case 1: return {w * c, w * s, 0};
+        case 2: return {-w * w * s, w * w * c, 0};
+        case 3: return {-w * w * w * c, -w * w * w * s, 0};
+        default: return {};
+      }
+    }
+    if (u < T(2)) {
+      switch (k) {
+        case 0: return {w * (u - 1), 0, 0};
+        case 1: return {w, 0, 0};
+        default: return {};
+      }
+    }
+    const T f = w * (u - 2), c = std::cos(f), s = std::sin(f);  // (π/2 + sin φ, 0, −(1 − cos φ))
+    switch (k) {
+      case 0: return {w + s, 0, -(1 - c)};
+      case 1: return {w * c, 0, -w * s};
+      case 2: return {-w * w * s, 0, -w * w * c};
+      case 3: return {-w * w * w * c, 0, w * w * w * s};
+      default: return {};
+    }
+  }
+};
+
+}  // namespace inbetween::test
