@@ -13,69 +13,13 @@
 #include <vector>
 
 #include "command.hpp"
+#include "csv.hpp"
 #include "inbetween/paths/smooth_bspline.hpp"
 #include "inbetween/paths/smoothing.hpp"
 
 namespace inbetween::cli {
 namespace {
 
-struct Table {
-  std::string header;                     // the header line, or empty
-  std::vector<std::vector<double>> rows;  // numbers per row
-  std::vector<int> lines;                 // 1-based line of each row
-};
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
-
-bool parse_number(const std::string& field, double& out) {
-  const std::string f = trim(field);
-  if (f.empty()) return false;
-  const char* first = f.data() + (f[0] == '+' ? 1 : 0);
-  const auto [ptr, ec] = std::from_chars(first, f.data() + f.size(), out);
-  return ec == std::errc() && ptr == f.data() + f.size() && std::isfinite(out);
-}
-
-// Rows of 1 to 4 comma-separated numbers, all with the first row's count; blank lines skipped; the
-// first non-blank line may be a header.  Errors name the file and line.
-Table read_table(const std::string& text, const std::string& path) {
-  Table t;
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  bool first = true;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty()) continue;
-    std::vector<double> row;
-    bool numeric = true;
-    std::stringstream fields(line);
-    std::string f;
-    while (std::getline(fields, f, ',')) {
-      double v = 0;
-      if (!parse_number(f, v)) { numeric = false; break; }
-      row.push_back(v);
-    }
-    if (!line.empty() && line.back() == ',') numeric = false;
-    const std::string where = path + ": line " + std::to_string(line_no);
-    if (!numeric) {
-      if (first) { t.header = trim(line); first = false; continue; }
-      throw CommandError{where + ": expected finite numbers separated by commas, got \"" + trim(line) + "\""};
-    }
-    first = false;
-    if (row.empty() || row.size() > 4) throw CommandError{where + ": expected 1 to 4 columns, got " + std::to_string(row.size())};
-    if (!t.rows.empty() && row.size() != t.rows[0].size())
-      throw CommandError{where + ": " + std::to_string(row.size()) + " columns, but the first row has " +
-                         std::to_string(t.rows[0].size())};
-    t.rows.push_back(std::move(row));
-    t.lines.push_back(line_no);
-  }
-  if (t.rows.empty()) throw CommandError{path + ": no data rows"};
-  return t;
-}
 
 struct Args {
   std::string input, output = "-", method = "linear";
@@ -85,7 +29,7 @@ struct Args {
 };
 
 // Translates a library error's "point i" into the file's line.
-[[noreturn]] void fail(Error e, const Table& t, const Args& a) {
+[[noreturn]] void fail(Error e, const CsvTable& t, const Args& a) {
   if (e.where.rfind("point ", 0) == 0) {
     const std::size_t i = std::stoul(e.where.substr(6));
     if (i < t.lines.size()) e.where = a.input + ": line " + std::to_string(t.lines[i]);
@@ -98,7 +42,7 @@ struct Args {
 }
 
 template <class P>
-std::vector<P> smooth_points(const std::vector<P>& pts, const Table& t, const Args& a) {
+std::vector<P> smooth_points(const std::vector<P>& pts, const CsvTable& t, const Args& a) {
   Expected<std::vector<P>> r = Error{};
   if (a.method == "linear") {
     r = smooth_linear(pts, {.iterations = a.iterations});
@@ -125,7 +69,7 @@ std::vector<P> smooth_points(const std::vector<P>& pts, const Table& t, const Ar
 }
 
 template <class P>
-void smooth_columns(Table& t, const Args& a, std::size_t first) {
+void smooth_columns(CsvTable& t, const Args& a, std::size_t first) {
   std::vector<P> pts(t.rows.size());
   for (std::size_t i = 0; i < pts.size(); ++i)
     for (int k = 0; k < PointTraits<P>::dim; ++k) PointTraits<P>::set(pts[i], k, t.rows[i][first + std::size_t(k)]);
@@ -156,7 +100,7 @@ void setup(CLI::App& root) {
   smooth->add_flag("--function", args->function, "the first column is x of y = f(x) data: copy it, smooth the rest");
   smooth->add_option("-o,--output", args->output, "output CSV (default: standard output)");
   smooth->callback([args] {
-    Table t = read_table(read_input(args->input), args->input);
+    CsvTable t = read_csv_table(read_input(args->input), args->input, 1, 4, "x[,y[,z[,w]]]");
     const std::size_t first = args->function ? 1 : 0;
     const std::size_t dim = t.rows[0].size() - first;
     if (dim == 0) throw CommandError{args->input + ": --function needs at least 2 columns"};

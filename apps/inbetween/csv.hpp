@@ -1,0 +1,24 @@
+#pragma once
+// Reading numeric CSV for the tool's commands (`path fit`, `path smooth`): rows of comma-separated
+// finite numbers; blank lines are skipped; the first non-blank line may be a header (any field that
+// is not a number).  Errors are CommandErrors naming the file and line.
+
+#include <string>
+#include <vector>
+
+namespace inbetween::cli {
+
+/// A numeric CSV table.
+struct CsvTable {
+  std::string header;                     ///< the header line, or empty
+  std::vector<std::vector<double>> rows;  ///< numbers per row, all rows with the same count
+  std::vector<int> lines;                 ///< 1-based line of each row in the file
+};
+
+/// Parses `text` (read from `path`, used in messages).  Every row must have between min_columns and
+/// max_columns numbers, and the same count as the first row; `columns_hint` describes the expected
+/// layout in messages (for example "t,x[,y[,z]]").  At least one data row is required.
+CsvTable read_csv_table(const std::string& text, const std::string& path, int min_columns, int max_columns,
+                        const std::string& columns_hint);
+
+}  // namespace inbetween::cli
