@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "inbetween/curves/helix.hpp"
 #include "inbetween/paths/camera.hpp"
 #include "inbetween/paths/frenet_frames.hpp"
 #include "inbetween/paths/path_finding.hpp"
@@ -19,37 +20,16 @@
 namespace {
 using namespace inbetween;
 
-// Helix (cos u, sin u, u/2), u ∈ [0, 4π], 8 segments: curvature 0.8, torsion 0.4.
-struct Helix {
-  using point_type = Vec3d;
-  using scalar_type = double;
-  Interval<double> domain() const noexcept { return {0, 4 * pi_v<double>}; }
-  int segment_count() const noexcept { return 8; }
-  Interval<double> segment_domain(int i) const noexcept { return {i * pi_v<double> / 2, (i + 1) * pi_v<double> / 2}; }
-  Vec3d point(double u) const noexcept { return derivative(u, 0); }
-  Vec3d derivative(double u, int k) const noexcept {
-    u = domain().clamp(u);
-    const double c = std::cos(u), s = std::sin(u);
-    switch (k) {
-      case 0: return {c, s, u / 2};
-      case 1: return {-s, c, 0.5};
-      case 2: return {-c, -s, 0};
-      case 3: return {s, -c, 0};
-      default: return {};
-    }
-  }
-};
-
 const double kTauSpeed = 0.4 * std::sqrt(1.25);  // torsion × speed: dθ/du of the RMF normal
 
 double closed_form_error(const Vec3d& normal, const Vec3d& tangent, double u) {
-  const Vec3d frenet = frenet_frame(Helix{}, u).frame.normal;
+  const Vec3d frenet = frenet_frame(Helix<double>{}, u).frame.normal;
   return std::abs(wrap_angle(signed_angle_about(frenet, normal, tangent) + kTauSpeed * u));
 }
 
 // Projection method (peer): r_{i+1} = r_i projected onto the plane normal to t_{i+1}.
 double projection_error(int samples_per_segment) {
-  const Helix h;
+  const Helix<double> h;
   const int n = 8 * samples_per_segment;
   Vec3d r = frenet_frame(h, 0.0).frame.normal;
   double worst = 0;
@@ -63,7 +43,7 @@ double projection_error(int samples_per_segment) {
 }
 
 double double_reflection_error(int samples_per_segment) {
-  auto rmf = build_rotation_minimizing_frames(Helix{}, {.samples_per_segment = samples_per_segment});
+  auto rmf = build_rotation_minimizing_frames(Helix<double>{}, {.samples_per_segment = samples_per_segment});
   double worst = 0;
   for (std::size_t i = 0; i < rmf->sample_count(); ++i) {
     const double u = rmf->sample_parameter(i);
@@ -83,14 +63,14 @@ void print_accuracy_table() {
 
 void BM_RmfBuild(benchmark::State& state) {
   for (auto _ : state) {
-    auto rmf = build_rotation_minimizing_frames(Helix{}, {.samples_per_segment = int(state.range(0))});
+    auto rmf = build_rotation_minimizing_frames(Helix<double>{}, {.samples_per_segment = int(state.range(0))});
     benchmark::DoNotOptimize(rmf);
   }
 }
 BENCHMARK(BM_RmfBuild)->Arg(8)->Arg(32);
 
 void BM_RmfFrameAt(benchmark::State& state) {
-  auto rmf = build_rotation_minimizing_frames(Helix{});
+  auto rmf = build_rotation_minimizing_frames(Helix<double>{});
   double u = 0;
   for (auto _ : state) {
     u = u > 12 ? 0 : u + 0.013;
@@ -100,7 +80,7 @@ void BM_RmfFrameAt(benchmark::State& state) {
 BENCHMARK(BM_RmfFrameAt);
 
 void BM_FrenetFrameAt(benchmark::State& state) {
-  auto ff = build_frenet_frames(Helix{});
+  auto ff = build_frenet_frames(Helix<double>{});
   double u = 0;
   for (auto _ : state) {
     u = u > 12 ? 0 : u + 0.013;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "inbetween/curves/helix.hpp"
 #include "inbetween/curves/catmull_rom.hpp"
 #include "inbetween/paths/frenet_frames.hpp"
 #include "inbetween/paths/path_finding.hpp"
@@ -30,30 +31,8 @@ std::string pad(std::string s, std::size_t width) {
   return s;
 }
 
-// Helix (cos u, sin u, u/2) for u in [0, 4π] meeting the Curve concept (glue for the demo):
-// curvature 0.8, torsion 0.4, speed √1.25.
-struct DemoHelix {
-  using point_type = Vec3d;
-  using scalar_type = double;
-  Interval<double> domain() const noexcept { return {0, 4 * pi_v<double>}; }
-  int segment_count() const noexcept { return 8; }
-  Interval<double> segment_domain(int i) const noexcept { return {i * pi_v<double> / 2, (i + 1) * pi_v<double> / 2}; }
-  Vec3d point(double u) const noexcept { return derivative(u, 0); }
-  Vec3d derivative(double u, int k) const noexcept {
-    u = domain().clamp(u);
-    const double c = std::cos(u), s = std::sin(u);
-    switch (k) {
-      case 0: return {c, s, u / 2};
-      case 1: return {-s, c, 0.5};
-      case 2: return {-c, -s, 0};
-      case 3: return {s, -c, 0};
-      default: return {};
-    }
-  }
-};
-
 void demo_frames(std::ostream& out) {
-  const DemoHelix helix;
+  const Helix<double> helix;
   auto frenet = build_frenet_frames(helix);
   auto rmf = build_rotation_minimizing_frames(helix);
   if (!frenet || !rmf) return;

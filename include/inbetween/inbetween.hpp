@@ -24,6 +24,7 @@
 #include "inbetween/curves/cubic_basis.hpp"
 #include "inbetween/curves/cubic_spline.hpp"
 #include "inbetween/curves/curve.hpp"
+#include "inbetween/curves/helix.hpp"
 #include "inbetween/curves/hermite_spline.hpp"
 #include "inbetween/curves/kochanek_bartels.hpp"
 #include "inbetween/curves/lagrange.hpp"

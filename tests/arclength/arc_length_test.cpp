@@ -31,7 +31,7 @@ TEST(ArcLength, DefaultMeetsOneNanoLengthOnEveryMuseumCurve) {
 }
 
 TEST(ArcLength, DefaultMeetsTheTargetOnTheGenericHelix) {
-  const test::TestHelix<double> h{.r = 2, .c = 0.3, .lo = -1, .hi = 9, .pieces = 4};
+  const Helix<double> h{.radius = 2, .rise = 0.3, .u_begin = -1, .u_end = 9, .segments = 4};
   auto arc = make_arc_length(h);
   ASSERT_TRUE(arc);
   const double exact = std::sqrt(4 + 0.09) * 10;  // √(r² + c²)·(hi − lo)

@@ -24,7 +24,7 @@ TEST(ReferenceLength, MatchesEveryClosedForm) {
 
 TEST(ReferenceLength, MatchesTheHelixOnTheGenericPath) {
   // Helix (cos u, sin u, 0.5u), u ∈ [0, 6]: length √(1 + 0.25)·6 (closed form).
-  const test::TestHelix<double> h{.r = 1, .c = 0.5, .lo = 0, .hi = 6, .pieces = 3};
+  const Helix<double> h{.radius = 1, .rise = 0.5, .u_begin = 0, .u_end = 6, .segments = 3};
   const double exact = std::sqrt(1.25) * 6;
   EXPECT_NEAR(reference_length(h, 0.0, 6.0), exact, kReferenceRel * exact);
   EXPECT_NEAR(adaptive_gauss_length(h, 0.0, 6.0, {.tolerance = 1e-10}), exact, 1e-10);

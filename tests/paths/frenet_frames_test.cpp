@@ -38,17 +38,17 @@ TYPED_TEST_SUITE(FrenetTyped, Scalars);
 TYPED_TEST(FrenetTyped, HelixMatchesClosedForm) {
   using T = TypeParam;
   const T tol = T(16) * test::roundtrip_tol<T>;
-  test::Helix<T> h;
+  Helix<T> h;
   // Closed form for P = (a cos u, a sin u, b u): T = (−a sin u, a cos u, b)/√(a²+b²),
   // N = (−cos u, −sin u, 0), B = T × N = (b sin u, −b cos u, a)/√(a²+b²).
-  const T c = std::sqrt(h.a * h.a + h.b * h.b);
+  const T c = std::sqrt(h.radius * h.radius + h.rise * h.rise);
   for (T u : {T(0), T(0.3), T(1.7), T(4), T(10)}) {
     SCOPED_TRACE(u);
     const FrenetSample<T> f = frenet_frame(h, u);
     ASSERT_TRUE(f.defined);
-    expect_vec_near(f.frame.tangent, Vec3<T>{-h.a * std::sin(u), h.a * std::cos(u), h.b} / c, tol);
+    expect_vec_near(f.frame.tangent, Vec3<T>{-h.radius * std::sin(u), h.radius * std::cos(u), h.rise} / c, tol);
     expect_vec_near(f.frame.normal, Vec3<T>{-std::cos(u), -std::sin(u), T(0)}, tol);
-    expect_vec_near(f.frame.binormal, Vec3<T>{h.b * std::sin(u), -h.b * std::cos(u), h.a} / c, tol);
+    expect_vec_near(f.frame.binormal, Vec3<T>{h.rise * std::sin(u), -h.rise * std::cos(u), h.radius} / c, tol);
     // Texts' left-handed (u, v, w) = (binormal, normal, tangent): u × v = −w.
     expect_vec_near(cross(f.frame.binormal, f.frame.normal), -f.frame.tangent, tol);
   }
@@ -92,10 +92,10 @@ TEST(Frenet, RawFrameIsUndefinedOnTheStraightPiece) {
 }
 
 TEST(Frenet, BadOptionsAreNamed) {
-  auto a = build_frenet_frames(test::Helix<double>{}, {.samples_per_segment = 0});
+  auto a = build_frenet_frames(Helix<double>{}, {.samples_per_segment = 0});
   ASSERT_FALSE(a);
   EXPECT_EQ(a.error().where, "samples_per_segment");
-  auto b = build_frenet_frames(test::Helix<double>{}, {.tolerance = -1.0});
+  auto b = build_frenet_frames(Helix<double>{}, {.tolerance = -1.0});
   ASSERT_FALSE(b);
   EXPECT_EQ(b.error().where, "tolerance");
 }

@@ -10,7 +10,7 @@ namespace inbetween {
 namespace {
 
 TEST(PathPose, ComposesMotionAndFrames) {
-  const test::Helix<double> h;
+  const Helix<double> h;
   auto arc = make_arc_length(h);
   auto rmf = build_rotation_minimizing_frames(h);
   ASSERT_TRUE(arc && rmf);

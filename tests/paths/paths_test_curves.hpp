@@ -4,36 +4,11 @@
 #include <cmath>
 
 #include "inbetween/curves/curve.hpp"
+#include "inbetween/curves/helix.hpp"
 
 namespace inbetween::test {
 
-/// Helix P(u) = (a cos u, a sin u, b u) on [0, turns·2π], split into `segments` equal pieces.
-/// Curvature a/(a² + b²), torsion b/(a² + b²), speed √(a² + b²).
-template <class T>
-struct Helix {
-  using point_type = Vec3<T>;
-  using scalar_type = T;
-  T a = 1, b = T(0.5), turns = 2;
-  int segments = 8;
-  Interval<T> domain() const noexcept { return {T(0), turns * 2 * pi_v<T>}; }
-  int segment_count() const noexcept { return segments; }
-  Interval<T> segment_domain(int i) const noexcept {
-    const T h = domain().hi / T(segments);
-    return {h * T(i), i + 1 == segments ? domain().hi : h * T(i + 1)};
-  }
-  Vec3<T> point(T u) const noexcept { return derivative(u, 0); }
-  Vec3<T> derivative(T u, int k) const noexcept {
-    u = domain().clamp(u);
-    const T c = std::cos(u), s = std::sin(u);
-    switch (k) {
-      case 0: return {a * c, a * s, b * u};
-      case 1: return {-a * s, a * c, b};
-      case 2: return {-a * c, -a * s, T(0)};
-      case 3: return {a * s, -a * c, T(0)};
-      default: return {};
-    }
-  }
-};
+// The helix is inbetween::Helix (curves/helix.hpp).
 
 /// Three pieces, C¹: u ∈ [0, 1] a quarter circle of radius 1 in the xy plane ending at the origin
 /// heading +x (centre (0, 1, 0), Frenet normal +y at its end); u ∈ [1, 2] the straight segment

@@ -23,7 +23,7 @@ TYPED_TEST_SUITE(RmfTyped, Scalars);
 // as cos θ N + sin θ B has r′ ∥ T only if θ′(s) = −τ (from the Frenet–Serret equations), so
 // starting at r = N the RMF normal is N rotated by θ = −τ s about T — a closed form.
 TEST(Rmf, HelixNormalTurnsAgainstTheTorsion) {
-  test::Helix<double> h;
+  Helix<double> h;
   auto rmf = build_rotation_minimizing_frames(h, {.samples_per_segment = 32});
   ASSERT_TRUE(rmf);
   const double tau = 0.4, speed = std::sqrt(1.25);
@@ -44,7 +44,7 @@ TEST(Rmf, HelixNormalTurnsAgainstTheTorsion) {
 // RMF that is 0; for the Frenet frame it is the torsion 0.4 (closed form above).  Central
 // differences with step δ = 1e-4 have truncation error O(δ²) ≈ 1e-8 times the third derivative.
 TEST(Rmf, HasNoTwistWhereFrenetTwistsByTheTorsion) {
-  test::Helix<double> h;
+  Helix<double> h;
   auto rmf = build_rotation_minimizing_frames(h);
   ASSERT_TRUE(rmf);
   const double speed = std::sqrt(1.25), delta = 1e-4;
@@ -67,7 +67,7 @@ TEST(Rmf, HasNoTwistWhereFrenetTwistsByTheTorsion) {
 // normal-angle error by about 2⁴ = 16.  Measured 16.0 from 4 to 8 samples per segment (projection
 // alone: 7.8).
 TEST(Rmf, ErrorConvergesAtFourthOrder) {
-  test::Helix<double> h;
+  Helix<double> h;
   auto max_error = [&](int samples) {
     auto rmf = build_rotation_minimizing_frames(h, {.samples_per_segment = samples});
     double e = 0;
@@ -108,7 +108,7 @@ TYPED_TEST(RmfTyped, PlanarCurveMatchesFrenetUpToSign) {
 }
 
 TEST(Rmf, InitialNormalIsProjectedOffTheTangent) {
-  test::Helix<double> h;
+  Helix<double> h;
   // At u = 0 the tangent is (0, 1, 0.5)/√1.25; (0, 0, 1) minus its tangent part, normalised, is
   // (0, −0.5, 1)/√1.25.
   auto rmf = build_rotation_minimizing_frames(h, {.initial_normal = Vec3d{0, 0, 1}});

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "inbetween/curves/curve.hpp"
+#include "inbetween/curves/helix.hpp"
 #include "inbetween/math/vec.hpp"
 
 namespace inbetween::test {
@@ -64,37 +65,6 @@ struct TestCubicCurve {
     P d = pieces[std::size_t(i)].derivative(v, k);
     for (int j = 0; j < k; ++j) d = d / h;  // chain rule: d^k/du^k = d^k/dv^k / h^k
     return d;
-  }
-};
-
-/// A circular helix (r cos u, r sin u, c·u) over [lo, hi]: not a cubic, so it exercises the generic
-/// (derivative-only) code path.  Exact length √(r² + c²)·(hi − lo).
-template <Real T>
-struct TestHelix {
-  using point_type = Vec3<T>;
-  using scalar_type = T;
-  T r = 1, c = 0, lo = 0, hi = 1;
-  int pieces = 1;  // split into this many equal segments (the joints are smooth)
-
-  Interval<T> domain() const noexcept { return {lo, hi}; }
-  int segment_count() const noexcept { return pieces; }
-  Interval<T> segment_domain(int i) const noexcept {
-    const T h = (hi - lo) / T(pieces);
-    return {lo + h * T(i), i + 1 == pieces ? hi : lo + h * T(i + 1)};
-  }
-  Vec3<T> point(T u) const noexcept {
-    u = domain().clamp(u);
-    return {r * std::cos(u), r * std::sin(u), c * u};
-  }
-  Vec3<T> derivative(T u, int k) const noexcept {
-    u = domain().clamp(u);
-    switch (k) {
-      case 0: return point(u);
-      case 1: return {-r * std::sin(u), r * std::cos(u), c};
-      case 2: return {-r * std::cos(u), -r * std::sin(u), T(0)};
-      case 3: return {r * std::sin(u), -r * std::cos(u), T(0)};
-      default: return {};
-    }
   }
 };
 
