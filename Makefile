@@ -25,6 +25,12 @@ deps:
 	  $$SUDO apt-get update -qq && \
 	  DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
+	@# three.js, the independent glTF reference of an optional test (skips without it).
+	@if [ -f tools/threejs/node_modules/three/package.json ]; then :; \
+	elif command -v npm >/dev/null 2>&1; then \
+	  npm ci --prefix tools/threejs --no-audit --no-fund --loglevel=error \
+	    || echo "make: npm could not install three.js; the glTF cross-check test will skip"; \
+	else echo "make: npm not found; the three.js glTF cross-check test will skip"; fi
 
 configure: deps
 	cmake --preset $(PRESET)

@@ -6,7 +6,10 @@
 ///
 /// Keys are normalised and their signs made continuous when the track is built (each key on the
 /// same side of the 4-D sphere as its predecessor, so every segment takes the short way), unless
-/// a key asks for the long way.  Sampling is noexcept and returns a unit quaternion.
+/// a key asks for the long way.  Exception: glTF cubic segments interpolate the keys and tangents
+/// with the signs they were authored with, as the glTF specification and every glTF viewer do (a
+/// flipped key would no longer match its tangents).  Sampling is noexcept and returns a unit
+/// quaternion.
 
 #include <algorithm>
 #include <charconv>
@@ -153,6 +156,7 @@ class QuatTrack {
 
   std::vector<T> frames_;
   std::vector<Quat<T>> keys_, after_, before_, squad_, tin_, tout_;
+  std::vector<T> sign_;  // ±1 applied to each authored key (and its tangents) for continuity
   std::vector<QuatInterpolation> mode_;
 };
 
@@ -185,6 +189,7 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const 
   tr.mode_.resize(n);
   tr.tin_.resize(n);
   tr.tout_.resize(n);
+  tr.sign_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& k = keys[i];
     if (!std::isfinite(k.frame)) return Error{ErrorCode::NotFinite, "frame is not finite", where(i)};
@@ -209,6 +214,7 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const 
     tr.keys_[i] = q * sign;
     tr.tin_[i] = k.in_tangent * sign;
     tr.tout_[i] = k.out_tangent * sign;
+    tr.sign_[i] = sign;
     tr.mode_[i] = k.interpolation;
   }
   // Bézier control points (§3.3.1): a_i = bisect(double(q_{i−1}, q_i), q_{i+1}), b_i = double(a_i, q_i);
@@ -276,10 +282,11 @@ Quat<T> QuatTrack<T>::sample(T frame, TrackCursor& cursor, bool use_cursor) cons
       return slerp_unit(slerp_unit(keys_[i], keys_[i + 1], u), slerp_unit(squad_[i], squad_[i + 1], u),
                         T(2) * u * (T(1) - u));
     case QuatInterpolation::gltf_cubic: {
+      // In the authored signs (undo the continuity flip of each end together with its tangent).
       const T u2 = u * u, u3 = u2 * u;
-      const Quat<T> v = keys_[i] * (T(2) * u3 - T(3) * u2 + T(1)) + tout_[i] * ((u3 - T(2) * u2 + u) * h) +
-                        keys_[i + 1] * (T(-2) * u3 + T(3) * u2) + tin_[i + 1] * ((u3 - u2) * h);
-      return normalized(v);
+      const Quat<T> start = (keys_[i] * (T(2) * u3 - T(3) * u2 + T(1)) + tout_[i] * ((u3 - T(2) * u2 + u) * h)) * sign_[i];
+      const Quat<T> end = (keys_[i + 1] * (T(-2) * u3 + T(3) * u2) + tin_[i + 1] * ((u3 - u2) * h)) * sign_[i + 1];
+      return normalized(start + end);
     }
   }
   return keys_[i];
