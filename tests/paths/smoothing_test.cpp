@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 #include "support/museum_paths.hpp"
@@ -208,6 +209,32 @@ TEST(SmoothConvolution, HugeRadiusLumpsTheTailsIntoTheEnds) {
     double want = 0;
     for (int k = -20; k <= 20; ++k) want += w[std::size_t(k + 20)] * kY[std::size_t(std::clamp(i + k, 0, 9))];
     EXPECT_NEAR((*t)[std::size_t(i)], want, 1e-14) << i;
+  }
+}
+
+template <class T>
+class SmoothingHugeRadius : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(SmoothingHugeRadius, Scalars);
+
+// Radius near the scalar's maximum (r² and x + r overflow): weights stay finite and the result is
+// the closed form of the lumped tails, ½·(first + last) for box and tent (the mass beyond ±(n − 1)
+// is half on each side, the interior weights are ~1/r ≈ 0), and for the Gaussian too (symmetric).
+// Tolerance: the interior weights are at most 1/r per point, far below one ulp of 1, so the only
+// error is the rounding of the sums: a few ulp of the values (≤ 2).
+TYPED_TEST(SmoothingHugeRadius, WeightsAndResultStayFinite) {
+  using T = TypeParam;
+  const T tol = T(8) * std::numeric_limits<T>::epsilon() * T(2);
+  std::vector<T> y;
+  for (double v : kY) y.push_back(T(v));
+  const T mid = (y.front() + y.back()) / T(2);
+  for (auto kernel : {SmoothingKernel::Box, SmoothingKernel::Tent, SmoothingKernel::Gaussian}) {
+    for (T r : {std::numeric_limits<T>::max(), std::numeric_limits<T>::max() / T(3), T(1e18)}) {
+      SCOPED_TRACE(testing::Message() << "kernel " << int(kernel) << " radius " << r);
+      auto s = smooth_convolution(y, {.kernel = kernel, .radius = r});
+      ASSERT_TRUE(s);
+      for (T v : *s) EXPECT_NEAR(v, mid, tol);
+    }
   }
 }
 
