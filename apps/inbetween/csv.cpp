@@ -70,7 +70,10 @@ CsvTable read_csv_table(const std::string& text, const std::string& path, int mi
     t.rows.push_back(std::move(row));
     t.lines.push_back(line_no);
   }
-  if (t.rows.empty()) throw CommandError{path + ": no data rows"};
+  if (t.rows.empty()) {
+    throw CommandError{path + ": no data rows" +
+                       (t.header.empty() ? std::string() : " (the only line, \"" + t.header + "\", was read as a header)")};
+  }
   return t;
 }
 
