@@ -5,8 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include <charconv>
+#include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -778,6 +779,10 @@ std::vector<SceneColumn> scene_columns(const Scene& scene) {
 }
 
 void evaluate_scene(const Scene& scene, double frame, std::span<double> out) noexcept {
+  // Beyond float's range the conversion is undefined; the nearest float frame is the largest one.
+  constexpr double kFloatMax = std::numeric_limits<float>::max();
+  const float single_precision_frame = std::isnan(frame) ? std::numeric_limits<float>::quiet_NaN()
+                                                         : float(std::clamp(frame, -kFloatMax, kFloatMax));
   std::size_t col = 0;
   auto put = [&](double v) {
     if (col < out.size()) out[col] = v;
@@ -786,7 +791,7 @@ void evaluate_scene(const Scene& scene, double frame, std::span<double> out) noe
   for (const auto& [kind, idx] : scene.track_order) {
     switch (kind) {
       case SceneTrackKind::scalar:
-        put(scene.scalar_tracks[idx].curve.evaluate(float(frame)));
+        put(scene.scalar_tracks[idx].curve.evaluate(single_precision_frame));
         break;
       case SceneTrackKind::vector: {
         const auto& t = scene.vector_tracks[idx];
