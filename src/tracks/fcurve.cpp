@@ -9,6 +9,7 @@
 #include <cfloat>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "inbetween/math/assert.hpp"
@@ -731,6 +732,9 @@ float FCurve::evaluate(float frame, TrackCursor& cursor) const noexcept {
 float FCurve::evaluate_impl(float frame, std::size_t* cursor) const noexcept {
   if (keys_.empty()) return 0.0f;
   if (std::isnan(frame)) return keys_.front().y;
+  // ±inf acts as the largest finite frame: linear extrapolation would give 0·inf and the Cycles
+  // modifier fmod(inf, ·), both NaN.
+  if (std::isinf(frame)) frame = std::copysign(std::numeric_limits<float>::max(), frame);
   float t = frame;
   float offset = 0.0f;
   if (cycles_) {

@@ -192,6 +192,13 @@ TEST(FCurve, PassesThroughKeysAndStaysFiniteOnMuseum) {
       const float t = lo + w * float(i) / 200.f;
       EXPECT_TRUE(std::isfinite(c.evaluate(t))) << "frame " << t;
     }
+    // The far ends: ±inf acts as ±FLT_MAX (it was NaN from 0·inf in linear extrapolation and from
+    // fmod(inf, ·) in the Cycles modifier); the exhibits' slopes keep the value finite there.
+    constexpr float kMax = std::numeric_limits<float>::max();
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    for (float t : {kInf, -kInf, kMax, -kMax}) EXPECT_TRUE(std::isfinite(c.evaluate(t))) << "frame " << t;
+    EXPECT_EQ(c.evaluate(kInf), c.evaluate(kMax));
+    EXPECT_EQ(c.evaluate(-kInf), c.evaluate(-kMax));
   }
 }
 

@@ -215,6 +215,16 @@ TEST(TrackMuseum, EveryExhibitBuildsPassesThroughItsKeysAndStaysFinite) {
         EXPECT_TRUE(std::isfinite(v)) << f;
         EXPECT_EQ(v, tr->sample(f)) << f;
       }
+      // Contract "never NaN" at the far ends: ±inf acts as ±max (linear extension with a zero
+      // tangent was 0·inf, the cycle modes inf − inf).  Steep tangents may overflow to ±inf there.
+      constexpr double kMax = std::numeric_limits<double>::max();
+      constexpr double kInf = std::numeric_limits<double>::infinity();
+      for (double f : {kInf, -kInf, kMax, -kMax}) {
+        EXPECT_FALSE(std::isnan(tr->sample(f))) << f;
+        EXPECT_FALSE(std::isnan(tr->sample(f, cursor))) << f;
+      }
+      EXPECT_EQ(tr->sample(kInf), tr->sample(kMax));
+      EXPECT_EQ(tr->sample(-kInf), tr->sample(-kMax));
     }
   }
 }

@@ -116,7 +116,7 @@ class FCurve {
   };
 
   /// The value at `frame` (frames are single precision, as Blender's evaluate() takes them).
-  /// Any finite frame is valid; NaN gives the first key's value.
+  /// Any frame is valid; NaN gives the first key's value, ±inf acts as the largest finite float.
   [[nodiscard]] float evaluate(float frame) const noexcept;
 
   /// The same value as evaluate(frame), found from the segment remembered in `cursor` (updated):
