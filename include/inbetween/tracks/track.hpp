@@ -50,7 +50,7 @@ enum class TrackExtend : std::uint8_t {
 /// One authored key of a Track<V>.
 template <class V>
 struct TrackKey {
-  using T = scalar_of<V>;
+  using T = scalar_of<V>;  ///< scalar type of V (float or double)
   T frame{};                                     ///< time in frames (any real number)
   V value{};                                     ///< value at the key
   TangentKind tangent = TangentKind::catmull_rom;  ///< how this key's tangents are made
@@ -70,7 +70,7 @@ struct TrackCursor {
 template <class V>
 class Track {
  public:
-  using T = scalar_of<V>;
+  using T = scalar_of<V>;  ///< scalar type of V (float or double)
 
   /// Number of keys (≥ 1).
   [[nodiscard]] std::size_t size() const noexcept { return frames_.size(); }
