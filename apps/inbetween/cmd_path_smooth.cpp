@@ -37,6 +37,8 @@ struct Args {
     e.where.insert(0, "--");
   } else if (e.where == "control_points") {
     e.where = "--control-points";
+  } else if (e.where == "points") {
+    e.where = a.input;  // too few rows: the file is the place
   }
   throw CommandError{e.describe()};
 }

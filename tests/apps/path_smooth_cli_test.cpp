@@ -122,6 +122,9 @@ TEST(PathSmoothCli, NastyInputIsRejectedClearly) {
   expect_rejected(write_test_file("empty.csv", "").string(), "no data rows");
   // A lone non-numeric line is taken as a header; the message says so.
   expect_rejected(write_test_file("nan.csv", "1,nan\n").string(), "\"1,nan\", was read as a header");
+  // One row is too few for a B-spline fit: the file is named.
+  const auto one = write_test_file("one.csv", "1,2\n");
+  expect_rejected(one.string() + " --method bspline", one.string() + ": need at least 2 points, got 1");
   // rows x passes beyond 1e9 would only hang the tool.
   const auto csv = write_test_file("data.csv", kData);
   expect_rejected(csv.string() + " --iterations 2000000000", "--iterations");

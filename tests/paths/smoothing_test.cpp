@@ -213,16 +213,16 @@ TEST(SmoothConvolution, HugeRadiusLumpsTheTailsIntoTheEnds) {
 }
 
 template <class T>
-class SmoothingHugeRadius : public ::testing::Test {};
+class SmoothingTyped : public ::testing::Test {};
 using Scalars = ::testing::Types<float, double>;
-TYPED_TEST_SUITE(SmoothingHugeRadius, Scalars);
+TYPED_TEST_SUITE(SmoothingTyped, Scalars);
 
 // Radius near the scalar's maximum (r² and x + r overflow): weights stay finite and the result is
 // the closed form of the lumped tails, ½·(first + last) for box and tent (the mass beyond ±(n − 1)
 // is half on each side, the interior weights are ~1/r ≈ 0), and for the Gaussian too (symmetric).
 // Tolerance: the interior weights are at most 1/r per point, far below one ulp of 1, so the only
 // error is the rounding of the sums: a few ulp of the values (≤ 2).
-TYPED_TEST(SmoothingHugeRadius, WeightsAndResultStayFinite) {
+TYPED_TEST(SmoothingTyped, HugeRadiusWeightsAndResultStayFinite) {
   using T = TypeParam;
   const T tol = T(8) * std::numeric_limits<T>::epsilon() * T(2);
   std::vector<T> y;
@@ -260,11 +260,12 @@ TEST(Smoothing, BadInputNamesTheIndex) {
   EXPECT_EQ(it.error().where, "iterations");
 }
 
-TEST(Smoothing, MuseumPathsStayFinite) {
-  for (const auto& ex : test::museum_paths<float>()) {
+TYPED_TEST(SmoothingTyped, MuseumPathsStayFinite) {
+  using T = TypeParam;
+  for (const auto& ex : test::museum_paths<T>()) {
     SCOPED_TRACE(ex.name);
     for (const auto& s : {smooth_linear(ex.points), smooth_cubic(ex.points, {.smooth_ends = true}),
-                          smooth_convolution(ex.points, {.kernel = SmoothingKernel::Gaussian, .radius = 2.5f})}) {
+                          smooth_convolution(ex.points, {.kernel = SmoothingKernel::Gaussian, .radius = T(2.5)})}) {
       ASSERT_TRUE(s);
       ASSERT_EQ(s->size(), ex.points.size());
       for (const auto& p : *s) EXPECT_TRUE(is_finite(p));
