@@ -66,6 +66,14 @@ std::vector<double> frame_list(const std::string& spec, double scene_start, doub
   return frames;
 }
 
+// A CSV header field (RFC 4180): names with a comma, quote or line break are quoted, quotes doubled.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char ch : text) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
+}
+
 std::string format_float(float v) {
   std::string s = shortest_text(v);
   if (s == "-0") s = "0";
@@ -111,7 +119,7 @@ void run_bake(const BakeOptions& opt) {
   std::string out;
   if (opt.format == "csv") {
     out += "frame,time";
-    for (const auto& c : columns) out += "," + c.name;
+    for (const auto& c : columns) out += "," + csv_field(c.name);
     out += "\n";
     for (double f : frames) {
       evaluate_row(f);

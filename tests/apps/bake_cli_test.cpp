@@ -46,7 +46,7 @@ TEST(BakeCli, CsvHeaderAndRowsFollowTheIssue) {
   const auto ls = lines(r.out);
   ASSERT_EQ(ls.size(), 6u);  // header + frames 1, 1.5, 2, 2.5, 3
   EXPECT_EQ(ls[0],
-            "frame,time,cube.location.z,cube.location.x,cube.scale.y,cube.color.r,cube.color.g,cube.color.b,"
+            "frame,time,cube.location.z,cube.location.x,cube.stretch.y,cube.color.r,cube.color.g,cube.color.b,"
             "cube.color.a,camera.target.x,camera.target.y,camera.target.z,camera.orientation.w,camera.orientation.x,"
             "camera.orientation.y,camera.orientation.z,lamp.euler_unfiltered.w,lamp.euler_unfiltered.x,"
             "lamp.euler_unfiltered.y,lamp.euler_unfiltered.z,lamp.euler_slerp.w,lamp.euler_slerp.x,lamp.euler_slerp.y,"
@@ -207,6 +207,14 @@ TEST(BakeCli, NastyInputIsRejectedWithAPlace) {
        R"({"inbetween": 1, "objects": [{"name": "a"}, {"name": "b"}, {"name": "c"}, {"name": "d"}, {"name": "e"}, {"name": "f"}]})",
        "--frames 1:1000000", "at most 50000000 values"},
       {"negative step", one_key, "--frames 1:5:-1", "--frames: step must be positive"},
+      {"two tracks writing the same column",
+       R"({"inbetween": 1, "tracks": [{"name": "p", "kind": "vec2", "keys": [{"frame": 1, "value": [0, 0]}]},
+          {"name": "p.x", "keys": [{"frame": 1, "value": 0}]}]})",
+       "", "/tracks/1/name: output column \"p.x\" is also a column of /tracks/0/name"},
+      {"a track writing an object's column",
+       R"({"inbetween": 1, "tracks": [{"name": "cube.scale.z", "keys": [{"frame": 1, "value": 0}]}],
+          "objects": [{"name": "cube"}]})",
+       "", "/objects/0/name: output column \"cube.scale.z\" is also a column of /tracks/0/name"},
       {"fps nan", one_key, "--fps nan", "--fps: \"nan\" is not a finite positive number"},
       {"fps so small that time overflows", R"({"inbetween": 1, "fps": 1e-320})", "", "frame 1: time = frame / fps"},
       // Linear extrapolation to frame 1e300: finite keys, but the value is beyond float (F-curve) and
@@ -238,6 +246,19 @@ TEST(BakeCli, NastyInputIsRejectedWithAPlace) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find(missing.string() + ": cannot open for writing"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(missing.parent_path()));
+}
+
+// Names are free text; in the CSV header a name with a comma, quote or line break is quoted as
+// RFC 4180 says (it used to split the header into extra columns).
+TEST(BakeCli, CsvHeaderQuotesNamesThatNeedIt) {
+  const fs::path scene = write_scene("names.json", R"({"inbetween": 1, "tracks": [
+      {"name": "a,b", "keys": [{"frame": 1, "value": 0}]},
+      {"name": "say \"hi\"", "keys": [{"frame": 1, "value": 0}]},
+      {"name": "line\nbreak", "keys": [{"frame": 1, "value": 0}]},
+      {"name": "plain", "keys": [{"frame": 1, "value": 0}]}]})");
+  const CliRun r = run("bake \"" + scene.string() + "\"");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find("\n1,")), "frame,time,\"a,b\",\"say \"\"hi\"\"\",\"line\nbreak\",plain");
 }
 
 // A frame beyond float's range is legal: F-curves see the largest float frame (no undefined
