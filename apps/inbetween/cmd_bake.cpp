@@ -107,8 +107,9 @@ void run_bake(const BakeOptions& opt) {
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
       if (!std::isfinite(v)) {
-        throw CommandError{"frame " + format_number(f) + ": " + columns[c].name + " overflows (" + format_number(v) +
-                           (columns[c].single_precision ? ", single precision" : "") + ")"};
+        throw CommandError{"frame " + format_number(f) + ": " + columns[c].name +
+                           (std::isnan(v) ? " is not a number" : " overflows (" + format_number(v) +
+                                                                     (columns[c].single_precision ? ", single precision" : "") + ")")};
       }
     }
   };

@@ -817,6 +817,16 @@ Expected<FCurve> build_fcurve(const RawFCurve& raw) {
     if (std::abs(k.frame) > 1e30 || std::abs(k.value) > 1e30) {
       return Error{ErrorCode::InvalidArgument, "frame or value beyond single precision (|x| > 1e30)", where(i)};
     }
+    // Handles and easing parameters are stored in float too: beyond float's range the conversion
+    // is undefined (inf in practice, then NaN in the Bézier solver).
+    if (std::max({std::abs(handle_left.x), std::abs(handle_left.y), std::abs(handle_right.x),
+                  std::abs(handle_right.y)}) > 1e30) {
+      return Error{ErrorCode::InvalidArgument, "a handle is beyond single precision (|x| > 1e30)", where(i)};
+    }
+    if (std::max({std::abs(k.back), std::abs(k.amplitude), std::abs(k.period)}) > 1e30) {
+      return Error{ErrorCode::InvalidArgument, "back, amplitude or period is beyond single precision (|x| > 1e30)",
+                   where(i)};
+    }
     if (i > 0) {
       const FCurveKey& p = raw.keys[i - 1];
       if (!(k.frame > p.frame)) {

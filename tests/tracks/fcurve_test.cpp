@@ -316,6 +316,21 @@ TEST(FCurveBuild, RejectsBadKeysNamingTheKey) {
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::TooFewPoints);
 
+  // Finite but beyond float: a handle of 1e300 gave NaN values (float conversion to inf).
+  RawFCurve huge_handle{.keys = {inserted(1, 0), inserted(3, 0)}};
+  huge_handle.keys[1].handle_left_type = huge_handle.keys[1].handle_right_type = HandleType::free;
+  huge_handle.keys[1].handle_left = Vec2d{2, 1e300};
+  r = build_fcurve(huge_handle);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(r.error().where, "key 1");
+  RawFCurve huge_amplitude{.keys = {inserted(1, 0), inserted(3, 1)}};
+  huge_amplitude.keys[0].interpolation = Interpolation::elastic;
+  huge_amplitude.keys[0].amplitude = 1e300;
+  r = build_fcurve(huge_amplitude);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().where, "key 0");
+
   RawFCurve bad_count{.keys = {inserted(0, 0)}, .cycles = FCurveCycles{.count_after = -1}};
   r = build_fcurve(bad_count);
   ASSERT_FALSE(r.has_value());

@@ -151,7 +151,8 @@ class FCurve {
 };
 
 /// Validates `raw` (≥ 1 key; frames finite and strictly increasing, also after rounding to single
-/// precision; values, handles and easing parameters finite; cycle counts in 0..32767) and builds
+/// precision; frames, values, handles and easing parameters finite and within ±1e30, so that they
+/// fit single precision; cycle counts in 0..32767) and builds
 /// the curve: handles clamped to their key's side, then recomputed as Blender's FCurve.update()
 /// does.  Errors name the key ("key 3").
 [[nodiscard]] Expected<FCurve> build_fcurve(const RawFCurve& raw);
