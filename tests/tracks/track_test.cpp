@@ -248,6 +248,12 @@ TEST(TrackBuild, RejectsBadKeysNamingTheKey) {
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
   EXPECT_FALSE(build_track(std::vector<TrackKey<double>>{}).has_value());
+  // Finite values whose chord slope overflows: (−1e308 − 1e308) / 1 = −inf at key 0.
+  const std::vector<TrackKey<double>> far = {key<double>(0, 1e308), key<double>(1, -1e308), key<double>(2, 1e308)};
+  r = build_track(far);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(r.error().where, "key 0");
 }
 
 TEST(TrackBuild, SingleKeyIsConstantEverywhere) {

@@ -112,7 +112,8 @@ class Track {
 };
 
 /// Validates and builds a track: ≥ 1 key, finite frames strictly increasing, finite values,
-/// tangents and TCB parameters, TCB parameters in [−1, 1].  Errors name the key ("key 2").
+/// tangents and TCB parameters, TCB parameters in [−1, 1], and finite resolved tangents (values
+/// near the type's maximum a frame apart overflow the slope).  Errors name the key ("key 2").
 template <class V>
 [[nodiscard]] Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys,
                                              TrackExtend before = TrackExtend::constant,
@@ -243,6 +244,10 @@ Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend be
           return std::clamp(m, -lim, lim);
         });
         break;
+    }
+    // Finite keys can still give an infinite slope (values near the type's maximum a frame apart).
+    if (!track_detail::finite(in) || !track_detail::finite(out)) {
+      return Error{ErrorCode::NotFinite, "the tangent overflows (values too far apart for the key spacing)", where(i)};
     }
     tr.in_[i] = in;
     tr.out_[i] = out;
