@@ -120,8 +120,11 @@ TEST(PathSmoothCli, NastyInputIsRejectedClearly) {
     EXPECT_FALSE(fs::exists(out));
   };
   expect_rejected(write_test_file("empty.csv", "").string(), "no data rows");
-  // A lone non-numeric line is taken as a header; the message says so.
-  expect_rejected(write_test_file("nan.csv", "1,nan\n").string(), "\"1,nan\", was read as a header");
+  // A lone header line: the message says it was read as a header.
+  expect_rejected(write_test_file("header.csv", "x,y\n").string(), "\"x,y\", was read as a header");
+  // A first line of number-like fields is data with a bad value, not a header to skip silently.
+  expect_rejected(write_test_file("nan.csv", "1,nan\n2,3\n3,4\n").string(), "line 1: expected finite numbers");
+  expect_rejected(write_test_file("huge.csv", "1e400,2\n2,3\n").string(), "line 1: expected finite numbers");
   // One row is too few for a B-spline fit: the file is named.
   const auto one = write_test_file("one.csv", "1,2\n");
   expect_rejected(one.string() + " --method bspline", one.string() + ": need at least 2 points, got 1");
