@@ -5,9 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "support/random.hpp"
+#include "support/tolerances.hpp"
 
 namespace inbetween {
 namespace {
@@ -38,6 +40,43 @@ TEST(EulerTrack, BothModesPassThroughKeysInEveryConvention) {
         EXPECT_TRUE(same_rotation(tr->sample(k.frame), quat_from_euler(seq, k.angles_rad), kAngleTol));
         EXPECT_TRUE(same_rotation(quat_from_euler(seq, tr->sample_angles(k.frame)), quat_from_euler(seq, k.angles_rad),
                                   kAngleTol));
+      }
+    }
+  }
+}
+
+template <class T>
+class EulerTrackTyped : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(EulerTrackTyped, Scalars);
+
+// The same property in float and double.  Tolerance: a key's orientation goes through
+// quat_from_euler (three half-angle sin/cos and two quaternion products) on both sides, plus a
+// normalisation; 256 ulp of 1 rad (5.7e-14 in double, 3.1e-5 in float).
+template <class T>
+constexpr T kKeyAngleTol = T(256) * std::numeric_limits<T>::epsilon();
+
+TYPED_TEST(EulerTrackTyped, BothModesPassThroughKeysInEveryConvention) {
+  using T = TypeParam;
+  test::Random rng(test::seed_for(5054));
+  SCOPED_TRACE(rng.trace());
+  for (const EulerSequence& seq : all_euler_sequences()) {
+    SCOPED_TRACE(seq.name());
+    std::vector<EulerKey<T>> keys;
+    for (int i = 0; i < 5; ++i) {
+      EulerKey<T> k;
+      k.frame = T(2 * i);
+      k.angles_rad = {rng.uniform(T(-3), T(3)), rng.uniform(T(-1.5), T(1.5)), rng.uniform(T(-3), T(3))};
+      keys.push_back(k);
+    }
+    for (auto mode : {EulerTrackMode::angles, EulerTrackMode::quaternion}) {
+      auto tr = build_euler_track(keys, {.sequence = seq, .mode = mode});
+      ASSERT_TRUE(tr.has_value());
+      for (const auto& k : keys) {
+        const Quat<T> want = quat_from_euler(seq, k.angles_rad);
+        EXPECT_TRUE(same_rotation(tr->sample(k.frame), want, kKeyAngleTol<T>)) << int(mode);
+        EXPECT_TRUE(same_rotation(quat_from_euler(seq, tr->sample_angles(k.frame)), want, kKeyAngleTol<T>)) << int(mode);
+        EXPECT_NEAR(norm(tr->sample(k.frame + T(0.5))), T(1), test::few_ulp<T>);
       }
     }
   }
