@@ -21,7 +21,7 @@ namespace {
 // written, so both the frame count and the number of cells (frames × (2 + columns), ~25 bytes of
 // text each at most) are bounded.
 constexpr double kMaxRows = 10'000'000;
-constexpr double kMaxCells = 50'000'000;
+constexpr double kMaxCells = 20'000'000;
 
 double parse_real(const std::string& text, const std::string& what) {
   const char* begin = text.c_str();
@@ -57,7 +57,7 @@ std::vector<double> frame_list(const std::string& spec, double scene_start, doub
   }
   if (count_d * double(2 + columns) > kMaxCells) {
     throw CommandError{what + ": " + format_number(count_d) + " frames x " + std::to_string(2 + columns) +
-                       " columns; at most 50000000 values (narrow the range or raise STEP)"};
+                       " columns; at most 20000000 values (narrow the range or raise STEP)"};
   }
   std::vector<double> frames;
   const auto count = std::size_t(count_d);

@@ -205,7 +205,7 @@ TEST(BakeCli, NastyInputIsRejectedWithAPlace) {
       {"infinite frame count", one_key, "--frames -1e308:1e308", "inf frames"},
       {"too many values (frames x columns)",
        R"({"inbetween": 1, "objects": [{"name": "a"}, {"name": "b"}, {"name": "c"}, {"name": "d"}, {"name": "e"}, {"name": "f"}]})",
-       "--frames 1:1000000", "at most 50000000 values"},
+       "--frames 1:1000000", "at most 20000000 values"},
       {"negative step", one_key, "--frames 1:5:-1", "--frames: step must be positive"},
       {"vector keys whose slope overflows",
        R"({"inbetween": 1, "tracks": [{"name": "v", "kind": "vec2", "keys": [{"frame": 1, "value": [1e308, 0]},
