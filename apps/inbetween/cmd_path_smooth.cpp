@@ -37,6 +37,8 @@ struct Args {
     e.where.insert(0, "--");
   } else if (e.where == "control_points") {
     e.where = "--control-points";
+  } else if (e.where == "points") {
+    e.where = a.input;  // too few rows: the file is the place
   }
   throw CommandError{e.describe()};
 }
@@ -102,12 +104,29 @@ void setup(CLI::App& root) {
   smooth->callback([args] {
     CsvTable t = read_csv_table(read_input(args->input), args->input, 1, 4, "x[,y[,z[,w]]]");
     const std::size_t first = args->function ? 1 : 0;
+    // A guard against a typo such as --iterations 2000000000: each pass touches every row, so the
+    // work is rows × passes; 1e9 row updates take seconds, more only hangs the tool.
+    constexpr double kMaxRowPasses = 1e9;
+    if (args->method != "bspline" && double(args->iterations) * double(t.rows.size()) > kMaxRowPasses) {
+      throw CommandError{"--iterations: " + std::to_string(args->iterations) + " passes over " +
+                         std::to_string(t.rows.size()) + " rows is more than 1e9 row updates"};
+    }
     const std::size_t dim = t.rows[0].size() - first;
     if (dim == 0) throw CommandError{args->input + ": --function needs at least 2 columns"};
     if (dim == 1) smooth_columns<double>(t, *args, first);
     else if (dim == 2) smooth_columns<Vec2d>(t, *args, first);
     else if (dim == 3) smooth_columns<Vec3d>(t, *args, first);
     else throw CommandError{args->input + ": 4 columns are only accepted with --function (x plus a 3-D point)"};
+    // Finite input can still overflow (the cubic estimate adds two values near the double maximum):
+    // report it instead of writing inf.
+    for (std::size_t i = 0; i < t.rows.size(); ++i) {
+      for (double v : t.rows[i]) {
+        if (!std::isfinite(v)) {
+          throw CommandError{args->input + ": line " + std::to_string(t.lines[i]) +
+                             ": the smoothed value overflows (input values too close to the double maximum)"};
+        }
+      }
+    }
     std::string text = t.header.empty() ? "" : t.header + "\n";
     for (const auto& row : t.rows) {
       for (std::size_t k = 0; k < row.size(); ++k) {

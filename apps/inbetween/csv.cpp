@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <system_error>
 
@@ -22,6 +23,21 @@ bool parse_number(const std::string& field, double& out) {
   const char* first = f.data() + (f[0] == '+' ? 1 : 0);
   const auto [ptr, ec] = std::from_chars(first, f.data() + f.size(), out);
   return ec == std::errc() && ptr == f.data() + f.size() && std::isfinite(out);
+}
+
+// True when every field reads wholly as a number, finite or not ("nan", "inf", "1e400"): such a
+// line is data with a bad value, not a header.
+bool number_like(const std::string& line) {
+  std::stringstream fields(line);
+  std::string f;
+  while (std::getline(fields, f, ',')) {
+    const std::string t = trim(f);
+    if (t.empty()) return false;
+    char* end = nullptr;
+    (void)std::strtod(t.c_str(), &end);
+    if (end != t.c_str() + t.size()) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -51,7 +67,7 @@ CsvTable read_csv_table(const std::string& text, const std::string& path, int mi
     if (trim(line).back() == ',') numeric = false;  // a trailing empty field
     const std::string where = path + ": line " + std::to_string(line_no);
     if (!numeric) {
-      if (first) {
+      if (first && !number_like(line)) {
         t.header = trim(line);
         first = false;
         continue;
@@ -70,7 +86,10 @@ CsvTable read_csv_table(const std::string& text, const std::string& path, int mi
     t.rows.push_back(std::move(row));
     t.lines.push_back(line_no);
   }
-  if (t.rows.empty()) throw CommandError{path + ": no data rows"};
+  if (t.rows.empty()) {
+    throw CommandError{path + ": no data rows" +
+                       (t.header.empty() ? std::string() : " (the only line, \"" + t.header + "\", was read as a header)")};
+  }
   return t;
 }
 

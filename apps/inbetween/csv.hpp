@@ -1,7 +1,8 @@
 #pragma once
 // Reading numeric CSV for the tool's commands (`path fit`, `path smooth`): rows of comma-separated
-// finite numbers; blank lines are skipped; the first non-blank line may be a header (any field that
-// is not a number).  Errors are CommandErrors naming the file and line.
+// finite numbers; blank lines are skipped; the first non-blank line may be a header (a field that
+// is not a number; a line of number-like fields such as "1,nan" or "1e400,2" is data with a bad
+// value, an error).  Errors are CommandErrors naming the file and line.
 
 #include <string>
 #include <vector>

@@ -5,11 +5,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include <charconv>
+#include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
+#include <map>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -669,6 +671,18 @@ Expected<Scene> parse_scene_json(const json& root) {
     scene.range_end = *b;
   }
   std::vector<std::string> names;
+  // Every output column belongs to one track or object: "p" (vec2) and a scalar "p.x" would both
+  // write a column p.x.  Column → pointer of the name that made it.
+  std::map<std::string, std::string> column_owner;
+  auto claim = [&](const std::string& column, const std::string& owner) -> Expected<void> {
+    const auto [it, inserted] = column_owner.emplace(column, owner);
+    if (!inserted) {
+      return error_at(ErrorCode::InvalidArgument,
+                      "output column \"" + column + "\" is also a column of " + it->second + " (names must give distinct columns)",
+                      owner);
+    }
+    return {};
+  };
   if (auto t = root.find("tracks"); t != root.end()) {
     if (!t->is_array()) return error_at(ErrorCode::InvalidArgument, "\"tracks\" must be an array", "/tracks");
     for (std::size_t i = 0; i < t->size(); ++i) {
@@ -716,12 +730,28 @@ Expected<Scene> parse_scene_json(const json& root) {
         }
       }
       names.push_back(name);
+      std::string suffixes;  // one letter per component column; none for a scalar track
+      if (kind == "vec2" || kind == "vec3" || kind == "vec4" || kind == "color") suffixes = scene.vector_tracks.back().components;
+      if (kind == "quaternion" || kind == "euler") suffixes = "wxyz";
+      if (suffixes.empty()) {
+        if (auto ok = claim(name, child(tp, "name")); !ok) return ok.error();
+      }
+      for (char c : suffixes) {
+        if (auto ok = claim(name + "." + c, child(tp, "name")); !ok) return ok.error();
+      }
     }
   }
   if (auto o = root.find("objects"); o != root.end()) {
     auto h = parse_objects(*o);
     if (!h) return h.error();
     scene.objects = std::move(*h);
+    for (std::size_t i = 0; i < scene.objects->nodes().size(); ++i) {
+      const std::string owner = child(child(std::string("/objects"), i), "name");
+      for (std::string_view channel : {"translation.x", "translation.y", "translation.z", "rotation.w", "rotation.x",
+                                       "rotation.y", "rotation.z", "scale.x", "scale.y", "scale.z"}) {
+        if (auto ok = claim(scene.objects->nodes()[i].name + "." + std::string(channel), owner); !ok) return ok.error();
+      }
+    }
   }
   return scene;
 }
@@ -778,6 +808,10 @@ std::vector<SceneColumn> scene_columns(const Scene& scene) {
 }
 
 void evaluate_scene(const Scene& scene, double frame, std::span<double> out) noexcept {
+  // Beyond float's range the conversion is undefined; the nearest float frame is the largest one.
+  constexpr double kFloatMax = std::numeric_limits<float>::max();
+  const float single_precision_frame = std::isnan(frame) ? std::numeric_limits<float>::quiet_NaN()
+                                                         : float(std::clamp(frame, -kFloatMax, kFloatMax));
   std::size_t col = 0;
   auto put = [&](double v) {
     if (col < out.size()) out[col] = v;
@@ -786,7 +820,7 @@ void evaluate_scene(const Scene& scene, double frame, std::span<double> out) noe
   for (const auto& [kind, idx] : scene.track_order) {
     switch (kind) {
       case SceneTrackKind::scalar:
-        put(scene.scalar_tracks[idx].curve.evaluate(float(frame)));
+        put(scene.scalar_tracks[idx].curve.evaluate(single_precision_frame));
         break;
       case SceneTrackKind::vector: {
         const auto& t = scene.vector_tracks[idx];

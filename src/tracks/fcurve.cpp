@@ -9,6 +9,7 @@
 #include <cfloat>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "inbetween/math/assert.hpp"
@@ -731,6 +732,9 @@ float FCurve::evaluate(float frame, TrackCursor& cursor) const noexcept {
 float FCurve::evaluate_impl(float frame, std::size_t* cursor) const noexcept {
   if (keys_.empty()) return 0.0f;
   if (std::isnan(frame)) return keys_.front().y;
+  // ±inf acts as the largest finite frame: linear extrapolation would give 0·inf and the Cycles
+  // modifier fmod(inf, ·), both NaN.
+  if (std::isinf(frame)) frame = std::copysign(std::numeric_limits<float>::max(), frame);
   float t = frame;
   float offset = 0.0f;
   if (cycles_) {
@@ -812,6 +816,16 @@ Expected<FCurve> build_fcurve(const RawFCurve& raw) {
     }
     if (std::abs(k.frame) > 1e30 || std::abs(k.value) > 1e30) {
       return Error{ErrorCode::InvalidArgument, "frame or value beyond single precision (|x| > 1e30)", where(i)};
+    }
+    // Handles and easing parameters are stored in float too: beyond float's range the conversion
+    // is undefined (inf in practice, then NaN in the Bézier solver).
+    if (std::max({std::abs(handle_left.x), std::abs(handle_left.y), std::abs(handle_right.x),
+                  std::abs(handle_right.y)}) > 1e30) {
+      return Error{ErrorCode::InvalidArgument, "a handle is beyond single precision (|x| > 1e30)", where(i)};
+    }
+    if (std::max({std::abs(k.back), std::abs(k.amplitude), std::abs(k.period)}) > 1e30) {
+      return Error{ErrorCode::InvalidArgument, "back, amplitude or period is beyond single precision (|x| > 1e30)",
+                   where(i)};
     }
     if (i > 0) {
       const FCurveKey& p = raw.keys[i - 1];

@@ -2,6 +2,7 @@
 // pointer and exit code 2 for each kind of malformed scene.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -45,7 +46,7 @@ TEST(BakeCli, CsvHeaderAndRowsFollowTheIssue) {
   const auto ls = lines(r.out);
   ASSERT_EQ(ls.size(), 6u);  // header + frames 1, 1.5, 2, 2.5, 3
   EXPECT_EQ(ls[0],
-            "frame,time,cube.location.z,cube.location.x,cube.scale.y,cube.color.r,cube.color.g,cube.color.b,"
+            "frame,time,cube.location.z,cube.location.x,cube.stretch.y,cube.color.r,cube.color.g,cube.color.b,"
             "cube.color.a,camera.target.x,camera.target.y,camera.target.z,camera.orientation.w,camera.orientation.x,"
             "camera.orientation.y,camera.orientation.z,lamp.euler_unfiltered.w,lamp.euler_unfiltered.x,"
             "lamp.euler_unfiltered.y,lamp.euler_unfiltered.z,lamp.euler_slerp.w,lamp.euler_slerp.x,lamp.euler_slerp.y,"
@@ -177,6 +178,115 @@ TEST(BakeCli, BadFramesAndUnreadableJson) {
   r = run("bake \"" + broken.string() + "\"");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("line 2"), std::string::npos) << r.err;
+}
+
+// Nasty input found by the audit: each case exits with 2, one message naming the place and no file.
+TEST(BakeCli, NastyInputIsRejectedWithAPlace) {
+  struct Case {
+    const char* what;
+    std::string scene;
+    std::string args;
+    std::string needle;
+  };
+  const std::string one_key = R"({"inbetween": 1, "tracks": [{"name": "a", "keys": [{"frame": 1, "value": 0}]}]})";
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  const Case cases[] = {
+      {"empty file", "", "", "line 1, column 1: not valid JSON"},
+      {"an array", "[]", "", "/: a scene must be a JSON object"},
+      {"deeply nested garbage", deep, "", "/: a scene must be a JSON object"},
+      {"equal frames",
+       R"({"inbetween": 1, "tracks": [{"name": "a", "keys": [{"frame": 3, "value": 0}, {"frame": 3, "value": 1}]}]})", "",
+       "/tracks/0/keys/1/frame: frame 3 is not after the previous key's frame 3"},
+      {"frames equal in single precision",
+       R"({"inbetween": 1, "tracks": [{"name": "a", "keys": [{"frame": 1, "value": 0}, {"frame": 1.00000001, "value": 1}]}]})",
+       "", "/tracks/0/keys/1: frame 1.00000001 rounds to the same single-precision frame as key 0"},
+      {"huge --frames range", one_key, "--frames 0:1e12", "--frames 0:1e12: 1000000000002 frames; at most 10000000"},
+      {"huge scene range", R"({"inbetween": 1, "range": [0, 1e12]})", "", "the scene's /range [0, 1e+12]"},
+      {"infinite frame count", one_key, "--frames -1e308:1e308", "inf frames"},
+      {"too many values (frames x columns)",
+       R"({"inbetween": 1, "objects": [{"name": "a"}, {"name": "b"}, {"name": "c"}, {"name": "d"}, {"name": "e"}, {"name": "f"}]})",
+       "--frames 1:1000000", "at most 20000000 values"},
+      {"negative step", one_key, "--frames 1:5:-1", "--frames: step must be positive"},
+      {"vector keys whose slope overflows",
+       R"({"inbetween": 1, "tracks": [{"name": "v", "kind": "vec2", "keys": [{"frame": 1, "value": [1e308, 0]},
+          {"frame": 2, "value": [-1e308, 0]}]}]})",
+       "", "/tracks/0/keys/0: the tangent overflows"},
+      {"a handle beyond float (gave NaN values)",
+       R"({"inbetween": 1, "tracks": [{"name": "a", "keys": [{"frame": 1, "value": 0}, {"frame": 3, "value": 0,
+          "handle_left_type": "free", "handle_right_type": "free", "handle_left": [2, 1e300], "handle_right": [4, 0]}]}]})",
+       "", "/tracks/0/keys/1: a handle is beyond single precision"},
+      {"two tracks writing the same column",
+       R"({"inbetween": 1, "tracks": [{"name": "p", "kind": "vec2", "keys": [{"frame": 1, "value": [0, 0]}]},
+          {"name": "p.x", "keys": [{"frame": 1, "value": 0}]}]})",
+       "", "/tracks/1/name: output column \"p.x\" is also a column of /tracks/0/name"},
+      {"a track writing an object's column",
+       R"({"inbetween": 1, "tracks": [{"name": "cube.scale.z", "keys": [{"frame": 1, "value": 0}]}],
+          "objects": [{"name": "cube"}]})",
+       "", "/objects/0/name: output column \"cube.scale.z\" is also a column of /tracks/0/name"},
+      {"fps nan", one_key, "--fps nan", "--fps: \"nan\" is not a finite positive number"},
+      {"fps so small that time overflows", R"({"inbetween": 1, "fps": 1e-320})", "", "frame 1: time = frame / fps"},
+      // Linear extrapolation to frame 1e300: finite keys, but the value is beyond float (F-curve) and
+      // double (vector track) range.
+      {"extrapolated value beyond float",
+       R"({"inbetween": 1, "tracks": [{"name": "a", "extrapolation": "linear", "keys": [{"frame": 1, "value": 0,
+          "interpolation": "linear"}, {"frame": 2, "value": 1}]}]})",
+       "--frames 1e300:1e300", "frame 1e+300: a overflows (inf, single precision)"},
+      {"extrapolated value beyond double",
+       R"({"inbetween": 1, "tracks": [{"name": "v", "kind": "vec2", "after": "linear", "keys": [{"frame": 1, "value": [0, 0]},
+          {"frame": 2, "value": [1e300, 0]}]}]})",
+       "--frames 1e300:1e300", "frame 1e+300: v.x overflows"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.what);
+    const fs::path scene = write_scene("nasty.json", c.scene);
+    const fs::path out = temp_dir() / "never-written.csv";
+    fs::remove(out);
+    const CliRun r = run("bake \"" + scene.string() + "\" " + c.args + " -o \"" + out.string() + "\"");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find(c.needle), std::string::npos) << r.err;
+    EXPECT_LE(lines(r.err).size(), 2u) << r.err;  // one message (CLI11 adds "Run with --help")
+    EXPECT_FALSE(fs::exists(out));
+  }
+  // -o into a folder that does not exist: the file is named, nothing is left behind.
+  const fs::path scene = write_scene("one.json", one_key);
+  const fs::path missing = temp_dir() / "no-such-folder" / "out.csv";
+  const CliRun r = run("bake \"" + scene.string() + "\" -o \"" + missing.string() + "\"");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(missing.string() + ": cannot open for writing"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(missing.parent_path()));
+}
+
+// Names are free text; in the CSV header a name with a comma, quote or line break is quoted as
+// RFC 4180 says (it used to split the header into extra columns).
+TEST(BakeCli, CsvHeaderQuotesNamesThatNeedIt) {
+  const fs::path scene = write_scene("names.json", R"({"inbetween": 1, "tracks": [
+      {"name": "a,b", "keys": [{"frame": 1, "value": 0}]},
+      {"name": "say \"hi\"", "keys": [{"frame": 1, "value": 0}]},
+      {"name": "line\nbreak", "keys": [{"frame": 1, "value": 0}]},
+      {"name": "plain", "keys": [{"frame": 1, "value": 0}]}]})");
+  const CliRun r = run("bake \"" + scene.string() + "\"");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find("\n1,")), "frame,time,\"a,b\",\"say \"\"hi\"\"\",\"line\nbreak\",plain");
+}
+
+// A frame beyond float's range is legal: F-curves see the largest float frame (no undefined
+// double → float conversion, and no inf frame, where repeat_offset's cycle count k would be inf).
+// Closed form: the ramp 0 → 1 over frames [0, 2] repeated with offset 1 per cycle has value
+// k + (frame mod 2)/2 with k ≈ frame/2 ≈ ±1.7e38 at the float limit: finite and of that size.
+TEST(BakeCli, FramesBeyondSinglePrecisionStayFinite) {
+  const fs::path scene = write_scene("cycles.json", R"({"inbetween": 1, "tracks": [{"name": "a",
+      "cycles": {"before": "repeat_offset", "after": "repeat_offset"},
+      "keys": [{"frame": 0, "value": 0, "interpolation": "linear"}, {"frame": 2, "value": 1}]}]})");
+  for (const char* frames : {"1e300:1e300", "-1e300:-1e300"}) {
+    SCOPED_TRACE(frames);
+    const CliRun r = run("bake \"" + scene.string() + "\" --frames " + frames);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto rows = lines(r.out);
+    ASSERT_EQ(rows.size(), 2u);
+    const double value = std::stod(rows[1].substr(rows[1].rfind(',') + 1));
+    EXPECT_GT(std::abs(value), 1.6e38) << rows[1];
+    EXPECT_LT(std::abs(value), 1.8e38) << rows[1];
+  }
 }
 
 }  // namespace

@@ -108,6 +108,42 @@ TEST(PathSmoothCli, BadInputIsNamedAndExitsTwo) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// Nasty input found by the audit: each gives exit code 2, a message naming the place and no output.
+TEST(PathSmoothCli, NastyInputIsRejectedClearly) {
+  const fs::path out = test_dir() / "never-nasty.csv";
+  fs::remove(out);
+  auto expect_rejected = [&](const std::string& args, const std::string& needle) {
+    SCOPED_TRACE(args);
+    const CliRun r = run_cli("path smooth " + args + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  };
+  expect_rejected(write_test_file("empty.csv", "").string(), "no data rows");
+  // A lone header line: the message says it was read as a header.
+  expect_rejected(write_test_file("header.csv", "x,y\n").string(), "\"x,y\", was read as a header");
+  // A first line of number-like fields is data with a bad value, not a header to skip silently.
+  expect_rejected(write_test_file("nan.csv", "1,nan\n2,3\n3,4\n").string(), "line 1: expected finite numbers");
+  expect_rejected(write_test_file("huge.csv", "1e400,2\n2,3\n").string(), "line 1: expected finite numbers");
+  // One row is too few for a B-spline fit: the file is named.
+  const auto one = write_test_file("one.csv", "1,2\n");
+  expect_rejected(one.string() + " --method bspline", one.string() + ": need at least 2 points, got 1");
+  // rows x passes beyond 1e9 would only hang the tool.
+  const auto csv = write_test_file("data.csv", kData);
+  expect_rejected(csv.string() + " --iterations 2000000000", "--iterations");
+  // Finite input whose cubic estimate overflows (1.7e308 + 1.7e308): no inf in the output.
+  expect_rejected(write_test_file("big.csv", "1e308\n1.7e308\n1e308\n-1.7e308\n1e308\n").string() + " --method cubic",
+                  "line 2: the smoothed value overflows");
+  // A radius at the double maximum is legal and gives finite values (the lumped ends).
+  const CliRun r = run_cli("path smooth " + csv.string() + " --method tent --radius 1.7e308");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+  // Output into a folder that does not exist: the file is named.
+  const CliRun m = run_cli("path smooth " + csv.string() + " -o " + (test_dir() / "no-such-dir" / "x.csv").string());
+  EXPECT_EQ(m.exit_code, 2);
+  EXPECT_NE(m.err.find("no-such-dir"), std::string::npos) << m.err;
+}
+
 TEST(PathSmoothCli, PathFitStillWorksAlongside) {
   const auto csv = write_test_file("data.csv", kData);
   const CliRun r = run_cli("path fit " + csv.string() + " --degree 2 --control-points 4");

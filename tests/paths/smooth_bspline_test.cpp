@@ -49,5 +49,38 @@ TEST(SmoothBSpline, BadInputNamesTheIndex) {
   EXPECT_EQ(opt.error().where, "control_points");
 }
 
+template <class T>
+class SmoothBSplineMuseum : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(SmoothBSplineMuseum, Scalars);
+
+// Degenerate but legal polylines (straight, cusp, zero length, one or two points, corner), one
+// control point per point: every fit with degree + 1 ≤ points builds and is finite (never NaN);
+// a single point is refused with the place "points" (it was an error without a place), a degree
+// too high for the points with "control_points".
+TYPED_TEST(SmoothBSplineMuseum, MuseumPathsGiveFinitePointsOrANamedError) {
+  using T = TypeParam;
+  for (const auto& ex : test::museum_paths<T>()) {
+    SCOPED_TRACE(ex.name);
+    for (int degree : {1, 2, 3}) {
+      auto s = smooth_bspline(ex.points, {.degree = degree});
+      const std::size_t n = ex.points.size();
+      if (n < 2) {
+        ASSERT_FALSE(s);
+        EXPECT_EQ(s.error().where, "points");
+        continue;
+      }
+      if (std::size_t(degree) + 1 > n) {  // a degree-d spline needs d + 1 control points
+        ASSERT_FALSE(s);
+        EXPECT_EQ(s.error().where, "control_points");
+        continue;
+      }
+      ASSERT_TRUE(s) << s.error().describe();
+      ASSERT_EQ(s->points.size(), ex.points.size());
+      for (const auto& p : s->points) EXPECT_TRUE(is_finite(p));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace inbetween

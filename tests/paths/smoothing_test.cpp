@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 #include "support/museum_paths.hpp"
@@ -211,6 +212,32 @@ TEST(SmoothConvolution, HugeRadiusLumpsTheTailsIntoTheEnds) {
   }
 }
 
+template <class T>
+class SmoothingTyped : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(SmoothingTyped, Scalars);
+
+// Radius near the scalar's maximum (r² and x + r overflow): weights stay finite and the result is
+// the closed form of the lumped tails, ½·(first + last) for box and tent (the mass beyond ±(n − 1)
+// is half on each side, the interior weights are ~1/r ≈ 0), and for the Gaussian too (symmetric).
+// Tolerance: the interior weights are at most 1/r per point, far below one ulp of 1, so the only
+// error is the rounding of the sums: a few ulp of the values (≤ 2).
+TYPED_TEST(SmoothingTyped, HugeRadiusWeightsAndResultStayFinite) {
+  using T = TypeParam;
+  const T tol = T(8) * std::numeric_limits<T>::epsilon() * T(2);
+  std::vector<T> y;
+  for (double v : kY) y.push_back(T(v));
+  const T mid = (y.front() + y.back()) / T(2);
+  for (auto kernel : {SmoothingKernel::Box, SmoothingKernel::Tent, SmoothingKernel::Gaussian}) {
+    for (T r : {std::numeric_limits<T>::max(), std::numeric_limits<T>::max() / T(3), T(1e18)}) {
+      SCOPED_TRACE(testing::Message() << "kernel " << int(kernel) << " radius " << r);
+      auto s = smooth_convolution(y, {.kernel = kernel, .radius = r});
+      ASSERT_TRUE(s);
+      for (T v : *s) EXPECT_NEAR(v, mid, tol);
+    }
+  }
+}
+
 TEST(Smoothing, BadInputNamesTheIndex) {
   for (const auto& ex : test::museum_bad_paths<double>()) {
     SCOPED_TRACE(ex.name);
@@ -233,11 +260,12 @@ TEST(Smoothing, BadInputNamesTheIndex) {
   EXPECT_EQ(it.error().where, "iterations");
 }
 
-TEST(Smoothing, MuseumPathsStayFinite) {
-  for (const auto& ex : test::museum_paths<float>()) {
+TYPED_TEST(SmoothingTyped, MuseumPathsStayFinite) {
+  using T = TypeParam;
+  for (const auto& ex : test::museum_paths<T>()) {
     SCOPED_TRACE(ex.name);
     for (const auto& s : {smooth_linear(ex.points), smooth_cubic(ex.points, {.smooth_ends = true}),
-                          smooth_convolution(ex.points, {.kernel = SmoothingKernel::Gaussian, .radius = 2.5f})}) {
+                          smooth_convolution(ex.points, {.kernel = SmoothingKernel::Gaussian, .radius = T(2.5)})}) {
       ASSERT_TRUE(s);
       ASSERT_EQ(s->size(), ex.points.size());
       for (const auto& p : *s) EXPECT_TRUE(is_finite(p));

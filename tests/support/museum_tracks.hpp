@@ -54,6 +54,8 @@ inline std::vector<FCurveExhibit> museum_fcurves() {
   m.push_back({"huge frame numbers", {.keys = {key(1e7, 0), key(1e7 + 24, 3), key(1e7 + 48, -1)}}});
   m.push_back({"huge frame numbers, linear extrapolation",
                {.keys = {key(-4e6, 1), key(4e6, 2)}, .extrapolation = Extrapolation::linear}});
+  m.push_back({"flat keys, linear extrapolation (zero slope far out)",
+               {.keys = {key(0, 1), key(4, 1)}, .extrapolation = Extrapolation::linear}});
   m.push_back({"zero-length handles", {.keys = {free_key(0, 0, {0, 0}, {0, 0}), free_key(10, 5, {10, 5}, {10, 5})}}});
   m.push_back({"vertical handles", {.keys = {free_key(0, 0, {0, -3}, {0, 4}), free_key(10, 5, {10, 9}, {10, 1})}}});
   m.push_back({"flat segments",

@@ -192,6 +192,13 @@ TEST(FCurve, PassesThroughKeysAndStaysFiniteOnMuseum) {
       const float t = lo + w * float(i) / 200.f;
       EXPECT_TRUE(std::isfinite(c.evaluate(t))) << "frame " << t;
     }
+    // The far ends: ±inf acts as ±FLT_MAX (it was NaN from 0·inf in linear extrapolation and from
+    // fmod(inf, ·) in the Cycles modifier); the exhibits' slopes keep the value finite there.
+    constexpr float kMax = std::numeric_limits<float>::max();
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    for (float t : {kInf, -kInf, kMax, -kMax}) EXPECT_TRUE(std::isfinite(c.evaluate(t))) << "frame " << t;
+    EXPECT_EQ(c.evaluate(kInf), c.evaluate(kMax));
+    EXPECT_EQ(c.evaluate(-kInf), c.evaluate(-kMax));
   }
 }
 
@@ -308,6 +315,21 @@ TEST(FCurveBuild, RejectsBadKeysNamingTheKey) {
   r = build_fcurve(RawFCurve{});
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::TooFewPoints);
+
+  // Finite but beyond float: a handle of 1e300 gave NaN values (float conversion to inf).
+  RawFCurve huge_handle{.keys = {inserted(1, 0), inserted(3, 0)}};
+  huge_handle.keys[1].handle_left_type = huge_handle.keys[1].handle_right_type = HandleType::free;
+  huge_handle.keys[1].handle_left = Vec2d{2, 1e300};
+  r = build_fcurve(huge_handle);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(r.error().where, "key 1");
+  RawFCurve huge_amplitude{.keys = {inserted(1, 0), inserted(3, 1)}};
+  huge_amplitude.keys[0].interpolation = Interpolation::elastic;
+  huge_amplitude.keys[0].amplitude = 1e300;
+  r = build_fcurve(huge_amplitude);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().where, "key 0");
 
   RawFCurve bad_count{.keys = {inserted(0, 0)}, .cycles = FCurveCycles{.count_after = -1}};
   r = build_fcurve(bad_count);

@@ -60,7 +60,8 @@ TEST(QuatTrack, OneAxisBezierIsCatmullRomOnTheAngle) {
     ASSERT_TRUE(qt && at);
     for (double f = 0; f <= qkeys.back().frame; f += 0.01) {
       const double expected = at->sample(f);
-      EXPECT_NEAR(z_angle(qt->sample(f), expected), expected, 1e-11) << "frame " << f;
+      // measured worst 1.8e-15 (angles up to ~10 rad)
+      EXPECT_NEAR(z_angle(qt->sample(f), expected), expected, kAngleTol) << "frame " << f;
     }
   }
 }
@@ -188,7 +189,8 @@ TEST(QuatTrack, SlerpSegmentsHaveConstantSpeedOnMuseumPairs) {
     for (double u = 0; u <= 1; u += 0.125) {
       const Q s = tr->sample(u);
       EXPECT_NEAR(norm(s), 1.0, test::few_ulp<double>);
-      EXPECT_NEAR(angle_between(ex.a, s), u * total, 1e-9);  // slerp: angle grows linearly (Eq. 3.29)
+      // slerp: angle grows linearly (Eq. 3.29); measured worst < 1e-15 over the museum pairs
+      EXPECT_NEAR(angle_between(ex.a, s), u * total, kAngleTol);
     }
   }
 }

@@ -215,6 +215,16 @@ TEST(TrackMuseum, EveryExhibitBuildsPassesThroughItsKeysAndStaysFinite) {
         EXPECT_TRUE(std::isfinite(v)) << f;
         EXPECT_EQ(v, tr->sample(f)) << f;
       }
+      // Contract "never NaN" at the far ends: ±inf acts as ±max (linear extension with a zero
+      // tangent was 0·inf, the cycle modes inf − inf).  Steep tangents may overflow to ±inf there.
+      constexpr double kMax = std::numeric_limits<double>::max();
+      constexpr double kInf = std::numeric_limits<double>::infinity();
+      for (double f : {kInf, -kInf, kMax, -kMax}) {
+        EXPECT_FALSE(std::isnan(tr->sample(f))) << f;
+        EXPECT_FALSE(std::isnan(tr->sample(f, cursor))) << f;
+      }
+      EXPECT_EQ(tr->sample(kInf), tr->sample(kMax));
+      EXPECT_EQ(tr->sample(-kInf), tr->sample(-kMax));
     }
   }
 }
@@ -238,6 +248,12 @@ TEST(TrackBuild, RejectsBadKeysNamingTheKey) {
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
   EXPECT_FALSE(build_track(std::vector<TrackKey<double>>{}).has_value());
+  // Finite values whose chord slope overflows: (−1e308 − 1e308) / 1 = −inf at key 0.
+  const std::vector<TrackKey<double>> far = {key<double>(0, 1e308), key<double>(1, -1e308), key<double>(2, 1e308)};
+  r = build_track(far);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(r.error().where, "key 0");
 }
 
 TEST(TrackBuild, SingleKeyIsConstantEverywhere) {

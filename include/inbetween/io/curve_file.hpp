@@ -50,8 +50,8 @@ using AnyCurveVariant =
 /// to it, so AnyCurve itself satisfies Curve, SegmentedCurve and ControlledCurve (over Vec3d) and
 /// generic code (arc length, sampling) can take it directly.
 struct AnyCurve {
-  using point_type = Vec3d;
-  using scalar_type = double;
+  using point_type = Vec3d;    ///< points are 3-D (lower dimensions padded with zeros)
+  using scalar_type = double;  ///< the scalar of the points and parameters
 
   CurveKind kind = CurveKind::Bezier;  ///< the family
   int dimension = 3;                   ///< 1, 2 or 3: components written back and printed

@@ -79,7 +79,8 @@ struct SceneColumn {
 [[nodiscard]] std::vector<SceneColumn> scene_columns(const Scene& scene);
 
 /// Evaluates every track and object at `frame`; `out` has scene_columns(scene).size() entries,
-/// filled in that order.  Scalar tracks are evaluated in single precision (Blender semantics);
+/// filled in that order.  Scalar tracks are evaluated in single precision (Blender semantics; a
+/// frame beyond float's range is clamped to the largest float);
 /// objects give their world TRS (see compose() for the scale of sheared chains).
 void evaluate_scene(const Scene& scene, double frame, std::span<double> out) noexcept;
 

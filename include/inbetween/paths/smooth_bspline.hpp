@@ -21,13 +21,14 @@ struct BSplineSmoothing {
 };
 
 /// Fits a B-spline of `options.degree` with `options.control_points` control points (0: one per
-/// point, which interpolates and returns the input) to the points at t_i = i.  Errors: no points
-/// or a non-finite point ("point i"), and fit_bspline's errors (fewer than 2 points, bad options
-/// named "degree" / "control_points").
+/// point, which interpolates and returns the input) to the points at t_i = i.  Errors: fewer than
+/// 2 points ("points"), a non-finite point ("point i"), and fit_bspline's errors for bad options
+/// ("degree" / "control_points").
 template <Point P>
 Expected<BSplineSmoothing<P>> smooth_bspline(std::span<const P> points, BSplineFitOptions options = {}) {
   using T = scalar_of<P>;
-  if (auto ok = detail::check_path_points(points); !ok) return ok.error();
+  // At least 2 points (fit_bspline's own minimum, checked here so the error names "points").
+  if (auto ok = detail::check_path_points(points, 2); !ok) return ok.error();
   std::vector<TimedPoint<P>> data(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) data[i] = {T(i), points[i]};
   auto fit = fit_bspline<P>(std::span<const TimedPoint<P>>(data), options);

@@ -130,14 +130,16 @@ template <Real T>
 T kernel_integral(SmoothingKernel kernel, T radius, T x) noexcept {
   x = clamp(x, -radius, radius);
   switch (kernel) {
-    case SmoothingKernel::Box: return (x + radius) / (T(2) * radius);
+    // Written in x/r and d/r so that a radius near the type's maximum does not overflow (r², 2r,
+    // x + r) into inf/inf = NaN or a zero scale.
+    case SmoothingKernel::Box: return x / radius / T(2) + T(0.5);
     case SmoothingKernel::Tent: {
-      const T d = radius - std::abs(x);  // the tail beyond |x| has area d²/(2r²)
-      const T tail = d * d / (T(2) * radius * radius);
+      const T d = (radius - std::abs(x)) / radius;  // the tail beyond |x| has area d²/2 (d in units of r)
+      const T tail = d * d / T(2);
       return x < T(0) ? tail : T(1) - tail;
     }
     case SmoothingKernel::Gaussian: {
-      const T scale = T(3) / (radius * std::sqrt(T(2)));  // 1/(σ√2) with σ = r/3
+      const T scale = T(3) / std::sqrt(T(2)) / radius;  // 1/(σ√2) with σ = r/3
       const T total = std::erf(T(3) / std::sqrt(T(2)));  // mass on [−r, r] before rescaling
       return (std::erf(x * scale) + total) / (T(2) * total);
     }

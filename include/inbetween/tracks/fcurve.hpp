@@ -116,7 +116,7 @@ class FCurve {
   };
 
   /// The value at `frame` (frames are single precision, as Blender's evaluate() takes them).
-  /// Any finite frame is valid; NaN gives the first key's value.
+  /// Any frame is valid; NaN gives the first key's value, ±inf acts as the largest finite float.
   [[nodiscard]] float evaluate(float frame) const noexcept;
 
   /// The same value as evaluate(frame), found from the segment remembered in `cursor` (updated):
@@ -151,7 +151,8 @@ class FCurve {
 };
 
 /// Validates `raw` (≥ 1 key; frames finite and strictly increasing, also after rounding to single
-/// precision; values, handles and easing parameters finite; cycle counts in 0..32767) and builds
+/// precision; frames, values, handles and easing parameters finite and within ±1e30, so that they
+/// fit single precision; cycle counts in 0..32767) and builds
 /// the curve: handles clamped to their key's side, then recomputed as Blender's FCurve.update()
 /// does.  Errors name the key ("key 3").
 [[nodiscard]] Expected<FCurve> build_fcurve(const RawFCurve& raw);

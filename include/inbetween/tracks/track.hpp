@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -49,7 +50,7 @@ enum class TrackExtend : std::uint8_t {
 /// One authored key of a Track<V>.
 template <class V>
 struct TrackKey {
-  using T = scalar_of<V>;
+  using T = scalar_of<V>;  ///< scalar type of V (float or double)
   T frame{};                                     ///< time in frames (any real number)
   V value{};                                     ///< value at the key
   TangentKind tangent = TangentKind::catmull_rom;  ///< how this key's tangents are made
@@ -69,7 +70,7 @@ struct TrackCursor {
 template <class V>
 class Track {
  public:
-  using T = scalar_of<V>;
+  using T = scalar_of<V>;  ///< scalar type of V (float or double)
 
   /// Number of keys (≥ 1).
   [[nodiscard]] std::size_t size() const noexcept { return frames_.size(); }
@@ -82,7 +83,8 @@ class Track {
   /// Resolved outgoing slope of each key (value per frame).
   [[nodiscard]] std::span<const V> out_tangents() const noexcept { return out_; }
 
-  /// Value at `frame`; outside the keys the extend modes apply.  NaN gives the first value.
+  /// Value at `frame`; outside the keys the extend modes apply.  NaN gives the first value; ±inf
+  /// acts as the largest finite frame of that sign.
   [[nodiscard]] V sample(T frame) const noexcept {
     TrackCursor cursor;
     return sample(frame, cursor, false);
@@ -110,7 +112,8 @@ class Track {
 };
 
 /// Validates and builds a track: ≥ 1 key, finite frames strictly increasing, finite values,
-/// tangents and TCB parameters, TCB parameters in [−1, 1].  Errors name the key ("key 2").
+/// tangents and TCB parameters, TCB parameters in [−1, 1], and finite resolved tangents (values
+/// near the type's maximum a frame apart overflow the slope).  Errors name the key ("key 2").
 template <class V>
 [[nodiscard]] Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys,
                                              TrackExtend before = TrackExtend::constant,
@@ -242,6 +245,10 @@ Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend be
         });
         break;
     }
+    // Finite keys can still give an infinite slope (values near the type's maximum a frame apart).
+    if (!track_detail::finite(in) || !track_detail::finite(out)) {
+      return Error{ErrorCode::NotFinite, "the tangent overflows (values too far apart for the key spacing)", where(i)};
+    }
     tr.in_[i] = in;
     tr.out_[i] = out;
   }
@@ -283,6 +290,9 @@ template <class V>
 V Track<V>::sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept {
   const std::size_t n = frames_.size();
   if (std::isnan(frame) || n == 1) return values_[0];
+  // ±inf acts as the largest finite frame: linear extension would give 0·inf and the cycle modes
+  // inf − inf, both NaN.
+  if (std::isinf(frame)) frame = std::copysign(std::numeric_limits<T>::max(), frame);
   const T first = frames_[0], last = frames_[n - 1];
   const T span = last - first;
   if (frame < first || frame > last) {
@@ -292,8 +302,9 @@ V Track<V>::sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept
       case TrackExtend::constant:
         return is_before ? values_[0] : values_[n - 1];
       case TrackExtend::linear:
-        if (is_before) return values_[0] + in_[0] * (frame - first) * T(stepped_[0] ? 0 : 1);
-        return values_[n - 1] + out_[n - 1] * (frame - last) * T(stepped_[n - 1] ? 0 : 1);
+        // A stepped end key holds its value (a branch, not a factor 0: 0·inf is NaN far out).
+        if (is_before) return stepped_[0] ? values_[0] : values_[0] + in_[0] * (frame - first);
+        return stepped_[n - 1] ? values_[n - 1] : values_[n - 1] + out_[n - 1] * (frame - last);
       case TrackExtend::cycle:
       case TrackExtend::cycle_offset:
       case TrackExtend::oscillate: {

@@ -1,0 +1,146 @@
+// The runtime contract of built tracks (docs/tracks.md, house rule 10): evaluation is noexcept
+// and sampling with a cursor or into a caller's span never allocates.  This file replaces the
+// global operator new of the tracks test program with a counting one; the count is switched on
+// only around the calls under test.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <new>
+#include <utility>
+#include <vector>
+
+#include "inbetween/tracks/euler_track.hpp"
+#include "inbetween/tracks/fcurve.hpp"
+#include "inbetween/tracks/quat_track.hpp"
+#include "inbetween/tracks/track.hpp"
+#include "inbetween/tracks/transform_track.hpp"
+#include "support/museum_tracks.hpp"
+
+namespace {
+long g_allocations = 0;
+bool g_counting = false;
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (g_counting) ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc{};
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace inbetween {
+namespace {
+
+// Runs `f` with the allocation counter on and returns the number of allocations it made.
+template <class F>
+long allocations_in(F&& f) {
+  g_allocations = 0;
+  g_counting = true;
+  f();
+  g_counting = false;
+  return g_allocations;
+}
+
+TEST(HotPath, CounterSeesAnAllocation) {
+  // The counter itself can fail: a vector of one element allocates once.
+  EXPECT_EQ(allocations_in([] { std::vector<int> v(1); (void)v; }), 1);
+}
+
+template <class T>
+class HotPathTyped : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(HotPathTyped, Scalars);
+
+TYPED_TEST(HotPathTyped, TrackQuatAndEulerSamplingNeverAllocate) {
+  using T = TypeParam;
+  std::vector<TrackKey<Vec3<T>>> vkeys;
+  std::vector<QuatKey<T>> qkeys;
+  std::vector<EulerKey<T>> ekeys;
+  for (int i = 0; i < 12; ++i) {
+    TrackKey<Vec3<T>> k;
+    k.frame = T(i);
+    k.value = Vec3<T>{T(i % 3), T(i * i % 5), T(1)};
+    k.tangent = TangentKind(i % 8);
+    vkeys.push_back(k);
+    QuatKey<T> q;
+    q.frame = T(i);
+    q.value = Quat<T>::from_axis_angle(Vec3<T>{0, 0, 1}, T(0.7) * T(i));
+    q.interpolation = QuatInterpolation(i % 5);
+    qkeys.push_back(q);
+    EulerKey<T> e;
+    e.frame = T(i);
+    e.angles_rad = {T(0.3) * T(i), T(0.1), T(-0.2) * T(i)};
+    ekeys.push_back(e);
+  }
+  auto tr = build_track(vkeys, TrackExtend::oscillate, TrackExtend::cycle_offset);
+  auto qt = build_quat_track(qkeys);
+  auto et = build_euler_track(ekeys);
+  ASSERT_TRUE(tr && qt && et);
+  TrackCursor c0;
+  static_assert(noexcept(std::declval<const Track<Vec3<T>>&>().sample(T(1), c0)));
+  static_assert(noexcept(std::declval<const QuatTrack<T>&>().sample(T(1), c0)));
+  static_assert(noexcept(std::declval<const EulerTrack<T>&>().sample(T(1))));
+  std::vector<T> frames;
+  for (int i = -100; i < 1300; ++i) frames.push_back(T(i) / T(50));
+  std::vector<Vec3<T>> vout(frames.size());
+  std::vector<Quat<T>> qout(frames.size());
+  TrackCursor cursor;
+  EXPECT_EQ(allocations_in([&] {
+              for (T f : frames) {
+                (void)tr->sample(f, cursor);
+                (void)tr->sample(f);
+              }
+              tr->sample(std::span<const T>(frames), std::span<Vec3<T>>(vout), cursor);
+            }),
+            0);
+  EXPECT_EQ(allocations_in([&] {
+              for (T f : frames) {
+                (void)qt->sample(f, cursor);
+                (void)et->sample(f);
+                (void)et->sample_angles(f);
+              }
+              qt->sample(std::span<const T>(frames), std::span<Quat<T>>(qout), cursor);
+            }),
+            0);
+}
+
+TEST(HotPath, FCurveAndHierarchySamplingNeverAllocate) {
+  std::vector<FCurve> curves;
+  for (const auto& ex : test::museum_fcurves()) curves.push_back(*build_fcurve(ex.curve));
+  std::vector<float> frames;
+  for (int i = -500; i < 3000; ++i) frames.push_back(float(i) * 0.01f);
+  std::vector<float> out(frames.size());
+  TrackCursor c0;
+  static_assert(noexcept(std::declval<const FCurve&>().evaluate(1.0f, c0)));
+  EXPECT_EQ(allocations_in([&] {
+              for (const FCurve& c : curves) {
+                TrackCursor cursor;
+                for (float f : frames) (void)c.evaluate(f, cursor);
+                c.evaluate(std::span<const float>(frames), std::span<float>(out), cursor);
+              }
+            }),
+            0);
+
+  std::vector<HierarchyNode<double>> nodes(3);
+  nodes[1].parent = 0;
+  nodes[2].parent = 1;
+  std::vector<TrackKey<Vec3d>> keys(2);
+  keys[1].frame = 10;
+  keys[1].value = Vec3d{1, 2, 3};
+  nodes[1].local.translation = *build_track(keys);
+  auto h = build_hierarchy(std::move(nodes));
+  ASSERT_TRUE(h);
+  std::vector<Transform<double>> world(3);
+  std::vector<Mat4d> matrices(3);
+  EXPECT_EQ(allocations_in([&] {
+              for (double f = -5; f < 15; f += 0.25) {
+                h->sample_world(f, std::span<Transform<double>>(world));
+                h->sample_world(f, std::span<Mat4d>(matrices));
+              }
+            }),
+            0);
+}
+
+}  // namespace
+}  // namespace inbetween
