@@ -59,6 +59,8 @@ std::string read_input(const std::string& path) {
   if (path == "-") {
     return std::string(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
   }
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw CommandError{path + ": is a directory, not a file"};
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CommandError{path + ": cannot open file"};
   std::ostringstream ss;

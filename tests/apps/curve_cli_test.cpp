@@ -93,6 +93,10 @@ TEST(CurveCli, BadInputExitsTwoNamingFileAndPointer) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find(":/knots/3"), std::string::npos) << r.err;
 
+  r = run_cli("curve info " + inbetween::test::test_dir().string());  // a folder, not a file
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
+
   r = run_cli("curve info /nonexistent/curve.json");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("/nonexistent/curve.json"), std::string::npos);
