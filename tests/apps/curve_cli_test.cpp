@@ -17,6 +17,7 @@ namespace {
 
 using inbetween::test::CliRun;
 using inbetween::test::run_cli;
+namespace fs = std::filesystem;
 
 std::string example(const std::string& name) {
   return std::string(INBETWEEN_SOURCE_DIR) + "/examples/curves/" + name;
@@ -99,6 +100,25 @@ TEST(CurveCli, BadInputExitsTwoNamingFileAndPointer) {
 
   r = run_cli("curve sample " + example("natural.json") + " --count 1");
   EXPECT_EQ(r.exit_code, 2);
+}
+
+// A huge --count used to allocate gigabytes and run for minutes before writing anything; it is a
+// user error naming the option, for sample and plot alike, and nothing is written.
+TEST(CurveCli, HugeCountIsAUserErrorNotAnAllocation) {
+  const fs::path svg = inbetween::test::test_dir() / "huge_count.svg";
+  fs::remove(svg);
+  CliRun r = run_cli("curve sample " + example("natural.json") + " --count 2000000000");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_NE(r.err.find("--count: need between 2 and 1000000 samples, got 2000000000"), std::string::npos) << r.err;
+  r = run_cli("curve plot " + example("natural.json") + " --count 100000000 -o " + svg.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--count: need between 2 and 10000 sample dots"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(svg));
+  // The largest legal plot count still works.
+  r = run_cli("curve plot " + example("natural.json") + " --count 10000 -o " + svg.string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(svg));
 }
 
 // `--by arclength`: s_i = i·L/(N−1), and the points are that far apart along the curve.  Source: on
