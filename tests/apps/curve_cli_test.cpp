@@ -102,6 +102,15 @@ TEST(CurveCli, BadInputExitsTwoNamingFileAndPointer) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+// Values in messages are printed exactly: close parameters used to read "(0.000000) ... (0.000000)".
+TEST(CurveCli, MessagesPrintValuesExactly) {
+  const auto f = temp_file("lagrange_close.json",
+                           R"({"type": "lagrange", "points": [[0, 0], [1, 1], [2, 0]], "params": [0, 2e-9, 1e-9]})");
+  const CliRun r = run_cli("curve info " + f);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(":/params/2: param 2 (1e-09) is not greater than param 1 (2e-09)"), std::string::npos) << r.err;
+}
+
 // A huge --count used to allocate gigabytes and run for minutes before writing anything; it is a
 // user error naming the option, for sample and plot alike, and nothing is written.
 TEST(CurveCli, HugeCountIsAUserErrorNotAnAllocation) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "inbetween/curves/piecewise_cubic.hpp"
+#include "inbetween/math/format.hpp"
 
 namespace inbetween {
 
@@ -45,9 +46,9 @@ class LagrangeCurve {
           return Error{ErrorCode::NotFinite, "param " + std::to_string(i) + " is not finite", "param " + std::to_string(i)};
         if (i > 0 && !(params[i] > params[i - 1]))
           return Error{ErrorCode::KeysNotIncreasing,
-                       "param " + std::to_string(i) + " (" + std::to_string(double(params[i])) +
+                       "param " + std::to_string(i) + " (" + shortest_text<double>(double(params[i])) +
                            ") is not greater than param " + std::to_string(i - 1) + " (" +
-                           std::to_string(double(params[i - 1])) + ")",
+                           shortest_text<double>(double(params[i - 1])) + ")",
                        "param " + std::to_string(i)};
       }
       c.params_.assign(params.begin(), params.end());
