@@ -18,7 +18,8 @@ namespace inbetween {
 template <Point P>
 class BezierPath : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   BezierPath() = default;
 
   /// Builds from 3k + 1 finite points (k ≥ 1).

@@ -43,7 +43,8 @@ struct CatmullRomOptions {
 template <Point P>
 class CatmullRomSpline : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   CatmullRomSpline() = default;
 
   /// Builds through `points` (≥ 2, finite); alpha must lie in [0, 1] and tension be finite.

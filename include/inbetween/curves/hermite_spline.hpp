@@ -16,7 +16,8 @@ namespace inbetween {
 template <Point P>
 class HermiteSpline : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   HermiteSpline() = default;
 
   /// Builds from positions and tangents (same count, ≥ 2, finite).  Errors name "point i" or

@@ -29,7 +29,8 @@ struct TcbParams {
 template <Point P>
 class KochanekBartelsSpline : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   KochanekBartelsSpline() = default;
 
   /// Builds through `points` (≥ 2, finite).  `keys` holds one TcbParams per point, or exactly one

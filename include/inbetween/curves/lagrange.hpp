@@ -18,9 +18,9 @@ namespace inbetween {
 template <Point P>
 class LagrangeCurve {
  public:
-  using point_type = P;
-  using scalar_type = scalar_of<P>;
-  using T = scalar_type;
+  using point_type = P;              ///< the point type (scalar, Vec2, Vec3, Vec4)
+  using scalar_type = scalar_of<P>;  ///< its scalar
+  using T = scalar_type;             ///< shorthand
 
   /// The segment from zero to zero over [0, 1].
   LagrangeCurve() : params_{T(0), T(1)}, points_{P{}, P{}}, coeffs_{P{}, P{}} {}

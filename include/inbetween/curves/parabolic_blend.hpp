@@ -19,7 +19,8 @@ namespace inbetween {
 template <Point P>
 class ParabolicBlendSpline : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   ParabolicBlendSpline() = default;
 
   /// Builds through `points` (≥ 2, finite).

@@ -23,10 +23,11 @@ namespace inbetween {
 template <Point P>
 class PiecewiseCubic {
  public:
-  using point_type = P;
-  using scalar_type = scalar_of<P>;
-  using T = scalar_type;
+  using point_type = P;              ///< the point type (scalar, Vec2, Vec3, Vec4)
+  using scalar_type = scalar_of<P>;  ///< its scalar
+  using T = scalar_type;             ///< shorthand
 
+  /// An empty curve (no segments); build with from_segments.
   PiecewiseCubic() = default;
 
   /// A chain from breakpoints u_0 < … < u_n (finite, strictly increasing) and n power-form
