@@ -111,6 +111,26 @@ TEST(CurveCli, MessagesPrintValuesExactly) {
   EXPECT_NE(r.err.find(":/params/2: param 2 (1e-09) is not greater than param 1 (2e-09)"), std::string::npos) << r.err;
 }
 
+// Finite but overflowing inputs used to print -nan samples with exit code 0; now exit 2 naming
+// the field, and nothing on standard output.
+TEST(CurveCli, OverflowingCurvesAreUserErrorsNotNaN) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"hermite_huge.json", R"({"type": "hermite", "points": [[0], [1]], "tangents": [[1e308], [-1e308]]})"},
+      {"natural_huge.json", R"({"type": "natural", "points": [[0], [1e308], [-1e308]]})"},
+      {"chordal_subnormal.json", R"({"type": "catmull-rom", "points": [[0, 0], [1e-320, 0], [2e-320, 0]], "alpha": 1})"},
+      {"lagrange_close.json", R"({"type": "lagrange", "points": [[0], [1], [0]], "params": [0, 1e-300, 2e-300]})"},
+  };
+  for (const auto& [name, json] : cases) {
+    SCOPED_TRACE(name);
+    const auto f = temp_file(name, json);
+    const CliRun r = run_cli("curve sample " + f + " --count 3");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_EQ(r.out.find("nan"), std::string::npos);
+    EXPECT_NE(r.err.find(f + ":/p"), std::string::npos) << r.err;  // /points or /params
+  }
+}
+
 // A huge --count used to allocate gigabytes and run for minutes before writing anything; it is a
 // user error naming the option, for sample and plot alike, and nothing is written.
 TEST(CurveCli, HugeCountIsAUserErrorNotAnAllocation) {

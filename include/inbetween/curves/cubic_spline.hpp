@@ -77,6 +77,7 @@ class CubicSpline : public PiecewiseCubic<P> {
     s.tangents_ = d;
     s.influence_.assign(n, s.domain());
     s.interpolates_ = true;
+    if (auto ok = s.check_built(end == CubicSplineEnd::Natural ? "natural" : "clamped"); !ok) return ok.error();
     return s;
   }
 

@@ -26,7 +26,8 @@ class LagrangeCurve {
   LagrangeCurve() : params_{T(0), T(1)}, points_{P{}, P{}}, coeffs_{P{}, P{}} {}
 
   /// Builds through `points` (≥ 2, finite) at `params` (same count, finite, strictly increasing;
-  /// empty = 0, 1, …, n − 1).  Errors name "point i" or "param i".
+  /// empty = 0, 1, …, n − 1).  Errors name "point i" or "param i", or "params" when the divided
+  /// differences overflow (params too close together for T).
   static Expected<LagrangeCurve> build(std::span<const P> points, std::span<const T> params = {}) {
     if (auto ok = detail::check_points(points, 2, "lagrange"); !ok) return ok.error();
     const int n = int(points.size());
@@ -58,6 +59,16 @@ class LagrangeCurve {
     for (int k = 1; k < n; ++k)
       for (int i = n - 1; i >= k; --i)
         c.coeffs_[i] = (c.coeffs_[i] - c.coeffs_[i - 1]) / (c.params_[i] - c.params_[i - k]);
+    // Finite data can still overflow the divided differences (params too close together for the
+    // scalar type, or huge coordinates): an error, never a curve that evaluates to inf or NaN.
+    for (int i = 0; i < n; ++i) {
+      if (!is_finite(c.coeffs_[i]))
+        return Error{ErrorCode::NotFinite,
+                     "divided difference " + std::to_string(i) +
+                         " overflows: the params are too close together (or the points too large) for this "
+                         "scalar type",
+                     "params"};
+    }
     return c;
   }
 
