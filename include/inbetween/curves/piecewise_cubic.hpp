@@ -146,7 +146,8 @@ class PiecewiseCubic {
         if (!std::isfinite(bound)) {
           return Error{ErrorCode::NotFinite,
                        std::string(family) + ": segment " + std::to_string(i) +
-                           " overflows (coordinates or tangents too large for this scalar type)",
+                           " overflows (coordinates or tangents too large, or points too close together, for this "
+                           "scalar type)",
                        "points"};
         }
       }
