@@ -3,8 +3,8 @@
 /// (texts 004 §3.2.2–3.2.3, 000 §2.4): linear, sine (Eq. 3.18), sinusoidal acceleration and
 /// deceleration around a constant-speed middle (Eq. 3.19, corrected), the cubic −2t³ + 3t²
 /// (Eq. 3.20) and constant acceleration (Eqs. 3.21–3.22, corrected).  Each reports s, the velocity
-/// ds/dt and the acceleration d²s/dt² at t.  t is clamped into [0, 1]; the derivatives reported at
-/// the ends are the one-sided ones of the function.
+/// ds/dt and the acceleration d²s/dt² at t.  t is clamped into [0, 1] (NaN counts as 0, as in
+/// CubicBezierTiming); the derivatives reported at the ends are the one-sided ones of the function.
 
 #include <cmath>
 #include <concepts>
@@ -31,11 +31,19 @@ concept DistanceTimeFunction = Real<T> && requires(const E& e, T t) {
   { e.sample(t) } -> std::same_as<EaseSample<T>>;
 };
 
+namespace detail {
+/// t clamped into [0, 1], NaN mapped to 0 (so a NaN time gives the start, never NaN).
+template <Real T>
+constexpr T clamp_unit_time(T t) noexcept {
+  return t > T(0) ? (t < T(1) ? t : T(1)) : T(0);
+}
+}  // namespace detail
+
 /// s = t: constant speed 1.
 template <Real T>
 struct LinearEase {
-  /// s, v = 1, a = 0 at t clamped into [0, 1].
-  EaseSample<T> sample(T t) const noexcept { return {clamp(t, T(0), T(1)), T(1), T(0)}; }
+  /// s, v = 1, a = 0 at t clamped into [0, 1] (NaN → 0).
+  EaseSample<T> sample(T t) const noexcept { return {detail::clamp_unit_time(t), T(1), T(0)}; }
   /// s only.
   T operator()(T t) const noexcept { return sample(t).s; }
 };
@@ -44,9 +52,9 @@ struct LinearEase {
 /// ease(0.25) = 0.1465, ease(0.75) = 0.8535 (texts' worked numbers); zero velocity at both ends.
 template <Real T>
 struct SineEase {
-  /// s, v, a at t clamped into [0, 1].
+  /// s, v, a at t clamped into [0, 1] (NaN → 0).
   EaseSample<T> sample(T t) const noexcept {
-    t = clamp(t, T(0), T(1));
+    t = detail::clamp_unit_time(t);
     const T pi = pi_v<T>;
     return {(T(1) - std::cos(pi * t)) / T(2), pi / T(2) * std::sin(pi * t), pi * pi / T(2) * std::cos(pi * t)};
   }
@@ -58,9 +66,9 @@ struct SineEase {
 /// constant-speed middle.
 template <Real T>
 struct CubicEase {
-  /// s, v, a at t clamped into [0, 1].
+  /// s, v, a at t clamped into [0, 1] (NaN → 0).
   EaseSample<T> sample(T t) const noexcept {
-    t = clamp(t, T(0), T(1));
+    t = detail::clamp_unit_time(t);
     return {(T(3) - T(2) * t) * t * t, T(6) * t * (T(1) - t), T(6) - T(12) * t};
   }
   /// s only.
@@ -91,9 +99,9 @@ class SineAccelDecelEase {
   /// The normaliser f (total distance of the unnormalised curve); the constant speed is 1/f.
   T f() const noexcept { return f_; }
 
-  /// s, v, a at t clamped into [0, 1].
+  /// s, v, a at t clamped into [0, 1] (NaN → 0).
   EaseSample<T> sample(T t) const noexcept {
-    t = clamp(t, T(0), T(1));
+    t = detail::clamp_unit_time(t);
     const T pi = pi_v<T>, two_over_pi = T(2) / pi_v<T>;
     if (t < k1_) {
       const T w = pi / (T(2) * k1_);  // phase rate
@@ -138,9 +146,9 @@ class ConstantAccelerationEase {
   /// The cruising velocity v0 = 2/(t2 − t1 + 1) (Eq. 3.22 corrected).
   T v0() const noexcept { return v0_; }
 
-  /// s, v, a at t clamped into [0, 1].
+  /// s, v, a at t clamped into [0, 1] (NaN → 0).
   EaseSample<T> sample(T t) const noexcept {
-    t = clamp(t, T(0), T(1));
+    t = detail::clamp_unit_time(t);
     if (t < t1_) return {v0_ * t * t / (T(2) * t1_), v0_ * t / t1_, v0_ / t1_};
     const T s1 = v0_ * t1_ / T(2);
     if (t <= t2_) return {s1 + v0_ * (t - t1_), v0_, T(0)};
