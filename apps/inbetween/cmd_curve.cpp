@@ -148,6 +148,12 @@ const std::vector<SampleSpacing>& sample_spacings() {
   return table;
 }
 
+/// Largest `curve sample --count`: a million CSV rows (tens of megabytes).  Beyond that the request
+/// is far more likely a typo than a wish, and would exhaust memory before writing anything.
+constexpr int kMaxSampleCount = 1'000'000;
+/// Largest `curve plot --count`: more dots than this cover any drawing solidly.
+constexpr int kMaxPlotCount = 10'000;
+
 struct SampleOptions {
   std::string file;
   int count = 11;
@@ -174,7 +180,10 @@ void run_sample(const SampleOptions& o) {
   const auto& table = sample_spacings();
   const auto it = std::find_if(table.begin(), table.end(), [&](const SampleSpacing& s) { return s.name == o.by; });
   if (it == table.end()) throw CommandError{"--by: unknown spacing \"" + o.by + "\""};
-  if (o.count < 2) throw CommandError{"--count: need at least 2 samples, got " + std::to_string(o.count)};
+  if (o.count < 2 || o.count > kMaxSampleCount) {
+    throw CommandError{"--count: need between 2 and " + std::to_string(kMaxSampleCount) + " samples, got " +
+                       std::to_string(o.count)};
+  }
   const AnyCurve c = load_curve(o.file);
   write_output(o.output, format_samples(c, it->parameters(c, o.file, o.count)));
 }
@@ -225,7 +234,7 @@ void setup_curve(CLI::App& root) {
   auto* sample = curve->add_subcommand("sample", "Write CSV u,x[,y[,z]] at sample parameters");
   auto opts = std::make_shared<SampleOptions>();
   sample->add_option("file", opts->file, "curve file (JSON)")->required();
-  sample->add_option("--count,-n", opts->count, "number of samples (>= 2)")->capture_default_str();
+  sample->add_option("--count,-n", opts->count, "number of samples (2 .. 1000000)")->capture_default_str();
   std::vector<std::string> names;
   std::string help = "sample spacing:";
   for (const auto& s : sample_spacings()) names.push_back(s.name), help += " " + s.name + " = " + s.help + ";";
@@ -239,9 +248,12 @@ void setup_curve(CLI::App& root) {
   auto plot_samples = std::make_shared<int>(21);
   plot->add_option("file", *plot_file, "curve file (JSON)")->required();
   plot->add_option("-o,--output", *plot_out, "SVG file to write")->required();
-  plot->add_option("--count,-n", *plot_samples, "number of sample dots (>= 2)")->capture_default_str();
+  plot->add_option("--count,-n", *plot_samples, "number of sample dots (2 .. 10000)")->capture_default_str();
   plot->callback([plot_file, plot_out, plot_samples] {
-    if (*plot_samples < 2) throw CommandError{"--count: need at least 2 samples"};
+    if (*plot_samples < 2 || *plot_samples > kMaxPlotCount) {
+      throw CommandError{"--count: need between 2 and " + std::to_string(kMaxPlotCount) + " sample dots, got " +
+                         std::to_string(*plot_samples)};
+    }
     write_output(*plot_out, format_plot(*plot_file, load_curve(*plot_file), *plot_samples));
   });
 }

@@ -38,6 +38,8 @@ nlohmann::json fit_to_json(const CsvTable& csv, const std::string& path, int deg
       e.where = "--degree";
     } else if (e.where == "control_points") {
       e.where = "--control-points";
+    } else if (e.where.empty()) {
+      e.where = path;
     }
     throw CommandError{e.describe()};
   }

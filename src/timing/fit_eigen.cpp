@@ -75,6 +75,14 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
   for (int c = 0; c < n; ++c) {
     P p{};
     for (int d = 0; d < dim; ++d) PointTraits<P>::set(p, d, T(B(c, d)));
+    // Finite data can still give control points beyond the range of T (coordinates near the
+    // largest double, or a double solution cast to float): an error, never a curve holding inf/NaN.
+    if (!is_finite(p)) {
+      return Error{ErrorCode::NotFinite,
+                   "control point " + std::to_string(c) +
+                       " of the fit is not finite (the data are too large for the scalar type)",
+                   "control_points"};
+    }
     fit.curve.control_points.push_back(p);
   }
   const Eigen::MatrixXd residual = N * B - rhs;

@@ -17,6 +17,7 @@ namespace {
 
 using inbetween::test::CliRun;
 using inbetween::test::run_cli;
+namespace fs = std::filesystem;
 
 std::string example(const std::string& name) {
   return std::string(INBETWEEN_SOURCE_DIR) + "/examples/curves/" + name;
@@ -103,6 +104,54 @@ TEST(CurveCli, BadInputExitsTwoNamingFileAndPointer) {
 
   r = run_cli("curve sample " + example("natural.json") + " --count 1");
   EXPECT_EQ(r.exit_code, 2);
+}
+
+// Values in messages are printed exactly: close parameters used to read "(0.000000) ... (0.000000)".
+TEST(CurveCli, MessagesPrintValuesExactly) {
+  const auto f = temp_file("lagrange_close.json",
+                           R"({"type": "lagrange", "points": [[0, 0], [1, 1], [2, 0]], "params": [0, 2e-9, 1e-9]})");
+  const CliRun r = run_cli("curve info " + f);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(":/params/2: param 2 (1e-09) is not greater than param 1 (2e-09)"), std::string::npos) << r.err;
+}
+
+// Finite but overflowing inputs used to print -nan samples with exit code 0; now exit 2 naming
+// the field, and nothing on standard output.
+TEST(CurveCli, OverflowingCurvesAreUserErrorsNotNaN) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"hermite_huge.json", R"({"type": "hermite", "points": [[0], [1]], "tangents": [[1e308], [-1e308]]})"},
+      {"natural_huge.json", R"({"type": "natural", "points": [[0], [1e308], [-1e308]]})"},
+      {"chordal_subnormal.json", R"({"type": "catmull-rom", "points": [[0, 0], [1e-320, 0], [2e-320, 0]], "alpha": 1})"},
+      {"lagrange_close.json", R"({"type": "lagrange", "points": [[0], [1], [0]], "params": [0, 1e-300, 2e-300]})"},
+  };
+  for (const auto& [name, json] : cases) {
+    SCOPED_TRACE(name);
+    const auto f = temp_file(name, json);
+    const CliRun r = run_cli("curve sample " + f + " --count 3");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_EQ(r.out.find("nan"), std::string::npos);
+    EXPECT_NE(r.err.find(f + ":/p"), std::string::npos) << r.err;  // /points or /params
+  }
+}
+
+// A huge --count used to allocate gigabytes and run for minutes before writing anything; it is a
+// user error naming the option, for sample and plot alike, and nothing is written.
+TEST(CurveCli, HugeCountIsAUserErrorNotAnAllocation) {
+  const fs::path svg = inbetween::test::test_dir() / "huge_count.svg";
+  fs::remove(svg);
+  CliRun r = run_cli("curve sample " + example("natural.json") + " --count 2000000000");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_NE(r.err.find("--count: need between 2 and 1000000 samples, got 2000000000"), std::string::npos) << r.err;
+  r = run_cli("curve plot " + example("natural.json") + " --count 100000000 -o " + svg.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--count: need between 2 and 10000 sample dots"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(svg));
+  // The largest legal plot count still works.
+  r = run_cli("curve plot " + example("natural.json") + " --count 10000 -o " + svg.string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(svg));
 }
 
 // `--by arclength`: s_i = i·L/(N−1), and the points are that far apart along the curve.  Source: on

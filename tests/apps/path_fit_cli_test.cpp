@@ -102,6 +102,22 @@ TEST(PathFitCli, BadRowsAndOptionsExitTwoNamingThePlace) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+// Finite rows whose least-squares control points overflow double used to be written as JSON nulls
+// with exit code 0; now the fit fails naming the option.  A one-row file names the file.
+TEST(PathFitCli, OverflowingFitAndTooFewRowsAreUserErrors) {
+  const auto big = inbetween::test::write_test_file("overflow.csv", "t,x\n0,0\n1,1e308\n2,-1e308\n3,1e308\n");
+  CliRun r = run_cli("path fit " + big.string() + " --degree 2 --control-points 3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find("--control-points: control point"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not finite"), std::string::npos) << r.err;
+
+  const auto one = inbetween::test::write_test_file("one_row.csv", "0,0\n");
+  r = run_cli("path fit " + one.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(one.string() + ": needs at least 2 data points, got 1"), std::string::npos) << r.err;
+}
+
 TEST(PathFitCli, DemoHasTheSpeedControlSection) {
   const CliRun r = run_cli("demo");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "inbetween/arclength/accuracy.hpp"
@@ -36,6 +37,28 @@ TEST(ArcLengthTable, ReproducesTable31WorkedNumbers) {
   // Problem 1 by the table: LENGTH(0.25, 0.5) = G[10] − G[5]; problem 2: u at 0.35 from u = 0.25.
   EXPECT_NEAR(t->length_between(0.25, 0.5), 0.46, kWorkedTol);
   EXPECT_NEAR(t->u_at_distance(0.25, 0.35), 0.40 + (0.03 / 0.08) * 0.05, kWorkedTol);
+}
+
+// The same worked numbers in float.  Source of the tolerance: the table's inputs are the printed
+// 3-digit values rounded to float (½ ulp each) and the lookups are a handful of float operations,
+// so 8 ulp of 1 in float, as kWorkedTol is in double.
+TEST(ArcLengthTable, ReproducesTable31WorkedNumbersInFloat) {
+  constexpr float kWorkedTolF = 8 * std::numeric_limits<float>::epsilon();
+  std::vector<float> u, s;
+  for (int i = 0; i <= 20; ++i) u.push_back(0.05f * float(i)), s.push_back(float(kTable31S[std::size_t(i)]));
+  auto t = ArcLengthTable<float>::from_entries(u, s);
+  ASSERT_TRUE(t) << t.error().describe();
+  EXPECT_EQ(t->interval_index_for_u(0.73f), 14);
+  EXPECT_NEAR(t->s_at(0.73f), 0.953f, kWorkedTolF);      // Eq. 3.10
+  EXPECT_NEAR(t->u_at(0.75f), 0.41875f, kWorkedTolF);    // Eq. 3.11
+  EXPECT_NEAR(t->length_between(0.25f, 0.5f), 0.46f, kWorkedTolF);
+  // A float forward-difference table of the museum's uniform straight line (length 9): chords of a
+  // line are exact up to float rounding of the 20 summed chord lengths, 20·eps·9.
+  const auto ex = test::museum_arc_length_exhibit<float>("straight line, uniform");
+  auto line = forward_difference_table(ex.curve, {.entries = 21});
+  ASSERT_TRUE(line);
+  EXPECT_NEAR(line->length(), *ex.exact_length, 20 * std::numeric_limits<float>::epsilon() * 9);
+  EXPECT_NEAR(line->s_at(0.73f), 0.73f * 9, 20 * std::numeric_limits<float>::epsilon() * 9);
 }
 
 TEST(ArcLengthTable, LookupsAtRowsAndOutsideTheRangeClamp) {

@@ -77,6 +77,40 @@ TYPED_TEST(MuseumCurves, EveryFamilyGivesFiniteResultsOrAClearError) {
   }
 }
 
+// Finite inputs whose built coefficients overflow (coordinates near the largest double, points
+// whose chordal spacing is subnormal, Lagrange params 1e-300 apart) used to build curves that
+// evaluated to NaN (`curve sample` printed -nan with exit 0).  Each family now either reports
+// NotFinite naming the place or evaluates finitely everywhere.
+TEST(MuseumCurvesDouble, OverflowingCoefficientsAreAClearError) {
+  const double M = 1e308;
+  const std::vector<double> huge{0, M, -M};
+  const std::vector<double> huge_tangents{M, -M, M};
+  const std::vector<Vec2d> subnormal{{0, 0}, {1e-320, 0}, {2e-320, 0}};
+  int errors = 0;
+  auto check = [&](const auto& built, const std::string& family) {
+    SCOPED_TRACE(family);
+    if (!built) {
+      EXPECT_EQ(built.error().code, ErrorCode::NotFinite) << built.error().describe();
+      EXPECT_FALSE(built.error().where.empty());
+      ++errors;
+      return;
+    }
+    const auto d = built->domain();
+    for (int s = 0; s <= 64; ++s) ASSERT_TRUE(is_finite(built->point(d.lo + d.length() * s / 64))) << s;
+  };
+  check(build_hermite_spline<double>(std::vector<double>{0, 1, 2}, huge_tangents), "hermite");
+  check(build_catmull_rom<double>(huge), "catmull-rom");
+  check(build_catmull_rom<Vec2d>(subnormal, {.alpha = 1}), "catmull-rom chordal, subnormal spacing");
+  check(build_natural_spline<double>(huge), "natural");
+  check(build_kochanek_bartels<double>(std::vector<double>{0, 1, 2}, std::vector<TcbParams<double>>{{-1e308, 0, 0}}),
+        "kochanek-bartels tension -1e308");
+  check(build_parabolic_blend<double>(huge), "parabolic");
+  check(build_bezier_path<double>(std::vector<double>{M, -M, M, -M}), "bezier-path");
+  check(build_lagrange<double>(std::vector<double>{0, 1, 0}, std::vector<double>{0, 1e-300, 2e-300}), "lagrange");
+  // Each of these overflowed before the check (measured with `curve sample`), so each is an error.
+  EXPECT_EQ(errors, 8);
+}
+
 TEST(MuseumCurvesDouble, CoincidentPointsFallBackAsDocumented) {
   // All points coincident, centripetal: every span would be 0; the documented fallback makes all
   // spans 1 (uniform knots) and the curve is the constant point.

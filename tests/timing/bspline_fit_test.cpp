@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -36,6 +37,7 @@ Eigen::MatrixXd basis_by_de_boor(const std::vector<double>& knots, int degree, c
 TEST(BSplineFit, SquareCaseInterpolatesTheDataExactly) {
   test::Random rng(test::seed_for(5));
   SCOPED_TRACE(rng.trace());
+  double worst = 0;  // residual in units of eps·max|B|, recorded below
   for (int degree : {1, 2, 3, 5}) {
     std::vector<TimedPoint<Vec3d>> data;
     double t = 0;
@@ -48,10 +50,20 @@ TEST(BSplineFit, SquareCaseInterpolatesTheDataExactly) {
     EXPECT_TRUE(fit->square);
     EXPECT_EQ(fit->curve.control_points.size(), data.size());
     EXPECT_EQ(fit->curve.knots.size(), data.size() + degree + 1);
-    // B = N⁻¹P reproduces every P_i at t_i (rounding of a well-conditioned solve: 1e-12·|P|).
-    for (const auto& d : data) EXPECT_LT(norm(Vec3d(fit->curve.point(d.t) - d.p)), 1e-11) << degree;
-    EXPECT_LT(fit->max_residual, 1e-11);
+    // B = N⁻¹P reproduces every P_i at t_i up to the rounding of a backward-stable solve: the
+    // residual N·B − P is bounded by a small multiple of eps·‖N‖·‖B‖ (QR with pivoting; Golub & Van
+    // Loan §5.3), and ‖N‖ ≤ √n for a B-spline basis matrix (rows are partitions of unity), so
+    // 16·eps·√n·max|B| per point.  With random time spacings max|B| varies by seed (a fixed 1e-11
+    // failed for INBETWEEN_SEED=3 at 2.9e-11, where the degree-3 control points are large); the
+    // bound follows it.  Measured over seeds 1..12: at most 1.2·eps·max|B|.
+    double max_b = 0;
+    for (const auto& b : fit->curve.control_points) max_b = std::max(max_b, norm(b));
+    const double tol = 16 * std::numeric_limits<double>::epsilon() * std::sqrt(double(data.size())) * max_b;
+    for (const auto& d : data) EXPECT_LT(norm(Vec3d(fit->curve.point(d.t) - d.p)), tol) << degree;
+    EXPECT_LT(fit->max_residual, tol);
+    worst = std::max(worst, fit->max_residual / (std::numeric_limits<double>::epsilon() * max_b));
   }
+  RecordProperty("worst_residual_eps_times_max_control_point", std::to_string(worst));
 }
 
 TEST(BSplineFit, KnotsAreClampedWithUniformInteriorKnots) {
@@ -138,6 +150,30 @@ TEST(BSplineFit, ErrorsNameTheProblem) {
   auto sw = fit_bspline<double>(bunched, {.degree = 1});
   ASSERT_FALSE(sw);
   EXPECT_NE(sw.error().message.find("Schoenberg"), std::string::npos);
+}
+
+// Finite data whose fitted control points lie beyond the scalar's range: an error naming the
+// control points, never a curve holding inf or NaN.  Source of the numbers: three points (0, 0),
+// (1, M), (2, 0) fitted by a quadratic with three control points is the Bézier on [0, 2], whose
+// midpoint is (P0 + 2·P1 + P2)/4, so P1 = 2M; M = max/1.5 puts P1 beyond the largest finite value,
+// in double and (solved in double, then rounded) in float.
+TEST(BSplineFit, OverflowingControlPointsAreAnError) {
+  const double big = std::numeric_limits<double>::max() / 1.5;
+  const std::vector<TimedPoint<double>> d = {{0, 0}, {1, big}, {2, 0}};
+  auto e = fit_bspline<double>(d, {.degree = 2});
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(e.error().where, "control_points");
+  const float bigf = std::numeric_limits<float>::max() / 1.5f;
+  const std::vector<TimedPoint<float>> f = {{0, 0}, {1, bigf}, {2, 0}};
+  auto ef = fit_bspline<float>(f, {.degree = 2});
+  ASSERT_FALSE(ef);
+  EXPECT_EQ(ef.error().code, ErrorCode::NotFinite);
+  // At M = 1 the same fit succeeds with P1 = 2 (the check rejects only non-finite results).
+  const std::vector<TimedPoint<float>> small = {{0, 0}, {1, 1}, {2, 0}};
+  auto ok = fit_bspline<float>(small, {.degree = 2});
+  ASSERT_TRUE(ok);
+  EXPECT_NEAR(ok->curve.control_points[1], 2.0f, 4 * std::numeric_limits<float>::epsilon());
 }
 
 TEST(BSplineFit, FloatAndVec2Instantiations) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 #include <limits>
 #include <numbers>
 #include <vector>
@@ -154,6 +155,15 @@ void check_ease(const E& e, T v0, T v1, const char* name) {
   EXPECT_NEAR(e.sample(T(1)).s, T(1), 4 * eps);
   EXPECT_NEAR(e.sample(T(0)).velocity, v0, 16 * eps);
   EXPECT_NEAR(e.sample(T(1)).velocity, v1, 16 * eps);
+  // Total: t outside [0, 1] clamps, and a NaN time is the start (it used to give s = NaN for the
+  // eases of ease.hpp while CubicBezierTiming already answered 0).
+  for (const auto& [t_in, t_eq] : {std::pair<T, T>{std::numeric_limits<T>::quiet_NaN(), T(0)}, {T(-3), T(0)},
+                                   {T(7), T(1)}}) {
+    const auto got = e.sample(t_in), want = e.sample(t_eq);
+    EXPECT_EQ(got.s, want.s) << "t=" << t_in;
+    EXPECT_EQ(got.velocity, want.velocity) << "t=" << t_in;
+    EXPECT_EQ(got.acceleration, want.acceleration) << "t=" << t_in;
+  }
   const T h = std::cbrt(eps);
   // |s'''| ≤ ~30 for these eases (π³ for the sine), plus rounding eps/h; the probes stay away from
   // the phase joints (0.25, 0.65), where s'' jumps.

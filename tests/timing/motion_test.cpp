@@ -37,6 +37,28 @@ TEST(Motion, LinearEaseGivesEqualArcLengthStepsForEqualTimeSteps) {
   }
 }
 
+// The same in float over the museum.  Tolerance: the float arc-length object meets
+// default_arc_length_tolerance<float> = 1e-5 relative (measured worst ~1e-6, arc_length_test), the
+// reference integral is evaluated on the float curve in long double, so each position is within
+// 2e-5·L of i·L/N (the bound ArcLength.FloatPrecisionWorksOnTheMuseum checks).
+TEST(Motion, FloatLinearEaseGivesEqualArcLengthSteps) {
+  constexpr double kFloatArcRel = 2e-5;
+  for (const auto& ex : test::museum_arc_length_curves<float>()) {
+    SCOPED_TRACE(ex.name);
+    auto arc = make_arc_length(ex.curve);
+    ASSERT_TRUE(arc) << arc.error().describe();
+    const double L = double(arc->length());
+    const FrameRange<float> frames{.start = 10, .end = 58};
+    const int steps = 48;
+    for (int f = 0; f <= steps; ++f) {
+      const auto m = motion_at_frame(*arc, LinearEase<float>{}, frames, 10.0f + float(f));
+      const double s = double(reference_length(ex.curve, ex.curve.domain().lo, m.u));
+      EXPECT_NEAR(s, L * f / steps, kFloatArcRel * L + 1e-30) << f;
+      EXPECT_TRUE(is_finite(m.position) && is_finite(m.velocity) && is_finite(m.acceleration)) << f;
+    }
+  }
+}
+
 template <class E>
 void expect_speed_profile(const E& ease, const char* name) {
   SCOPED_TRACE(name);

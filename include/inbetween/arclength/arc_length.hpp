@@ -49,7 +49,7 @@ class ArcLength {
  public:
   using scalar_type = typename C::scalar_type;  ///< T
   using point_type = typename C::point_type;    ///< the curve's point type
-  using T = scalar_type;
+  using T = scalar_type;                         ///< shorthand
 
   /// Builds the table.  Errors: options out of range (InvalidArgument), or a curve whose speed is
   /// not finite somewhere (NotFinite).

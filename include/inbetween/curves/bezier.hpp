@@ -53,9 +53,9 @@ P bernstein_sum(std::span<const P> points, scalar_of<P> u) noexcept {
 template <Point P>
 class BezierCurve {
  public:
-  using point_type = P;
-  using scalar_type = scalar_of<P>;
-  using T = scalar_type;
+  using point_type = P;              ///< the point type (scalar, Vec2, Vec3, Vec4)
+  using scalar_type = scalar_of<P>;  ///< its scalar
+  using T = scalar_type;             ///< shorthand
 
   /// The straight segment from zero to zero (degree 1).
   BezierCurve() : BezierCurve(std::vector<P>{P{}, P{}}) {}

@@ -18,7 +18,8 @@ namespace inbetween {
 template <Point P>
 class BezierPath : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   BezierPath() = default;
 
   /// Builds from 3k + 1 finite points (k ≥ 1).
@@ -45,6 +46,7 @@ class BezierPath : public PiecewiseCubic<P> {
       s.influence_.push_back(j % 3 == 0 ? s.segments_range(seg - 1, seg) : s.segments_range(seg, seg));
     }
     s.interpolates_ = false;
+    if (auto ok = s.check_built("bezier-path"); !ok) return ok.error();
     return s;
   }
 

@@ -22,9 +22,9 @@ namespace inbetween {
 template <Point P>
 class BSpline {
  public:
-  using point_type = P;
-  using scalar_type = scalar_of<P>;
-  using T = scalar_type;
+  using point_type = P;              ///< the point type (scalar, Vec2, Vec3, Vec4)
+  using scalar_type = scalar_of<P>;  ///< its scalar
+  using T = scalar_type;             ///< shorthand
 
   /// Maximum supported degree (evaluation uses fixed-size scratch; no allocation).
   static constexpr int max_degree = 15;

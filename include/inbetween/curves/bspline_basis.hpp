@@ -15,6 +15,7 @@
 
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
+#include "inbetween/math/format.hpp"
 #include "inbetween/math/scalar.hpp"
 
 namespace inbetween {
@@ -96,8 +97,8 @@ Expected<void> check_knots(std::span<const T> knots, int point_count, int degree
       return Error{ErrorCode::NotFinite, "knot " + std::to_string(i) + " is not finite", "knot " + std::to_string(i)};
     if (i > 0 && knots[i] < knots[i - 1])
       return Error{ErrorCode::KeysNotIncreasing,
-                   "knot " + std::to_string(i) + " (" + std::to_string(double(knots[i])) + ") is less than knot " +
-                       std::to_string(i - 1) + " (" + std::to_string(double(knots[i - 1])) + ")",
+                   "knot " + std::to_string(i) + " (" + shortest_text<double>(double(knots[i])) + ") is less than knot " +
+                       std::to_string(i - 1) + " (" + shortest_text<double>(double(knots[i - 1])) + ")",
                    "knot " + std::to_string(i)};
   }
   int run = 1;

@@ -25,6 +25,7 @@
 
 #include "inbetween/curves/cubic_basis.hpp"
 #include "inbetween/curves/piecewise_cubic.hpp"
+#include "inbetween/math/format.hpp"
 
 namespace inbetween {
 
@@ -42,14 +43,15 @@ struct CatmullRomOptions {
 template <Point P>
 class CatmullRomSpline : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   CatmullRomSpline() = default;
 
   /// Builds through `points` (≥ 2, finite); alpha must lie in [0, 1] and tension be finite.
   static Expected<CatmullRomSpline> build(std::span<const P> points, const CatmullRomOptions<T>& options = {}) {
     if (auto ok = detail::check_points(points, 2, "catmull-rom"); !ok) return ok.error();
     if (!(options.alpha >= T(0) && options.alpha <= T(1)))
-      return Error{ErrorCode::InvalidArgument, "alpha must lie in [0, 1], got " + std::to_string(double(options.alpha)),
+      return Error{ErrorCode::InvalidArgument, "alpha must lie in [0, 1], got " + shortest_text<double>(double(options.alpha)),
                    "alpha"};
     if (auto ok = detail::check_finite(options.tension, "tension"); !ok) return ok.error();
     const int n = int(points.size());
@@ -101,6 +103,7 @@ class CatmullRomSpline : public PiecewiseCubic<P> {
       }
     }
     s.interpolates_ = true;
+    if (auto ok = s.check_built("catmull-rom"); !ok) return ok.error();
     return s;
   }
 

@@ -28,7 +28,8 @@ enum class CubicSplineEnd {
 template <Point P>
 class CubicSpline : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   CubicSpline() = default;
 
   /// Builds the spline through `points` (≥ 2, finite).  For Clamped, `start_tangent` and
@@ -76,6 +77,7 @@ class CubicSpline : public PiecewiseCubic<P> {
     s.tangents_ = d;
     s.influence_.assign(n, s.domain());
     s.interpolates_ = true;
+    if (auto ok = s.check_built(end == CubicSplineEnd::Natural ? "natural" : "clamped"); !ok) return ok.error();
     return s;
   }
 

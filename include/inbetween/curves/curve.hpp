@@ -11,13 +11,14 @@ namespace inbetween {
 /// A closed parameter interval [lo, hi].
 template <Real T>
 struct Interval {
-  T lo{}, hi{};
+  T lo{}, hi{};  ///< ends, lo ≤ hi
   /// hi − lo.
   constexpr T length() const noexcept { return hi - lo; }
   /// True when lo ≤ u ≤ hi.
   constexpr bool contains(T u) const noexcept { return lo <= u && u <= hi; }
   /// u clamped into [lo, hi].
   constexpr T clamp(T u) const noexcept { return u < lo ? lo : (hi < u ? hi : u); }
+  /// Exact equality of both ends.
   friend constexpr bool operator==(const Interval&, const Interval&) = default;
 };
 
@@ -43,9 +44,9 @@ concept Curve = requires(const C& c, typename C::scalar_type u, int i) {
 /// A cubic in power form P(v) = a v³ + b v² + c v + d for a local parameter v ∈ [0, 1].
 template <Point P>
 struct PowerCubic {
-  P a{}, b{}, c{}, d{};
-  using point_type = P;
-  using scalar_type = scalar_of<P>;
+  P a{}, b{}, c{}, d{};              ///< coefficients of v³, v², v, 1
+  using point_type = P;              ///< the point type
+  using scalar_type = scalar_of<P>;  ///< its scalar
   /// P(v), by Horner's rule.
   constexpr P point(scalar_type v) const noexcept { return ((a * v + b) * v + c) * v + d; }
   /// k-th derivative at v (k = 0..3; higher orders are zero).

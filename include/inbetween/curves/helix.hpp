@@ -17,8 +17,8 @@ namespace inbetween {
 /// caller's to keep.
 template <Real T>
 struct Helix {
-  using point_type = Vec3<T>;
-  using scalar_type = T;
+  using point_type = Vec3<T>;  ///< the point type
+  using scalar_type = T;       ///< its scalar
   T radius = 1;                       ///< distance from the z axis
   T rise = T(0.5);                    ///< z advance per radian of turn
   T u_begin = 0;                      ///< start angle (rad)

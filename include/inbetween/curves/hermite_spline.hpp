@@ -16,7 +16,8 @@ namespace inbetween {
 template <Point P>
 class HermiteSpline : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   HermiteSpline() = default;
 
   /// Builds from positions and tangents (same count, ≥ 2, finite).  Errors name "point i" or
@@ -42,6 +43,7 @@ class HermiteSpline : public PiecewiseCubic<P> {
     s.influence_.clear();
     for (int i = 0; i < n; ++i) s.influence_.push_back(s.segments_range(i - 1, i));
     s.interpolates_ = true;
+    if (auto ok = s.check_built("hermite"); !ok) return ok.error();
     return s;
   }
 

@@ -29,7 +29,8 @@ struct TcbParams {
 template <Point P>
 class KochanekBartelsSpline : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   KochanekBartelsSpline() = default;
 
   /// Builds through `points` (≥ 2, finite).  `keys` holds one TcbParams per point, or exactly one
@@ -75,6 +76,7 @@ class KochanekBartelsSpline : public PiecewiseCubic<P> {
     s.influence_.clear();
     for (int i = 0; i < n; ++i) s.influence_.push_back(s.segments_range(i - 2, i + 1));
     s.interpolates_ = true;
+    if (auto ok = s.check_built("kochanek-bartels"); !ok) return ok.error();
     return s;
   }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "inbetween/curves/piecewise_cubic.hpp"
+#include "inbetween/math/format.hpp"
 
 namespace inbetween {
 
@@ -17,15 +18,16 @@ namespace inbetween {
 template <Point P>
 class LagrangeCurve {
  public:
-  using point_type = P;
-  using scalar_type = scalar_of<P>;
-  using T = scalar_type;
+  using point_type = P;              ///< the point type (scalar, Vec2, Vec3, Vec4)
+  using scalar_type = scalar_of<P>;  ///< its scalar
+  using T = scalar_type;             ///< shorthand
 
   /// The segment from zero to zero over [0, 1].
   LagrangeCurve() : params_{T(0), T(1)}, points_{P{}, P{}}, coeffs_{P{}, P{}} {}
 
   /// Builds through `points` (≥ 2, finite) at `params` (same count, finite, strictly increasing;
-  /// empty = 0, 1, …, n − 1).  Errors name "point i" or "param i".
+  /// empty = 0, 1, …, n − 1).  Errors name "point i" or "param i", or "params" when the divided
+  /// differences overflow (params too close together for T).
   static Expected<LagrangeCurve> build(std::span<const P> points, std::span<const T> params = {}) {
     if (auto ok = detail::check_points(points, 2, "lagrange"); !ok) return ok.error();
     const int n = int(points.size());
@@ -45,9 +47,9 @@ class LagrangeCurve {
           return Error{ErrorCode::NotFinite, "param " + std::to_string(i) + " is not finite", "param " + std::to_string(i)};
         if (i > 0 && !(params[i] > params[i - 1]))
           return Error{ErrorCode::KeysNotIncreasing,
-                       "param " + std::to_string(i) + " (" + std::to_string(double(params[i])) +
+                       "param " + std::to_string(i) + " (" + shortest_text<double>(double(params[i])) +
                            ") is not greater than param " + std::to_string(i - 1) + " (" +
-                           std::to_string(double(params[i - 1])) + ")",
+                           shortest_text<double>(double(params[i - 1])) + ")",
                        "param " + std::to_string(i)};
       }
       c.params_.assign(params.begin(), params.end());
@@ -57,6 +59,16 @@ class LagrangeCurve {
     for (int k = 1; k < n; ++k)
       for (int i = n - 1; i >= k; --i)
         c.coeffs_[i] = (c.coeffs_[i] - c.coeffs_[i - 1]) / (c.params_[i] - c.params_[i - k]);
+    // Finite data can still overflow the divided differences (params too close together for the
+    // scalar type, or huge coordinates): an error, never a curve that evaluates to inf or NaN.
+    for (int i = 0; i < n; ++i) {
+      if (!is_finite(c.coeffs_[i]))
+        return Error{ErrorCode::NotFinite,
+                     "divided difference " + std::to_string(i) +
+                         " overflows: the params are too close together (or the points too large) for this "
+                         "scalar type",
+                     "params"};
+    }
     return c;
   }
 

@@ -19,7 +19,8 @@ namespace inbetween {
 template <Point P>
 class ParabolicBlendSpline : public PiecewiseCubic<P> {
  public:
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
+  /// An empty curve (no segments); build with the factory below.
   ParabolicBlendSpline() = default;
 
   /// Builds through `points` (≥ 2, finite).
@@ -68,6 +69,7 @@ class ParabolicBlendSpline : public PiecewiseCubic<P> {
     s.influence_.clear();
     for (int i = 0; i < n; ++i) s.influence_.push_back(s.segments_range(i - 2, i + 1));
     s.interpolates_ = true;
+    if (auto ok = s.check_built("parabolic"); !ok) return ok.error();
     return s;
   }
 };

@@ -23,10 +23,11 @@ namespace inbetween {
 template <Point P>
 class PiecewiseCubic {
  public:
-  using point_type = P;
-  using scalar_type = scalar_of<P>;
-  using T = scalar_type;
+  using point_type = P;              ///< the point type (scalar, Vec2, Vec3, Vec4)
+  using scalar_type = scalar_of<P>;  ///< its scalar
+  using T = scalar_type;             ///< shorthand
 
+  /// An empty curve (no segments); build with from_segments.
   PiecewiseCubic() = default;
 
   /// A chain from breakpoints u_0 < … < u_n (finite, strictly increasing) and n power-form
@@ -121,6 +122,39 @@ class PiecewiseCubic {
   }
 
  protected:
+  /// Checks a freshly built chain: breakpoints finite and strictly increasing, and every segment
+  /// bounded on v ∈ [0, 1] (|a| + |b| + |c| + |d| finite per component, which bounds every Horner
+  /// step).  Finite inputs can still fail (coordinates or tangents near the largest value, or
+  /// points so close together that a knot spacing underflows); the error is NotFinite at "points"
+  /// and names the family, so no built curve evaluates to inf or NaN.
+  Expected<void> check_built(const char* family) const {
+    for (std::size_t i = 0; i < breaks_.size(); ++i) {
+      if (!std::isfinite(breaks_[i]) || (i > 0 && !(breaks_[i] > breaks_[i - 1]))) {
+        return Error{ErrorCode::NotFinite,
+                     std::string(family) + ": the parameter spacing at joint " + std::to_string(i) +
+                         " underflows or overflows (points too close together or too far apart for this "
+                         "scalar type)",
+                     "points"};
+      }
+    }
+    for (std::size_t i = 0; i < segments_.size(); ++i) {
+      const auto& g = segments_[i];
+      for (int k = 0; k < PointTraits<P>::dim; ++k) {
+        using Tr = PointTraits<P>;
+        const T bound = std::abs(Tr::get(g.a, k)) + std::abs(Tr::get(g.b, k)) + std::abs(Tr::get(g.c, k)) +
+                        std::abs(Tr::get(g.d, k));
+        if (!std::isfinite(bound)) {
+          return Error{ErrorCode::NotFinite,
+                       std::string(family) + ": segment " + std::to_string(i) +
+                           " overflows (coordinates or tangents too large, or points too close together, for this "
+                           "scalar type)",
+                       "points"};
+        }
+      }
+    }
+    return {};
+  }
+
   /// Influence of a control point that affects segments [first, last] (clamped to the curve).
   Interval<T> segments_range(int first, int last) const noexcept {
     first = std::clamp(first, 0, segment_count() - 1);

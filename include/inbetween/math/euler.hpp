@@ -46,6 +46,7 @@ struct EulerSequence {
     const char* letters = intrinsic ? "XYZ" : "xyz";
     return {letters[axes[0]], letters[axes[1]], letters[axes[2]]};
   }
+  /// Same axes and same kind (intrinsic/extrinsic).
   friend constexpr bool operator==(const EulerSequence&, const EulerSequence&) = default;
 };
 

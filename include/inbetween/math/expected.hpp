@@ -56,8 +56,10 @@ class Expected {
   /// The error; precondition !has_value().
   [[nodiscard]] const Error& error() const& { assert(!has_value()); return std::get<1>(data_); }
 
+  /// Member access to the value; precondition has_value().
   T* operator->() { return &value(); }
   const T* operator->() const { return &value(); }
+  /// The value; precondition has_value().
   T& operator*() & { return value(); }
   const T& operator*() const& { return value(); }
 
@@ -73,8 +75,11 @@ class Expected<void> {
   Expected() = default;
   /// Failure.
   Expected(Error error) : error_(std::move(error)), ok_(false) {}  // NOLINT(google-explicit-constructor)
+  /// True on success.
   [[nodiscard]] bool has_value() const noexcept { return ok_; }
+  /// Same as has_value().
   explicit operator bool() const noexcept { return ok_; }
+  /// The error; precondition !has_value().
   [[nodiscard]] const Error& error() const& { assert(!ok_); return error_; }
 
  private:

@@ -11,9 +11,9 @@ namespace inbetween {
 /// 3×3 matrix, row-major storage m[row][col]; identity by default.
 template <Real T>
 struct Mat3 {
-  T m[3][3] = {{T(1), T(0), T(0)}, {T(0), T(1), T(0)}, {T(0), T(0), T(1)}};
-  using scalar_type = T;
-  static constexpr int size = 3;
+  T m[3][3] = {{T(1), T(0), T(0)}, {T(0), T(1), T(0)}, {T(0), T(0), T(1)}};  ///< elements m[row][col]
+  using scalar_type = T;          ///< the element type
+  static constexpr int size = 3;  ///< rows (= columns)
 
   /// Element at (row, col).
   constexpr T& operator()(int r, int c) noexcept { return m[r][c]; }
@@ -34,6 +34,7 @@ struct Mat3 {
   constexpr Vec3<T> column(int c) const noexcept { return {m[0][c], m[1][c], m[2][c]}; }
   /// Row r as a vector.
   constexpr Vec3<T> row(int r) const noexcept { return {m[r][0], m[r][1], m[r][2]}; }
+  /// Converts to another precision.
   template <Real U>
   constexpr Mat3<U> cast() const noexcept {
     Mat3<U> o;
@@ -41,6 +42,7 @@ struct Mat3 {
       for (int c = 0; c < 3; ++c) o.m[r][c] = U(m[r][c]);
     return o;
   }
+  /// Exact element-wise equality (use a tolerance for computed values).
   friend constexpr bool operator==(const Mat3& a, const Mat3& b) noexcept {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c)
@@ -54,13 +56,16 @@ struct Mat3 {
 template <Real T>
 struct Mat4 {
   T m[4][4] = {{T(1), T(0), T(0), T(0)}, {T(0), T(1), T(0), T(0)}, {T(0), T(0), T(1), T(0)},
-               {T(0), T(0), T(0), T(1)}};
-  using scalar_type = T;
-  static constexpr int size = 4;
+               {T(0), T(0), T(0), T(1)}};  ///< elements m[row][col]; identity by default
+  using scalar_type = T;          ///< the element type
+  static constexpr int size = 4;  ///< rows (= columns)
 
+  /// Element at (row, col).
   constexpr T& operator()(int r, int c) noexcept { return m[r][c]; }
   constexpr const T& operator()(int r, int c) const noexcept { return m[r][c]; }
+  /// The identity matrix (also the default value).
   static constexpr Mat4 identity() noexcept { return {}; }
+  /// The all-zero matrix.
   static constexpr Mat4 zero() noexcept {
     Mat4 o;
     for (auto& row : o.m)
@@ -80,6 +85,7 @@ struct Mat4 {
   }
   /// The translation column of an affine transform.
   constexpr Vec3<T> translation() const noexcept { return {m[0][3], m[1][3], m[2][3]}; }
+  /// Converts to another precision.
   template <Real U>
   constexpr Mat4<U> cast() const noexcept {
     Mat4<U> o;
@@ -87,6 +93,7 @@ struct Mat4 {
       for (int c = 0; c < 4; ++c) o.m[r][c] = U(m[r][c]);
     return o;
   }
+  /// Exact element-wise equality (use a tolerance for computed values).
   friend constexpr bool operator==(const Mat4& a, const Mat4& b) noexcept {
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c)
@@ -95,6 +102,7 @@ struct Mat4 {
   }
 };
 
+/// Precision aliases: f = float, d = double.
 using Mat3f = Mat3<float>;
 using Mat3d = Mat3<double>;
 using Mat4f = Mat4<float>;

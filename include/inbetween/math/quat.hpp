@@ -11,8 +11,8 @@ namespace inbetween {
 /// Quaternion w + xi + yj + zk; default-constructed is the identity rotation (1, 0, 0, 0).
 template <Real T>
 struct Quat {
-  T w{1}, x{}, y{}, z{};
-  using scalar_type = T;
+  T w{1}, x{}, y{}, z{};  ///< scalar part w and vector part (x, y, z), stored w first
+  using scalar_type = T;  ///< the component type
 
   /// From components in w, x, y, z order.
   static constexpr Quat from_wxyz(T w, T x, T y, T z) noexcept { return {w, x, y, z}; }
@@ -33,12 +33,14 @@ struct Quat {
   }
   /// The vector part (x, y, z).
   constexpr Vec3<T> vec() const noexcept { return {x, y, z}; }
+  /// Converts to another precision.
   template <Real U>
   constexpr Quat<U> cast() const noexcept { return {U(w), U(x), U(y), U(z)}; }
   /// Exact component equality (q and −q compare unequal; see same_rotation()).
   friend constexpr bool operator==(const Quat&, const Quat&) = default;
 };
 
+/// Precision aliases: f = float, d = double.
 using Quatf = Quat<float>;
 using Quatd = Quat<double>;
 
@@ -58,8 +60,10 @@ constexpr Quat<T> operator-(const Quat<T>& a) noexcept { return {-a.w, -a.x, -a.
 /// Scaling by a real number.
 template <Real T>
 constexpr Quat<T> operator*(const Quat<T>& a, T s) noexcept { return {a.w * s, a.x * s, a.y * s, a.z * s}; }
+/// Scaling by a real number, scalar first.
 template <Real T>
 constexpr Quat<T> operator*(T s, const Quat<T>& a) noexcept { return a * s; }
+/// Division by a real number (no check for zero: that is the caller's choice).
 template <Real T>
 constexpr Quat<T> operator/(const Quat<T>& a, T s) noexcept { return {a.w / s, a.x / s, a.y / s, a.z / s}; }
 

@@ -30,6 +30,7 @@ template <Real T>
 struct AxisAngle {
   Vec3<T> axis{T(1), T(0), T(0)};  ///< unit rotation axis
   T angle_rad{};                   ///< rotation angle in radians
+  /// Exact equality of axis and angle (not equality of rotations: see angle_between).
   friend constexpr bool operator==(const AxisAngle&, const AxisAngle&) = default;
 };
 

@@ -12,15 +12,16 @@ namespace inbetween {
 /// 2-D vector (x, y); zero-initialised.
 template <Real T>
 struct Vec2 {
-  T x{}, y{};
-  using scalar_type = T;
-  static constexpr int size = 2;
-  /// Component i (0..1); no bounds check beyond the assertion in debug builds.
+  T x{}, y{};  ///< components
+  using scalar_type = T;            ///< the component type
+  static constexpr int size = 2;    ///< number of components
+  /// Component i (0..1); any other i gives y (no check).
   constexpr T& operator[](int i) noexcept { return i == 0 ? x : y; }
   constexpr const T& operator[](int i) const noexcept { return i == 0 ? x : y; }
   /// Converts to another precision.
   template <Real U>
   constexpr Vec2<U> cast() const noexcept { return {U(x), U(y)}; }
+  /// Exact component-wise equality (use a tolerance for computed values).
   friend constexpr bool operator==(const Vec2&, const Vec2&) = default;
 };
 
@@ -28,31 +29,38 @@ struct Vec2 {
 /// Transform say which one they mean (transform_point vs transform_direction).
 template <Real T>
 struct Vec3 {
-  T x{}, y{}, z{};
-  using scalar_type = T;
-  static constexpr int size = 3;
+  T x{}, y{}, z{};  ///< components
+  using scalar_type = T;            ///< the component type
+  static constexpr int size = 3;    ///< number of components
+  /// Component i (0..2); any other i gives z (no check).
   constexpr T& operator[](int i) noexcept { return i == 0 ? x : (i == 1 ? y : z); }
   constexpr const T& operator[](int i) const noexcept { return i == 0 ? x : (i == 1 ? y : z); }
+  /// Converts to another precision.
   template <Real U>
   constexpr Vec3<U> cast() const noexcept { return {U(x), U(y), U(z)}; }
+  /// Exact component-wise equality (use a tolerance for computed values).
   friend constexpr bool operator==(const Vec3&, const Vec3&) = default;
 };
 
 /// 4-D vector (x, y, z, w); zero-initialised.  Also the homogeneous form of a Vec3.
 template <Real T>
 struct Vec4 {
-  T x{}, y{}, z{}, w{};
-  using scalar_type = T;
-  static constexpr int size = 4;
+  T x{}, y{}, z{}, w{};  ///< components
+  using scalar_type = T;            ///< the component type
+  static constexpr int size = 4;    ///< number of components
+  /// Component i (0..3); any other i gives w (no check).
   constexpr T& operator[](int i) noexcept { return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w)); }
   constexpr const T& operator[](int i) const noexcept {
     return i == 0 ? x : (i == 1 ? y : (i == 2 ? z : w));
   }
+  /// Converts to another precision.
   template <Real U>
   constexpr Vec4<U> cast() const noexcept { return {U(x), U(y), U(z), U(w)}; }
+  /// Exact component-wise equality (use a tolerance for computed values).
   friend constexpr bool operator==(const Vec4&, const Vec4&) = default;
 };
 
+/// Precision aliases: f = float, d = double.
 using Vec2f = Vec2<float>;
 using Vec2d = Vec2<double>;
 using Vec3f = Vec3<float>;
@@ -139,11 +147,14 @@ constexpr T cross(const Vec2<T>& a, const Vec2<T>& b) noexcept { return a.x * b.
 template <class P>
 struct PointTraits;
 
+/// A bare scalar is a 1-D point.
 template <Real T>
 struct PointTraits<T> {
-  using scalar = T;
-  static constexpr int dim = 1;
+  using scalar = T;              ///< the scalar type
+  static constexpr int dim = 1;  ///< number of components
+  /// Component i (only 0).
   static constexpr T get(const T& p, int) noexcept { return p; }
+  /// Sets component i (only 0).
   static constexpr void set(T& p, int, T v) noexcept { p = v; }
 };
 

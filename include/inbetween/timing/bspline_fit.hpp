@@ -35,7 +35,7 @@ struct TimedPoint {
 /// The curve is defined on [knots[k], knots[n]].
 template <Point P>
 struct FittedBSpline {
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
   int degree = 3;                ///< k
   std::vector<P> control_points; ///< B_1 … B_n
   std::vector<T> knots;          ///< clamped knot vector
@@ -73,7 +73,7 @@ struct BSplineFitOptions {
 /// The fitted curve and how well it fits.
 template <Point P>
 struct BSplineFit {
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
   FittedBSpline<P> curve;  ///< control points, knots, degree
   T rms_residual{};        ///< √(mean |B(t_i) − P_i|²)
   T max_residual{};        ///< max |B(t_i) − P_i|

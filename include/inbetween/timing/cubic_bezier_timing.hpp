@@ -11,6 +11,7 @@
 #include <string>
 
 #include "inbetween/math/expected.hpp"
+#include "inbetween/math/format.hpp"
 #include "inbetween/math/scalar.hpp"
 #include "inbetween/timing/ease.hpp"
 
@@ -28,10 +29,10 @@ class CubicBezierTiming {
       if (!std::isfinite(v[i])) return Error{ErrorCode::NotFinite, std::string(names[i]) + " is not finite", names[i]};
     }
     if (x1 < T(0) || x1 > T(1)) {
-      return Error{ErrorCode::InvalidArgument, "x1 = " + std::to_string(double(x1)) + " is outside [0, 1]", "x1"};
+      return Error{ErrorCode::InvalidArgument, "x1 = " + shortest_text<double>(double(x1)) + " is outside [0, 1]", "x1"};
     }
     if (x2 < T(0) || x2 > T(1)) {
-      return Error{ErrorCode::InvalidArgument, "x2 = " + std::to_string(double(x2)) + " is outside [0, 1]", "x2"};
+      return Error{ErrorCode::InvalidArgument, "x2 = " + shortest_text<double>(double(x2)) + " is outside [0, 1]", "x2"};
     }
     return CubicBezierTiming(x1, y1, x2, y2);
   }

@@ -3,14 +3,15 @@
 /// (texts 004 §3.2.2–3.2.3, 000 §2.4): linear, sine (Eq. 3.18), sinusoidal acceleration and
 /// deceleration around a constant-speed middle (Eq. 3.19, corrected), the cubic −2t³ + 3t²
 /// (Eq. 3.20) and constant acceleration (Eqs. 3.21–3.22, corrected).  Each reports s, the velocity
-/// ds/dt and the acceleration d²s/dt² at t.  t is clamped into [0, 1]; the derivatives reported at
-/// the ends are the one-sided ones of the function.
+/// ds/dt and the acceleration d²s/dt² at t.  t is clamped into [0, 1] (NaN counts as 0, as in
+/// CubicBezierTiming); the derivatives reported at the ends are the one-sided ones of the function.
 
 #include <cmath>
 #include <concepts>
 #include <string>
 
 #include "inbetween/math/expected.hpp"
+#include "inbetween/math/format.hpp"
 #include "inbetween/math/scalar.hpp"
 
 namespace inbetween {
@@ -30,11 +31,19 @@ concept DistanceTimeFunction = Real<T> && requires(const E& e, T t) {
   { e.sample(t) } -> std::same_as<EaseSample<T>>;
 };
 
+namespace detail {
+/// t clamped into [0, 1], NaN mapped to 0 (so a NaN time gives the start, never NaN).
+template <Real T>
+constexpr T clamp_unit_time(T t) noexcept {
+  return t > T(0) ? (t < T(1) ? t : T(1)) : T(0);
+}
+}  // namespace detail
+
 /// s = t: constant speed 1.
 template <Real T>
 struct LinearEase {
-  /// s, v = 1, a = 0 at t clamped into [0, 1].
-  EaseSample<T> sample(T t) const noexcept { return {clamp(t, T(0), T(1)), T(1), T(0)}; }
+  /// s, v = 1, a = 0 at t clamped into [0, 1] (NaN → 0).
+  EaseSample<T> sample(T t) const noexcept { return {detail::clamp_unit_time(t), T(1), T(0)}; }
   /// s only.
   T operator()(T t) const noexcept { return sample(t).s; }
 };
@@ -43,9 +52,9 @@ struct LinearEase {
 /// ease(0.25) = 0.1465, ease(0.75) = 0.8535 (texts' worked numbers); zero velocity at both ends.
 template <Real T>
 struct SineEase {
-  /// s, v, a at t clamped into [0, 1].
+  /// s, v, a at t clamped into [0, 1] (NaN → 0).
   EaseSample<T> sample(T t) const noexcept {
-    t = clamp(t, T(0), T(1));
+    t = detail::clamp_unit_time(t);
     const T pi = pi_v<T>;
     return {(T(1) - std::cos(pi * t)) / T(2), pi / T(2) * std::sin(pi * t), pi * pi / T(2) * std::cos(pi * t)};
   }
@@ -57,9 +66,9 @@ struct SineEase {
 /// constant-speed middle.
 template <Real T>
 struct CubicEase {
-  /// s, v, a at t clamped into [0, 1].
+  /// s, v, a at t clamped into [0, 1] (NaN → 0).
   EaseSample<T> sample(T t) const noexcept {
-    t = clamp(t, T(0), T(1));
+    t = detail::clamp_unit_time(t);
     return {(T(3) - T(2) * t) * t * t, T(6) * t * (T(1) - t), T(6) - T(12) * t};
   }
   /// s only.
@@ -76,10 +85,10 @@ class SineAccelDecelEase {
   /// Builds the ease; requires 0 ≤ k1 ≤ k2 ≤ 1 (finite).  Error InvalidArgument names k1 or k2.
   static Expected<SineAccelDecelEase> make(T k1, T k2) {
     if (!std::isfinite(k1) || !std::isfinite(k2)) return Error{ErrorCode::NotFinite, "k1 and k2 must be finite", "k1/k2"};
-    if (k1 < T(0) || k1 > T(1)) return Error{ErrorCode::InvalidArgument, "k1 = " + std::to_string(double(k1)) + " is outside [0, 1]", "k1"};
+    if (k1 < T(0) || k1 > T(1)) return Error{ErrorCode::InvalidArgument, "k1 = " + shortest_text<double>(double(k1)) + " is outside [0, 1]", "k1"};
     if (k2 < k1 || k2 > T(1)) {
       return Error{ErrorCode::InvalidArgument,
-                   "k2 = " + std::to_string(double(k2)) + " must lie in [k1, 1] with k1 = " + std::to_string(double(k1)), "k2"};
+                   "k2 = " + shortest_text<double>(double(k2)) + " must lie in [k1, 1] with k1 = " + shortest_text<double>(double(k1)), "k2"};
     }
     return SineAccelDecelEase(k1, k2);
   }
@@ -90,9 +99,9 @@ class SineAccelDecelEase {
   /// The normaliser f (total distance of the unnormalised curve); the constant speed is 1/f.
   T f() const noexcept { return f_; }
 
-  /// s, v, a at t clamped into [0, 1].
+  /// s, v, a at t clamped into [0, 1] (NaN → 0).
   EaseSample<T> sample(T t) const noexcept {
-    t = clamp(t, T(0), T(1));
+    t = detail::clamp_unit_time(t);
     const T pi = pi_v<T>, two_over_pi = T(2) / pi_v<T>;
     if (t < k1_) {
       const T w = pi / (T(2) * k1_);  // phase rate
@@ -123,10 +132,10 @@ class ConstantAccelerationEase {
   /// velocity jumps there).
   static Expected<ConstantAccelerationEase> make(T t1, T t2) {
     if (!std::isfinite(t1) || !std::isfinite(t2)) return Error{ErrorCode::NotFinite, "t1 and t2 must be finite", "t1/t2"};
-    if (t1 < T(0) || t1 > T(1)) return Error{ErrorCode::InvalidArgument, "t1 = " + std::to_string(double(t1)) + " is outside [0, 1]", "t1"};
+    if (t1 < T(0) || t1 > T(1)) return Error{ErrorCode::InvalidArgument, "t1 = " + shortest_text<double>(double(t1)) + " is outside [0, 1]", "t1"};
     if (t2 < t1 || t2 > T(1)) {
       return Error{ErrorCode::InvalidArgument,
-                   "t2 = " + std::to_string(double(t2)) + " must lie in [t1, 1] with t1 = " + std::to_string(double(t1)), "t2"};
+                   "t2 = " + shortest_text<double>(double(t2)) + " must lie in [t1, 1] with t1 = " + shortest_text<double>(double(t1)), "t2"};
     }
     return ConstantAccelerationEase(t1, t2);
   }
@@ -137,9 +146,9 @@ class ConstantAccelerationEase {
   /// The cruising velocity v0 = 2/(t2 − t1 + 1) (Eq. 3.22 corrected).
   T v0() const noexcept { return v0_; }
 
-  /// s, v, a at t clamped into [0, 1].
+  /// s, v, a at t clamped into [0, 1] (NaN → 0).
   EaseSample<T> sample(T t) const noexcept {
-    t = clamp(t, T(0), T(1));
+    t = detail::clamp_unit_time(t);
     if (t < t1_) return {v0_ * t * t / (T(2) * t1_), v0_ * t / t1_, v0_ / t1_};
     const T s1 = v0_ * t1_ / T(2);
     if (t <= t2_) return {s1 + v0_ * (t - t1_), v0_, T(0)};

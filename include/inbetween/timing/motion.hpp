@@ -28,7 +28,7 @@ struct FrameRange {
 /// values of the five steps.
 template <Point P>
 struct PathMotionSample {
-  using T = scalar_of<P>;
+  using T = scalar_of<P>;  ///< the scalar of P
   P position{};      ///< P(u)
   P velocity{};      ///< dp/dframe
   P acceleration{};  ///< d²p/dframe²
