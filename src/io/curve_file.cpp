@@ -13,10 +13,15 @@ namespace {
 
 using json = nlohmann::json;
 
+// "file:/points/3", or just "file" for the document root (whose JSON pointer is empty).
+std::string located(const std::string& source, const std::string& pointer) {
+  return pointer.empty() ? source : source + ":" + pointer;
+}
+
 struct Reader {
   std::string source;
   Error fail(std::string pointer, std::string message, ErrorCode code = ErrorCode::Parse) const {
-    return Error{code, std::move(message), source + ":" + pointer};
+    return Error{code, std::move(message), located(source, pointer)};
   }
 };
 
@@ -117,7 +122,7 @@ Error relocate(const Reader& r, const Error& e) {
              e.where == "params")
       pointer = ptr(e.where);
   }
-  return Error{e.code, e.message, r.source + ":" + pointer};
+  return Error{e.code, e.message, located(r.source, pointer)};
 }
 
 template <class C>

@@ -98,6 +98,11 @@ TEST(CurveCli, BadInputExitsTwoNamingFileAndPointer) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
 
+  const auto array = temp_file("array.json", "[1, 2]");  // the root is not an object
+  r = run_cli("curve info " + array);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(array + ": expected a JSON object"), std::string::npos) << r.err;
+
   r = run_cli("curve info /nonexistent/curve.json");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("/nonexistent/curve.json"), std::string::npos);
