@@ -321,6 +321,29 @@ Expected<const json*> keys_array(const json& j, const std::string& ptr) {
   return &*keys;
 }
 
+// One key of a track's "keys" array: the object and its JSON pointer (/tracks/3/keys/2).
+struct KeyObject {
+  const json* value;
+  std::string pointer;
+};
+
+// The "keys" array of a track object, each key checked to be an object with only `allowed` members.
+Expected<std::vector<KeyObject>> key_objects(const json& j, const std::string& ptr,
+                                             std::initializer_list<std::string_view> allowed) {
+  auto keys = keys_array(j, ptr);
+  if (!keys) return keys.error();
+  const std::string kp = child(ptr, "keys");
+  std::vector<KeyObject> out;
+  for (std::size_t i = 0; i < (*keys)->size(); ++i) {
+    const json& kj = (**keys)[i];
+    std::string p = child(kp, i);
+    if (!kj.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(kj), p);
+    if (auto ok = only_members(kj, p, allowed); !ok) return ok.error();
+    out.push_back({&kj, std::move(p)});
+  }
+  return out;
+}
+
 // Keys, before and after of a vector-valued track object (shared by vector tracks and the
 // translation/scale channels of objects).
 template <class V>
@@ -335,19 +358,14 @@ Expected<Track<V>> parse_vector_keys(const json& j, const std::string& ptr, int 
   if (!before) return before.error();
   auto after = name_member(j, ptr, "after", TrackExtend::constant, kExtend);
   if (!after) return after.error();
-  auto keys = keys_array(j, ptr);
-  if (!keys) return keys.error();
+  auto key_list = key_objects(j, ptr, {"frame", "value", "tangent", "in_tangent", "out_tangent", "tension",
+                                       "continuity", "bias"});
+  if (!key_list) return key_list.error();
   const std::string kp = child(ptr, "keys");
   std::vector<TrackKey<V>> raw;
-  for (std::size_t i = 0; i < (*keys)->size(); ++i) {
-    const json& kj = (**keys)[i];
-    const std::string p = child(kp, i);
-    if (!kj.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(kj), p);
-    if (auto ok = only_members(kj, p, {"frame", "value", "tangent", "in_tangent", "out_tangent", "tension",
-                                       "continuity", "bias"});
-        !ok) {
-      return ok.error();
-    }
+  for (std::size_t i = 0; i < key_list->size(); ++i) {
+    const json& kj = *(*key_list)[i].value;
+    const std::string& p = (*key_list)[i].pointer;
     TrackKey<V> k;
     auto frame = number_member(kj, p, "frame", std::nullopt);
     if (!frame) return frame.error();
@@ -413,17 +431,13 @@ Expected<QuatTrack<double>> parse_quat_keys(const json& j, const std::string& pt
   auto time_aware = bool_member(j, ptr, "time_aware", options.time_aware);
   if (!time_aware) return time_aware.error();
   options.time_aware = *time_aware;
-  auto keys = keys_array(j, ptr);
-  if (!keys) return keys.error();
+  auto key_list = key_objects(j, ptr, {"frame", "value", "interpolation", "long_way", "in_tangent", "out_tangent"});
+  if (!key_list) return key_list.error();
   const std::string kp = child(ptr, "keys");
   std::vector<QuatKey<double>> raw;
-  for (std::size_t i = 0; i < (*keys)->size(); ++i) {
-    const json& kj = (**keys)[i];
-    const std::string p = child(kp, i);
-    if (!kj.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(kj), p);
-    if (auto ok = only_members(kj, p, {"frame", "value", "interpolation", "long_way", "in_tangent", "out_tangent"}); !ok) {
-      return ok.error();
-    }
+  for (std::size_t i = 0; i < key_list->size(); ++i) {
+    const json& kj = *(*key_list)[i].value;
+    const std::string& p = (*key_list)[i].pointer;
     QuatKey<double> q;
     auto frame = number_member(kj, p, "frame", std::nullopt);
     if (!frame) return frame.error();
@@ -506,15 +520,13 @@ Expected<SceneEulerTrack> parse_euler_track(const json& j, const std::string& pt
   auto filter = bool_member(j, ptr, "filter", options.filter);
   if (!filter) return filter.error();
   options.filter = *filter;
-  auto keys = keys_array(j, ptr);
-  if (!keys) return keys.error();
+  auto key_list = key_objects(j, ptr, {"frame", "value", "tangent", "interpolation"});
+  if (!key_list) return key_list.error();
   const std::string kp = child(ptr, "keys");
   std::vector<EulerKey<double>> raw;
-  for (std::size_t i = 0; i < (*keys)->size(); ++i) {
-    const json& kj = (**keys)[i];
-    const std::string p = child(kp, i);
-    if (!kj.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(kj), p);
-    if (auto ok = only_members(kj, p, {"frame", "value", "tangent", "interpolation"}); !ok) return ok.error();
+  for (std::size_t i = 0; i < key_list->size(); ++i) {
+    const json& kj = *(*key_list)[i].value;
+    const std::string& p = (*key_list)[i].pointer;
     EulerKey<double> k;
     auto frame = number_member(kj, p, "frame", std::nullopt);
     if (!frame) return frame.error();
