@@ -1,4 +1,6 @@
+#include "inbetween/arclength/arc_length.hpp"
 #include "inbetween/arclength/quadrature_length.hpp"
+#include "inbetween/curves/helix.hpp"
 
 #include <gtest/gtest.h>
 
@@ -113,6 +115,19 @@ TEST(ReferenceLength, IsNotFooledByAKinkInsideTheRange) {
   const double split = gauss_length(cusp.curve, 0.0, 0.5, 64) + gauss_length(cusp.curve, 0.5, u, 64);
   EXPECT_NEAR(reference_length(cusp.curve, 0.0, u), split, 1e-15);
   EXPECT_NEAR(adaptive_gauss_length(cusp.curve, 0.0, u, {.tolerance = 1e-12, .order = 10}), split, 1e-12);
+}
+
+// Straight lines of tiny (subnormal) and huge extent: the speed's squared norm would underflow or
+// overflow, the length must not.  Closed form: a line's length is its chord; the relative error
+// allowed is the default table's tolerance (plus rounding of subnormal inputs, 2^-1022·eps).
+TEST(SpeedAt, TinyAndHugeLinesKeepTheirLength) {
+  for (double scale : {1e-310, 1e-200, 1e200, 1e300}) {
+    const Helix<double> flat{.radius = 0, .rise = scale, .u_begin = 0, .u_end = 1, .segments = 1};  // a line
+    EXPECT_EQ(speed_at(flat, 0.5), scale) << scale;
+    const auto arc = make_arc_length(flat);
+    ASSERT_TRUE(arc.has_value()) << scale;
+    EXPECT_NEAR(arc->length() / scale, 1.0, 1e-9) << scale;
+  }
 }
 
 }  // namespace

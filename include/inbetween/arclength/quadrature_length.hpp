@@ -30,12 +30,18 @@ struct AdaptiveGaussOptions {
   int max_depth = 30;  ///< no interval is split more often than this (cusps, rounding)
 };
 
-/// The speed |dP/du| of `curve` at u (u clamped by the curve), as √(P'·P'): the plain form, as it
-/// sits in every quadrature node (math's overflow-safe norm() costs 3 divisions more; the plain form
-/// overflows only beyond 1e154 in double, 1e19 in float).
+/// The speed |dP/du| of `curve` at u (u clamped by the curve), as √(P'·P') — the plain form, as it
+/// sits in every quadrature node — falling back to math's scaled norm() when the squared norm
+/// would underflow or overflow (speeds below √min ≈ 1e-154 or above √max ≈ 1e154 in double).
 template <Curve C>
 typename C::scalar_type speed_at(const C& curve, typename C::scalar_type u) noexcept {
-  return std::sqrt(squared_norm(curve.derivative(u, 1)));
+  using T = typename C::scalar_type;
+  const auto d = curve.derivative(u, 1);
+  const T ss = squared_norm(d);
+  // Fast path while the squared norm neither underflows nor overflows; otherwise the scaled norm
+  // (tiny curves of subnormal extent, huge coordinates above √max).
+  if (ss >= std::numeric_limits<T>::min() && ss <= std::numeric_limits<T>::max()) return std::sqrt(ss);
+  return norm(d);
 }
 
 namespace detail {
