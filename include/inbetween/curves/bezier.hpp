@@ -6,7 +6,9 @@
 /// times n!/(n − k)!); subdivision at u; degree elevation.
 
 #include <array>
+#include <memory>
 #include <span>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -146,11 +148,14 @@ class BezierCurve {
   }
 
   static P evaluate(const std::vector<P>& pts, T u) noexcept {
-    constexpr int kInline = 24;
+    constexpr std::size_t kInline = 24;
     if (pts.size() <= kInline) {
-      std::array<P, kInline> scratch;
-      std::copy(pts.begin(), pts.end(), scratch.begin());
-      return de_casteljau(std::span<P>(scratch.data(), pts.size()), u);
+      // Raw storage: a std::array<P, 24> would value-initialise all 24 points (Vec has default
+      // member initialisers) on every call, to use only pts.size() of them.
+      static_assert(std::is_trivially_copyable_v<P> && std::is_trivially_destructible_v<P>);
+      alignas(P) unsigned char storage[sizeof(P) * kInline];
+      P* scratch = std::uninitialized_copy(pts.begin(), pts.end(), reinterpret_cast<P*>(storage)) - pts.size();
+      return de_casteljau(std::span<P>(scratch, pts.size()), u);
     }
     return bernstein_sum(std::span<const P>(pts), u);
   }
