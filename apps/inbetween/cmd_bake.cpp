@@ -1,11 +1,16 @@
 // `inbetween bake SCENE`: evaluates every track of a scene file at every frame of a range and
-// writes a CSV or JSON table, whole or not at all.  Parsing and evaluation live in the library
-// (inbetween/io/scene.hpp); this file only handles arguments and formatting.
+// writes a CSV or JSON table.  Rows are written as they are computed (frame i is a + i·step, made
+// on the fly), so memory does not grow with the frame count; to a file through a temporary that is
+// renamed at the end (an error leaves nothing), to standard output directly.  Parsing and
+// evaluation live in the library (inbetween/io/scene.hpp); this file only handles arguments and
+// formatting.
 #include <nlohmann/json.hpp>
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -13,15 +18,19 @@
 #include "command.hpp"
 #include "inbetween/math/format.hpp"
 #include "inbetween/io/scene.hpp"
+#include "output.hpp"
+#include "progress.hpp"
 
 namespace inbetween::cli {
 namespace {
 
-// Guards against a typo such as --frames 1:1e9: the whole table is built in memory before it is
-// written, so both the frame count and the number of cells (frames × (2 + columns), ~25 bytes of
-// text each at most) are bounded.
-constexpr double kMaxRows = 10'000'000;
-constexpr double kMaxCells = 20'000'000;
+// The two calls into the scene, kept here only: the columns of the table and one frame's values.
+std::vector<SceneColumn> columns_of(const Scene& scene) { return scene_columns(scene); }
+void sample_frame(const Scene& scene, double frame, std::span<double> out) { evaluate_scene(scene, frame, out); }
+
+// Frame counts up to 2^53 are exact in a double (and frame i = a + i·step is computed from an
+// exact i); beyond, the count itself is not representable.  Memory does not depend on the count.
+constexpr double kMaxFrames = 9007199254740992.0;  // 2^53
 
 double parse_real(const std::string& text, const std::string& what) {
   const char* begin = text.c_str();
@@ -33,7 +42,15 @@ double parse_real(const std::string& text, const std::string& what) {
   return v;
 }
 
-std::vector<double> frame_list(const std::string& spec, double scene_start, double scene_end, std::size_t columns) {
+/// Frames a, a + step, …, a + (count − 1)·step.
+struct FrameRange {
+  double start = 0;
+  double step = 1;
+  std::uint64_t count = 0;
+  [[nodiscard]] double frame(std::uint64_t i) const { return start + double(i) * step; }
+};
+
+FrameRange frame_range(const std::string& spec, double scene_start, double scene_end) {
   double a = scene_start, b = scene_end, step = 1;
   if (!spec.empty()) {
     std::vector<std::string> parts;
@@ -52,18 +69,11 @@ std::vector<double> frame_list(const std::string& spec, double scene_start, doub
   // Without --frames the scene's "range" is to blame; say so.
   const std::string what = spec.empty() ? "the scene's /range [" + format_number(a) + ", " + format_number(b) + "]"
                                         : "--frames " + spec;
-  if (!(count_d <= kMaxRows)) {
-    throw CommandError{what + ": " + format_number(count_d) + " frames; at most 10000000 (narrow the range or raise STEP)"};
+  if (!(count_d <= kMaxFrames)) {
+    throw CommandError{what + ": " + format_number(count_d) +
+                       " frames; at most 9007199254740992 (2^53, the largest exact count; raise STEP)"};
   }
-  if (count_d * double(2 + columns) > kMaxCells) {
-    throw CommandError{what + ": " + format_number(count_d) + " frames x " + std::to_string(2 + columns) +
-                       " columns; at most 20000000 values (narrow the range or raise STEP)"};
-  }
-  std::vector<double> frames;
-  const auto count = std::size_t(count_d);
-  frames.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) frames.push_back(a + double(i) * step);
-  return frames;
+  return FrameRange{a, step, std::uint64_t(count_d)};
 }
 
 // A CSV header field (RFC 4180): names with a comma, quote or line break are quoted, quotes doubled.
@@ -86,6 +96,7 @@ struct BakeOptions {
   double fps = 0;
   std::string format = "csv";
   std::string output = "-";
+  std::string progress = "auto";
 };
 
 void run_bake(const BakeOptions& opt) {
@@ -93,8 +104,8 @@ void run_bake(const BakeOptions& opt) {
   auto scene = parse_scene(text);
   if (!scene) throw CommandError{opt.scene_path + ": " + scene.error().describe()};
   const double fps = opt.fps > 0 ? opt.fps : scene->fps;
-  const std::vector<SceneColumn> columns = scene_columns(*scene);
-  const std::vector<double> frames = frame_list(opt.frames, scene->range_start, scene->range_end, columns.size());
+  const std::vector<SceneColumn> columns = columns_of(*scene);
+  const FrameRange frames = frame_range(opt.frames, scene->range_start, scene->range_end);
   std::vector<double> row(columns.size());
 
   // Finite keys can still give values beyond the number type (linear extrapolation to frame 1e300,
@@ -103,7 +114,7 @@ void run_bake(const BakeOptions& opt) {
     if (!std::isfinite(f / fps)) {
       throw CommandError{"frame " + format_number(f) + ": time = frame / fps " + format_number(fps) + " overflows"};
     }
-    evaluate_scene(*scene, f, row);
+    sample_frame(*scene, f, row);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
       if (!std::isfinite(v)) {
@@ -117,32 +128,45 @@ void run_bake(const BakeOptions& opt) {
   auto cell = [&](std::size_t c) {
     return columns[c].single_precision ? format_float(float(row[c])) : format_number(row[c]);
   };
-  std::string out;
-  if (opt.format == "csv") {
-    out += "frame,time";
-    for (const auto& c : columns) out += "," + csv_field(c.name);
-    out += "\n";
-    for (double f : frames) {
-      evaluate_row(f);
-      out += format_number(f) + "," + format_number(f / fps);
-      for (std::size_t c = 0; c < columns.size(); ++c) out += "," + cell(c);
-      out += "\n";
-    }
+  // Opened once the arguments and the scene are known to be good.  An error while rows are being
+  // written (a value that overflows) removes the temporary file; on standard output the rows
+  // before the failing frame stay written, whole, and nothing more is.
+  OutputFile out(opt.output);
+  ProgressBar progress("bake", frames.count, "frames", parse_progress_mode(opt.progress));
+  const bool csv = opt.format == "csv";
+  std::string line;
+  if (csv) {
+    line = "frame,time";
+    for (const auto& c : columns) line += "," + csv_field(c.name);
+    line += "\n";
   } else {
     // JSON: {"fps": F, "columns": ["frame", "time", ...], "rows": [[...], ...]}; numbers written
     // with the same shortest round-trip text as the CSV.
-    out += "{\"fps\": " + format_number(fps) + ", \"columns\": [\"frame\", \"time\"";
-    for (const auto& c : columns) out += ", " + nlohmann::json(c.name).dump();
-    out += "],\n \"rows\": [";
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      evaluate_row(frames[i]);
-      out += (i ? ",\n  [" : "\n  [") + format_number(frames[i]) + ", " + format_number(frames[i] / fps);
-      for (std::size_t c = 0; c < columns.size(); ++c) out += ", " + cell(c);
-      out += "]";
-    }
-    out += "]}\n";
+    line = "{\"fps\": " + format_number(fps) + ", \"columns\": [\"frame\", \"time\"";
+    for (const auto& c : columns) line += ", " + nlohmann::json(c.name).dump();
+    line += "],\n \"rows\": [";
   }
-  write_output(opt.output, out);
+  out.write(line);
+  const std::string separator = csv ? "," : ", ";
+  for (std::uint64_t i = 0; i < frames.count; ++i) {
+    const double f = frames.frame(i);
+    evaluate_row(f);
+    line.clear();
+    if (!csv) line += i ? ",\n  [" : "\n  [";
+    line += format_number(f);
+    line += separator;
+    line += format_number(f / fps);
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      line += separator;
+      line += cell(c);
+    }
+    line += csv ? "\n" : "]";
+    out.write(line);
+    progress.update(i + 1);
+  }
+  if (!csv) out.write("]}\n");
+  progress.finish();
+  out.commit();
 }
 
 const RegisterCommand kBake{{"bake", 40, [](CLI::App& root) {
@@ -164,7 +188,11 @@ const RegisterCommand kBake{{"bake", 40, [](CLI::App& root) {
           },
           "POSITIVE"));
   cmd->add_option("--format", opt->format, "Output format")->check(CLI::IsMember({"csv", "json"}));
-  cmd->add_option("-o,--output", opt->output, "Output file (default: standard output); written whole or not at all");
+  cmd->add_option("-o,--output", opt->output,
+                  "Output file (default: standard output); a regular file is replaced whole or not at all");
+  cmd->add_option("--progress", opt->progress,
+                  "Progress bar on standard error: auto (when it is a terminal), always, never")
+      ->check(CLI::IsMember({"auto", "always", "never"}));
   cmd->callback([opt] { run_bake(*opt); });
 }}};
 

@@ -57,8 +57,9 @@ struct RegisterDemo {
   explicit RegisterDemo(DemoSection section) { demo_registry().push_back(std::move(section)); }
 };
 
-/// Writes `content` to `path` whole or not at all (temporary file in the same folder, then rename);
-/// "-" or "" means standard output.  Throws CommandError naming the file on failure.
+/// Writes `content` to `path` whole or not at all through an OutputFile (output.hpp: a unique
+/// temporary file renamed onto a regular target, special files and standard output ("-" or "")
+/// written directly).  Throws CommandError naming the file and the reason on failure.
 void write_output(const std::string& path, const std::string& content);
 
 /// Reads a whole file ("-" means standard input); throws CommandError naming the file on failure.

@@ -1,0 +1,57 @@
+#pragma once
+// Where a command's output goes (`-o FILE`, or standard output).  Shared by every command of the
+// tool: whole outputs go through write_output(), streamed ones (`bake`) through OutputFile.
+//
+// A regular file (or a path that does not exist yet) is written to a unique temporary file in the
+// target's folder (mkstemp: O_EXCL, never an existing file) and renamed onto the target by
+// commit(), so the target is replaced whole or not at all.  A symbolic link is followed to its
+// final target, which is replaced there: the link stays a link.  A FIFO, terminal or other device
+// is written directly (it cannot be replaced, and a reader may be waiting on it).  Every failure
+// is a CommandError naming the file and the system's reason (errno text).
+
+#include <string>
+#include <string_view>
+
+namespace inbetween::cli {
+
+/// An output being written: to standard output ("-" or ""), directly to a special file, or to a
+/// temporary file that commit() renames onto the target.  Destroyed without commit(), it removes
+/// its temporary file (the target is untouched); standard output and special files then keep the
+/// whole chunks already written (write() only splits between the pieces it was given).
+class OutputFile {
+ public:
+  /// Opens the output for `path` (see the file comment); throws CommandError naming `path` and the
+  /// reason when it cannot (a missing folder, no permission, a directory).
+  explicit OutputFile(const std::string& path);
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  /// Without commit(): removes the temporary file, or flushes what standard output or a special
+  /// file has buffered (errors ignored).
+  ~OutputFile();
+
+  /// Appends `text`; buffered, written in pieces that end where a write() call's text ends (so a
+  /// caller that writes whole rows never leaves a partial row).  Throws CommandError on a failure.
+  void write(std::string_view text);
+
+  /// Flushes, and for a regular target syncs and renames the temporary onto it.  Throws
+  /// CommandError with the reason on failure (the temporary file is then removed).
+  void commit();
+
+  /// True when the output is not a temporary file (standard output or a special file): what was
+  /// written cannot be taken back on an error.
+  [[nodiscard]] bool direct() const noexcept { return temp_.empty(); }
+
+ private:
+  void flush();
+  [[noreturn]] void fail(const std::string& what, int error_number);
+
+  std::string path_;    ///< as given, for messages
+  std::string target_;  ///< the file renamed onto (symbolic links resolved)
+  std::string temp_;    ///< the temporary file, or empty when writing directly
+  int fd_ = -1;
+  bool owns_fd_ = false;
+  bool committed_ = false;
+  std::string buffer_;
+};
+
+}  // namespace inbetween::cli
