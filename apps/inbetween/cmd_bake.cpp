@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "command.hpp"
-#include "inbetween/math/format.hpp"
 #include "inbetween/io/scene.hpp"
 #include "output.hpp"
 #include "progress.hpp"
@@ -84,10 +83,17 @@ std::string csv_field(const std::string& text) {
   return out + "\"";
 }
 
-std::string format_float(float v) {
-  std::string s = shortest_text(v);
-  if (s == "-0") s = "0";
-  return s;
+// Appends the shortest round-trip text of v (in its own precision; "-0" as "0") to `line`: the
+// same text as format_number, without a string per cell.
+template <class T>
+void append_number(std::string& line, T v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  if (res.ptr - buf == 2 && buf[0] == '-' && buf[1] == '0') {
+    line += '0';
+  } else {
+    line.append(buf, res.ptr);
+  }
 }
 
 struct BakeOptions {
@@ -125,9 +131,6 @@ void run_bake(const BakeOptions& opt) {
     }
   };
 
-  auto cell = [&](std::size_t c) {
-    return columns[c].single_precision ? format_float(float(row[c])) : format_number(row[c]);
-  };
   // Opened once the arguments and the scene are known to be good.  An error while rows are being
   // written (a value that overflows) removes the temporary file; on standard output the rows
   // before the failing frame stay written, whole, and nothing more is.
@@ -153,12 +156,16 @@ void run_bake(const BakeOptions& opt) {
     evaluate_row(f);
     line.clear();
     if (!csv) line += i ? ",\n  [" : "\n  [";
-    line += format_number(f);
+    append_number(line, f);
     line += separator;
-    line += format_number(f / fps);
+    append_number(line, f / fps);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       line += separator;
-      line += cell(c);
+      if (columns[c].single_precision) {
+        append_number(line, float(row[c]));
+      } else {
+        append_number(line, row[c]);
+      }
     }
     line += csv ? "\n" : "]";
     out.write(line);
