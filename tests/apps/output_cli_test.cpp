@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
+#include <stdlib.h>
 #include <sys/stat.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -88,11 +90,32 @@ TEST(OutputCli, FifoReceivesTheData) {
   EXPECT_TRUE(temporaries(test_dir()).empty());
 }
 
-// A character device is written directly too (the old code tried to rename a file onto /dev/null).
+// A character device (a terminal: the slave side of a fresh pseudo-terminal, in raw mode so the
+// bytes arrive unchanged) is written directly too.  Not /dev/null: a tool that wrongly replaced
+// the target by rename would replace the machine's /dev/null (as root); in /dev/pts it cannot.
 TEST(OutputCli, CharacterDeviceIsWrittenDirectly) {
-  const CliRun r = run_cli("curve sample " + kCurve + " --count 5 -o /dev/null");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) GTEST_SKIP() << "no pseudo-terminal";
+  const std::string slave_name = ::ptsname(master);
+  const int slave = ::open(slave_name.c_str(), O_RDWR | O_NOCTTY);
+  ASSERT_GE(slave, 0);
+  termios raw{};
+  ASSERT_EQ(::tcgetattr(slave, &raw), 0);
+  ::cfmakeraw(&raw);
+  ASSERT_EQ(::tcsetattr(slave, TCSANOW, &raw), 0);
+  const std::string command = "curve sample " + kCurve + " --count 3";  // ~100 bytes: fits the tty buffer
+  const CliRun expected = run_cli(command);
+  ASSERT_EQ(expected.exit_code, 0) << expected.err;
+  const CliRun r = run_cli(command + " -o " + slave_name);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  ::fcntl(master, F_SETFL, O_NONBLOCK);
+  std::string received;
+  char buf[4096];
+  for (ssize_t n; (n = ::read(master, buf, sizeof buf)) > 0;) received.append(buf, std::size_t(n));
+  ::close(slave);
+  ::close(master);
+  EXPECT_EQ(received, expected.out);
+  EXPECT_TRUE(fs::is_character_file(slave_name) || !fs::exists(slave_name));
 }
 
 // A symbolic link stays a link: its final target is replaced (in the target's folder), also
