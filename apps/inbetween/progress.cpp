@@ -61,7 +61,12 @@ void ProgressBar::draw(std::uint64_t done) {
   line += numbers;
   const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
   if (done > 0 && done < total_) {
-    std::snprintf(numbers, sizeof numbers, "  ETA %.0f s", elapsed * double(total_ - done) / double(done));
+    const auto eta_s = (long long)(elapsed * double(total_ - done) / double(done) + 0.5);
+    if (eta_s < 60) {
+      std::snprintf(numbers, sizeof numbers, "  ETA %lld s", eta_s);
+    } else {
+      std::snprintf(numbers, sizeof numbers, "  ETA %lld min %02lld s", eta_s / 60, eta_s % 60);
+    }
     line += numbers;
   }
   if (line.size() < width_) line += std::string(width_ - line.size(), ' ');  // cover a longer line

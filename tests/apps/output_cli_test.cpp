@@ -190,6 +190,29 @@ TEST(OutputCli, FailuresReportTheRealReason) {
   EXPECT_TRUE(temporaries(dir).empty());
 }
 
+// A rename that fails after the temporary was written: the target is immutable (chattr +i, which
+// needs root and a file system that supports it; skipped otherwise).  The old code reported
+// "cannot replace file: Success" here (removing the temporary reset the error).
+TEST(OutputCli, FailedRenameReportsTheRealReason) {
+  const fs::path dir = test_dir() / "immutable";
+  fs::create_directories(dir);
+  const fs::path out = dir / "out.csv";
+  std::ofstream(out) << "old";
+  const std::string chattr = "chattr +i " + quoted(out) + " > /dev/null 2>&1";
+  if (std::system(chattr.c_str()) != 0) GTEST_SKIP() << "chattr +i not available here (needs root and ext4-like)";
+  struct Unlock {
+    std::string command;
+    ~Unlock() { (void)std::system(command.c_str()); }
+  } unlock{"chattr -i " + quoted(out) + " > /dev/null 2>&1"};
+  const CliRun r = run_cli("bake " + kScene + " --frames 1:3 -o " + quoted(out));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(out.string() + ": cannot replace the file: Operation not permitted"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("Success"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(out), "old");
+  EXPECT_TRUE(temporaries(dir).empty());
+}
+
 // A read-only folder: the reason is "Permission denied".  Root ignores folder permissions, so as
 // root the tool runs as user nobody (setpriv, util-linux); skipped when that is not possible.
 TEST(OutputCli, ReadOnlyFolderReportsPermissionDenied) {
