@@ -43,9 +43,10 @@ double parse_real(const std::string& text, const std::string& what) {
 
 /// Frames a, a + step, …, a + (count − 1)·step.
 struct FrameRange {
-  double start = 0;
-  double step = 1;
-  std::uint64_t count = 0;
+  double start = 0;        ///< first frame
+  double step = 1;         ///< > 0
+  std::uint64_t count = 0; ///< ≥ 1, ≤ 2^53
+  /// Frame i, computed from i (no accumulated sum).
   [[nodiscard]] double frame(std::uint64_t i) const { return start + double(i) * step; }
 };
 

@@ -42,16 +42,18 @@ class OutputFile {
   [[nodiscard]] bool direct() const noexcept { return temp_.empty(); }
 
  private:
+  /// Writes the buffer out (throws through fail()).
   void flush();
+  /// Closes, removes the temporary file and throws CommandError "<path>: <what>: <errno text>".
   [[noreturn]] void fail(const std::string& what, int error_number);
 
   std::string path_;    ///< as given, for messages
   std::string target_;  ///< the file renamed onto (symbolic links resolved)
   std::string temp_;    ///< the temporary file, or empty when writing directly
-  int fd_ = -1;
-  bool owns_fd_ = false;
-  bool committed_ = false;
-  std::string buffer_;
+  int fd_ = -1;            ///< the descriptor written (1 for standard output)
+  bool owns_fd_ = false;   ///< true when fd_ is closed by this object
+  bool committed_ = false; ///< commit() done or failure handled: nothing left for the destructor
+  std::string buffer_;     ///< text not yet written, less than kFlushBytes
 };
 
 }  // namespace inbetween::cli

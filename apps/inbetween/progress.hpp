@@ -37,18 +37,21 @@ class ProgressBar {
   void finish();
 
  private:
+  /// Draws when the redraw time has come.
   void maybe_draw(std::uint64_t done);
+  /// Draws the bar for `done` steps now.
   void draw(std::uint64_t done);
+  /// Clears the line (terminal) or ends it with a line break (always), if anything was drawn.
   void end_line();
 
-  std::string label_, unit_;
-  std::uint64_t total_ = 0;
-  ProgressMode mode_ = ProgressMode::never;
-  bool enabled_ = false;
-  bool drawn_ = false;
-  bool ended_ = false;
-  std::size_t width_ = 0;  ///< characters of the longest line drawn (for clearing)
-  std::chrono::steady_clock::time_point start_, next_;
+  std::string label_, unit_;                ///< "bake", "frames"
+  std::uint64_t total_ = 0;                 ///< steps in all
+  ProgressMode mode_ = ProgressMode::never; ///< as asked
+  bool enabled_ = false;                    ///< drawing at all (mode and terminal)
+  bool drawn_ = false;                      ///< something is on the line
+  bool ended_ = false;                      ///< finish() or end_line() done
+  std::size_t width_ = 0;                   ///< characters of the longest line drawn (for clearing)
+  std::chrono::steady_clock::time_point start_, next_;  ///< start time, next redraw time
 };
 
 }  // namespace inbetween::cli
