@@ -9,6 +9,8 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -73,16 +75,23 @@ TEST(OutputCli, FifoReceivesTheData) {
   const CliRun expected = run_cli(command);
   ASSERT_EQ(expected.exit_code, 0) << expected.err;
   std::string received;
+  std::atomic<bool> reader_done{false};
   std::thread reader([&] {
     const int fd = ::open(fifo.c_str(), O_RDONLY);  // blocks until the tool opens it for writing
-    if (fd < 0) return;
-    char buf[4096];
-    for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;) received.append(buf, std::size_t(n));
-    ::close(fd);
+    if (fd >= 0) {
+      char buf[4096];
+      for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;) received.append(buf, std::size_t(n));
+      ::close(fd);
+    }
+    reader_done = true;
   });
   const CliRun r = run_cli(command + " -o " + quoted(fifo));
-  // Should the tool have failed before opening the FIFO, release the reader (harmless otherwise).
-  if (const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
+  // Should the tool have failed before opening the FIFO, release the reader by opening it for
+  // writing ourselves (a writer that writes nothing: harmless when the tool did its part).
+  while (!reader_done) {
+    if (const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   reader.join();
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(received, expected.out);
