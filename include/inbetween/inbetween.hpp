@@ -15,6 +15,7 @@
 #include "inbetween/math/vec.hpp"
 
 // curves
+#include "inbetween/curves/any_curve.hpp"
 #include "inbetween/curves/bezier.hpp"
 #include "inbetween/curves/bezier_path.hpp"
 #include "inbetween/curves/bspline.hpp"
