@@ -67,3 +67,6 @@
 #include "inbetween/paths/smooth_bspline.hpp"  // uses fit_bspline from inbetween_eigen (link inbetween::eigen)
 #include "inbetween/paths/smoothing.hpp"
 #include "inbetween/paths/surface_path.hpp"
+
+// scene
+#include "inbetween/scene/path_motion.hpp"

@@ -20,6 +20,7 @@
 #include "inbetween/curves/catmull_rom.hpp"
 #include "inbetween/curves/cubic_spline.hpp"
 #include "inbetween/curves/parabolic_blend.hpp"
+#include "inbetween/math/format.hpp"
 #include "inbetween/math/rotation.hpp"
 #include "inbetween/paths/banking.hpp"
 #include "support/museum_curves.hpp"
@@ -389,6 +390,8 @@ TEST(PathMotion, RotationMinimizingFrameHasNoTwist) {
     const Vec3d n_minus = axis_y(f.sample((s - h) / L).rotation), n_plus = axis_y(f.sample((s + h) / L).rotation);
     frenet_torsion = std::max(frenet_torsion, std::abs(dot((n_plus - n_minus) / (2 * h), axis_x(p.rotation))));
   }
+  RecordProperty("rmf_twist", shortest_text(worst_twist));
+  RecordProperty("frenet_twist", shortest_text(frenet_torsion));
   EXPECT_LE(worst_twist, 1e-6);
   EXPECT_GT(frenet_torsion, 1e-2);  // the check can fail: the Frenet frame of this curve twists
 }
