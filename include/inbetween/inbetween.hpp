@@ -1,6 +1,6 @@
 #pragma once
 /// Umbrella header: every public header of the core library (math → curves → arclength → timing →
-/// tracks → paths).  Include single headers instead where compile time matters.
+/// tracks → paths → scene).  Include single headers instead where compile time matters.
 
 // math
 #include "inbetween/math/assert.hpp"

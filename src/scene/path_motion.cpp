@@ -2,6 +2,7 @@
 #include "inbetween/scene/path_motion.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -399,37 +400,61 @@ void PathMotion::sample(std::span<const double> frames, std::span<PathSample> ou
   for (std::size_t i = 0; i < frames.size(); ++i) out[i] = sample(frames[i]);
 }
 
-std::string_view to_string(EaseKind v) noexcept {
-  switch (v) {
-    case EaseKind::linear: return "linear";
-    case EaseKind::sine: return "sine";
-    case EaseKind::sine_pieces: return "sine_pieces";
-    case EaseKind::cubic: return "cubic";
-    case EaseKind::constant_acceleration: return "constant_acceleration";
-    case EaseKind::cubic_bezier: return "cubic_bezier";
-    case EaseKind::penner: return "penner";
-  }
-  return "unknown";
-}
+namespace {
+constexpr std::array<std::string_view, 7> kEaseKindNames = {"linear", "sine", "sine_pieces", "cubic",
+                                                            "constant_acceleration", "cubic_bezier", "penner"};
+constexpr std::array<std::string_view, 4> kSpeedKindNames = {"ease", "distance_keys", "velocity_keys", "track"};
+constexpr std::array<std::string_view, 4> kOrientationNames = {"rotation_minimizing", "frenet", "up", "look_at"};
+constexpr std::array<std::string_view, 10> kEasingCurveNames = {"sine", "quad",   "cubic",  "quart",  "quint",
+                                                                "expo", "circ",   "back",   "bounce", "elastic"};
+constexpr std::array<std::string_view, 3> kEasingDirectionNames = {"in", "out", "in_out"};
+constexpr std::array<std::string_view, 3> kInterpolationNames = {"linear", "catmull_rom", "monotone_cubic"};
+constexpr std::array<std::string_view, 2> kFitNames = {"float_to_keep_average", "fix_keys_adjust_interior"};
 
-std::string_view to_string(SpeedKind v) noexcept {
-  switch (v) {
-    case SpeedKind::ease: return "ease";
-    case SpeedKind::distance_keys: return "distance_keys";
-    case SpeedKind::velocity_keys: return "velocity_keys";
-    case SpeedKind::track: return "track";
-  }
-  return "unknown";
+template <class Enum, std::size_t N>
+std::string_view name_of(const std::array<std::string_view, N>& names, Enum v) noexcept {
+  const auto i = std::size_t(v);
+  return i < N ? names[i] : std::string_view{"unknown"};
 }
+template <class Enum, std::size_t N>
+std::optional<Enum> find_name(const std::array<std::string_view, N>& names, std::string_view name) noexcept {
+  for (std::size_t i = 0; i < N; ++i)
+    if (names[i] == name) return static_cast<Enum>(i);
+  return std::nullopt;
+}
+}  // namespace
 
-std::string_view to_string(OrientationMode v) noexcept {
-  switch (v) {
-    case OrientationMode::rotation_minimizing: return "rotation_minimizing";
-    case OrientationMode::frenet: return "frenet";
-    case OrientationMode::up: return "up";
-    case OrientationMode::look_at: return "look_at";
-  }
-  return "unknown";
+std::string_view to_string(EaseKind v) noexcept { return name_of(kEaseKindNames, v); }
+std::string_view to_string(SpeedKind v) noexcept { return name_of(kSpeedKindNames, v); }
+std::string_view to_string(OrientationMode v) noexcept { return name_of(kOrientationNames, v); }
+std::string_view to_string(EasingCurve v) noexcept { return name_of(kEasingCurveNames, v); }
+std::string_view to_string(EasingDirection v) noexcept { return name_of(kEasingDirectionNames, v); }
+std::string_view to_string(PositionInterpolation v) noexcept { return name_of(kInterpolationNames, v); }
+std::string_view to_string(VelocityFit v) noexcept { return name_of(kFitNames, v); }
+
+template <>
+std::optional<EaseKind> enum_from_string<EaseKind>(std::string_view n) noexcept { return find_name<EaseKind>(kEaseKindNames, n); }
+template <>
+std::optional<SpeedKind> enum_from_string<SpeedKind>(std::string_view n) noexcept { return find_name<SpeedKind>(kSpeedKindNames, n); }
+template <>
+std::optional<OrientationMode> enum_from_string<OrientationMode>(std::string_view n) noexcept {
+  return find_name<OrientationMode>(kOrientationNames, n);
+}
+template <>
+std::optional<EasingCurve> enum_from_string<EasingCurve>(std::string_view n) noexcept {
+  return find_name<EasingCurve>(kEasingCurveNames, n);
+}
+template <>
+std::optional<EasingDirection> enum_from_string<EasingDirection>(std::string_view n) noexcept {
+  return find_name<EasingDirection>(kEasingDirectionNames, n);
+}
+template <>
+std::optional<PositionInterpolation> enum_from_string<PositionInterpolation>(std::string_view n) noexcept {
+  return find_name<PositionInterpolation>(kInterpolationNames, n);
+}
+template <>
+std::optional<VelocityFit> enum_from_string<VelocityFit>(std::string_view n) noexcept {
+  return find_name<VelocityFit>(kFitNames, n);
 }
 
 }  // namespace inbetween

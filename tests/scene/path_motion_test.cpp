@@ -701,6 +701,21 @@ TEST(PathMotion, SpanFormEqualsSingleSamples) {
   }
 }
 
+TEST(PathMotionNames, RoundTrip) {
+  for (int i = 0; i < 7; ++i) EXPECT_EQ(enum_from_string<EaseKind>(to_string(EaseKind(i))), EaseKind(i));
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(enum_from_string<SpeedKind>(to_string(SpeedKind(i))), SpeedKind(i));
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(enum_from_string<OrientationMode>(to_string(OrientationMode(i))), OrientationMode(i));
+  for (int i = 0; i < 10; ++i) EXPECT_EQ(enum_from_string<EasingCurve>(to_string(EasingCurve(i))), EasingCurve(i));
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(enum_from_string<EasingDirection>(to_string(EasingDirection(i))), EasingDirection(i));
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(enum_from_string<PositionInterpolation>(to_string(PositionInterpolation(i))), PositionInterpolation(i));
+  for (int i = 0; i < 2; ++i) EXPECT_EQ(enum_from_string<VelocityFit>(to_string(VelocityFit(i))), VelocityFit(i));
+  EXPECT_EQ(to_string(EaseKind::constant_acceleration), "constant_acceleration");
+  EXPECT_EQ(to_string(OrientationMode::rotation_minimizing), "rotation_minimizing");
+  EXPECT_EQ(to_string(EasingDirection::in_out), "in_out");
+  EXPECT_FALSE(enum_from_string<EaseKind>("ease-in").has_value());
+}
+
 // ---- the texts' scenario (000 §2.2): at rest at (−5, 0, 0) on frame 22, accelerate until 34,
 // constant speed until 50, decelerate to rest at (5, 0, 0) on frame 67, along a curve through (0, 3, 0).
 TEST(PathMotion, Frame22Scenario) {

@@ -275,9 +275,13 @@ class PathMotion {
 [[nodiscard]] Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps);
 
 /// The scene-file name of each enumerator ("constant_acceleration", "distance_keys",
-/// "rotation_minimizing", …).
+/// "rotation_minimizing", …); enum_from_string<E>(name) (tracks/fcurve.hpp) parses them back.
 [[nodiscard]] std::string_view to_string(EaseKind v) noexcept;
-[[nodiscard]] std::string_view to_string(SpeedKind v) noexcept;        ///< "ease", "distance_keys", …
+[[nodiscard]] std::string_view to_string(SpeedKind v) noexcept;        ///< "ease", "distance_keys", "velocity_keys", "track"
 [[nodiscard]] std::string_view to_string(OrientationMode v) noexcept;  ///< "rotation_minimizing", "frenet", "up", "look_at"
+[[nodiscard]] std::string_view to_string(EasingCurve v) noexcept;      ///< "sine", "quad", …, "elastic"
+[[nodiscard]] std::string_view to_string(EasingDirection v) noexcept;  ///< "in", "out", "in_out"
+[[nodiscard]] std::string_view to_string(PositionInterpolation v) noexcept;  ///< "linear", "catmull_rom", "monotone_cubic"
+[[nodiscard]] std::string_view to_string(VelocityFit v) noexcept;  ///< "float_to_keep_average", "fix_keys_adjust_interior"
 
 }  // namespace inbetween
