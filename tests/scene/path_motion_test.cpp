@@ -701,6 +701,46 @@ TEST(PathMotion, SpanFormEqualsSingleSamples) {
   }
 }
 
+TEST(PathMotion, RandomPathsAndEasesKeepEveryProperty) {
+  // Seeded property loop: random Catmull-Rom paths (4–7 points in [−10, 10]³, alpha 0, ½ or 1),
+  // random sine_pieces and constant-acceleration eases over random frame spans, every orientation
+  // mode but look_at.  Distance and speed against the closed forms, positions against the
+  // independent arc length, frames orthonormal with +Z on the tangent.
+  test::Random rng(test::seed_for(8008));
+  SCOPED_TRACE(rng.trace());
+  for (int trial = 0; trial < 30; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    std::vector<Vec3d> pts;
+    const int n = rng.integer(4, 7);
+    for (int i = 0; i < n; ++i) pts.push_back(rng.vec3(-10.0, 10.0));
+    auto cr = build_catmull_rom(pts, CatmullRomOptions<double>{.alpha = 0.5 * rng.integer(0, 2)});
+    ASSERT_TRUE(cr.has_value());
+    const AnyCurve path{CurveKind::CatmullRom, 3, *cr};
+    const double a = rng.uniform(0.0, 0.5), b = rng.uniform(0.5, 1.0);
+    const bool pieces = trial % 2 == 0;
+    const RawEase ease = pieces ? RawEase{.kind = EaseKind::sine_pieces, .k1 = a, .k2 = b}
+                                : RawEase{.kind = EaseKind::constant_acceleration, .t1 = a, .t2 = b};
+    const Closed closed = pieces ? closed_sine_pieces(a, b) : closed_constant_acceleration(a, b);
+    const double start = rng.uniform(-100.0, 100.0), span = rng.uniform(1.0, 200.0);
+    RawPathMotion raw{.path = path, .orientation = RawOrientation{.mode = OrientationMode(trial % 3)}};
+    raw.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = start, .end_frame = start + span, .ease = ease};
+    const PathMotion m = build(raw);
+    const double L = m.length();
+    const IndependentLength ind(path);
+    for (int i = 0; i <= 20; ++i) {
+      const double t = rng.uniform(0.0, 1.0), frame = start + span * t;
+      const double tt = (frame - start) / span;  // t as the motion sees it after rounding
+      const PathSample p = m.sample(frame);
+      EXPECT_NEAR(p.distance, L * closed.s(tt), kRelLength * L);
+      EXPECT_NEAR(p.speed, L * closed.v(tt) / span * kFps, kRelLength * L * kFps);
+      EXPECT_LE(norm(p.position - path.point(ind.u_at(p.distance))), kRelLength * L);
+      expect_orthonormal(p.rotation);
+      const Vec3d d1 = path.derivative(p.u, 1);
+      if (norm(d1) > 1e-6 * L) EXPECT_LE(norm(axis_z(p.rotation) - d1 / norm(d1)), 1e-10);
+    }
+  }
+}
+
 TEST(PathMotionNames, RoundTrip) {
   for (int i = 0; i < 7; ++i) EXPECT_EQ(enum_from_string<EaseKind>(to_string(EaseKind(i))), EaseKind(i));
   for (int i = 0; i < 4; ++i) EXPECT_EQ(enum_from_string<SpeedKind>(to_string(SpeedKind(i))), SpeedKind(i));
