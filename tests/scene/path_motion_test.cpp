@@ -23,6 +23,7 @@
 #include "inbetween/math/format.hpp"
 #include "inbetween/math/rotation.hpp"
 #include "inbetween/paths/banking.hpp"
+#include "inbetween/tracks/quat_track.hpp"
 #include "support/museum_curves.hpp"
 #include "support/museum_paths.hpp"
 #include "support/random.hpp"
@@ -456,6 +457,25 @@ TEST(PathMotion, LocalRotationComposesOnTheRight) {
   const PathMotion a = build(base), b = build(with);
   for (int f = 0; f <= 10; ++f) {
     const Quatd expected = a.sample(f).rotation * local;  // world_from_object = world_from_path · local
+    const Quatd got = b.sample(f).rotation;
+    EXPECT_NEAR(std::abs(expected.w * got.w + expected.x * got.x + expected.y * got.y + expected.z * got.z), 1.0, kFrameTol);
+  }
+}
+
+TEST(PathMotion, KeyedLocalRotationIsSampledAtTheSameFrame) {
+  // A slerp track from identity (frame 0) to 90° about +Y (frame 10): at frame f the local rotation
+  // is f·9° about +Y (slerp between keys sharing an axis is linear in the angle).
+  const AnyCurve path = test_path();
+  auto track = build_quat_track(std::vector<QuatKey<double>>{
+      {.frame = 0, .value = Quatd{}}, {.frame = 10, .value = Quatd::from_axis_angle(Vec3d{0, 1, 0}, kPi / 2)}});
+  ASSERT_TRUE(track.has_value());
+  RawPathMotion base{.path = path};
+  base.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 10};
+  RawPathMotion with = base;
+  with.orientation.local_track = *track;
+  const PathMotion a = build(base), b = build(with);
+  for (int f = 0; f <= 10; ++f) {
+    const Quatd expected = a.sample(f).rotation * Quatd::from_axis_angle(Vec3d{0, 1, 0}, kPi / 2 * f / 10);
     const Quatd got = b.sample(f).rotation;
     EXPECT_NEAR(std::abs(expected.w * got.w + expected.x * got.x + expected.y * got.y + expected.z * got.z), 1.0, kFrameTol);
   }
