@@ -196,7 +196,8 @@ class PathMotion {
   /// the first and last key of keys, the keyed range of a track.
   [[nodiscard]] Interval<double> frame_range() const noexcept { return range_; }
 
-  /// Distance s (length units, clamped into [0, L]) and ds/dframe at `frame`.  Outside
+  /// Distance s (length units, clamped into [0, L]), ds/dframe and d²s/dframe² (0 for a track) at
+  /// `frame`, as an EaseSample {s, velocity, acceleration}.  Outside
   /// frame_range() an ease or keys hold their end distance with ds/dframe = 0; inside (ends
   /// included) ds/dframe is the one-sided derivative of the speed form.  A track follows its own
   /// extrapolation and cycles; where its value leaves [0, L] the distance is clamped and
