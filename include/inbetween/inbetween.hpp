@@ -1,6 +1,6 @@
 #pragma once
 /// Umbrella header: every public header of the core library (math → curves → arclength → timing →
-/// tracks → paths).  Include single headers instead where compile time matters.
+/// tracks → paths → scene).  Include single headers instead where compile time matters.
 
 // math
 #include "inbetween/math/assert.hpp"
@@ -15,6 +15,7 @@
 #include "inbetween/math/vec.hpp"
 
 // curves
+#include "inbetween/curves/any_curve.hpp"
 #include "inbetween/curves/bezier.hpp"
 #include "inbetween/curves/bezier_path.hpp"
 #include "inbetween/curves/bspline.hpp"
@@ -66,3 +67,6 @@
 #include "inbetween/paths/smooth_bspline.hpp"  // uses fit_bspline from inbetween_eigen (link inbetween::eigen)
 #include "inbetween/paths/smoothing.hpp"
 #include "inbetween/paths/surface_path.hpp"
+
+// scene
+#include "inbetween/scene/path_motion.hpp"

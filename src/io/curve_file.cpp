@@ -151,21 +151,6 @@ Expected<std::vector<double>> read_tcb(const Reader& r, const json& doc, std::st
 
 }  // namespace
 
-std::string_view curve_kind_name(CurveKind kind) noexcept {
-  switch (kind) {
-    case CurveKind::Bezier: return "bezier";
-    case CurveKind::BezierPath: return "bezier-path";
-    case CurveKind::Hermite: return "hermite";
-    case CurveKind::CatmullRom: return "catmull-rom";
-    case CurveKind::Natural: return "natural";
-    case CurveKind::KochanekBartels: return "kochanek-bartels";
-    case CurveKind::Parabolic: return "parabolic";
-    case CurveKind::BSpline: return "bspline";
-    case CurveKind::Lagrange: return "lagrange";
-  }
-  return "unknown";
-}
-
 Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view source_name) {
   const Reader r{std::string(source_name)};
   json doc;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "inbetween/math/assert.hpp"
 
@@ -618,6 +619,71 @@ bool near_frame(float a, float b) noexcept {
   return a > b ? (a - b) <= threshold : (b - a) <= threshold;
 }
 
+
+// Handles of a Bézier segment after evaluate()'s correction of handles longer than the segment.
+std::pair<Vec2f, Vec2f> corrected_handles(const Key& ka, const Key& kb) noexcept {
+  const Vec2f v1{ka.x, ka.y}, v4{kb.x, kb.y};
+  Vec2f v2 = ka.right, v3 = kb.left;
+  const Vec2f h1{v1.x - v2.x, v1.y - v2.y};
+  const Vec2f h2{v4.x - v3.x, v4.y - v3.y};
+  const float len = v4.x - v1.x;
+  const float len1 = std::abs(h1.x);
+  const float len2 = std::abs(h2.x);
+  if (len1 + len2 != 0.0f) {
+    if (len1 > len) {
+      const float fac = len / len1;
+      v2 = Vec2f{v1.x - fac * h1.x, v1.y - fac * h1.y};
+    }
+    if (len2 > len) {
+      const float fac = len / len2;
+      v3 = Vec2f{v4.x - fac * h2.x, v4.y - fac * h2.y};
+    }
+  }
+  return {v2, v3};
+}
+
+// dy/dx of the Bézier segment at frame t (in double): x(u) = t is solved on [0, 1] by Newton steps
+// kept inside a bisection bracket (x is monotone after the handle correction), then y′(u)/x′(u);
+// where x′ vanishes (a zero-length handle at an end) the ratio of second derivatives, the limit.
+double bezier_segment_slope(const Key& ka, const Key& kb, double t) noexcept {
+  if (std::abs(ka.y - kb.y) < FLT_EPSILON && std::abs(ka.right.y - kb.left.y) < FLT_EPSILON &&
+      std::abs(kb.left.y - kb.y) < FLT_EPSILON) {
+    return 0.0;  // evaluate() returns the constant value here
+  }
+  const auto [v2, v3] = corrected_handles(ka, kb);
+  const double x0 = ka.x, x1 = v2.x, x2 = v3.x, x3 = kb.x;
+  const double y0 = ka.y, y1 = v2.y, y2 = v3.y, y3 = kb.y;
+  const auto bez = [](double p0, double p1, double p2, double p3, double u) {
+    const double w = 1 - u;
+    return w * w * w * p0 + 3 * w * w * u * p1 + 3 * w * u * u * p2 + u * u * u * p3;
+  };
+  const auto d1 = [](double p0, double p1, double p2, double p3, double u) {
+    const double w = 1 - u;
+    return 3 * (w * w * (p1 - p0) + 2 * w * u * (p2 - p1) + u * u * (p3 - p2));
+  };
+  const auto d2 = [](double p0, double p1, double p2, double p3, double u) {
+    return 6 * ((1 - u) * (p2 - 2 * p1 + p0) + u * (p3 - 2 * p2 + p1));
+  };
+  double lo = 0, hi = 1;
+  double u = x3 > x0 ? std::clamp((t - x0) / (x3 - x0), 0.0, 1.0) : 0.0;
+  for (int iter = 0; iter < 100; ++iter) {
+    const double f = bez(x0, x1, x2, x3, u) - t;
+    if (f == 0) break;
+    if (f < 0) lo = u; else hi = u;
+    const double dx = d1(x0, x1, x2, x3, u);
+    double next = dx > 0 ? u - f / dx : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (next == u || hi - lo <= 4 * std::numeric_limits<double>::epsilon()) break;
+    u = next;
+  }
+  const double dx = d1(x0, x1, x2, x3, u), dy = d1(y0, y1, y2, y3, u);
+  const double scale = std::max(std::abs(x3 - x0), 1e-30);
+  if (std::abs(dx) > 1e-9 * scale) return dy / dx;
+  const double ddx = d2(x0, x1, x2, x3, u), ddy = d2(y0, y1, y2, y3, u);
+  if (std::abs(ddx) > 0) return ddy / ddx;
+  return 0.0;
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------ FCurve evaluation
@@ -729,14 +795,13 @@ float FCurve::evaluate(float frame, TrackCursor& cursor) const noexcept {
   return evaluate_impl(frame, &cursor.segment);
 }
 
-float FCurve::evaluate_impl(float frame, std::size_t* cursor) const noexcept {
-  if (keys_.empty()) return 0.0f;
-  if (std::isnan(frame)) return keys_.front().y;
+FCurve::CycleMap FCurve::map_cycles(float frame) const noexcept {
   // ±inf acts as the largest finite frame: linear extrapolation would give 0·inf and the Cycles
   // modifier fmod(inf, ·), both NaN.
   if (std::isinf(frame)) frame = std::copysign(std::numeric_limits<float>::max(), frame);
   float t = frame;
   float offset = 0.0f;
+  float sign = 1.0f;
   if (cycles_) {
     const Key& first = keys_.front();
     const Key& last = keys_.back();
@@ -776,9 +841,11 @@ float FCurve::evaluate_impl(float frame, std::size_t* cursor) const noexcept {
           t = side == 1 ? last.x : first.x;
           if (mode == CycleMode::mirror && (static_cast<long long>(cycle_clamped) % 2) != 0) {
             t = side == 1 ? first.x : last.x;
+            sign = -1.0f;
           }
         } else if (mode == CycleMode::mirror && (static_cast<long long>(cycle_clamped + 1) % 2) != 0) {
           t = side < 0 ? first.x - cyct : last.x - cyct;
+          sign = -1.0f;
         } else {
           t = first.x + cyct;
         }
@@ -786,7 +853,75 @@ float FCurve::evaluate_impl(float frame, std::size_t* cursor) const noexcept {
       }
     }
   }
-  return evaluate_keys(t, cursor) + offset;
+  return {t, offset, sign};
+}
+
+
+float FCurve::evaluate_impl(float frame, std::size_t* cursor) const noexcept {
+  if (keys_.empty()) return 0.0f;
+  if (std::isnan(frame)) return keys_.front().y;
+  const CycleMap m = map_cycles(frame);
+  return evaluate_keys(m.t, cursor) + m.offset;
+}
+
+double FCurve::extrapolation_slope(bool before) const noexcept {
+  const int n = int(keys_.size());
+  const Key& e = before ? keys_.front() : keys_.back();
+  if (e.interpolation == Interpolation::constant || extrapolation_ == Extrapolation::constant) return 0.0;
+  if (e.interpolation == Interpolation::linear) {
+    if (n == 1) return 0.0;
+    const Key& nb = before ? keys_[1] : keys_[n - 2];
+    const double fac = double(nb.x) - double(e.x);
+    if (fac == 0.0) return 0.0;
+    return (double(nb.y) - double(e.y)) / fac;
+  }
+  const Vec2f& h = before ? e.left : e.right;
+  const double fac = double(e.x) - double(h.x);
+  if (fac == 0.0) return 0.0;
+  return (double(e.y) - double(h.y)) / fac;
+}
+
+double FCurve::segment_derivative(int index, double t) const noexcept {
+  // Segment from key index to key index + 1 (the key on its left decides the interpolation).
+  const Key& ka = keys_[index];
+  const Key& kb = keys_[index + 1];
+  const double duration = double(kb.x) - double(ka.x);
+  if (ka.interpolation == Interpolation::constant || duration == 0) return 0.0;
+  switch (ka.interpolation) {
+    case Interpolation::bezier: return bezier_segment_slope(ka, kb, t);
+    case Interpolation::linear: return (double(kb.y) - double(ka.y)) / duration;
+    default: {
+      const EasingCurve curve = easing_curve(ka.interpolation);
+      EasingDirection dir = automatic_direction(curve);
+      if (ka.easing == KeyEasing::ease_in) dir = EasingDirection::in;
+      if (ka.easing == KeyEasing::ease_out) dir = EasingDirection::out;
+      if (ka.easing == KeyEasing::ease_in_out) dir = EasingDirection::in_out;
+      const PennerParams<double> params{.back = ka.back, .amplitude = ka.amplitude, .period = ka.period};
+      return penner_ease_velocity(curve, dir, t - double(ka.x), double(kb.y) - double(ka.y), duration, params);
+    }
+  }
+}
+
+double FCurve::derivative(float frame) const noexcept {
+  if (keys_.empty() || std::isnan(frame)) return 0.0;
+  if (std::isinf(frame)) frame = std::copysign(std::numeric_limits<float>::max(), frame);
+  const CycleMap m = map_cycles(frame);
+  const float t = m.t;
+  const int n = int(keys_.size());
+  double slope = 0.0;
+  if (t < keys_.front().x) {
+    slope = extrapolation_slope(true);
+  } else if (t > keys_.back().x) {
+    slope = extrapolation_slope(false);
+  } else if (n >= 2) {
+    // The segment [k, k + 1] holding t; the last key belongs to the last segment.
+    auto it = std::upper_bound(keys_.begin(), keys_.end(), t, [](float v, const Key& key) { return v < key.x; });
+    int k = int(it - keys_.begin()) - 1;
+    k = std::clamp(k, 0, n - 2);
+    slope = segment_derivative(k, double(t));
+  }
+  const double out = double(m.sign) * slope;
+  return std::isfinite(out) ? out : 0.0;
 }
 
 void FCurve::evaluate(std::span<const float> frames, std::span<float> out, TrackCursor& cursor) const noexcept {

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "support/random.hpp"
 #include "support/tolerances.hpp"
@@ -113,6 +115,103 @@ TEST(Penner, BlenderElasticAndBackNumbers) {
   EXPECT_NEAR(penner_ease(EasingCurve::elastic, EasingDirection::out, 1.f, 0.f, 1.f, 10.f, p), 0.9845857f, 1e-6f);
   EXPECT_NEAR(penner_ease(EasingCurve::elastic, EasingDirection::out, 2.5f, 0.f, 1.f, 10.f, p), 1.109105f, 1e-6f);
   EXPECT_NEAR(penner_ease(EasingCurve::back, EasingDirection::out, 1.f, 0.f, 1.f, 10.f, p), 0.4088281f, 1e-6f);
+}
+
+// ------------------------------------------------------------------ penner_ease_velocity
+// Central difference of penner_ease in double at a step h = 1e-6 of the duration: truncation
+// h²·|e‴|/6 ≤ 1.7e-13·|e‴| (|e‴| < 1e5 even for elastic: ω = 2π/0.3 ≈ 21, ω³ ≈ 9.3e3, times the
+// 2^(10x) ≤ 1 envelope and a factor ≤ 10 from its derivative) plus rounding ≈ 4ε/h ≈ 1e-9, so 1e-6
+// (relative to max(1, |v|)) separates a right formula from a wrong one (a wrong factor or sign is
+// off by ≥ 1e-2).  The grid (i + 0.37)/997 stays ≥ 1e-4 ≫ h away from the in-out midpoint; points
+// within 2h of another branch boundary (bounce's arc joins, elastic's blend edge) are recognised
+// by one-sided differences that disagree, and skipped; circ is skipped within 1e-2 of where its
+// slope is unbounded (there |e‴| ~ (1 − u²)^(−5/2) makes the difference itself inaccurate).
+TEST(PennerVelocity, MatchesCentralDifferenceEverywhere) {
+  constexpr double h = 1e-6;
+  const PennerParams<double> params[] = {{.back = 1.70158, .amplitude = 1, .period = 0.3},
+                                         {.back = 0.8, .amplitude = 0.4, .period = 0.45}};  // amplitude < change: the blend
+  for (const auto& p : params) {
+    for (EasingCurve c : kAll) {
+      for (EasingDirection d : kDirs) {
+        SCOPED_TRACE(int(c) * 10 + int(d));
+        int checked = 0;
+        for (int i = 0; i < 997; ++i) {
+          const double u = (i + 0.37) / 997.0;
+          if (c == EasingCurve::circ) {
+            const double vertical = d == EasingDirection::in ? 1.0 : d == EasingDirection::out ? 0.0 : 0.5;
+            if (std::abs(u - vertical) < 1e-2) continue;
+          }
+          const double fm = ease_unit(c, d, u - h, p), f0 = ease_unit(c, d, u, p), fp = ease_unit(c, d, u + h, p);
+          const double left = (f0 - fm) / h, right = (fp - f0) / h;
+          if (std::abs(left - right) > 1e-3 * std::max(1.0, std::abs(left))) continue;  // a kink
+          const double v = ease_unit_velocity(c, d, u, p);
+          EXPECT_NEAR(v, (fp - fm) / (2 * h), 1e-6 * std::max(1.0, std::abs(v))) << "u = " << u;
+          ++checked;
+        }
+        EXPECT_GE(checked, 960);  // only the few points next to a kink or circ's vertical are skipped
+      }
+    }
+  }
+}
+
+TEST(PennerVelocity, ClosedForms) {
+  const double pi = 3.14159265358979323846;
+  // sine in: 1 − cos(πu/2) → (π/2)·sin(πu/2); out: sin(πu/2) → (π/2)·cos(πu/2); in-out (1 − cos πu)/2 → (π/2)·sin πu.
+  EXPECT_NEAR(ease_unit_velocity(EasingCurve::sine, EasingDirection::in, 0.3), pi / 2 * std::sin(pi * 0.15), 1e-15);
+  EXPECT_NEAR(ease_unit_velocity(EasingCurve::sine, EasingDirection::out, 0.3), pi / 2 * std::cos(pi * 0.15), 1e-15);
+  EXPECT_NEAR(ease_unit_velocity(EasingCurve::sine, EasingDirection::in_out, 0.3), pi / 2 * std::sin(pi * 0.3), 1e-15);
+  // quad in u² → 2u; cubic out 1 − (1 − u)³ → 3(1 − u)²; quint in-out 16u⁵ → 80u⁴ on the first half.
+  EXPECT_NEAR(ease_unit_velocity(EasingCurve::quad, EasingDirection::in, 0.3), 0.6, 1e-15);
+  EXPECT_NEAR(ease_unit_velocity(EasingCurve::cubic, EasingDirection::out, 0.3), 3 * 0.49, 1e-15);
+  EXPECT_NEAR(ease_unit_velocity(EasingCurve::quint, EasingDirection::in_out, 0.25), 80 * std::pow(0.25, 4), 1e-15);
+  // expo in (2^(10(u−1)) − 2⁻¹⁰)/(1 − 2⁻¹⁰) → 10·ln2·2^(10(u−1))/(1 − 2⁻¹⁰); at u = 1: 10·ln2/(1 − 2⁻¹⁰).
+  EXPECT_NEAR(ease_unit_velocity(EasingCurve::expo, EasingDirection::in, 1.0), 10 * std::log(2.0) / (1 - 1.0 / 1024), 1e-14);
+  // back in u²((s + 1)u − s) → 3(s + 1)u² − 2su: zero at u = 0 and negative just after (the pull-back).
+  const PennerParams<double> p{};
+  EXPECT_EQ(ease_unit_velocity(EasingCurve::back, EasingDirection::in, 0.0, p), 0.0);
+  EXPECT_NEAR(ease_unit_velocity(EasingCurve::back, EasingDirection::in, 0.2, p),
+              3 * 2.70158 * 0.04 - 2 * 1.70158 * 0.2, 1e-15);
+  // Penner's duration and change scale the velocity by change/duration.
+  EXPECT_NEAR(penner_ease_velocity(EasingCurve::sine, EasingDirection::in_out, 3.0, 5.0, 10.0),
+              5.0 / 10.0 * pi / 2 * std::sin(pi * 0.3), 1e-15);
+  // circ in at its vertical end: large but finite.
+  EXPECT_TRUE(std::isfinite(ease_unit_velocity(EasingCurve::circ, EasingDirection::in, 1.0)));
+}
+
+TEST(PennerVelocity, IntegratesToTheChange) {
+  // ∫₀¹ e′(u) du = e(1) − e(0) = 1 for every curve whose formula hits both ends exactly (elastic's
+  // time = 0 and end returns are exact, the formula's ends differ by 2⁻¹⁰-scaled terms: skipped).
+  // Composite Simpson with 20000 panels, split at the in-out midpoint and bounce's arc joins where
+  // the velocity jumps.
+  const PennerParams<double> p{.back = 1.70158, .amplitude = 1, .period = 0.3};
+  for (EasingCurve c : kAll) {
+    if (c == EasingCurve::elastic || c == EasingCurve::circ) continue;  // circ: unbounded slope at an end
+    for (EasingDirection d : kDirs) {
+      SCOPED_TRACE(int(c) * 10 + int(d));
+      std::vector<double> cuts{0.0, 1.0};
+      if (d == EasingDirection::in_out) cuts.push_back(0.5);
+      if (c == EasingCurve::bounce) {
+        for (double b : {1 / 2.75, 2 / 2.75, 2.5 / 2.75}) {
+          if (d == EasingDirection::out) cuts.push_back(b);
+          if (d == EasingDirection::in) cuts.push_back(1 - b);
+          if (d == EasingDirection::in_out) { cuts.push_back((1 - b) / 2); cuts.push_back(0.5 + b / 2); }
+        }
+      }
+      std::sort(cuts.begin(), cuts.end());
+      double total = 0;
+      for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+        const double a = cuts[k], b = cuts[k + 1];
+        const int n = 20000;
+        const double step = (b - a) / n;
+        // Evaluate just inside the piece at its ends (the branch there is the neighbour's).
+        const auto f = [&](double u) { return ease_unit_velocity(c, d, std::clamp(u, a + 1e-13, b - 1e-13), p); };
+        double sum = f(a) + f(b);
+        for (int i = 1; i < n; ++i) sum += f(a + i * step) * (i % 2 ? 4 : 2);
+        total += sum * step / 3;
+      }
+      EXPECT_NEAR(total, 1.0, 1e-9);
+    }
+  }
 }
 
 }  // namespace

@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "support/museum_tracks.hpp"
 #include "support/random.hpp"
@@ -346,6 +349,179 @@ TEST(FCurveNames, RoundTrip) {
   EXPECT_EQ(enum_from_string<KeyEasing>("auto"), KeyEasing::automatic);
   EXPECT_EQ(enum_from_string<CycleMode>("repeat_offset"), CycleMode::repeat_offset);
   EXPECT_FALSE(enum_from_string<Interpolation>("Bezier").has_value());
+}
+
+// ------------------------------------------------------------------ derivative (ours)
+// True when frame t lies within `r` of a point inside the easing segment ka → kb where the slope
+// jumps or bends sharply: the in-out midpoint, bounce's arc joins (u = 1/2.75, 2/2.75, 2.5/2.75,
+// mirrored for in, halved for in-out), elastic's blend edge (|x|·duration = period/4).
+bool near_easing_break(const FCurve::Key& ka, const FCurve::Key& kb, float t, float r) {
+  if (ka.interpolation == Interpolation::constant || ka.interpolation == Interpolation::linear ||
+      ka.interpolation == Interpolation::bezier)
+    return false;
+  const bool bounce = ka.interpolation == Interpolation::bounce, elastic = ka.interpolation == Interpolation::elastic;
+  KeyEasing e = ka.easing;
+  if (e == KeyEasing::automatic) e = (bounce || elastic || ka.interpolation == Interpolation::back) ? KeyEasing::ease_out : KeyEasing::ease_in;
+  const double d = double(kb.x) - double(ka.x);
+  std::vector<double> u;  // breaks as fractions of the segment
+  if (e == KeyEasing::ease_in_out) u.push_back(0.5);
+  if (bounce) {
+    for (double b : {1 / 2.75, 2 / 2.75, 2.5 / 2.75}) {
+      if (e == KeyEasing::ease_out) u.push_back(b);
+      if (e == KeyEasing::ease_in) u.push_back(1 - b);
+      if (e == KeyEasing::ease_in_out) { u.push_back((1 - b) / 2); u.push_back(0.5 + b / 2); }
+    }
+  }
+  if (elastic) {
+    const double period = ka.period != 0 ? double(ka.period) : d * (e == KeyEasing::ease_in_out ? 0.45 : 0.3);
+    const double edge = period / 4 / d;
+    if (e == KeyEasing::ease_out) u.push_back(edge);
+    if (e == KeyEasing::ease_in) u.push_back(1 - edge);
+    if (e == KeyEasing::ease_in_out) { u.push_back(0.5 - edge / 2); u.push_back(0.5 + edge / 2); }
+  }
+  for (double b : u)
+    if (std::abs(double(ka.x) + b * d - double(t)) <= double(r)) return true;
+  return false;
+}
+
+TEST(FCurveDerivative, LinearAndConstantAndExtrapolationClosedForms) {
+  // Linear keys (0,0),(10,10),(20,4): slopes 1 and −0.6; linear extrapolation continues the end
+  // segments' slopes; constant interpolation and constant extrapolation have slope 0.
+  RawFCurve raw{.extrapolation = Extrapolation::linear};
+  for (auto [x, y] : {std::pair{0., 0.}, {10., 10.}, {20., 4.}}) {
+    FCurveKey k = inserted(x, y);
+    k.interpolation = Interpolation::linear;
+    raw.keys.push_back(k);
+  }
+  FCurve c = build(raw);
+  EXPECT_DOUBLE_EQ(c.derivative(5.f), 1.0);
+  EXPECT_DOUBLE_EQ(c.derivative(0.f), 1.0);    // first key: the segment to its right
+  EXPECT_DOUBLE_EQ(c.derivative(10.f), -0.6);  // interior key: the segment to its right
+  EXPECT_DOUBLE_EQ(c.derivative(20.f), -0.6);  // last key: the segment to its left
+  EXPECT_DOUBLE_EQ(c.derivative(-7.f), 1.0);
+  EXPECT_DOUBLE_EQ(c.derivative(31.f), -0.6);
+  raw.extrapolation = Extrapolation::constant;
+  raw.keys[1].interpolation = Interpolation::constant;
+  c = build(raw);
+  EXPECT_EQ(c.derivative(-7.f), 0.0);
+  EXPECT_EQ(c.derivative(15.f), 0.0);
+  EXPECT_EQ(c.derivative(31.f), 0.0);
+  EXPECT_EQ(c.derivative(std::numeric_limits<float>::quiet_NaN()), 0.0);
+}
+
+TEST(FCurveDerivative, BezierWithHandlesOnTheChordIsTheChordSlope) {
+  // Free handles a third of the way along the chord from (0, 1) to (9, 7): the Bézier is the
+  // straight line y = 1 + (2/3)x (handles at (3, 3) and (6, 5)), so dy/dx = 2/3 everywhere.
+  RawFCurve raw;
+  raw.keys = {test::museum_detail::free_key(0, 1, {-3, -1}, {3, 3}), test::museum_detail::free_key(9, 7, {6, 5}, {12, 9})};
+  const FCurve c = build(raw);
+  for (float x : {0.f, 0.5f, 2.f, 4.5f, 7.25f, 9.f}) EXPECT_NEAR(c.derivative(x), 2.0 / 3.0, 1e-12) << x;
+}
+
+TEST(FCurveDerivative, SineEasingClosedForm) {
+  // Sine in-out from (0, 0) to (10, 5): value 2.5·(1 − cos(πx/10)), slope 2.5·(π/10)·sin(πx/10).
+  RawFCurve raw;
+  FCurveKey a = inserted(0, 0), b = inserted(10, 5);
+  a.interpolation = Interpolation::sine;
+  a.easing = KeyEasing::ease_in_out;
+  raw.keys = {a, b};
+  const FCurve c = build(raw);
+  const double pi = 3.14159265358979323846;
+  for (float x : {0.f, 1.f, 3.3f, 5.f, 9.9f}) EXPECT_NEAR(c.derivative(x), 2.5 * pi / 10 * std::sin(pi * x / 10), 1e-12) << x;
+}
+
+TEST(FCurveDerivative, CyclesMirrorNegatesAndRepeatOffsetKeepsTheSlope) {
+  // The Blender-measured curve of CyclesMirrorBeforeRepeatOffsetAfter: linear (0,0),(10,10),(20,4),
+  // mirror before, repeat_offset after.  Frame −5 mirrors frame 5 (slope 1 → −1); frame −15 mirrors
+  // frame 15 of the backward copy (slope −0.6 → +0.6); frame 25 repeats frame 5 (slope 1).
+  RawFCurve raw{.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}};
+  for (auto [x, y] : {std::pair{0., 0.}, {10., 10.}, {20., 4.}}) {
+    FCurveKey k = inserted(x, y);
+    k.interpolation = Interpolation::linear;
+    raw.keys.push_back(k);
+  }
+  const FCurve c = build(raw);
+  EXPECT_DOUBLE_EQ(c.derivative(-5.f), -1.0);
+  EXPECT_DOUBLE_EQ(c.derivative(-15.f), 0.6);
+  EXPECT_DOUBLE_EQ(c.derivative(25.f), 1.0);
+  EXPECT_DOUBLE_EQ(c.derivative(36.f), -0.6);
+  // Each against a central difference of evaluate() at a safe step (linear pieces: exact slope,
+  // float rounding of values ~10 over 2h = 0.2 frames gives ≤ 1e-5).
+  for (float x : {-15.f, -5.f, 25.f, 36.f}) {
+    EXPECT_NEAR(c.derivative(x), (double(c.evaluate(x + 0.1f)) - c.evaluate(x - 0.1f)) / (double(x + 0.1f) - double(x - 0.1f)), 1e-5) << x;
+  }
+}
+
+TEST(FCurveDerivative, MatchesCentralDifferenceOnMuseumAndRandomCurves) {
+  // evaluate() is single precision: a central difference with step h has rounding error
+  // ≈ ulp(|y|)/h and truncation h²·|y‴|/6.  With h = 1/64 frame (exact in float, so x ± h are
+  // exact too) the tolerance is the rounding bound below plus 2e-3·max(1, |y′|) for truncation,
+  // while a wrong formula (a missing dx/du, a wrong sign) is off by O(|y′|).  Points within 2h of a key are
+  // skipped (the slope may jump there, and Blender snaps values within 1e-4 of a key).
+  constexpr float h = 1.f / 64;
+  std::vector<FCurve> curves;
+  for (const auto& ex : test::museum_fcurves()) {
+    auto built = build_fcurve(ex.curve);
+    // Frames beyond 1e4 have float spacing ≥ 1/1024: no room for a step that small (skipped).
+    if (built && std::abs(built->keys().front().x) < 1e4f && std::abs(built->keys().back().x) < 1e4f)
+      curves.push_back(*built);
+  }
+  test::Random rng(test::seed_for(6006));
+  SCOPED_TRACE(rng.trace());
+  for (int trial = 0; trial < 100; ++trial) {
+    RawFCurve raw{.extrapolation = trial % 2 ? Extrapolation::linear : Extrapolation::constant};
+    double x = rng.uniform(-50.0, 50.0);
+    const int n = rng.integer(2, 6);
+    for (int i = 0; i < n; ++i) {
+      FCurveKey k = inserted(x, rng.uniform(-10.0, 10.0));
+      k.interpolation = Interpolation(rng.integer(0, 12));
+      k.handle_left_type = k.handle_right_type = HandleType(rng.integer(1, 4));
+      raw.keys.push_back(k);
+      x += rng.uniform(2.0, 10.0);
+    }
+    curves.push_back(build(raw));
+  }
+  int checked = 0;
+  for (std::size_t ci = 0; ci < curves.size(); ++ci) {
+    const FCurve& c = curves[ci];
+    SCOPED_TRACE("curve " + std::to_string(ci));
+    const float lo = c.keys().front().x, hi = c.keys().back().x;
+    const float w = std::max(hi - lo, 1.f);
+    for (int i = -50; i <= 250; ++i) {
+      const float t = std::round((lo + w * (float(i) + 0.37f) / 200.f) * 64.f) / 64.f;
+      bool near_key = false;
+      for (const auto& k : c.keys()) near_key = near_key || std::abs(k.x - t) <= 2 * h;
+      if (near_key) continue;
+      int seg = 0;
+      while (seg + 2 < int(c.keys().size()) && c.keys()[seg + 1].x <= t) ++seg;
+      const auto& ka = c.keys()[seg];
+      const auto& kb = c.keys()[seg + 1];
+      if (t > ka.x && t < kb.x && near_easing_break(ka, kb, t, 2 * h)) continue;
+      const double y0 = c.evaluate(t);
+      const double fd = (double(c.evaluate(t + h)) - double(c.evaluate(t - h))) / (2.0 * h);
+      const double d = c.derivative(t);
+      ASSERT_TRUE(std::isfinite(d));
+      // Where the slope bends sharply (circ near its vertical end, vertical Bézier handles) the
+      // truncation error h²·|y‴|/6 dominates; the one-sided differences disagree there: skip.
+      const double left = (y0 - c.evaluate(t - h)) / h, right = (double(c.evaluate(t + h)) - y0) / h;
+      if (std::abs(left - right) > 0.05 * std::max(1.0, std::abs(fd))) continue;
+      // Rounding: Blender evaluates in single precision.  A Bézier value is a sum of terms as large
+      // as the control values, so it is within a few ulp (4 allowed) of the largest of |y| and the
+      // handles' |y|; Blender's single-precision solve of x(u) = frame misplaces the frame by a few
+      // ulp (4 allowed), worth |y′|·ulp(x).  The difference quotient is thus within
+      // 8·(ulp(y_max) + |y′|·ulp(x))/(2h).  Truncation and formula: 2e-3·max(1, |y′|).
+      const auto ulp = [](double v) {
+        const float m = float(std::abs(v));
+        return double(std::nextafter(m, std::numeric_limits<float>::max())) - double(m);
+      };
+      const double y_max = std::max({std::abs(y0), double(std::abs(ka.right.y)), double(std::abs(kb.left.y))});
+      const double rounding = 8 * (ulp(y_max) + std::abs(d) * ulp(t)) / (2 * h);
+      EXPECT_NEAR(d, fd, 2e-3 * std::max(1.0, std::abs(d)) + rounding)
+          << "frame " << t << " interpolation " << to_string(ka.interpolation) << " easing " << to_string(ka.easing);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20000);
 }
 
 }  // namespace

@@ -12,7 +12,9 @@
 /// start with a jump (see PennerParams::amplitude).  docs/tracks.md ("Penner easing") gives each form.
 
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 
 #include "inbetween/math/scalar.hpp"
 
@@ -272,12 +274,171 @@ T penner_ease(EasingCurve curve, EasingDirection direction, T time, T begin, T c
   return begin;
 }
 
+namespace penner_detail {
+
+template <Real T>
+T bounce_out_velocity(T time, T change, T duration) noexcept {
+  // d/dtime of bounce_out: each arc is change·(7.5625·(u − a)² + c) with u = time/duration.
+  const T u = time / duration;
+  T a;
+  if (u < T(1) / T(2.75)) a = T(0);
+  else if (u < T(2) / T(2.75)) a = T(1.5) / T(2.75);
+  else if (u < T(2.5) / T(2.75)) a = T(2.25) / T(2.75);
+  else a = T(2.625) / T(2.75);
+  return change * T(2) * T(7.5625) * (u - a) / duration;
+}
+
+template <Real T>
+T expo_in_velocity(T time, T change, T duration) noexcept {
+  const T pow_scale = T(1) / (T(1) - T(0.0009765625));
+  return change * pow_scale * T(10) * std::log(T(2)) / duration * std::pow(T(2), T(10) * (time / duration - T(1)));
+}
+
+template <Real T>
+T expo_out_velocity(T time, T change, T duration) noexcept {
+  const T pow_scale = T(1) / (T(1) - T(0.0009765625));
+  return change * pow_scale * T(10) * std::log(T(2)) / duration * std::pow(T(2), T(-10) * time / duration);
+}
+
+/// x/√(1 − x²), the slope of the circle arcs, with 1 − x² floored at ε² so that the vertical end
+/// gives a large finite slope instead of infinity.
+template <Real T>
+T circ_slope(T x) noexcept {
+  const T eps = std::numeric_limits<T>::epsilon();
+  return x / std::sqrt(std::max(T(1) - x * x, eps * eps));
+}
+
+}  // namespace penner_detail
+
+/// d/dtime of penner_ease(curve, direction, time, begin, change, duration, params): the closed-form
+/// derivative of each formula above, branch for branch (ours: Blender exposes no derivative).
+/// Inside a branch it is exact; at a branch boundary (in-out midpoint, bounce arcs) it is the
+/// derivative of the branch penner_ease takes there.  circ's slope is unbounded where the circle is
+/// vertical (u = 1 for in, u = 0 for out, the in-out midpoint); there it is large but finite (1 − u²
+/// floored at ε²).  elastic includes Blender's amplitude blend near its start, and at time = 0 and
+/// at the end (where penner_ease returns begin and begin + change exactly) gives the slope of the
+/// formula.  duration must be non-zero.
+template <Real T>
+T penner_ease_velocity(EasingCurve curve, EasingDirection direction, T time, T change, T duration,
+                       const PennerParams<T>& params = {}) noexcept {
+  constexpr T half_pi = T(1.57079632679489661923);
+  constexpr T pi = T(3.14159265358979323846);
+  const T d = duration;
+  switch (curve) {
+    case EasingCurve::back: {
+      T s = params.back;
+      if (direction == EasingDirection::in) {
+        const T u = time / d;
+        return change * (T(3) * (s + T(1)) * u * u - T(2) * s * u) / d;
+      }
+      if (direction == EasingDirection::out) {
+        const T w = time / d - T(1);
+        return change * (T(3) * (s + T(1)) * w * w + T(2) * s * w) / d;
+      }
+      s *= T(1.525);
+      T x = time / (d / T(2));
+      if (x < T(1)) return change / T(2) * (T(3) * (s + T(1)) * x * x - T(2) * s * x) * T(2) / d;
+      x -= T(2);
+      return change / T(2) * (T(3) * (s + T(1)) * x * x + T(2) * s * x) * T(2) / d;
+    }
+    case EasingCurve::bounce:
+      if (direction == EasingDirection::in) return penner_detail::bounce_out_velocity(d - time, change, d);
+      if (direction == EasingDirection::out) return penner_detail::bounce_out_velocity(time, change, d);
+      if (time < d / T(2)) return penner_detail::bounce_out_velocity(d - time * T(2), change, d);
+      return penner_detail::bounce_out_velocity(time * T(2) - d, change, d);
+    case EasingCurve::circ: {
+      if (direction == EasingDirection::in) return change * penner_detail::circ_slope(time / d) / d;
+      if (direction == EasingDirection::out) return -change * penner_detail::circ_slope(time / d - T(1)) / d;
+      T x = time / (d / T(2));
+      if (x < T(1)) return change / T(2) * penner_detail::circ_slope(x) * T(2) / d;
+      x -= T(2);
+      return -change / T(2) * penner_detail::circ_slope(x) * T(2) / d;
+    }
+    case EasingCurve::cubic:
+    case EasingCurve::quad:
+    case EasingCurve::quart:
+    case EasingCurve::quint: {
+      const int n = curve == EasingCurve::quad ? 2 : curve == EasingCurve::cubic ? 3 : curve == EasingCurve::quart ? 4 : 5;
+      const auto ipow = [](T v, int k) { T r = T(1); for (int i = 0; i < k; ++i) r *= v; return r; };
+      // in: c·uⁿ; out: c·(1 − (1 − u)ⁿ) (each form above is this, written Penner's way); in-out:
+      // the in form on x = 2u < 1 and the out form on the second half, each of half the change.
+      if (direction == EasingDirection::in) return change * T(n) * ipow(time / d, n - 1) / d;
+      if (direction == EasingDirection::out) return change * T(n) * ipow(T(1) - time / d, n - 1) / d;
+      const T x = time / (d / T(2));
+      if (x < T(1)) return change / T(2) * T(n) * ipow(x, n - 1) * T(2) / d;
+      return change / T(2) * T(n) * ipow(T(2) - x, n - 1) * T(2) / d;
+    }
+    case EasingCurve::elastic: {
+      T gain = T(1), dgain = T(0);  // gain and d gain / d x
+      T amplitude = params.amplitude;
+      T period = params.period;
+      T x, dx_dtime;
+      if (direction == EasingDirection::in_out) {
+        x = time / (d / T(2)) - T(1);
+        dx_dtime = T(2) / d;
+        if (period == T(0)) period = d * (T(0.3) * T(1.5));
+      } else {
+        x = time / d;
+        x = direction == EasingDirection::in ? x - T(1) : -x;
+        dx_dtime = (direction == EasingDirection::in ? T(1) : T(-1)) / d;
+        if (period == T(0)) period = d * T(0.3);
+      }
+      T s;
+      if (amplitude == T(0) || amplitude < std::abs(change)) {
+        s = period / T(4);
+        if (change != T(0)) {
+          const T g = amplitude != T(0) ? amplitude / std::abs(change) : T(0);
+          gain = g;
+          const T t = std::abs(s);
+          if (std::abs(x * d) < t) {
+            const T l = std::abs(x * d) / t;
+            gain = g * l + (T(1) - l);
+            dgain = (g - T(1)) * (x < T(0) ? T(-1) : T(1)) * d / t;
+          }
+        }
+        amplitude = change;
+      } else {
+        s = period / (T(2) * pi) * std::asin(change / amplitude);
+      }
+      const T w = T(2) * pi / period;
+      const auto wave = [&](T y) { return amplitude * std::pow(T(2), T(10) * y) * std::sin((y * d - s) * w); };
+      const auto dwave = [&](T y) {
+        const T phase = (y * d - s) * w;
+        return amplitude * std::pow(T(2), T(10) * y) * (T(10) * std::log(T(2)) * std::sin(phase) + d * w * std::cos(phase));
+      };
+      if (direction == EasingDirection::in_out) {
+        if (x < T(0)) return T(-0.5) * (dgain * wave(x) + gain * dwave(x)) * dx_dtime;
+        // value = 0.5·gain(x)·wave(−x): the blend sees x, the wave −x.
+        return T(0.5) * (dgain * wave(-x) - gain * dwave(-x)) * dx_dtime;
+      }
+      const T dv = dgain * wave(x) + gain * dwave(x);
+      return (direction == EasingDirection::in ? -dv : dv) * dx_dtime;
+    }
+    case EasingCurve::expo:
+      if (direction == EasingDirection::in) return penner_detail::expo_in_velocity(time, change, d);
+      if (direction == EasingDirection::out) return penner_detail::expo_out_velocity(time, change, d);
+      if (time < d * T(0.5)) return penner_detail::expo_in_velocity(time, change * T(0.5), d * T(0.5));
+      return penner_detail::expo_out_velocity(time - d * T(0.5), change * T(0.5), d * T(0.5));
+    case EasingCurve::sine:
+      if (direction == EasingDirection::in) return change * half_pi / d * std::sin(time / d * half_pi);
+      if (direction == EasingDirection::out) return change * half_pi / d * std::cos(time / d * half_pi);
+      return change / T(2) * pi / d * std::sin(pi * time / d);
+  }
+  return T(0);
+}
+
 /// The normalised easing function e(u) for u in [0, 1]: e(0) = 0, e(1) = 1 (back and elastic
 /// overshoot in between).  Equal to penner_ease(curve, direction, u, 0, 1, 1, params); for elastic
 /// the period is then in units of the whole segment, so pass e.g. {.amplitude = 1, .period = 0.3}.
 template <Real T>
 T ease_unit(EasingCurve curve, EasingDirection direction, T u, const PennerParams<T>& params = {}) noexcept {
   return penner_ease(curve, direction, u, T(0), T(1), T(1), params);
+}
+
+/// d e/du of ease_unit: penner_ease_velocity(curve, direction, u, 1, 1, params).
+template <Real T>
+T ease_unit_velocity(EasingCurve curve, EasingDirection direction, T u, const PennerParams<T>& params = {}) noexcept {
+  return penner_ease_velocity(curve, direction, u, T(1), T(1), params);
 }
 
 }  // namespace inbetween

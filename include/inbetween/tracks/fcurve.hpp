@@ -127,6 +127,18 @@ class FCurve {
   /// Fills out[i] = evaluate(frames[i], cursor); the spans must have equal sizes; no allocation.
   void evaluate(std::span<const float> frames, std::span<float> out, TrackCursor& cursor) const noexcept;
 
+  /// d value / d frame at `frame`, analytic (ours: Blender exposes no derivative).  Computed in
+  /// double from the stored single-precision keys: a Bézier segment solves x(u) = frame for the
+  /// Bézier parameter (after the same handle correction as evaluate) and returns y′(u)/x′(u) (the
+  /// ratio of second derivatives where x′ vanishes, 0 when both do); linear is the chord slope,
+  /// constant 0, the Penner easings their closed-form derivatives (penner_ease_velocity).  At an
+  /// interior key the segment to the right counts, at the last key the segment to the left (the
+  /// one-sided derivatives of the keyed range); outside the keys the extrapolation's slope (0 for
+  /// constant), and with the Cycles modifier the slope of the cycled copy (negated on the
+  /// backward copies of `mirror`).  Blender's 1e-4 snap of evaluate() to a key's value is ignored.
+  /// NaN gives 0; never NaN for a built curve.
+  [[nodiscard]] double derivative(float frame) const noexcept;
+
   /// The stored keys, with recomputed handles.
   [[nodiscard]] std::span<const Key> keys() const noexcept { return keys_; }
   /// Curve-level extrapolation.
@@ -139,6 +151,14 @@ class FCurve {
  private:
   friend Expected<FCurve> build_fcurve(const RawFCurve& raw);
   float evaluate_impl(float frame, std::size_t* cursor) const noexcept;
+  struct CycleMap {
+    float t = 0;       // the frame inside (or, without cycling, outside) the keyed range
+    float offset = 0;  // value added by repeat_offset
+    float sign = 1;    // d t / d frame: −1 on a mirrored copy
+  };
+  CycleMap map_cycles(float frame) const noexcept;
+  double segment_derivative(int index, double t) const noexcept;
+  double extrapolation_slope(bool before) const noexcept;
   float evaluate_keys(float t, std::size_t* cursor) const noexcept;
   float extrapolate(float t, bool before) const noexcept;
   float interpolate(float t, std::size_t* cursor) const noexcept;

@@ -1,0 +1,460 @@
+// PathMotion: validation of a raw path motion, and its total, noexcept sampling.
+#include "inbetween/scene/path_motion.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "inbetween/math/assert.hpp"
+#include "inbetween/math/format.hpp"
+#include "inbetween/math/rotation.hpp"
+#include "inbetween/paths/banking.hpp"
+#include "inbetween/paths/path_frame.hpp"
+
+namespace inbetween {
+namespace {
+
+std::string num(double v) { return shortest_text<double>(v); }
+
+Error fail(ErrorCode code, std::string where, std::string message) {
+  return Error{code, std::move(message), std::move(where)};
+}
+
+// An error of a timing builder ("key 3", "k1", …) placed under `prefix` ("speed/keys/3", "speed/ease/k1").
+Error place(Error e, const std::string& prefix) {
+  if (e.where.starts_with("key ")) {
+    e.where = prefix + "/" + e.where.substr(4);
+  } else if (e.where.empty()) {
+    e.where = prefix;
+  } else {
+    e.where = prefix + "/" + e.where;
+  }
+  return e;
+}
+
+// Slack for "beyond the length": distances up to L·(1 + 1e-12) read as L (a length measured by a
+// different method or printed with 13 digits), anything more is an error.
+constexpr double kLengthSlack = 1e-12;
+// Velocity (normalised distance per normalised time) below which an ease counts as running
+// backwards; rounding in the closed forms gives about 1e-15.
+constexpr double kBackwardsTolerance = 1e-12;
+// Samples per normalised ease when looking for negative velocity (the finest feature of the
+// families is elastic's period, 0.3/… of the span; 4096 samples resolve it with margin).
+constexpr int kEaseCheckSamples = 4096;
+// Samples per F-curve segment when looking for negative slope.
+constexpr int kTrackCheckSamples = 64;
+
+Expected<PathMotion::UnitEase> make_unit_ease(const RawEase& e, double span) {
+  const std::string at = "speed/ease";
+  switch (e.kind) {
+    case EaseKind::linear: return PathMotion::UnitEase{LinearEase<double>{}};
+    case EaseKind::sine: return PathMotion::UnitEase{SineEase<double>{}};
+    case EaseKind::cubic: return PathMotion::UnitEase{CubicEase<double>{}};
+    case EaseKind::sine_pieces: {
+      if (!e.k1) return fail(ErrorCode::InvalidArgument, at + "/k1", "sine_pieces needs k1 (end of the acceleration)");
+      if (!e.k2) return fail(ErrorCode::InvalidArgument, at + "/k2", "sine_pieces needs k2 (start of the deceleration)");
+      auto made = SineAccelDecelEase<double>::make(*e.k1, *e.k2);
+      if (!made) return place(made.error(), at);
+      return PathMotion::UnitEase{*made};
+    }
+    case EaseKind::constant_acceleration: {
+      if (e.t1 && e.accel_frames) return fail(ErrorCode::InvalidArgument, at + "/accel_frames", "give t1 or accel_frames, not both");
+      if (e.t2 && e.decel_frames) return fail(ErrorCode::InvalidArgument, at + "/decel_frames", "give t2 or decel_frames, not both");
+      std::optional<double> t1 = e.t1, t2 = e.t2;
+      if (e.accel_frames) {
+        if (!std::isfinite(*e.accel_frames) || *e.accel_frames < 0 || *e.accel_frames > span)
+          return fail(ErrorCode::InvalidArgument, at + "/accel_frames",
+                      "accel_frames = " + num(*e.accel_frames) + " must lie in [0, " + num(span) + "] (the frame span)");
+        t1 = *e.accel_frames / span;
+      }
+      if (e.decel_frames) {
+        if (!std::isfinite(*e.decel_frames) || *e.decel_frames < 0 || *e.decel_frames > span)
+          return fail(ErrorCode::InvalidArgument, at + "/decel_frames",
+                      "decel_frames = " + num(*e.decel_frames) + " must lie in [0, " + num(span) + "] (the frame span)");
+        t2 = 1.0 - *e.decel_frames / span;
+      }
+      const int given = int(t1.has_value()) + int(t2.has_value()) + int(e.v0.has_value());
+      if (given != 2)
+        return fail(ErrorCode::InvalidArgument, at,
+                    "constant_acceleration needs exactly two of t1 (or accel_frames), t2 (or decel_frames) and v0; got " +
+                        std::to_string(given));
+      if (e.v0) {
+        // Eq. 3.21: 1 = v0·(t2 − t1 + 1)/2, so t2 − t1 = 2/v0 − 1 ∈ [0, 1] needs v0 ∈ [1, 2].
+        const double v0 = *e.v0;
+        if (!std::isfinite(v0) || v0 < 1 || v0 > 2)
+          return fail(ErrorCode::InvalidArgument, at + "/v0",
+                      "v0 = " + num(v0) + " must lie in [1, 2] (the cruise covers 2/v0 − 1 of the time)");
+        if (t1) t2 = *t1 + 2.0 / v0 - 1.0;
+        else t1 = *t2 - (2.0 / v0 - 1.0);
+      }
+      auto made = ConstantAccelerationEase<double>::make(*t1, *t2);
+      if (!made) return place(made.error(), at);
+      return PathMotion::UnitEase{*made};
+    }
+    case EaseKind::cubic_bezier: {
+      auto made = CubicBezierTiming<double>::make(e.x1, e.y1, e.x2, e.y2);
+      if (!made) return place(made.error(), at);
+      return PathMotion::UnitEase{*made};
+    }
+    case EaseKind::penner: {
+      const auto& p = e.params;
+      if (!std::isfinite(p.back) || !std::isfinite(p.amplitude) || !std::isfinite(p.period) || p.period < 0)
+        return fail(ErrorCode::InvalidArgument, at + "/params", "back, amplitude and period must be finite, period ≥ 0");
+      return PathMotion::UnitEase{PathMotion::PennerUnitEase{e.curve, e.direction, p}};
+    }
+  }
+  return fail(ErrorCode::Unsupported, at + "/kind", "unknown ease kind");
+}
+
+// The first run of normalised times where the ease's velocity is negative, as frames.
+std::optional<std::pair<double, double>> ease_backwards(const PathMotion::UnitEase& ease, double start, double span) {
+  int first = -1, last = -1;
+  for (int i = 0; i <= kEaseCheckSamples; ++i) {
+    const double t = double(i) / kEaseCheckSamples;
+    const double v = std::visit([t](const auto& e) { return e.sample(t).velocity; }, ease);
+    if (v < -kBackwardsTolerance) {
+      if (first < 0) first = i;
+      last = i;
+    } else if (first >= 0) {
+      break;
+    }
+  }
+  if (first < 0) return std::nullopt;
+  return std::pair{start + span * double(first) / kEaseCheckSamples, start + span * double(last) / kEaseCheckSamples};
+}
+
+std::string frames_text(double a, double b) {
+  return a == b ? "at frame " + num(a) : "between frames " + num(a) + " and " + num(b);
+}
+
+Expected<void> check_distance(double d, double length, const std::string& where, const std::string& what) {
+  if (!std::isfinite(d)) return fail(ErrorCode::NotFinite, where, what + " is not finite");
+  if (d < 0) return fail(ErrorCode::InvalidArgument, where, what + " = " + num(d) + " is negative");
+  if (d > length * (1 + kLengthSlack))
+    return fail(ErrorCode::InvalidArgument, where,
+                what + " = " + num(d) + " is beyond the path's length " + num(length));
+  return {};
+}
+
+}  // namespace
+
+EaseSample<double> PathMotion::PennerUnitEase::sample(double t) const noexcept {
+  t = detail::clamp_unit_time(t);
+  return {ease_unit(curve, direction, t, params), ease_unit_velocity(curve, direction, t, params), 0.0};
+}
+
+Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
+  if (!std::isfinite(fps) || !(fps > 0)) return fail(ErrorCode::InvalidArgument, "fps", "fps = " + num(fps) + " must be > 0");
+  auto arc = ArcLength<AnyCurve>::build(raw.path);
+  if (!arc) return place(arc.error(), "path");
+  const double L = arc->length();
+  const RawSpeed& sp = raw.speed;
+  const double scale = sp.fraction ? L : 1.0;
+  const double full = sp.fraction ? 1.0 : L;  // the whole length in the spec's units
+
+  PathMotion::Speed speed{PathMotion::EaseSpeed{}};
+  Interval<double> range{0, 1};
+  switch (sp.kind) {
+    case SpeedKind::ease: {
+      if (!std::isfinite(sp.start_frame)) return fail(ErrorCode::NotFinite, "speed/start_frame", "start_frame is not finite");
+      if (!std::isfinite(sp.end_frame)) return fail(ErrorCode::NotFinite, "speed/end_frame", "end_frame is not finite");
+      if (!(sp.end_frame > sp.start_frame))
+        return fail(ErrorCode::InvalidArgument, "speed/end_frame",
+                    std::string(sp.end_frame == sp.start_frame ? "the ease's frame span is empty" : "the ease's frame span is reversed") +
+                        ": end_frame " + num(sp.end_frame) + " must be after start_frame " + num(sp.start_frame));
+      const double span = sp.end_frame - sp.start_frame;
+      const double from = sp.from.value_or(0.0) * scale;
+      const double to = sp.to.value_or(full) * scale;
+      if (auto ok = check_distance(from, L, "speed/from", "from"); !ok) return ok.error();
+      if (auto ok = check_distance(to, L, "speed/to", "to"); !ok) return ok.error();
+      if (to < from)
+        return fail(ErrorCode::NotMonotone, "speed/to",
+                    "the distance runs backwards from " + num(from) + " to " + num(to) + " " +
+                        frames_text(sp.start_frame, sp.end_frame) + " (reverse the path instead)");
+      auto ease = make_unit_ease(sp.ease, span);
+      if (!ease) return ease.error();
+      if (to > from) {
+        if (const auto back = ease_backwards(*ease, sp.start_frame, span))
+          return fail(ErrorCode::NotMonotone, "speed/ease",
+                      "the distance runs backwards " + frames_text(back->first, back->second) +
+                          " (the ease's velocity is negative there; repair applies to keys only)");
+      }
+      speed = PathMotion::EaseSpeed{std::move(*ease), sp.start_frame, sp.end_frame, std::min(from, L), std::min(to, L)};
+      range = {sp.start_frame, sp.end_frame};
+      break;
+    }
+    case SpeedKind::distance_keys:
+    case SpeedKind::velocity_keys: {
+      const bool by_distance = sp.kind == SpeedKind::distance_keys;
+      const std::string at = by_distance ? "speed/keys" : "speed/velocities";
+      Expected<DistanceTimeCurve<double>> curve = Error{};
+      double offset = 0;
+      if (by_distance) {
+        const auto& keys = sp.keys;
+        if (keys.size() < 2)
+          return fail(ErrorCode::TooFewPoints, at, "needs at least 2 distance keys, got " + std::to_string(keys.size()));
+        const bool with_speed = keys.front().speed.has_value();
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+          const std::string where = at + "/" + std::to_string(i);
+          if (!std::isfinite(keys[i].frame)) return fail(ErrorCode::NotFinite, where + "/frame", "frame is not finite");
+          if (auto ok = check_distance(keys[i].distance * scale, L, where + "/distance", "key " + std::to_string(i) + "'s distance"); !ok)
+            return ok.error();
+          if (keys[i].speed.has_value() != with_speed)
+            return fail(ErrorCode::InvalidArgument, where + "/speed", "give a speed on every key or on none");
+          if (with_speed && !std::isfinite(*keys[i].speed)) return fail(ErrorCode::NotFinite, where + "/speed", "speed is not finite");
+        }
+        if (with_speed) {
+          std::vector<TimeDistanceVelocityKey<double>> k;
+          for (const auto& key : keys) k.push_back({key.frame, std::min(key.distance * scale, L), *key.speed * scale / fps});
+          curve = DistanceTimeCurve<double>::from_constraints(k);
+        } else {
+          std::vector<TimeDistanceKey<double>> k;
+          for (const auto& key : keys) k.push_back({key.frame, std::min(key.distance * scale, L)});
+          curve = DistanceTimeCurve<double>::from_positions(k, sp.interpolation);
+        }
+      } else {
+        const auto& keys = sp.velocities;
+        if (keys.size() < 2)
+          return fail(ErrorCode::TooFewPoints, at, "needs at least 2 velocity keys, got " + std::to_string(keys.size()));
+        const double from = sp.from.value_or(0.0) * scale;
+        const double to = sp.to.value_or(full) * scale;
+        if (auto ok = check_distance(from, L, "speed/from", "from"); !ok) return ok.error();
+        if (auto ok = check_distance(to, L, "speed/to", "to"); !ok) return ok.error();
+        if (to < from)
+          return fail(ErrorCode::NotMonotone, "speed/to", "the distance runs backwards from " + num(from) + " to " + num(to));
+        std::vector<TimeVelocityKey<double>> k;
+        for (const auto& key : keys) k.push_back({key.frame, key.speed * scale / fps});
+        curve = DistanceTimeCurve<double>::from_velocity_curve(k, sp.fit, std::min(to, L) - std::min(from, L));
+        offset = std::min(from, L);
+      }
+      if (!curve) return place(curve.error(), at);
+      if (const auto back = curve->find_backing_up()) {
+        if (!sp.repair)
+          return fail(ErrorCode::NotMonotone, at,
+                      "the distance runs backwards " + frames_text(back->t_begin, back->t_end) + " (speed down to " +
+                          num(back->min_velocity * fps) + " per second at frame " + num(back->t_min_velocity) +
+                          "); set speed.repair to use the monotone curve through the same keys");
+        auto repaired = curve->monotone_repair();
+        if (!repaired) return place(repaired.error(), at);
+        curve = std::move(repaired);
+      }
+      range = curve->domain();
+      speed = PathMotion::KeyedSpeed{std::move(*curve), offset};
+      break;
+    }
+    case SpeedKind::track: {
+      if (!sp.track) return fail(ErrorCode::InvalidArgument, "speed/track", "the track speed needs a track");
+      const FCurve& track = *sp.track;
+      const auto keys = track.keys();
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        if (auto ok = check_distance(double(keys[i].y) * scale, L, "speed/track/keys/" + std::to_string(i),
+                                     "key " + std::to_string(i) + "'s distance");
+            !ok)
+          return ok.error();
+      }
+      range = {double(keys.front().x), double(keys.back().x)};
+      // The slope between keys: Bézier handles or easings (back, elastic, bounce) may dip.
+      int first = -1;
+      double fa = 0, fb = 0;
+      for (std::size_t i = 0; i + 1 < keys.size() && first < 0; ++i) {
+        const double a = keys[i].x, b = keys[i + 1].x;
+        for (int k = 0; k <= kTrackCheckSamples; ++k) {
+          const double f = a + (b - a) * double(k) / kTrackCheckSamples;
+          const double slope = track.derivative(float(f));
+          if (slope < -kBackwardsTolerance * std::max(1.0, std::abs(double(keys[i + 1].y - keys[i].y)) / (b - a))) {
+            if (first < 0) { first = int(i); fa = f; }
+            fb = f;
+          } else if (first >= 0) {
+            break;
+          }
+        }
+      }
+      if (first >= 0)
+        return fail(ErrorCode::NotMonotone, "speed/track",
+                    "the distance runs backwards " + frames_text(fa, fb) + " (the track's slope is negative there)");
+      speed = PathMotion::TrackSpeed{track, scale};
+      break;
+    }
+  }
+
+  // Orientation.
+  const RawOrientation& o = raw.orientation;
+  if (!is_finite(o.up) || !(squared_norm(o.up) > 0))
+    return fail(ErrorCode::InvalidArgument, "orientation/up", "the up vector must be finite and non-zero");
+  if (!is_finite(o.look_at)) return fail(ErrorCode::NotFinite, "orientation/look_at", "the look_at point is not finite");
+  if (o.banking) {
+    if (!std::isfinite(o.banking->gain) || o.banking->gain < 0)
+      return fail(ErrorCode::InvalidArgument, "orientation/banking/gain",
+                  "gain = " + num(o.banking->gain) + " must be finite and ≥ 0 (lean_out rolls the other way)");
+    if (!(o.banking->max_bank_rad >= 0 && o.banking->max_bank_rad <= pi_v<double> / 2))
+      return fail(ErrorCode::InvalidArgument, "orientation/banking/max_bank_rad",
+                  "max_bank_rad = " + num(o.banking->max_bank_rad) + " must lie in [0, π/2]");
+  }
+  const Quatd& lq = o.local_rotation;
+  const double lq_norm = std::sqrt(lq.w * lq.w + lq.x * lq.x + lq.y * lq.y + lq.z * lq.z);
+  if (!std::isfinite(lq_norm) || !(lq_norm > 0))
+    return fail(ErrorCode::InvalidArgument, "orientation/local_rotation", "the local rotation must be a finite, non-zero quaternion");
+
+  PathMotion motion(std::move(*arc), std::move(speed), fps);
+  motion.range_ = range;
+  motion.mode_ = o.mode;
+  motion.up_ = o.up / norm(o.up);
+  motion.look_at_ = o.look_at;
+  motion.banking_ = o.banking;
+  motion.local_ = normalized(lq);
+  motion.local_track_ = o.local_track;
+  if (o.mode == OrientationMode::rotation_minimizing) {
+    auto rmf = RotationMinimizingFrames<AnyCurve>::build(raw.path, RmfOptions<double>{.initial_normal = motion.up_});
+    if (!rmf) return place(rmf.error(), "orientation");
+    motion.rmf_.emplace(std::move(*rmf));
+  } else if (o.mode == OrientationMode::frenet) {
+    auto frenet = FrenetFrames<AnyCurve>::build(raw.path);
+    if (!frenet) return place(frenet.error(), "orientation");
+    motion.frenet_.emplace(std::move(*frenet));
+  }
+  return motion;
+}
+
+EaseSample<double> PathMotion::distance_at(double frame) const noexcept {
+  if (std::isnan(frame)) frame = range_.lo;
+  EaseSample<double> out{};
+  const bool inside = frame >= range_.lo && frame <= range_.hi;
+  if (const auto* e = std::get_if<EaseSpeed>(&speed_)) {
+    const double span = e->end - e->start;
+    const EaseSample<double> n = std::visit([&](const auto& ease) { return ease.sample((frame - e->start) / span); }, e->ease);
+    const double d = e->to - e->from;
+    out = {e->from + d * n.s, inside ? d * n.velocity / span : 0.0, inside ? d * n.acceleration / (span * span) : 0.0};
+  } else if (const auto* k = std::get_if<KeyedSpeed>(&speed_)) {
+    const EaseSample<double> n = k->curve.sample(frame);
+    out = {k->offset + n.s, inside ? n.velocity : 0.0, inside ? n.acceleration : 0.0};
+  } else {
+    const auto& t = std::get<TrackSpeed>(speed_);
+    out = {double(t.track.evaluate(float(frame))) * t.scale, t.track.derivative(float(frame)) * t.scale, 0.0};
+  }
+  const double L = length();
+  if (!(out.s >= 0)) out = {0.0, 0.0, 0.0};  // also a NaN distance (cannot happen for built specs)
+  if (out.s > L) out = {L, 0.0, 0.0};
+  if (!(out.velocity > 0)) out.velocity = 0.0;  // rounding-level negatives (backwards runs are rejected)
+  if (!std::isfinite(out.acceleration)) out.acceleration = 0.0;
+  return out;
+}
+
+Quatd PathMotion::rotation_at(double u, const Vec3d& position, double frame, const Vec3d* look_at_point) const noexcept {
+  const AnyCurve& curve = arc_.curve();
+  Vec3d front{}, up{};
+  switch (mode_) {
+    case OrientationMode::rotation_minimizing: {
+      const PathFrame<double> f = rmf_->frame_at(u);
+      front = f.tangent;
+      up = f.normal;
+      break;
+    }
+    case OrientationMode::frenet: {
+      const PathFrame<double> f = frenet_->frame_at(u);
+      front = f.tangent;
+      up = f.normal;
+      break;
+    }
+    case OrientationMode::up:
+      front = unit_tangent(curve, u);
+      up = perpendicular_part(up_, front);
+      break;
+    case OrientationMode::look_at: {
+      const Vec3d target = look_at_point != nullptr ? *look_at_point : look_at_;
+      const Vec3d d = target - position;
+      const double n = norm(d);
+      front = n > 64 * std::numeric_limits<double>::epsilon() * std::max(1.0, norm(target)) && std::isfinite(n) ? d / n
+                                                                                                           : unit_tangent(curve, u);
+      up = perpendicular_part(up_, front);
+      break;
+    }
+  }
+  if (banking_) {
+    const Banking<double> b =
+        banking(curve, u, BankingOptions<double>{.up = up_, .gain = banking_->lean_out ? -banking_->gain : banking_->gain,
+                                                 .max_bank_rad = banking_->max_bank_rad});
+    up = perpendicular_part(rotate_about(up, front, -b.bank_rad), front);
+  }
+  const Vec3d side = cross(up, front);  // +X = Y × Z (right-handed)
+  const Quatd world_from_path = quat_from_matrix(Mat3d::from_columns(side, up, front));
+  const Quatd local = local_track_ ? local_track_->sample(std::isnan(frame) ? range_.lo : frame) : local_;
+  return normalized(world_from_path * local);
+}
+
+PathSample PathMotion::sample(double frame, const Vec3d* look_at_point) const noexcept {
+  const EaseSample<double> d = distance_at(frame);
+  PathSample out;
+  out.distance = d.s;
+  out.speed = d.velocity * fps_;
+  out.u = arc_.u_at(d.s);
+  out.position = arc_.curve().point(out.u);
+  out.rotation = rotation_at(out.u, out.position, frame, look_at_point);
+  return out;
+}
+
+void PathMotion::sample(std::span<const double> frames, std::span<PathSample> out) const noexcept {
+  INBETWEEN_ASSERT(frames.size() == out.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) out[i] = sample(frames[i]);
+}
+
+namespace {
+constexpr std::array<std::string_view, 7> kEaseKindNames = {"linear", "sine", "sine_pieces", "cubic",
+                                                            "constant_acceleration", "cubic_bezier", "penner"};
+constexpr std::array<std::string_view, 4> kSpeedKindNames = {"ease", "distance_keys", "velocity_keys", "track"};
+constexpr std::array<std::string_view, 4> kOrientationNames = {"rotation_minimizing", "frenet", "up", "look_at"};
+constexpr std::array<std::string_view, 10> kEasingCurveNames = {"sine", "quad",   "cubic",  "quart",  "quint",
+                                                                "expo", "circ",   "back",   "bounce", "elastic"};
+constexpr std::array<std::string_view, 3> kEasingDirectionNames = {"in", "out", "in_out"};
+constexpr std::array<std::string_view, 3> kInterpolationNames = {"linear", "catmull_rom", "monotone_cubic"};
+constexpr std::array<std::string_view, 2> kFitNames = {"float_to_keep_average", "fix_keys_adjust_interior"};
+
+template <class Enum, std::size_t N>
+std::string_view name_of(const std::array<std::string_view, N>& names, Enum v) noexcept {
+  const auto i = std::size_t(v);
+  return i < N ? names[i] : std::string_view{"unknown"};
+}
+template <class Enum, std::size_t N>
+std::optional<Enum> find_name(const std::array<std::string_view, N>& names, std::string_view name) noexcept {
+  for (std::size_t i = 0; i < N; ++i)
+    if (names[i] == name) return static_cast<Enum>(i);
+  return std::nullopt;
+}
+}  // namespace
+
+std::string_view to_string(EaseKind v) noexcept { return name_of(kEaseKindNames, v); }
+std::string_view to_string(SpeedKind v) noexcept { return name_of(kSpeedKindNames, v); }
+std::string_view to_string(OrientationMode v) noexcept { return name_of(kOrientationNames, v); }
+std::string_view to_string(EasingCurve v) noexcept { return name_of(kEasingCurveNames, v); }
+std::string_view to_string(EasingDirection v) noexcept { return name_of(kEasingDirectionNames, v); }
+std::string_view to_string(PositionInterpolation v) noexcept { return name_of(kInterpolationNames, v); }
+std::string_view to_string(VelocityFit v) noexcept { return name_of(kFitNames, v); }
+
+template <>
+std::optional<EaseKind> enum_from_string<EaseKind>(std::string_view n) noexcept { return find_name<EaseKind>(kEaseKindNames, n); }
+template <>
+std::optional<SpeedKind> enum_from_string<SpeedKind>(std::string_view n) noexcept { return find_name<SpeedKind>(kSpeedKindNames, n); }
+template <>
+std::optional<OrientationMode> enum_from_string<OrientationMode>(std::string_view n) noexcept {
+  return find_name<OrientationMode>(kOrientationNames, n);
+}
+template <>
+std::optional<EasingCurve> enum_from_string<EasingCurve>(std::string_view n) noexcept {
+  return find_name<EasingCurve>(kEasingCurveNames, n);
+}
+template <>
+std::optional<EasingDirection> enum_from_string<EasingDirection>(std::string_view n) noexcept {
+  return find_name<EasingDirection>(kEasingDirectionNames, n);
+}
+template <>
+std::optional<PositionInterpolation> enum_from_string<PositionInterpolation>(std::string_view n) noexcept {
+  return find_name<PositionInterpolation>(kInterpolationNames, n);
+}
+template <>
+std::optional<VelocityFit> enum_from_string<VelocityFit>(std::string_view n) noexcept {
+  return find_name<VelocityFit>(kFitNames, n);
+}
+
+}  // namespace inbetween
