@@ -1,6 +1,6 @@
 #pragma once
 /// Umbrella header: every public header of the core library (math → curves → arclength → timing →
-/// tracks → paths).  Include single headers instead where compile time matters.
+/// tracks → paths → scene).  Include single headers instead where compile time matters.
 
 // math
 #include "inbetween/math/assert.hpp"
@@ -66,3 +66,6 @@
 #include "inbetween/paths/smooth_bspline.hpp"  // uses fit_bspline from inbetween_eigen (link inbetween::eigen)
 #include "inbetween/paths/smoothing.hpp"
 #include "inbetween/paths/surface_path.hpp"
+
+// scene
+#include "inbetween/scene/camera_view.hpp"

@@ -310,8 +310,10 @@ TYPED_TEST(CameraViewTyped, DegenerateInputsUseTheDocumentedFallbacks) {
     const CameraView<T> v = build_ok(RawCameraView<T>{.coi = RawLookAt<T>{Vec3<T>{0, y, 0}}});
     const CameraViewSample<T> s = v.evaluate({.eye = Vec3<T>{}});
     expect_aims(s);
-    // The fallback up is world +Z: up = right × forward lies in the plane of forward and +Z.
-    EXPECT_NEAR(std::abs(s.pose.up.z), T(1), axis_tol<T>);
+    // The fallback up is world +Z: right = forward × Z = (∓1, 0, 0), up = right × forward = +Z
+    // both looking up and looking down (worked by hand).
+    expect_vec_near(s.pose.up, Vec3<T>{0, 0, 1}, axis_tol<T>);
+    expect_vec_near(s.pose.right, Vec3<T>{y > 0 ? T(1) : T(-1), 0, 0}, axis_tol<T>);
   }
   // COI at the eye, no path: forward is world −Z (the camera's rest direction).
   const CameraView<T> at_eye = build_ok(RawCameraView<T>{.coi = RawLookAt<T>{Vec3<T>{1, 2, 3}}});
