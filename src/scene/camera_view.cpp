@@ -43,6 +43,7 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
   }
   view.up_ = raw.up;
   view.up_path_name_ = raw.up_path;
+  view.tilt_track_name_ = raw.tilt_track;
 
   // A target: a finite point, or an object name given one slot in target_names_ (once per name).
   auto make_target = [&view](const RawTarget<T>& raw_target, const std::string& where)
@@ -194,7 +195,7 @@ CameraViewSample<T> CameraView<T>::evaluate(const CameraInputs<T>& in) const noe
   out.target = centre_of_interest(in);
 
   LookAtOptions<T> look;
-  look.tilt_rad = tilt_rad_;
+  look.tilt_rad = tilt_rad_ + (std::isfinite(in.tilt_track_deg) ? deg_to_rad(in.tilt_track_deg) : T(0));
   // COI at the eye: look along the camera's path where there is one, else down world −Z.
   if (!in.camera_path.empty()) {
     look.fallback_forward = in.world_from_path.apply_to_direction(in.camera_path.unit_tangent_at_length(

@@ -242,6 +242,25 @@ TYPED_TEST(CameraViewTyped, TiltRollsUpAboutForwardByTheAngle) {
   }
 }
 
+TYPED_TEST(CameraViewTyped, KeyedTiltAddsToTheConstantTilt) {
+  using T = TypeParam;
+  const CameraView<T> level = build_ok(RawCameraView<T>{.coi = RawLookAt<T>{Vec3<T>{3, 1, -2}}});
+  const CameraView<T> keyed =
+      build_ok(RawCameraView<T>{.coi = RawLookAt<T>{Vec3<T>{3, 1, -2}}, .tilt_deg = T(10), .tilt_track = "roll"});
+  EXPECT_EQ(keyed.tilt_track_name(), "roll");
+  EXPECT_TRUE(level.tilt_track_name().empty());
+  const Vec3<T> eye{0, 0, 5};
+  const CameraViewSample<T> a = level.evaluate({.eye = eye});
+  for (T key : {T(-40), T(0), T(20), T(100)}) {
+    const CameraViewSample<T> b = keyed.evaluate({.eye = eye, .tilt_track_deg = key});
+    expect_aims(b);
+    EXPECT_NEAR(signed_angle_about(a.pose.up, b.pose.up, a.pose.forward), deg_to_rad(T(10) + key), axis_tol<T>);
+  }
+  // A non-finite keyed value is ignored (the constant tilt alone).
+  const CameraViewSample<T> n = keyed.evaluate({.eye = eye, .tilt_track_deg = std::numeric_limits<T>::quiet_NaN()});
+  EXPECT_NEAR(signed_angle_about(a.pose.up, n.pose.up, a.pose.forward), deg_to_rad(T(10)), axis_tol<T>);
+}
+
 TYPED_TEST(CameraViewTyped, HoldThenMoveHoldsEasesAndHolds) {
   using T = TypeParam;
   // A (point) held until frame 10, moved to the object "ball" over 6 frames, held until 30,

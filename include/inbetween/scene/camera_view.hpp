@@ -17,7 +17,9 @@
 ///   - hold: the COI holds on one target until a frame, then moves to the next target by linear
 ///     interpolation in space and the sine ease-in/ease-out (Eq. 3.18) in time, holds there, …
 /// Up direction: a fixed general up vector (default +Y, Eq. 3.33) or an up path, U(f·L_U) − eye
-/// (Eq. 3.34); then a tilt rolls the camera about its view direction.
+/// (Eq. 3.34); then a tilt rolls the camera about its view direction: a constant, plus optionally
+/// a keyed value from a scalar track (the texts' "user-specified value (or interpolated set of
+/// values)").
 ///
 /// Never NaN (fallbacks, all documented in docs/scene-cameras.md):
 ///   - COI at the eye (zero view vector): forward = the camera path's unit tangent at s when the
@@ -25,7 +27,7 @@
 ///   - up parallel to the view (sine of the angle ≤ √ε) or zero: with a fixed up, world +Z; with an
 ///     up path, the fixed `up` of the RawCameraView; if that is parallel too, any_perpendicular;
 ///   - s outside [0, L] or NaN is clamped (NaN reads as 0); a path of length zero gives f = 0;
-///   - a NaN frame reads as the first hold segment's target.
+///   - a NaN frame reads as the first hold segment's target; a non-finite keyed tilt reads as 0.
 
 #include <cstddef>
 #include <span>
@@ -155,6 +157,7 @@ struct RawCameraView {
   Vec3<T> up{T(0), T(1), T(0)};   ///< general up direction (Eq. 3.33), finite and non-zero; with up_path, its fallback
   std::string up_path;            ///< when non-empty: the up path U of Eq. 3.34, resolved by the scene
   T tilt_deg = T(0);              ///< roll about the view direction in degrees (finite); + turns up towards right
+  std::string tilt_track;         ///< when non-empty: a scalar track of the scene whose value (degrees) adds to tilt_deg per frame
 };
 
 using RawCameraViewf = RawCameraView<float>;   ///< single-precision raw camera view
@@ -174,6 +177,7 @@ struct CameraInputs {
   PathView<T> up_path{};               ///< the path named by up_path_name(), in path space, or empty
   Transform<T> world_from_path{};      ///< maps path space to world (the camera parent's world transform)
   std::span<const Vec3<T>> targets{};  ///< world positions of target_names(), in that order
+  T tilt_track_deg = T(0);             ///< value of the track tilt_track_name() at this frame (degrees), else 0
 };
 
 /// The result of a view evaluation: the camera pose and the centre of interest it aims at.
@@ -227,6 +231,8 @@ class CameraView {
   [[nodiscard]] const std::string& coi_path_name() const noexcept { return coi_path_name_; }
   /// Name of the up path (Eq. 3.34), else empty.
   [[nodiscard]] const std::string& up_path_name() const noexcept { return up_path_name_; }
+  /// Name of the scalar track that adds a keyed tilt (degrees), else empty.
+  [[nodiscard]] const std::string& tilt_track_name() const noexcept { return tilt_track_name_; }
 
   /// The pose and COI for one frame.  Preconditions (asserted; caller bugs): targets.size() ==
   /// target_names().size(); camera_path, coi_path and up_path non-empty where the view needs them.
@@ -262,6 +268,7 @@ class CameraView {
   Vec3<T> up_{T(0), T(1), T(0)};
   std::string coi_path_name_;
   std::string up_path_name_;
+  std::string tilt_track_name_;
   std::vector<std::string> target_names_;
 };
 
