@@ -69,4 +69,5 @@
 #include "inbetween/paths/surface_path.hpp"
 
 // scene
+#include "inbetween/scene/camera_view.hpp"
 #include "inbetween/scene/path_motion.hpp"
