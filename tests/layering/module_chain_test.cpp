@@ -1,6 +1,6 @@
-// Keeps the architecture honest: math → curves → arclength → timing → tracks → paths → io → apps.
+// Keeps the architecture honest: math → curves → arclength → timing → tracks → paths → scene → io → apps.
 // A header or source of one module may include only its own module and those before it, and the
-// core modules (math … paths) include no third-party library.
+// core modules (math … scene) include no third-party library.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +12,7 @@
 
 namespace {
 
-const std::vector<std::string> kChain = {"math", "curves", "arclength", "timing", "tracks", "paths", "io"};
+const std::vector<std::string> kChain = {"math", "curves", "arclength", "timing", "tracks", "paths", "scene", "io"};
 
 int rank_of(const std::string& module) {
   auto it = std::find(kChain.begin(), kChain.end(), module);
