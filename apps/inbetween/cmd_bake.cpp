@@ -1,11 +1,12 @@
 // `inbetween bake SCENE`: evaluates every track of a scene file at every frame of a range and
 // writes a CSV or JSON table, whole or not at all.  Parsing and evaluation live in the library
-// (inbetween/io/scene.hpp); this file only handles arguments and formatting.
+// (inbetween/io/scene.hpp reads, inbetween/scene/scene.hpp builds and samples); this file only handles arguments and formatting.
 #include <nlohmann/json.hpp>
 
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -92,9 +93,9 @@ void run_bake(const BakeOptions& opt) {
   const std::string text = read_input(opt.scene_path);
   auto scene = parse_scene(text);
   if (!scene) throw CommandError{opt.scene_path + ": " + scene.error().describe()};
-  const double fps = opt.fps > 0 ? opt.fps : scene->fps;
-  const std::vector<SceneColumn> columns = scene_columns(*scene);
-  const std::vector<double> frames = frame_list(opt.frames, scene->range_start, scene->range_end, columns.size());
+  const double fps = opt.fps > 0 ? opt.fps : scene->fps();
+  const std::span<const SceneColumn> columns = scene->columns();
+  const std::vector<double> frames = frame_list(opt.frames, scene->range_start(), scene->range_end(), columns.size());
   std::vector<double> row(columns.size());
 
   // Finite keys can still give values beyond the number type (linear extrapolation to frame 1e300,
@@ -103,7 +104,7 @@ void run_bake(const BakeOptions& opt) {
     if (!std::isfinite(f / fps)) {
       throw CommandError{"frame " + format_number(f) + ": time = frame / fps " + format_number(fps) + " overflows"};
     }
-    evaluate_scene(*scene, f, row);
+    scene->sample(f, row);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
       if (!std::isfinite(v)) {
