@@ -59,11 +59,11 @@ Expected<void> only_members(const json& obj, const Loc& loc, std::initializer_li
   return {};
 }
 
+// A number (finite: the bounded JSON reader refuses numbers beyond double's range; whether a value
+// must be finite is build_scene()'s check).
 Expected<double> get_number(const json& j, const Loc& loc) {
   if (!j.is_number()) return error_at(ErrorCode::InvalidArgument, "expected a number, found " + type_name(j), loc);
-  const double v = j.get<double>();
-  if (!std::isfinite(v)) return error_at(ErrorCode::NotFinite, "number is not finite", loc);
-  return v;
+  return j.get<double>();
 }
 
 // An optional true/false member; `fallback` when absent.

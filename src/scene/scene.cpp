@@ -116,6 +116,7 @@ Expected<SceneTrack> build_one(const RawEulerTrack& raw) {
 Expected<TransformTrack<double>> build_local(const RawObject& raw) {
   TransformTrack<double> local;
   if (const auto* c = std::get_if<Vec3d>(&raw.translation)) {
+    if (!is_finite(*c)) return error_at(ErrorCode::NotFinite, "number is not finite", {"translation"});
     local.rest.translation = *c;
   } else {
     auto t = build_vec3_channel(std::get<RawVec3Channel>(raw.translation));
@@ -123,6 +124,7 @@ Expected<TransformTrack<double>> build_local(const RawObject& raw) {
     local.translation = std::move(*t);
   }
   if (const auto* c = std::get_if<Vec3d>(&raw.scale)) {
+    if (!is_finite(*c)) return error_at(ErrorCode::NotFinite, "number is not finite", {"scale"});
     local.rest.scale = *c;
   } else {
     auto s = build_vec3_channel(std::get<RawVec3Channel>(raw.scale));

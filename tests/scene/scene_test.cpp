@@ -162,6 +162,13 @@ TEST(BuildScene, ErrorsNameTheMemberAsAJsonPointer) {
   {
     RawScene raw;
     RawObject o = object("a");
+    o.scale = Vec3d{1, std::nan(""), 1};
+    raw.objects = {o};
+    EXPECT_EQ(pointer_of(raw), "/objects/0/scale");
+  }
+  {
+    RawScene raw;
+    RawObject o = object("a");
     o.rotation = Quatd::from_wxyz(0, 0, 0, 0);
     raw.objects = {o};
     EXPECT_EQ(pointer_of(raw), "/objects/0/rotation");
@@ -181,6 +188,20 @@ TEST(BuildScene, ErrorsNameTheMemberAsAJsonPointer) {
     raw.objects = {object("cube")};
     EXPECT_EQ(pointer_of(raw), "/objects/0/name");
   }
+}
+
+// A span of the wrong size is a caller bug, caught by INBETWEEN_ASSERT (active without NDEBUG).
+TEST(SceneSample, WrongSpanSizeIsAnAssertion) {
+#if defined(NDEBUG) || defined(INBETWEEN_DISABLE_ASSERTS)
+  GTEST_SKIP() << "assertions are compiled out in this build (NDEBUG)";
+#else
+  RawScene raw;
+  raw.tracks.push_back(scalar("a", {{1, 0}}));
+  auto scene = build_scene(raw);
+  ASSERT_TRUE(scene.has_value());
+  std::vector<double> short_out(0);
+  EXPECT_DEATH(scene->sample(1, short_out), "out.size\\(\\) == columns_.size\\(\\)");
+#endif
 }
 
 TEST(ErrorLocation, RendersOneJsonPointerWithEscapes) {
