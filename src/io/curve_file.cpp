@@ -20,28 +20,25 @@ std::string located(const std::string& source, const std::string& pointer) {
   return pointer.empty() ? source : source + ":" + pointer;
 }
 
+using Loc = std::vector<LocationStep>;
+
 struct Reader {
   std::string source;
-  Error fail(std::string pointer, std::string message, ErrorCode code = ErrorCode::Parse) const {
-    return Error{code, std::move(message), located(source, pointer)};
+  // The error at `loc` (structured while descending, rendered once by json_pointer()).
+  Error fail(const Loc& loc, std::string message, ErrorCode code = ErrorCode::Parse) const {
+    return Error{code, std::move(message), located(source, json_pointer(loc))};
   }
 };
 
-// JSON pointers are built with append() rather than "/" + … : GCC 12 warns (-Wrestrict, a known
-// false positive) on operator+ with a literal on the left.
-std::string ptr(std::string_view field) {
-  std::string s("/");
-  s.append(field);
-  return s;
-}
-std::string ptr(std::string_view field, std::size_t i) {
-  std::string s = ptr(field);
-  s.append("/").append(std::to_string(i));
-  return s;
+Loc ptr(std::string_view field) { return Loc{std::string(field)}; }
+Loc ptr(std::string_view field, std::size_t i) { return Loc{std::string(field), i}; }
+Loc at(Loc loc, std::size_t i) {
+  loc.emplace_back(i);
+  return loc;
 }
 
 // Reads a number; an error names the pointer.
-Expected<double> read_number(const Reader& r, const json& v, const std::string& pointer) {
+Expected<double> read_number(const Reader& r, const json& v, const Loc& pointer) {
   if (!v.is_number()) return r.fail(pointer, "expected a number, got " + std::string(v.type_name()));
   const double d = v.get<double>();
   if (!std::isfinite(d)) return r.fail(pointer, "number is not finite", ErrorCode::NotFinite);
@@ -49,7 +46,7 @@ Expected<double> read_number(const Reader& r, const json& v, const std::string& 
 }
 
 // Reads one point: a number or an array of 1 to 3 numbers, of dimension `dim` (fixed by this point when 0).
-Expected<Vec3d> read_point(const Reader& r, const json& p, const std::string& where, int& dim) {
+Expected<Vec3d> read_point(const Reader& r, const json& p, const Loc& where, int& dim) {
   std::vector<double> comps;
   if (p.is_number()) {
     auto d = read_number(r, p, where);
@@ -57,7 +54,7 @@ Expected<Vec3d> read_point(const Reader& r, const json& p, const std::string& wh
     comps.push_back(*d);
   } else if (p.is_array()) {
     for (std::size_t c = 0; c < p.size(); ++c) {
-      auto d = read_number(r, p[c], where + "/" + std::to_string(c));
+      auto d = read_number(r, p[c], at(where, c));
       if (!d) return d.error();
       comps.push_back(*d);
     }
@@ -180,14 +177,14 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
                    r.source};
   }
   const json& doc = parsed.value;
-  if (!doc.is_object()) return r.fail("", "expected a JSON object with a \"type\" field");
+  if (!doc.is_object()) return r.fail({}, "expected a JSON object with a \"type\" field");
   if (doc.contains("version")) {
     const json& v = doc["version"];
     if (!v.is_number_integer() || v.get<long long>() != curve_format_version)
-      return r.fail("/version", "unsupported version " + io_detail::short_dump(v) + "; this reader knows version " +
+      return r.fail(ptr("version"), "unsupported version " + io_detail::short_dump(v) + "; this reader knows version " +
                                     std::to_string(curve_format_version), ErrorCode::Unsupported);
   }
-  if (!doc.contains("type") || !doc["type"].is_string()) return r.fail("/type", "missing or not a string");
+  if (!doc.contains("type") || !doc["type"].is_string()) return r.fail(ptr("type"), "missing or not a string");
   const std::string type = doc["type"].get<std::string>();
   // Unknown fields are rejected, so a misspelt option ("tensoin") is not silently ignored.
   static const std::vector<std::pair<std::string, std::vector<std::string>>> fields = {
@@ -214,7 +211,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
   int dim = 0;
   auto points = read_points(r, doc, "points", dim);
   if (!points) return points.error();
-  if (points->empty()) return r.fail("/points", "expected at least one point", ErrorCode::TooFewPoints);
+  if (points->empty()) return r.fail(ptr("points"), "expected at least one point", ErrorCode::TooFewPoints);
   const std::vector<Vec3d>& pts = *points;
 
   if (type == "bezier") return wrap(r, CurveKind::Bezier, dim, build_bezier(pts));
@@ -233,7 +230,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
       if (v->has_value()) (std::string(f) == "alpha" ? o.alpha : o.tension) = **v;
     }
     if (doc.contains("closed")) {
-      if (!doc["closed"].is_boolean()) return r.fail("/closed", "expected true or false");
+      if (!doc["closed"].is_boolean()) return r.fail(ptr("closed"), "expected true or false");
       o.closed = doc["closed"].get<bool>();
     }
     return wrap(r, CurveKind::CatmullRom, dim, build_catmull_rom(pts, o));
@@ -241,12 +238,12 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
   if (type == "natural") {
     const bool has_start = doc.contains("start_tangent"), has_end = doc.contains("end_tangent");
     if (has_start != has_end)
-      return r.fail(has_start ? "/end_tangent" : "/start_tangent",
+      return r.fail(ptr(has_start ? "end_tangent" : "start_tangent"),
                     "a clamped spline needs both start_tangent and end_tangent");
     if (!has_start) return wrap(r, CurveKind::Natural, dim, build_natural_spline(pts));
-    auto start = read_point(r, doc["start_tangent"], "/start_tangent", dim);
+    auto start = read_point(r, doc["start_tangent"], ptr("start_tangent"), dim);
     if (!start) return start.error();
-    auto end = read_point(r, doc["end_tangent"], "/end_tangent", dim);
+    auto end = read_point(r, doc["end_tangent"], ptr("end_tangent"), dim);
     if (!end) return end.error();
     return wrap(r, CurveKind::Natural, dim, build_clamped_spline(pts, *start, *end));
   }
@@ -268,18 +265,18 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
   }
   if (type == "bspline") {
     if (!doc.contains("degree") || !doc["degree"].is_number_integer())
-      return r.fail("/degree", "expected an integer degree");
+      return r.fail(ptr("degree"), "expected an integer degree");
     const long long degree = doc["degree"].get<long long>();
     if (degree < 1 || degree > BSpline<Vec3d>::max_degree)
-      return r.fail("/degree", "degree must be between 1 and " + std::to_string(BSpline<Vec3d>::max_degree) +
+      return r.fail(ptr("degree"), "degree must be between 1 and " + std::to_string(BSpline<Vec3d>::max_degree) +
                                    ", got " + std::to_string(degree), ErrorCode::InvalidArgument);
     bool periodic = false;
     if (doc.contains("periodic")) {
-      if (!doc["periodic"].is_boolean()) return r.fail("/periodic", "expected true or false");
+      if (!doc["periodic"].is_boolean()) return r.fail(ptr("periodic"), "expected true or false");
       periodic = doc["periodic"].get<bool>();
     }
     if (periodic) {
-      if (doc.contains("knots")) return r.fail("/knots", "a periodic bspline takes no knots (they are uniform)");
+      if (doc.contains("knots")) return r.fail(ptr("knots"), "a periodic bspline takes no knots (they are uniform)");
       return wrap(r, CurveKind::BSpline, dim, build_periodic_bspline(pts, int(degree)));
     }
     std::vector<double> knots;
@@ -287,7 +284,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
       auto k = read_numbers(r, doc, "knots");
       if (!k) return k.error();
       knots = *k;
-      if (knots.empty()) return r.fail("/knots", "expected knots, got an empty array", ErrorCode::WrongArity);
+      if (knots.empty()) return r.fail(ptr("knots"), "expected knots, got an empty array", ErrorCode::WrongArity);
     }
     return wrap(r, CurveKind::BSpline, dim, build_bspline(pts, int(degree), knots));
   }
@@ -300,7 +297,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
     }
     return wrap(r, CurveKind::Lagrange, dim, build_lagrange(pts, params));
   }
-  return r.fail("/type", "unknown curve type \"" + type +
+  return r.fail(ptr("type"), "unknown curve type \"" + type +
                              "\"; expected one of bezier, bezier-path, hermite, catmull-rom, natural, "
                              "kochanek-bartels, parabolic, bspline, lagrange",
                 ErrorCode::Unsupported);
