@@ -1,9 +1,9 @@
 // `inbetween bake SCENE`: evaluates every track of a scene file at every frame of a range and
 // writes a CSV or JSON table.  Rows are written as they are computed (frame i is a + i·step, made
 // on the fly), so memory does not grow with the frame count; to a file through a temporary that is
-// renamed at the end (an error leaves nothing), to standard output directly.  Parsing and
-// evaluation live in the library (inbetween/io/scene.hpp); this file only handles arguments and
-// formatting.
+// renamed at the end (an error leaves nothing), to standard output directly.  Parsing lives in the
+// library (inbetween/io/scene.hpp reads, inbetween/scene/scene.hpp builds and samples); this file
+// only handles arguments and formatting.
 #include <nlohmann/json.hpp>
 
 #include <charconv>
@@ -22,10 +22,6 @@
 
 namespace inbetween::cli {
 namespace {
-
-// The two calls into the scene, kept here only: the columns of the table and one frame's values.
-std::vector<SceneColumn> columns_of(const Scene& scene) { return scene_columns(scene); }
-void sample_frame(const Scene& scene, double frame, std::span<double> out) { evaluate_scene(scene, frame, out); }
 
 // Frame counts up to 2^53 are exact in a double (and frame i = a + i·step is computed from an
 // exact i); beyond, the count itself is not representable.  Memory does not depend on the count.
@@ -110,9 +106,9 @@ void run_bake(const BakeOptions& opt) {
   const std::string text = read_input(opt.scene_path);
   auto scene = parse_scene(text);
   if (!scene) throw CommandError{opt.scene_path + ": " + scene.error().describe()};
-  const double fps = opt.fps > 0 ? opt.fps : scene->fps;
-  const std::vector<SceneColumn> columns = columns_of(*scene);
-  const FrameRange frames = frame_range(opt.frames, scene->range_start, scene->range_end);
+  const double fps = opt.fps > 0 ? opt.fps : scene->fps();
+  const std::span<const SceneColumn> columns = scene->columns();
+  const FrameRange frames = frame_range(opt.frames, scene->range_start(), scene->range_end());
   std::vector<double> row(columns.size());
 
   // Finite keys can still give values beyond the number type (linear extrapolation to frame 1e300,
@@ -121,7 +117,7 @@ void run_bake(const BakeOptions& opt) {
     if (!std::isfinite(f / fps)) {
       throw CommandError{"frame " + format_number(f) + ": time = frame / fps " + format_number(fps) + " overflows"};
     }
-    sample_frame(*scene, f, row);
+    scene->sample(f, row);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
       if (!std::isfinite(v)) {

@@ -30,17 +30,8 @@ nlohmann::json fit_to_json(const CsvTable& csv, const std::string& path, int deg
   auto fit = fit_bspline<P>(data, {.degree = degree, .control_points = control_points});
   if (!fit) {
     Error e = fit.error();
-    // Translate "point i" into the file's line number.
-    if (e.where.rfind("point ", 0) == 0) {
-      const std::size_t i = std::stoul(e.where.substr(6));
-      if (i < csv.lines.size()) e.where = path + ": line " + std::to_string(csv.lines[i]);
-    } else if (e.where == "degree") {
-      e.where = "--degree";
-    } else if (e.where == "control_points") {
-      e.where = "--control-points";
-    } else if (e.where.empty()) {
-      e.where = path;
-    }
+    e.where = csv_place(e, csv, path);
+    if (e.where.empty()) e.where = path;  // too few data: the file is the place
     throw CommandError{e.describe()};
   }
   nlohmann::json points = nlohmann::json::array();

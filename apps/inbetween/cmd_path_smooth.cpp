@@ -28,18 +28,9 @@ struct Args {
   bool fix_ends = false, smooth_ends = false, function = false;
 };
 
-// Translates a library error's "point i" into the file's line.
+// A library error's place in the file (its line) or on the command line (--radius).
 [[noreturn]] void fail(Error e, const CsvTable& t, const Args& a) {
-  if (e.where.rfind("point ", 0) == 0) {
-    const std::size_t i = std::stoul(e.where.substr(6));
-    if (i < t.lines.size()) e.where = a.input + ": line " + std::to_string(t.lines[i]);
-  } else if (e.where == "radius" || e.where == "iterations" || e.where == "degree") {
-    e.where.insert(0, "--");
-  } else if (e.where == "control_points") {
-    e.where = "--control-points";
-  } else if (e.where == "points") {
-    e.where = a.input;  // too few rows: the file is the place
-  }
+  e.where = csv_place(e, t, a.input);
   throw CommandError{e.describe()};
 }
 

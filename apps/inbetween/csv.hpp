@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "inbetween/math/expected.hpp"
+
 namespace inbetween::cli {
 
 /// A numeric CSV table.
@@ -21,5 +23,10 @@ struct CsvTable {
 /// layout in messages (for example "t,x[,y[,z]]").  At least one data row is required.
 CsvTable read_csv_table(const std::string& text, const std::string& path, int min_columns, int max_columns,
                         const std::string& columns_hint);
+
+/// The place of a library error about the rows of `table` (read from `path`), from its structured
+/// location: {"points", i} → "<path>: line L" (row i's line), {"points"} → `path`, an option such
+/// as {"control_points"} → "--control-points"; `e.where` unchanged otherwise.
+std::string csv_place(const Error& e, const CsvTable& table, const std::string& path);
 
 }  // namespace inbetween::cli

@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_text.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -18,32 +20,57 @@ std::string located(const std::string& source, const std::string& pointer) {
   return pointer.empty() ? source : source + ":" + pointer;
 }
 
+using Loc = std::vector<LocationStep>;
+
 struct Reader {
   std::string source;
-  Error fail(std::string pointer, std::string message, ErrorCode code = ErrorCode::Parse) const {
-    return Error{code, std::move(message), located(source, pointer)};
+  // The error at `loc` (structured while descending, rendered once by json_pointer()).
+  Error fail(const Loc& loc, std::string message, ErrorCode code = ErrorCode::Parse) const {
+    return Error{code, std::move(message), located(source, json_pointer(loc))};
   }
 };
 
-// JSON pointers are built with append() rather than "/" + … : GCC 12 warns (-Wrestrict, a known
-// false positive) on operator+ with a literal on the left.
-std::string ptr(std::string_view field) {
-  std::string s("/");
-  s.append(field);
-  return s;
-}
-std::string ptr(std::string_view field, std::size_t i) {
-  std::string s = ptr(field);
-  s.append("/").append(std::to_string(i));
-  return s;
+Loc ptr(std::string_view field) { return Loc{std::string(field)}; }
+Loc ptr(std::string_view field, std::size_t i) { return Loc{std::string(field), i}; }
+Loc at(Loc loc, std::size_t i) {
+  loc.emplace_back(i);
+  return loc;
 }
 
 // Reads a number; an error names the pointer.
-Expected<double> read_number(const Reader& r, const json& v, const std::string& pointer) {
+Expected<double> read_number(const Reader& r, const json& v, const Loc& pointer) {
   if (!v.is_number()) return r.fail(pointer, "expected a number, got " + std::string(v.type_name()));
   const double d = v.get<double>();
   if (!std::isfinite(d)) return r.fail(pointer, "number is not finite", ErrorCode::NotFinite);
   return d;
+}
+
+// Reads one point: a number or an array of 1 to 3 numbers, of dimension `dim` (fixed by this point when 0).
+Expected<Vec3d> read_point(const Reader& r, const json& p, const Loc& where, int& dim) {
+  std::vector<double> comps;
+  if (p.is_number()) {
+    auto d = read_number(r, p, where);
+    if (!d) return d.error();
+    comps.push_back(*d);
+  } else if (p.is_array()) {
+    for (std::size_t c = 0; c < p.size(); ++c) {
+      auto d = read_number(r, p[c], at(where, c));
+      if (!d) return d.error();
+      comps.push_back(*d);
+    }
+  } else {
+    return r.fail(where, "expected a point: a number or an array of 1 to 3 numbers");
+  }
+  if (comps.empty() || comps.size() > 3)
+    return r.fail(where, "expected 1 to 3 numbers, got " + std::to_string(comps.size()), ErrorCode::WrongArity);
+  if (dim == 0) dim = int(comps.size());
+  if (int(comps.size()) != dim)
+    return r.fail(where, "expected " + std::to_string(dim) + " number" + (dim == 1 ? "" : "s") +
+                             " (the dimension of the first point), got " + std::to_string(comps.size()),
+                  ErrorCode::WrongArity);
+  Vec3d v{};
+  for (int c = 0; c < dim; ++c) v[c] = comps[c];
+  return v;
 }
 
 // Reads an array of points, all of the same dimension (`dim` fixed by the first point when 0).
@@ -57,32 +84,9 @@ Expected<std::vector<Vec3d>> read_points(const Reader& r, const json& doc, std::
   const json& arr = doc.at(std::string(field));
   if (!arr.is_array()) return r.fail(ptr(field), "expected an array of points");
   for (std::size_t i = 0; i < arr.size(); ++i) {
-    const json& p = arr[i];
-    const std::string where = ptr(field, i);
-    std::vector<double> comps;
-    if (p.is_number()) {
-      auto d = read_number(r, p, where);
-      if (!d) return d.error();
-      comps.push_back(*d);
-    } else if (p.is_array()) {
-      for (std::size_t c = 0; c < p.size(); ++c) {
-        auto d = read_number(r, p[c], where + "/" + std::to_string(c));
-        if (!d) return d.error();
-        comps.push_back(*d);
-      }
-    } else {
-      return r.fail(where, "expected a point: a number or an array of 1 to 3 numbers");
-    }
-    if (comps.empty() || comps.size() > 3)
-      return r.fail(where, "expected 1 to 3 numbers, got " + std::to_string(comps.size()), ErrorCode::WrongArity);
-    if (dim == 0) dim = int(comps.size());
-    if (int(comps.size()) != dim)
-      return r.fail(where, "expected " + std::to_string(dim) + " number" + (dim == 1 ? "" : "s") +
-                               " (the dimension of the first point), got " + std::to_string(comps.size()),
-                    ErrorCode::WrongArity);
-    Vec3d v{};
-    for (int c = 0; c < dim; ++c) v[c] = comps[c];
-    out.push_back(v);
+    auto v = read_point(r, arr[i], ptr(field, i), dim);
+    if (!v) return v.error();
+    out.push_back(*v);
   }
   return out;
 }
@@ -106,23 +110,10 @@ Expected<std::optional<double>> read_optional_number(const Reader& r, const json
   return std::optional<double>{*d};
 }
 
-// Translates a library error location ("point 3", "knot 2", "alpha", …) into a JSON pointer.
+// A builder's error location names the builder's inputs by the curve file's member names
+// ({"points", 3}, {"knots"}, {"alpha"}), so it is the JSON pointer of the offending value as it is.
 Error relocate(const Reader& r, const Error& e) {
-  static const std::pair<const char*, const char*> items[] = {
-      {"point ", "points"}, {"tangent ", "tangents"}, {"knot ", "knots"}, {"param ", "params"}, {"key ", "points"}};
-  std::string pointer;
-  for (const auto& [prefix, field] : items) {
-    const std::string p = prefix;
-    if (e.where.rfind(p, 0) == 0) pointer = ptr(field).append("/").append(e.where.substr(p.size()));
-  }
-  if (pointer.empty()) {
-    if (e.where == "keys") pointer = "/tension";
-    else if (e.where == "start_tangent" || e.where == "end_tangent" || e.where == "alpha" || e.where == "tension" ||
-             e.where == "degree" || e.where == "knots" || e.where == "points" || e.where == "tangents" ||
-             e.where == "params")
-      pointer = ptr(e.where);
-  }
-  return Error{e.code, e.message, located(r.source, pointer)};
+  return Error{e.code, e.message, located(r.source, json_pointer(e.location))};
 }
 
 template <class C>
@@ -153,20 +144,32 @@ Expected<std::vector<double>> read_tcb(const Reader& r, const json& doc, std::st
 
 Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view source_name) {
   const Reader r{std::string(source_name)};
-  json doc;
-  try {
-    doc = json::parse(text.begin(), text.end());
-  } catch (const json::exception& e) {
-    return Error{ErrorCode::Parse, std::string("invalid JSON: ") + e.what(), r.source};
+  io_detail::JsonText parsed = io_detail::parse_json_text(text);
+  switch (parsed.failure) {
+    case io_detail::JsonFailure::none:
+      break;
+    case io_detail::JsonFailure::syntax:
+      return Error{ErrorCode::Parse, "invalid JSON: " + parsed.detail, r.source};
+    case io_detail::JsonFailure::number_out_of_range:
+      return Error{ErrorCode::Parse,
+                   "invalid JSON: the number " + parsed.detail + " at line " + std::to_string(parsed.line) + ", column " +
+                       std::to_string(parsed.column) + " is beyond double precision's range",
+                   r.source};
+    case io_detail::JsonFailure::too_deep:
+      return Error{ErrorCode::Parse,
+                   "invalid JSON: " + parsed.detail + " at line " + std::to_string(parsed.line) + ", column " +
+                       std::to_string(parsed.column),
+                   r.source};
   }
-  if (!doc.is_object()) return r.fail("", "expected a JSON object with a \"type\" field");
+  const json& doc = parsed.value;
+  if (!doc.is_object()) return r.fail({}, "expected a JSON object with a \"type\" field");
   if (doc.contains("version")) {
     const json& v = doc["version"];
     if (!v.is_number_integer() || v.get<long long>() != curve_format_version)
-      return r.fail("/version", "unsupported version " + v.dump() + "; this reader knows version " +
+      return r.fail(ptr("version"), "unsupported version " + io_detail::short_dump(v) + "; this reader knows version " +
                                     std::to_string(curve_format_version), ErrorCode::Unsupported);
   }
-  if (!doc.contains("type") || !doc["type"].is_string()) return r.fail("/type", "missing or not a string");
+  if (!doc.contains("type") || !doc["type"].is_string()) return r.fail(ptr("type"), "missing or not a string");
   const std::string type = doc["type"].get<std::string>();
   // Unknown fields are rejected, so a misspelt option ("tensoin") is not silently ignored.
   static const std::vector<std::pair<std::string, std::vector<std::string>>> fields = {
@@ -193,7 +196,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
   int dim = 0;
   auto points = read_points(r, doc, "points", dim);
   if (!points) return points.error();
-  if (points->empty()) return r.fail("/points", "expected at least one point", ErrorCode::TooFewPoints);
+  if (points->empty()) return r.fail(ptr("points"), "expected at least one point", ErrorCode::TooFewPoints);
   const std::vector<Vec3d>& pts = *points;
 
   if (type == "bezier") return wrap(r, CurveKind::Bezier, dim, build_bezier(pts));
@@ -212,7 +215,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
       if (v->has_value()) (std::string(f) == "alpha" ? o.alpha : o.tension) = **v;
     }
     if (doc.contains("closed")) {
-      if (!doc["closed"].is_boolean()) return r.fail("/closed", "expected true or false");
+      if (!doc["closed"].is_boolean()) return r.fail(ptr("closed"), "expected true or false");
       o.closed = doc["closed"].get<bool>();
     }
     return wrap(r, CurveKind::CatmullRom, dim, build_catmull_rom(pts, o));
@@ -220,18 +223,14 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
   if (type == "natural") {
     const bool has_start = doc.contains("start_tangent"), has_end = doc.contains("end_tangent");
     if (has_start != has_end)
-      return r.fail(has_start ? "/end_tangent" : "/start_tangent",
+      return r.fail(ptr(has_start ? "end_tangent" : "start_tangent"),
                     "a clamped spline needs both start_tangent and end_tangent");
     if (!has_start) return wrap(r, CurveKind::Natural, dim, build_natural_spline(pts));
-    json ends = json::object();
-    ends["points"] = json::array({doc["start_tangent"], doc["end_tangent"]});
-    auto t = read_points(r, ends, "points", dim);
-    if (!t) {
-      Error e = t.error();
-      e.where = r.source + (e.where.find("/points/0") != std::string::npos ? ":/start_tangent" : ":/end_tangent");
-      return e;
-    }
-    return wrap(r, CurveKind::Natural, dim, build_clamped_spline(pts, (*t)[0], (*t)[1]));
+    auto start = read_point(r, doc["start_tangent"], ptr("start_tangent"), dim);
+    if (!start) return start.error();
+    auto end = read_point(r, doc["end_tangent"], ptr("end_tangent"), dim);
+    if (!end) return end.error();
+    return wrap(r, CurveKind::Natural, dim, build_clamped_spline(pts, *start, *end));
   }
   if (type == "kochanek-bartels") {
     auto tension = read_tcb(r, doc, "tension", pts.size());
@@ -251,18 +250,18 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
   }
   if (type == "bspline") {
     if (!doc.contains("degree") || !doc["degree"].is_number_integer())
-      return r.fail("/degree", "expected an integer degree");
+      return r.fail(ptr("degree"), "expected an integer degree");
     const long long degree = doc["degree"].get<long long>();
     if (degree < 1 || degree > BSpline<Vec3d>::max_degree)
-      return r.fail("/degree", "degree must be between 1 and " + std::to_string(BSpline<Vec3d>::max_degree) +
+      return r.fail(ptr("degree"), "degree must be between 1 and " + std::to_string(BSpline<Vec3d>::max_degree) +
                                    ", got " + std::to_string(degree), ErrorCode::InvalidArgument);
     bool periodic = false;
     if (doc.contains("periodic")) {
-      if (!doc["periodic"].is_boolean()) return r.fail("/periodic", "expected true or false");
+      if (!doc["periodic"].is_boolean()) return r.fail(ptr("periodic"), "expected true or false");
       periodic = doc["periodic"].get<bool>();
     }
     if (periodic) {
-      if (doc.contains("knots")) return r.fail("/knots", "a periodic bspline takes no knots (they are uniform)");
+      if (doc.contains("knots")) return r.fail(ptr("knots"), "a periodic bspline takes no knots (they are uniform)");
       return wrap(r, CurveKind::BSpline, dim, build_periodic_bspline(pts, int(degree)));
     }
     std::vector<double> knots;
@@ -270,7 +269,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
       auto k = read_numbers(r, doc, "knots");
       if (!k) return k.error();
       knots = *k;
-      if (knots.empty()) return r.fail("/knots", "expected knots, got an empty array", ErrorCode::WrongArity);
+      if (knots.empty()) return r.fail(ptr("knots"), "expected knots, got an empty array", ErrorCode::WrongArity);
     }
     return wrap(r, CurveKind::BSpline, dim, build_bspline(pts, int(degree), knots));
   }
@@ -283,7 +282,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
     }
     return wrap(r, CurveKind::Lagrange, dim, build_lagrange(pts, params));
   }
-  return r.fail("/type", "unknown curve type \"" + type +
+  return r.fail(ptr("type"), "unknown curve type \"" + type +
                              "\"; expected one of bezier, bezier-path, hermite, catmull-rom, natural, "
                              "kochanek-bartels, parabolic, bspline, lagrange",
                 ErrorCode::Unsupported);

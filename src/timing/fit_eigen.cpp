@@ -24,7 +24,7 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
   const int k = options.degree;
   if (k < 1 || k > kMaxFitDegree) {
     return Error{ErrorCode::InvalidArgument,
-                 "degree " + std::to_string(k) + " is outside [1, " + std::to_string(kMaxFitDegree) + "]", "degree"};
+                 "degree " + std::to_string(k) + " is outside [1, " + std::to_string(kMaxFitDegree) + "]", "", {"degree"}};
   }
   if (j < 2) return Error{ErrorCode::TooFewPoints, "needs at least 2 data points, got " + std::to_string(j), ""};
   const int n = options.control_points == 0 ? j : options.control_points;
@@ -32,18 +32,18 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
     return Error{ErrorCode::InvalidArgument,
                  std::to_string(n) + " control points: needs degree + 1 = " + std::to_string(k + 1) +
                      " <= control points <= " + std::to_string(j) + " (the number of data)",
-                 "control_points"};
+                 "", {"control_points"}};
   }
   for (int i = 0; i < j; ++i) {
-    const std::string where = "point " + std::to_string(i);
+    const std::vector<LocationStep> where = {"points", std::size_t(i)};
     if (!std::isfinite(data[std::size_t(i)].t) || !is_finite(data[std::size_t(i)].p)) {
-      return Error{ErrorCode::NotFinite, "a time or coordinate is not finite", where};
+      return Error{ErrorCode::NotFinite, "a time or coordinate is not finite", "", where};
     }
     if (i > 0 && !(data[std::size_t(i - 1)].t < data[std::size_t(i)].t)) {
       return Error{ErrorCode::KeysNotIncreasing,
                    "time " + shortest_text<double>(double(data[std::size_t(i)].t)) + " is not after " +
                        shortest_text<double>(double(data[std::size_t(i - 1)].t)),
-                   where};
+                   "", where};
     }
   }
   const double t_first = double(data.front().t), t_last = double(data.back().t);
@@ -64,7 +64,7 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
                  "the basis matrix has rank " + std::to_string(qr.rank()) + " < " + std::to_string(n) +
                      " control points: some knot span holds too few data times (Schoenberg-Whitney); "
                      "use fewer control points or spread the times",
-                 "control_points"};
+                 "", {"control_points"}};
   }
   const Eigen::MatrixXd B = qr.solve(rhs);
 
@@ -81,7 +81,7 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
       return Error{ErrorCode::NotFinite,
                    "control point " + std::to_string(c) +
                        " of the fit is not finite (the data are too large for the scalar type)",
-                   "control_points"};
+                   "", {"control_points"}};
     }
     fit.curve.control_points.push_back(p);
   }

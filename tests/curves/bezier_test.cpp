@@ -107,7 +107,7 @@ TEST(BezierDouble, RejectsTooFewAndNonFinitePoints) {
   EXPECT_EQ(one.error().code, ErrorCode::TooFewPoints);
   const auto nan = build_bezier(std::vector<Vec2d>{{0, 0}, {1, std::nan("")}, {2, 0}});
   ASSERT_FALSE(nan.has_value());
-  EXPECT_EQ(nan.error().where, "point 1");
+  EXPECT_EQ(json_pointer(nan.error().location), "/points/1");
 }
 
 }  // namespace

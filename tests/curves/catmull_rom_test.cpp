@@ -193,10 +193,10 @@ TEST(CatmullRomDouble, RejectsBadInput) {
   EXPECT_EQ(one.error().code, ErrorCode::TooFewPoints);
   const auto alpha = build_catmull_rom(std::vector<Vec2d>{{0, 0}, {1, 0}}, {.alpha = 2});
   ASSERT_FALSE(alpha.has_value());
-  EXPECT_EQ(alpha.error().where, "alpha");
+  EXPECT_EQ(json_pointer(alpha.error().location), "/alpha");
   const auto inf = build_catmull_rom(std::vector<Vec2d>{{0, 0}, {1, 0}, {HUGE_VAL, 0}});
   ASSERT_FALSE(inf.has_value());
-  EXPECT_EQ(inf.error().where, "point 2");
+  EXPECT_EQ(json_pointer(inf.error().location), "/points/2");
 }
 
 }  // namespace

@@ -51,7 +51,7 @@ TEST(LagrangeTest, InterpolatesGlobalControlAndDerivatives) {
   test::expect_derivatives_match_differences(c, rng);
   const auto bad = build_lagrange(pts, std::vector<double>{0, 1, 1, 2, 3, 4});
   ASSERT_FALSE(bad.has_value());
-  EXPECT_EQ(bad.error().where, "param 2");
+  EXPECT_EQ(json_pointer(bad.error().location), "/params/2");
   // The values are printed exactly (std::to_string's six decimals printed both as 0.000000).
   const auto close = build_lagrange(pts, std::vector<double>{0, 1e-9, 2e-9, 1.5e-9, 3, 4});
   ASSERT_FALSE(close.has_value());

@@ -30,7 +30,7 @@ void expect_finite_or_clear_error(const Expected<C>& built, const std::string& f
   SCOPED_TRACE(family);
   if (!built) {
     EXPECT_FALSE(built.error().message.empty());
-    EXPECT_FALSE(built.error().where.empty());
+    EXPECT_FALSE(built.error().location.empty());
     return;
   }
   const C& c = built.value();
@@ -91,7 +91,7 @@ TEST(MuseumCurvesDouble, OverflowingCoefficientsAreAClearError) {
     SCOPED_TRACE(family);
     if (!built) {
       EXPECT_EQ(built.error().code, ErrorCode::NotFinite) << built.error().describe();
-      EXPECT_FALSE(built.error().where.empty());
+      EXPECT_FALSE(built.error().location.empty());
       ++errors;
       return;
     }

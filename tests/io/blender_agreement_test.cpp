@@ -64,13 +64,20 @@ TEST(BlenderAgreement, EveryModeMatchesBlenderEvaluate) {
   auto exported = inbetween::parse_scene(slurp(dir / "exported.json"));
   ASSERT_TRUE(exported.has_value()) << exported.error().describe();
   std::vector<std::string> names;
-  for (const auto& t : exported->scalar_tracks) names.push_back(t.name);
+  auto scalar_tracks = [](const inbetween::Scene& s) {
+    std::vector<const inbetween::SceneScalarTrack*> out;
+    for (const auto& t : s.tracks()) {
+      if (const auto* scalar = std::get_if<inbetween::SceneScalarTrack>(&t)) out.push_back(scalar);
+    }
+    return out;
+  };
+  for (const auto* t : scalar_tracks(*exported)) names.push_back(t->name);
   EXPECT_EQ(names, (std::vector<std::string>{"Animated.location.x", "Animated.location.y", "Animated.location.z",
                                              "Animated.rotation_quaternion.w", "Animated.rotation_quaternion.x",
                                              "Animated.rotation_quaternion.y", "Animated.rotation_quaternion.z"}));
   std::vector<const inbetween::SceneScalarTrack*> all;
-  for (const auto& t : scene->scalar_tracks) all.push_back(&t);
-  for (const auto& t : exported->scalar_tracks) all.push_back(&t);
+  for (const auto* t : scalar_tracks(*scene)) all.push_back(t);
+  for (const auto* t : scalar_tracks(*exported)) all.push_back(t);
 
   std::map<std::string, GroupStats> groups;
   for (const auto* track_ptr : all) {

@@ -42,11 +42,11 @@ TEST(SmoothBSpline, BadInputNamesTheIndex) {
     SCOPED_TRACE(ex.name);
     auto s = smooth_bspline(ex.points, {.degree = 2, .control_points = 3});
     ASSERT_FALSE(s);
-    EXPECT_EQ(s.error().where, ex.bad_index < 0 ? "points" : "point " + std::to_string(ex.bad_index));
+    EXPECT_EQ(json_pointer(s.error().location), ex.bad_index < 0 ? "/points" : "/points/" + std::to_string(ex.bad_index));
   }
   auto opt = smooth_bspline(kY, {.degree = 3, .control_points = 2});
   ASSERT_FALSE(opt);
-  EXPECT_EQ(opt.error().where, "control_points");
+  EXPECT_EQ(json_pointer(opt.error().location), "/control_points");
 }
 
 template <class T>
@@ -67,12 +67,12 @@ TYPED_TEST(SmoothBSplineMuseum, MuseumPathsGiveFinitePointsOrANamedError) {
       const std::size_t n = ex.points.size();
       if (n < 2) {
         ASSERT_FALSE(s);
-        EXPECT_EQ(s.error().where, "points");
+        EXPECT_EQ(json_pointer(s.error().location), "/points");
         continue;
       }
       if (std::size_t(degree) + 1 > n) {  // a degree-d spline needs d + 1 control points
         ASSERT_FALSE(s);
-        EXPECT_EQ(s.error().where, "control_points");
+        EXPECT_EQ(json_pointer(s.error().location), "/control_points");
         continue;
       }
       ASSERT_TRUE(s) << s.error().describe();

@@ -241,23 +241,23 @@ TYPED_TEST(SmoothingTyped, HugeRadiusWeightsAndResultStayFinite) {
 TEST(Smoothing, BadInputNamesTheIndex) {
   for (const auto& ex : test::museum_bad_paths<double>()) {
     SCOPED_TRACE(ex.name);
-    const std::string where = ex.bad_index < 0 ? "points" : "point " + std::to_string(ex.bad_index);
+    const std::string where = ex.bad_index < 0 ? "/points" : "/points/" + std::to_string(ex.bad_index);
     auto a = smooth_linear(ex.points);
     auto b = smooth_cubic(ex.points);
     auto c = smooth_convolution(ex.points);
     ASSERT_FALSE(a);
     ASSERT_FALSE(b);
     ASSERT_FALSE(c);
-    EXPECT_EQ(a.error().where, where);
-    EXPECT_EQ(b.error().where, where);
-    EXPECT_EQ(c.error().where, where);
+    EXPECT_EQ(json_pointer(a.error().location), where);
+    EXPECT_EQ(json_pointer(b.error().location), where);
+    EXPECT_EQ(json_pointer(c.error().location), where);
   }
   auto r = smooth_convolution(kY, {.radius = 0.0});
   ASSERT_FALSE(r);
-  EXPECT_EQ(r.error().where, "radius");
+  EXPECT_EQ(json_pointer(r.error().location), "/radius");
   auto it = smooth_linear(kY, {.iterations = -1});
   ASSERT_FALSE(it);
-  EXPECT_EQ(it.error().where, "iterations");
+  EXPECT_EQ(json_pointer(it.error().location), "/iterations");
 }
 
 TYPED_TEST(SmoothingTyped, MuseumPathsStayFinite) {

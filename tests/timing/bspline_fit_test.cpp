@@ -136,15 +136,15 @@ TEST(BSplineFit, LeastSquaresAgreesWithScipyWhenInstalled) {
 }
 
 TEST(BSplineFit, ErrorsNameTheProblem) {
-  EXPECT_EQ(fit_bspline<double>(kSmoothingData, {.degree = 0}).error().where, "degree");
-  EXPECT_EQ(fit_bspline<double>(kSmoothingData, {.degree = 3, .control_points = 11}).error().where, "control_points");
-  EXPECT_EQ(fit_bspline<double>(kSmoothingData, {.degree = 3, .control_points = 3}).error().where, "control_points");
+  EXPECT_EQ(json_pointer(fit_bspline<double>(kSmoothingData, {.degree = 0}).error().location), "/degree");
+  EXPECT_EQ(json_pointer(fit_bspline<double>(kSmoothingData, {.degree = 3, .control_points = 11}).error().location), "/control_points");
+  EXPECT_EQ(json_pointer(fit_bspline<double>(kSmoothingData, {.degree = 3, .control_points = 3}).error().location), "/control_points");
   auto shuffled = kSmoothingData;
   std::swap(shuffled[3], shuffled[4]);
   auto e = fit_bspline<double>(shuffled, {.degree = 2});
   ASSERT_FALSE(e);
   EXPECT_EQ(e.error().code, ErrorCode::KeysNotIncreasing);
-  EXPECT_EQ(e.error().where, "point 4");
+  EXPECT_EQ(json_pointer(e.error().location), "/points/4");
   // Times bunched at the start leave the middle hat function of a degree-1 fit without data.
   const std::vector<TimedPoint<double>> bunched = {{0, 0}, {0.01, 1}, {0.02, 2}, {0.03, 3}, {1, 4}};
   auto sw = fit_bspline<double>(bunched, {.degree = 1});
@@ -163,7 +163,7 @@ TEST(BSplineFit, OverflowingControlPointsAreAnError) {
   auto e = fit_bspline<double>(d, {.degree = 2});
   ASSERT_FALSE(e);
   EXPECT_EQ(e.error().code, ErrorCode::NotFinite);
-  EXPECT_EQ(e.error().where, "control_points");
+  EXPECT_EQ(json_pointer(e.error().location), "/control_points");
   const float bigf = std::numeric_limits<float>::max() / 1.5f;
   const std::vector<TimedPoint<float>> f = {{0, 0}, {1, bigf}, {2, 0}};
   auto ef = fit_bspline<float>(f, {.degree = 2});

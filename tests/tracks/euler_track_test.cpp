@@ -188,7 +188,7 @@ TEST(EulerTrack, ConstantAxisTurnThroughGimbalLockSideBySide) {
 TEST(EulerTrackBuild, RejectsBadInput) {
   auto r = build_euler_track(std::vector{ekey(0, {0, 0, 0}), ekey(1, {std::nan(""), 0, 0})});
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().where, "key 1");
+  EXPECT_EQ(json_pointer(r.error().location), "/keys/1");
   r = build_euler_track(std::vector{ekey(1, {0, 0, 0}), ekey(1, {0, 0, 0})});
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);

@@ -302,18 +302,19 @@ TEST(FCurveBuild, RejectsBadKeysNamingTheKey) {
   auto r = build_fcurve(unsorted);
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);
-  EXPECT_EQ(r.error().where, "key 2");
+  EXPECT_EQ(json_pointer(r.error().location), "/keys/2/frame");
 
   RawFCurve nan{.keys = {inserted(0, 0), inserted(5, std::numeric_limits<double>::quiet_NaN())}};
   r = build_fcurve(nan);
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::NotFinite);
-  EXPECT_EQ(r.error().where, "key 1");
+  EXPECT_EQ(json_pointer(r.error().location), "/keys/1");
 
   RawFCurve same_float{.keys = {inserted(1, 0), inserted(1.00000001, 1)}};  // distinct doubles, same float
   r = build_fcurve(same_float);
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(json_pointer(r.error().location), "/keys/1");
 
   r = build_fcurve(RawFCurve{});
   ASSERT_FALSE(r.has_value());
@@ -326,18 +327,19 @@ TEST(FCurveBuild, RejectsBadKeysNamingTheKey) {
   r = build_fcurve(huge_handle);
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
-  EXPECT_EQ(r.error().where, "key 1");
+  EXPECT_EQ(json_pointer(r.error().location), "/keys/1");
   RawFCurve huge_amplitude{.keys = {inserted(1, 0), inserted(3, 1)}};
   huge_amplitude.keys[0].interpolation = Interpolation::elastic;
   huge_amplitude.keys[0].amplitude = 1e300;
   r = build_fcurve(huge_amplitude);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().where, "key 0");
+  EXPECT_EQ(json_pointer(r.error().location), "/keys/0");
 
   RawFCurve bad_count{.keys = {inserted(0, 0)}, .cycles = FCurveCycles{.count_after = -1}};
   r = build_fcurve(bad_count);
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(json_pointer(r.error().location), "/cycles/count_after");
 }
 
 TEST(FCurveNames, RoundTrip) {

@@ -245,7 +245,7 @@ TYPED_TEST(QuatTrackTyped, EveryModeIsUnitAndThroughKeysWithoutFlips) {
 TEST(QuatTrackBuild, RejectsBadKeys) {
   auto r = build_quat_track(std::vector{qkey(0, Q{}), qkey(1, Q::from_wxyz(0, 0, 0, 0))});
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().where, "key 1");
+  EXPECT_EQ(json_pointer(r.error().location), "/keys/1/value");
   r = build_quat_track(std::vector{qkey(0, Q{}), qkey(0, Q{})});
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);

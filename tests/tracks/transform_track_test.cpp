@@ -92,7 +92,7 @@ TEST(TransformHierarchy, RejectsCyclesAndBadParents) {
   nodes[1].parent = 7;
   h = build_hierarchy(nodes);
   ASSERT_FALSE(h.has_value());
-  EXPECT_EQ(h.error().where, "node 1");
+  EXPECT_EQ(json_pointer(h.error().location), "/1/parent");
 }
 
 }  // namespace

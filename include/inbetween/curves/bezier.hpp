@@ -166,13 +166,13 @@ class BezierCurve {
 };
 
 /// The same curve as a one-segment PiecewiseCubic over [0, 1], for degree ≤ 3 (power form from the
-/// Bernstein coefficients).  Error Unsupported at "degree" for degree > 3.
+/// Bernstein coefficients).  Error Unsupported at {"degree"} for degree > 3.
 template <Point P>
 Expected<PiecewiseCubic<P>> to_piecewise_cubic(const BezierCurve<P>& bezier) {
   using T = scalar_of<P>;
   if (bezier.degree() > 3)
     return Error{ErrorCode::Unsupported,
-                 "only Bezier curves of degree <= 3 are cubics, got degree " + std::to_string(bezier.degree()), "degree"};
+                 "only Bezier curves of degree <= 3 are cubics, got degree " + std::to_string(bezier.degree()), "", {"degree"}};
   const auto e = bezier.degree() == 3 ? bezier : bezier.degree() == 2 ? bezier.elevate_degree()
                                                                       : bezier.elevate_degree().elevate_degree();
   const auto p = e.control_points();

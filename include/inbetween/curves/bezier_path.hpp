@@ -29,7 +29,7 @@ class BezierPath : public PiecewiseCubic<P> {
       return Error{ErrorCode::WrongArity,
                    "bezier-path needs 3k + 1 points (P0, C, C, P1, C, C, P2, ...), got " +
                        std::to_string(points.size()),
-                   "points"};
+                   "", {"points"}};
     }
     BezierPath s;
     const int k = int(points.size() / 3);

@@ -38,7 +38,7 @@ class BSpline {
     if (degree < 1 || degree > max_degree)
       return Error{ErrorCode::InvalidArgument,
                    "degree must be between 1 and " + std::to_string(max_degree) + ", got " + std::to_string(degree),
-                   "degree"};
+                   "", {"degree"}};
     if (auto ok = detail::check_points(points, degree + 1, "bspline"); !ok) return ok.error();
     std::vector<T> k = knots.empty() ? clamped_uniform_knots<T>(int(points.size()), degree)
                                      : std::vector<T>(knots.begin(), knots.end());
@@ -53,7 +53,7 @@ class BSpline {
     if (degree < 1 || degree > max_degree)
       return Error{ErrorCode::InvalidArgument,
                    "degree must be between 1 and " + std::to_string(max_degree) + ", got " + std::to_string(degree),
-                   "degree"};
+                   "", {"degree"}};
     if (auto ok = detail::check_points(points, 2, "periodic bspline"); !ok) return ok.error();
     std::vector<P> wrapped(points.begin(), points.end());
     for (int i = 0; i < degree; ++i) wrapped.push_back(points[i % points.size()]);
@@ -154,14 +154,14 @@ class BSpline {
 /// The same curve as a chain of power-form cubics (one per non-empty knot span, breakpoints at the
 /// knots), for degree ≤ 3; coefficients from the derivatives at each span start (d = P, c = P′h,
 /// b = P″h²/2, a = P‴h³/6).  Lets B-splines use code written for PiecewiseCubicCurve (analytic
-/// arc length).  Error Unsupported at "degree" for degree > 3.
+/// arc length).  Error Unsupported at {"degree"} for degree > 3.
 template <Point P>
 Expected<PiecewiseCubic<P>> to_piecewise_cubic(const BSpline<P>& spline) {
   using T = scalar_of<P>;
   if (spline.degree() > 3)
     return Error{ErrorCode::Unsupported,
                  "only B-splines of degree <= 3 are piecewise cubics, got degree " + std::to_string(spline.degree()),
-                 "degree"};
+                 "", {"degree"}};
   std::vector<T> breaks;
   std::vector<PowerCubic<P>> segs;
   for (int i = 0; i < spline.segment_count(); ++i) {

@@ -84,22 +84,22 @@ T bspline_basis(std::span<const T> knots, int degree, int i, T u, int derivative
 
 /// Checks a knot vector for `point_count` control points of degree `degree`: size
 /// point_count + degree + 1, finite, non-decreasing, no knot repeated more than degree + 1 times,
-/// and a non-empty domain u_p < u_n.  Errors name "knot i".
+/// and a non-empty domain u_p < u_n.  Error locations: {"knots", i} or {"knots"}.
 template <Real T>
 Expected<void> check_knots(std::span<const T> knots, int point_count, int degree) {
   const int want = point_count + degree + 1;
   if (int(knots.size()) != want)
     return Error{ErrorCode::WrongArity,
                  "expected " + std::to_string(want) + " knots (points + degree + 1), got " + std::to_string(knots.size()),
-                 "knots"};
+                 "", {"knots"}};
   for (int i = 0; i < want; ++i) {
     if (!std::isfinite(knots[i]))
-      return Error{ErrorCode::NotFinite, "knot " + std::to_string(i) + " is not finite", "knot " + std::to_string(i)};
+      return Error{ErrorCode::NotFinite, "knot " + std::to_string(i) + " is not finite", "", {"knots", std::size_t(i)}};
     if (i > 0 && knots[i] < knots[i - 1])
       return Error{ErrorCode::KeysNotIncreasing,
                    "knot " + std::to_string(i) + " (" + shortest_text<double>(double(knots[i])) + ") is less than knot " +
                        std::to_string(i - 1) + " (" + shortest_text<double>(double(knots[i - 1])) + ")",
-                   "knot " + std::to_string(i)};
+                   "", {"knots", std::size_t(i)}};
   }
   int run = 1;
   for (int i = 1; i < want; ++i) {
@@ -108,12 +108,12 @@ Expected<void> check_knots(std::span<const T> knots, int point_count, int degree
       return Error{ErrorCode::InvalidArgument,
                    "knot " + std::to_string(i) + " repeats a value more than degree + 1 = " +
                        std::to_string(degree + 1) + " times",
-                   "knot " + std::to_string(i)};
+                   "", {"knots", std::size_t(i)}};
   }
   if (!(knots[degree] < knots[point_count]))
     return Error{ErrorCode::InvalidArgument,
                  "empty parameter domain: knot " + std::to_string(degree) + " equals knot " + std::to_string(point_count),
-                 "knots"};
+                 "", {"knots"}};
   return {};
 }
 

@@ -52,7 +52,7 @@ class CatmullRomSpline : public PiecewiseCubic<P> {
     if (auto ok = detail::check_points(points, 2, "catmull-rom"); !ok) return ok.error();
     if (!(options.alpha >= T(0) && options.alpha <= T(1)))
       return Error{ErrorCode::InvalidArgument, "alpha must lie in [0, 1], got " + shortest_text<double>(double(options.alpha)),
-                   "alpha"};
+                   "", {"alpha"}};
     if (auto ok = detail::check_finite(options.tension, "tension"); !ok) return ok.error();
     const int n = int(points.size());
     const bool closed = options.closed;

@@ -20,15 +20,15 @@ class HermiteSpline : public PiecewiseCubic<P> {
   /// An empty curve (no segments); build with the factory below.
   HermiteSpline() = default;
 
-  /// Builds from positions and tangents (same count, ≥ 2, finite).  Errors name "point i" or
-  /// "tangent i"; a tangent count that differs from the point count is WrongArity at "tangents".
+  /// Builds from positions and tangents (same count, ≥ 2, finite).  Error locations: {"points", i} or
+  /// {"tangents", i}; a tangent count that differs from the point count is WrongArity at {"tangents"}.
   static Expected<HermiteSpline> build(std::span<const P> points, std::span<const P> tangents) {
     if (auto ok = detail::check_points(points, 2, "hermite"); !ok) return ok.error();
     if (tangents.size() != points.size()) {
       return Error{ErrorCode::WrongArity,
                    "hermite needs one tangent per point: " + std::to_string(points.size()) +
                        " points but " + std::to_string(tangents.size()) + " tangents",
-                   "tangents"};
+                   "", {"tangents"}};
     }
     if (auto ok = detail::check_points(tangents, 2, "hermite", "tangent"); !ok) return ok.error();
     HermiteSpline s;

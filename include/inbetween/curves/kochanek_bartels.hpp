@@ -34,7 +34,7 @@ class KochanekBartelsSpline : public PiecewiseCubic<P> {
   KochanekBartelsSpline() = default;
 
   /// Builds through `points` (≥ 2, finite).  `keys` holds one TcbParams per point, or exactly one
-  /// shared by all points; each value must be finite (errors name "key i").
+  /// shared by all points; each value must be finite (error locations {"keys", i}, {"keys"}).
   static Expected<KochanekBartelsSpline> build(std::span<const P> points, std::span<const TcbParams<T>> keys) {
     if (auto ok = detail::check_points(points, 2, "kochanek-bartels"); !ok) return ok.error();
     const int n = int(points.size());
@@ -42,12 +42,12 @@ class KochanekBartelsSpline : public PiecewiseCubic<P> {
       return Error{ErrorCode::WrongArity,
                    "kochanek-bartels needs one tension/continuity/bias per point or a single shared one: " +
                        std::to_string(n) + " points but " + std::to_string(keys.size()) + " keys",
-                   "keys"};
+                   "", {"keys"}};
     }
     for (std::size_t i = 0; i < keys.size(); ++i) {
       if (!std::isfinite(keys[i].tension) || !std::isfinite(keys[i].continuity) || !std::isfinite(keys[i].bias))
         return Error{ErrorCode::NotFinite, "key " + std::to_string(i) + " has a non-finite parameter",
-                     "key " + std::to_string(i)};
+                     "", {"keys", std::size_t(i)}};
     }
     auto key = [&](int i) -> const TcbParams<T>& { return keys.size() == 1 ? keys[0] : keys[i]; };
     auto at = [&](int i) -> P {

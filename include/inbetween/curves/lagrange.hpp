@@ -26,7 +26,7 @@ class LagrangeCurve {
   LagrangeCurve() : params_{T(0), T(1)}, points_{P{}, P{}}, coeffs_{P{}, P{}} {}
 
   /// Builds through `points` (≥ 2, finite) at `params` (same count, finite, strictly increasing;
-  /// empty = 0, 1, …, n − 1).  Errors name "point i" or "param i", or "params" when the divided
+  /// empty = 0, 1, …, n − 1).  Error locations: {"points", i}, {"params", i}, or {"params"} when the divided
   /// differences overflow (params too close together for T).
   static Expected<LagrangeCurve> build(std::span<const P> points, std::span<const T> params = {}) {
     if (auto ok = detail::check_points(points, 2, "lagrange"); !ok) return ok.error();
@@ -41,16 +41,16 @@ class LagrangeCurve {
         return Error{ErrorCode::WrongArity,
                      "lagrange needs one param per point: " + std::to_string(n) + " points but " +
                          std::to_string(params.size()) + " params",
-                     "params"};
+                     "", {"params"}};
       for (int i = 0; i < n; ++i) {
         if (!std::isfinite(params[i]))
-          return Error{ErrorCode::NotFinite, "param " + std::to_string(i) + " is not finite", "param " + std::to_string(i)};
+          return Error{ErrorCode::NotFinite, "param " + std::to_string(i) + " is not finite", "", {"params", std::size_t(i)}};
         if (i > 0 && !(params[i] > params[i - 1]))
           return Error{ErrorCode::KeysNotIncreasing,
                        "param " + std::to_string(i) + " (" + shortest_text<double>(double(params[i])) +
                            ") is not greater than param " + std::to_string(i - 1) + " (" +
                            shortest_text<double>(double(params[i - 1])) + ")",
-                       "param " + std::to_string(i)};
+                       "", {"params", std::size_t(i)}};
       }
       c.params_.assign(params.begin(), params.end());
     }
@@ -67,7 +67,7 @@ class LagrangeCurve {
                      "divided difference " + std::to_string(i) +
                          " overflows: the params are too close together (or the points too large) for this "
                          "scalar type",
-                     "params"};
+                     "", {"params"}};
     }
     return c;
   }

@@ -33,28 +33,28 @@ class PiecewiseCubic {
   /// A chain from breakpoints u_0 < … < u_n (finite, strictly increasing) and n power-form
   /// segments over their local v ∈ [0, 1].  Its control points are the joints P(u_0), …, P(u_n)
   /// (interpolated); joint i influences the segments that touch it.  Used to convert B-splines and
-  /// Bézier curves of degree ≤ 3.  Errors: WrongArity at "segments", KeysNotIncreasing or NotFinite
-  /// at "breakpoint i", NotFinite at "segment i".
+  /// Bézier curves of degree ≤ 3.  Errors (structured locations): WrongArity at {"segments"},
+  /// KeysNotIncreasing or NotFinite at {"breakpoints", i}, NotFinite at {"segments", i}.
   static Expected<PiecewiseCubic> from_power_forms(std::vector<T> breakpoints, std::vector<PowerCubic<P>> segments) {
     if (segments.empty() || breakpoints.size() != segments.size() + 1)
       return Error{ErrorCode::WrongArity,
                    "need n >= 1 segments and n + 1 breakpoints, got " + std::to_string(segments.size()) +
                        " segments and " + std::to_string(breakpoints.size()) + " breakpoints",
-                   "segments"};
+                   "", {"segments"}};
     for (std::size_t i = 0; i < breakpoints.size(); ++i) {
       if (!std::isfinite(breakpoints[i]))
         return Error{ErrorCode::NotFinite, "breakpoint " + std::to_string(i) + " is not finite",
-                     "breakpoint " + std::to_string(i)};
+                     "", {"breakpoints", std::size_t(i)}};
       if (i > 0 && !(breakpoints[i] > breakpoints[i - 1]))
         return Error{ErrorCode::KeysNotIncreasing, "breakpoint " + std::to_string(i) + " is not after breakpoint " +
                                                        std::to_string(i - 1),
-                     "breakpoint " + std::to_string(i)};
+                     "", {"breakpoints", std::size_t(i)}};
     }
     for (std::size_t i = 0; i < segments.size(); ++i) {
       const auto& g = segments[i];
       if (!is_finite(g.a) || !is_finite(g.b) || !is_finite(g.c) || !is_finite(g.d))
         return Error{ErrorCode::NotFinite, "segment " + std::to_string(i) + " has a non-finite coefficient",
-                     "segment " + std::to_string(i)};
+                     "", {"segments", std::size_t(i)}};
     }
     PiecewiseCubic c;
     c.breaks_ = std::move(breakpoints);
@@ -125,7 +125,7 @@ class PiecewiseCubic {
   /// Checks a freshly built chain: breakpoints finite and strictly increasing, and every segment
   /// bounded on v ∈ [0, 1] (|a| + |b| + |c| + |d| finite per component, which bounds every Horner
   /// step).  Finite inputs can still fail (coordinates or tangents near the largest value, or
-  /// points so close together that a knot spacing underflows); the error is NotFinite at "points"
+  /// points so close together that a knot spacing underflows); the error is NotFinite at {"points"}
   /// and names the family, so no built curve evaluates to inf or NaN.
   Expected<void> check_built(const char* family) const {
     for (std::size_t i = 0; i < breaks_.size(); ++i) {
@@ -134,7 +134,7 @@ class PiecewiseCubic {
                      std::string(family) + ": the parameter spacing at joint " + std::to_string(i) +
                          " underflows or overflows (points too close together or too far apart for this "
                          "scalar type)",
-                     "points"};
+                     "", {"points"}};
       }
     }
     for (std::size_t i = 0; i < segments_.size(); ++i) {
@@ -148,7 +148,7 @@ class PiecewiseCubic {
                        std::string(family) + ": segment " + std::to_string(i) +
                            " overflows (coordinates or tangents too large, or points too close together, for this "
                            "scalar type)",
-                       "points"};
+                       "", {"points"}};
         }
       }
     }
@@ -171,8 +171,9 @@ class PiecewiseCubic {
 
 namespace detail {
 
-/// Checks that `points` has at least `min_count` entries and that each is finite.  Errors name the
-/// item as "<item> <index>" (for example "point 3"), which the file layer turns into a JSON pointer.
+/// Checks that `points` has at least `min_count` entries and that each is finite.  Error locations
+/// are {"<item>s"} (too few) and {"<item>s", i} (for example {"points", 3}): the member names of
+/// the curve file, so the file layer renders them as JSON pointers.
 template <Point P>
 Expected<void> check_points(std::span<const P> points, int min_count, const char* family,
                             const char* item = "point") {
@@ -180,21 +181,21 @@ Expected<void> check_points(std::span<const P> points, int min_count, const char
     return Error{ErrorCode::TooFewPoints,
                  std::string(family) + " needs at least " + std::to_string(min_count) + " " + item +
                      "s, got " + std::to_string(points.size()),
-                 std::string(item) + "s"};
+                 "", {std::string(item) + "s"}};
   }
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!is_finite(points[i])) {
       return Error{ErrorCode::NotFinite, std::string(item) + " " + std::to_string(i) + " is not finite",
-                   std::string(item) + " " + std::to_string(i)};
+                   "", {std::string(item) + "s", std::size_t(i)}};
     }
   }
   return {};
 }
 
-/// Checks that a scalar option is finite; `where` names it.
+/// Checks that a scalar option is finite; `where` is its name (the location {where}).
 template <Real T>
 Expected<void> check_finite(T value, const char* where) {
-  if (!std::isfinite(value)) return Error{ErrorCode::NotFinite, std::string(where) + " is not finite", where};
+  if (!std::isfinite(value)) return Error{ErrorCode::NotFinite, std::string(where) + " is not finite", "", {std::string(where)}};
   return {};
 }
 

@@ -3,9 +3,13 @@
 /// either a built value or an Error.  (C++20 has no std::expected; this is the small subset used.)
 
 #include <cassert>
+#include <cstddef>
+#include <initializer_list>
+#include <span>
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 namespace inbetween {
 
@@ -23,15 +27,63 @@ enum class ErrorCode {
   NotMonotone,        ///< a timing curve that would run backwards
 };
 
-/// A user-data error: a code, a human message and the place (JSON pointer, "line 3", "key 4", …).
+/// One step of a structured error location: a member name (std::string) or an array index
+/// (std::size_t).  A builder names its own inputs: the parameter or member it was given ("keys",
+/// "distance_factor", "cycles") and the index into a sequence.
+using LocationStep = std::variant<std::string, std::size_t>;
+
+/// Renders `location` as a JSON pointer (RFC 6901): "/tracks/2/keys/3/frame", member names with
+/// '~' and '/' escaped as "~0" and "~1"; the empty location is the empty pointer "" (the whole
+/// document).  The one place where a structured location becomes text.
+[[nodiscard]] inline std::string json_pointer(std::span<const LocationStep> location) {
+  std::string out;
+  for (const LocationStep& step : location) {
+    out += '/';
+    if (const auto* index = std::get_if<std::size_t>(&step)) {
+      out += std::to_string(*index);
+      continue;
+    }
+    for (char ch : std::get<std::string>(step)) {
+      if (ch == '~') out += "~0";
+      else if (ch == '/') out += "~1";
+      else out += ch;
+    }
+  }
+  return out;
+}
+
+/// A user-data error: a code, a human message and the place.  The place is either structured
+/// (`location`: member names and indices, outermost first, as the data was given, so a builder
+/// fed from a document already holds the document path of the offending value) or, for places
+/// that are not paths into the data ("line 3, column 5" of a syntax error, "--degree"), the free
+/// text `where`.
 struct Error {
   ErrorCode code = ErrorCode::InvalidArgument;  ///< category
   std::string message;                          ///< what is wrong, in words, including values
-  std::string where;                            ///< location: JSON pointer, row, key index; may be empty
+  std::string where;                            ///< free-text location ("line 3, column 5"); may be empty
+  std::vector<LocationStep> location{};         ///< structured location, outermost first; may be empty
 
-  /// "where: message", or just the message when there is no location.
-  [[nodiscard]] std::string describe() const { return where.empty() ? message : where + ": " + message; }
+  /// Puts `steps` (outermost first) in front of the location: a caller adds its own context
+  /// ({"tracks", 2}) as the error propagates out of a nested builder.  Returns *this.
+  Error& prepend(std::initializer_list<LocationStep> steps) {
+    location.insert(location.begin(), steps.begin(), steps.end());
+    return *this;
+  }
+
+  /// "where: message" when `where` is set, else "<JSON pointer of location>: message" when the
+  /// location is not empty, else just the message.
+  [[nodiscard]] std::string describe() const {
+    if (!where.empty()) return where + ": " + message;
+    if (!location.empty()) return json_pointer(location) + ": " + message;
+    return message;
+  }
 };
+
+/// `error` with `steps` (outermost first) put in front of its location; see Error::prepend().
+[[nodiscard]] inline Error prepended(Error error, std::initializer_list<LocationStep> steps) {
+  error.prepend(steps);
+  return error;
+}
 
 /// Either a value of type T or an Error.  Access the value only after checking has_value().
 template <class T>

@@ -22,8 +22,8 @@ struct BSplineSmoothing {
 
 /// Fits a B-spline of `options.degree` with `options.control_points` control points (0: one per
 /// point, which interpolates and returns the input) to the points at t_i = i.  Errors: fewer than
-/// 2 points ("points"), a non-finite point ("point i"), and fit_bspline's errors for bad options
-/// ("degree" / "control_points").
+/// 2 points ({"points"}), a non-finite point ({"points", i}), and fit_bspline's errors for bad options
+/// ({"degree"} / {"control_points"}).
 template <Point P>
 Expected<BSplineSmoothing<P>> smooth_bspline(std::span<const P> points, BSplineFitOptions options = {}) {
   using T = scalar_of<P>;

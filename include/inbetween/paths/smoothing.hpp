@@ -20,8 +20,8 @@
 ///   and last points; `fix_ends` keeps the first and last points unchanged.  Offsets beyond the
 ///   number of points always land on an end point, so their mass is added to the outermost weight:
 ///   any finite radius costs at most 2n − 1 weights.
-/// Errors: no points (TooFewPoints, where "points"), a non-finite point (NotFinite, where
-/// "point i"), bad options (InvalidArgument naming the option).
+/// Errors: no points (TooFewPoints, location {"points"}), a non-finite point (NotFinite, location
+/// {"points", i}), bad options (InvalidArgument, location {"<option>"}).
 
 #include <cmath>
 #include <span>
@@ -40,10 +40,10 @@ Expected<void> check_path_points(std::span<const P> points, std::size_t min_coun
   if (points.size() < min_count)
     return Error{ErrorCode::TooFewPoints,
                  "need at least " + std::to_string(min_count) + " points, got " + std::to_string(points.size()),
-                 "points"};
+                 "", {"points"}};
   for (std::size_t i = 0; i < points.size(); ++i)
     if (!is_finite(points[i]))
-      return Error{ErrorCode::NotFinite, "point " + std::to_string(i) + " is not finite", "point " + std::to_string(i)};
+      return Error{ErrorCode::NotFinite, "point " + std::to_string(i) + " is not finite", "", {"points", std::size_t(i)}};
   return {};
 }
 }  // namespace detail
@@ -60,7 +60,7 @@ Expected<std::vector<P>> smooth_linear(std::span<const P> points, const LinearSm
   if (auto ok = detail::check_path_points(points); !ok) return ok.error();
   if (options.iterations < 0)
     return Error{ErrorCode::InvalidArgument, "iterations must be >= 0, got " + std::to_string(options.iterations),
-                 "iterations"};
+                 "", {"iterations"}};
   std::vector<P> cur(points.begin(), points.end()), next = cur;
   for (int it = 0; it < options.iterations; ++it) {
     for (std::size_t i = 1; i + 1 < cur.size(); ++i)
@@ -83,7 +83,7 @@ Expected<std::vector<P>> smooth_cubic(std::span<const P> points, const CubicSmoo
   if (auto ok = detail::check_path_points(points); !ok) return ok.error();
   if (options.iterations < 0)
     return Error{ErrorCode::InvalidArgument, "iterations must be >= 0, got " + std::to_string(options.iterations),
-                 "iterations"};
+                 "", {"iterations"}};
   std::vector<P> cur(points.begin(), points.end()), next = cur;
   const std::size_t n = cur.size();
   const T half = T(0.5), third = T(1) / T(3);
@@ -178,7 +178,7 @@ Expected<std::vector<P>> smooth_convolution(std::span<const P> points,
   using T = scalar_of<P>;
   if (auto ok = detail::check_path_points(points); !ok) return ok.error();
   if (!(options.radius > T(0)) || !std::isfinite(options.radius))
-    return Error{ErrorCode::InvalidArgument, "radius must be finite and > 0", "radius"};
+    return Error{ErrorCode::InvalidArgument, "radius must be finite and > 0", "", {"radius"}};
   const int n = int(points.size());
   // Offsets beyond n − 1 always clamp to an end point, so their mass is lumped (any radius works).
   const T reach = std::ceil(options.radius - T(0.5));

@@ -90,8 +90,8 @@ std::vector<T> clamped_uniform_knots(T t_first, T t_last, int degree, int contro
 }
 
 /// Fits a B-spline to the data (times strictly increasing, everything finite, at least 2 data).
-/// Errors: bad options (InvalidArgument naming "degree" or "control_points"), bad data (naming
-/// "point i"), or a singular basis matrix (InvalidArgument: the data times leave some control
+/// Errors: bad options (InvalidArgument at {"degree"} or {"control_points"}), bad data (at
+/// {"points", i}), or a singular basis matrix (InvalidArgument: the data times leave some control
 /// point without support — the Schoenberg–Whitney condition — so no unique fit exists).
 template <Point P>
 Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSplineFitOptions options = {});

@@ -6,6 +6,8 @@
 /// both pass through the keys.
 
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <span>
 #include <string>
 #include <vector>
@@ -71,27 +73,38 @@ class EulerTrack {
   template <Real U>
   friend Expected<EulerTrack<U>> build_euler_track(std::span<const EulerKey<U>> keys,
                                                    const EulerTrackOptions<U>& options);
+  EulerTrack(EulerSequence sequence, EulerTrackMode mode, Track<Vec3<T>> angles, QuatTrack<T> quats)
+      : sequence_(sequence), mode_(mode), angles_(std::move(angles)), quats_(std::move(quats)) {}
   EulerSequence sequence_{};
   EulerTrackMode mode_ = EulerTrackMode::angles;
   Track<Vec3<T>> angles_;
   QuatTrack<T> quats_;
 };
 
-/// Validates (valid convention; ≥ 1 key; finite frames strictly increasing; finite angles) and
-/// builds an Euler track.  Errors name the key.
+/// Validates (valid convention; ≥ 1 key; finite frames strictly increasing; finite angles; no
+/// explicit tangents or glTF interpolation, which Euler keys cannot carry) and builds an Euler
+/// track.  Error locations: {"keys", i, member} ("frame", "tangent", "interpolation"), {"keys", i}
+/// for a non-finite angle, {"keys"} when there is no key, {"sequence"}.
 template <Real T>
 [[nodiscard]] Expected<EulerTrack<T>> build_euler_track(std::span<const EulerKey<T>> keys,
                                                         const EulerTrackOptions<T>& options = {}) {
-  if (!options.sequence.valid()) return Error{ErrorCode::InvalidArgument, "invalid Euler convention", ""};
-  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "an Euler track needs at least one key", ""};
+  if (!options.sequence.valid()) return Error{ErrorCode::InvalidArgument, "invalid Euler convention", "", {"sequence"}};
+  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a track needs at least one key", "", {"keys"}};
   for (std::size_t i = 0; i < keys.size(); ++i) {
     for (T a : keys[i].angles_rad) {
-      if (!std::isfinite(a)) return Error{ErrorCode::NotFinite, "angle is not finite", "key " + std::to_string(i)};
+      if (!std::isfinite(a)) return Error{ErrorCode::NotFinite, "angle is not finite", "", {"keys", i}};
+    }
+    // The angle curves are made by the track (Euler filter), so there are no tangents to give;
+    // glTF tangents belong to quaternion keys.
+    if (keys[i].tangent == TangentKind::explicit_hermite) {
+      return Error{ErrorCode::Unsupported, "Euler keys take no explicit tangents", "", {"keys", i, "tangent"}};
+    }
+    if (keys[i].interpolation == QuatInterpolation::gltf_cubic) {
+      return Error{ErrorCode::Unsupported, "Euler keys take no glTF tangents", "", {"keys", i, "interpolation"}};
     }
   }
-  EulerTrack<T> tr;
-  tr.sequence_ = options.sequence;
-  tr.mode_ = options.mode;
+  std::optional<Track<Vec3<T>>> angles;
+  std::optional<QuatTrack<T>> quats;
   {
     std::vector<TrackKey<Vec3<T>>> raw;
     EulerTriple<T> previous{};
@@ -107,11 +120,11 @@ template <Real T>
     }
     auto built = build_track(raw);
     if (!built) return built.error();
-    tr.angles_ = std::move(*built);
+    angles.emplace(std::move(*built));
   }
   if (options.mode == EulerTrackMode::angles) {
     // An unused but valid quaternion track keeps the object total in both modes.
-    tr.quats_ = std::move(build_quat_track(std::vector<QuatKey<T>>{QuatKey<T>{}})).value();
+    quats.emplace(std::move(build_quat_track(std::vector<QuatKey<T>>{QuatKey<T>{}})).value());
   } else {
     std::vector<QuatKey<T>> raw;
     for (const auto& k : keys) {
@@ -123,9 +136,9 @@ template <Real T>
     }
     auto built = build_quat_track(raw);
     if (!built) return built.error();
-    tr.quats_ = std::move(*built);
+    quats.emplace(std::move(*built));
   }
-  return tr;
+  return EulerTrack<T>(options.sequence, options.mode, std::move(*angles), std::move(*quats));
 }
 
 /// Convenience overload for a vector of keys.

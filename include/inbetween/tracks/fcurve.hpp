@@ -150,6 +150,7 @@ class FCurve {
 
  private:
   friend Expected<FCurve> build_fcurve(const RawFCurve& raw);
+  FCurve() = default;  // only build_fcurve() makes curves: an FCurve always has ≥ 1 key
   float evaluate_impl(float frame, std::size_t* cursor) const noexcept;
   struct CycleMap {
     float t = 0;       // the frame inside (or, without cycling, outside) the keyed range
@@ -174,7 +175,8 @@ class FCurve {
 /// precision; frames, values, handles and easing parameters finite and within ±1e30, so that they
 /// fit single precision; cycle counts in 0..32767) and builds
 /// the curve: handles clamped to their key's side, then recomputed as Blender's FCurve.update()
-/// does.  Errors name the key ("key 3").
+/// does.  Error locations: {"keys", i} or {"keys", i, "frame"} for a key, {"keys"} when there is
+/// none, {"cycles", "count_before"} / {"cycles", "count_after"} for a count.
 [[nodiscard]] Expected<FCurve> build_fcurve(const RawFCurve& raw);
 
 /// The lower-case Blender name of each enumerator ("auto_clamped", "repeat_offset", …).

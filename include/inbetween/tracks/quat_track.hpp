@@ -15,6 +15,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <span>
 #include <string>
 #include <vector>
@@ -152,6 +153,7 @@ class QuatTrack {
   template <Real U>
   friend Expected<QuatTrack<U>> build_quat_track(std::span<const QuatKey<U>> keys, const QuatSplineOptions<U>& options);
 
+  QuatTrack() = default;  // only build_quat_track() makes tracks: ≥ 1 key
   Quat<T> sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept;
 
   std::vector<T> frames_;
@@ -161,7 +163,9 @@ class QuatTrack {
 };
 
 /// Validates (≥ 1 key; finite frames strictly increasing; finite, non-zero quaternions and
-/// tangents; distance factor in (0, 1]) and builds a quaternion track.  Errors name the key.
+/// tangents; distance factor in (0, 1]) and builds a quaternion track.  Error locations:
+/// {"keys", i, member} ("frame", "value", "in_tangent", "out_tangent"), {"keys"} when there is no
+/// key, {"distance_factor"} for the option.
 template <Real T>
 [[nodiscard]] Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys,
                                                       const QuatSplineOptions<T>& options = {});
@@ -177,12 +181,16 @@ template <Real T>
 template <Real T>
 Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const QuatSplineOptions<T>& options) {
   using namespace quat_track_detail;
-  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a quaternion track needs at least one key", ""};
+  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a track needs at least one key", "", {"keys"}};
   if (!(options.distance_factor > T(0) && options.distance_factor <= T(1))) {
-    return Error{ErrorCode::InvalidArgument, "distance factor must be in (0, 1]", ""};
+    return Error{ErrorCode::InvalidArgument, "must be in (0, 1]", "", {"distance_factor"}};
   }
   const std::size_t n = keys.size();
-  auto where = [](std::size_t i) { return "key " + std::to_string(i); };
+  auto fail = [](ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
+    Error e{code, std::move(message), ""};
+    e.prepend(steps);
+    return e;
+  };
   QuatTrack<T> tr;
   tr.frames_.resize(n);
   tr.keys_.resize(n);
@@ -192,17 +200,17 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const 
   tr.sign_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& k = keys[i];
-    if (!std::isfinite(k.frame)) return Error{ErrorCode::NotFinite, "frame is not finite", where(i)};
-    if (!is_finite(k.value) || !is_finite(k.in_tangent) || !is_finite(k.out_tangent)) {
-      return Error{ErrorCode::NotFinite, "quaternion or tangent is not finite", where(i)};
-    }
+    if (!std::isfinite(k.frame)) return fail(ErrorCode::NotFinite, "frame is not finite", {"keys", i, "frame"});
+    if (!is_finite(k.value)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "value"});
+    if (!is_finite(k.in_tangent)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "in_tangent"});
+    if (!is_finite(k.out_tangent)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "out_tangent"});
     const T len = norm(k.value);
-    if (!(len > T(0))) return Error{ErrorCode::InvalidArgument, "zero quaternion is not a rotation", where(i)};
+    if (!(len > T(0))) return fail(ErrorCode::InvalidArgument, "zero quaternion is not a rotation", {"keys", i, "value"});
     if (i > 0 && !(k.frame > keys[i - 1].frame)) {
-      return Error{ErrorCode::KeysNotIncreasing,
-                   "frame " + shortest_text(double(k.frame)) + " is not after frame " +
-                       shortest_text(double(keys[i - 1].frame)) + " of key " + std::to_string(i - 1),
-                   where(i)};
+      return fail(ErrorCode::KeysNotIncreasing,
+                  "frame " + shortest_text(double(k.frame)) + " is not after the previous key's frame " +
+                      shortest_text(double(keys[i - 1].frame)) + " (keys must be sorted by strictly increasing frame)",
+                  {"keys", i, "frame"});
     }
     tr.frames_[i] = k.frame;
     Quat<T> q = k.value / len;

@@ -15,6 +15,8 @@
 #include <limits>
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
+#include <utility>
 #include <span>
 #include <string>
 #include <vector>
@@ -102,6 +104,7 @@ class Track {
   template <class W>
   friend Expected<Track<W>> build_track(std::span<const TrackKey<W>> keys, TrackExtend before, TrackExtend after);
 
+  Track() = default;  // only build_track() makes tracks: a Track always has ≥ 1 key
   V sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept;
   V evaluate_inside(T frame, TrackCursor& cursor, bool use_cursor) const noexcept;
 
@@ -113,7 +116,9 @@ class Track {
 
 /// Validates and builds a track: ≥ 1 key, finite frames strictly increasing, finite values,
 /// tangents and TCB parameters, TCB parameters in [−1, 1], and finite resolved tangents (values
-/// near the type's maximum a frame apart overflow the slope).  Errors name the key ("key 2").
+/// near the type's maximum a frame apart overflow the slope).  Error locations are structured:
+/// {"keys", i, member} for a key's member ("frame", "value", "tension", …), {"keys", i} for the
+/// key as a whole, {"keys"} when there is none.
 template <class V>
 [[nodiscard]] Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys,
                                              TrackExtend before = TrackExtend::constant,
@@ -151,26 +156,27 @@ template <class V>
 Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend before, TrackExtend after) {
   using T = scalar_of<V>;
   using PT = PointTraits<V>;
-  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a track needs at least one key", ""};
+  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a track needs at least one key", "", {"keys"}};
   const std::size_t n = keys.size();
-  auto where = [](std::size_t i) { return "key " + std::to_string(i); };
+  auto fail = [](ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
+    Error e{code, std::move(message), ""};
+    e.prepend(steps);
+    return e;
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const auto& k = keys[i];
-    if (!std::isfinite(k.frame)) return Error{ErrorCode::NotFinite, "frame is not finite", where(i)};
-    if (!track_detail::finite(k.value)) return Error{ErrorCode::NotFinite, "value is not finite", where(i)};
-    if (!track_detail::finite(k.in_tangent) || !track_detail::finite(k.out_tangent)) {
-      return Error{ErrorCode::NotFinite, "a tangent is not finite", where(i)};
-    }
-    for (T p : {k.tension, k.continuity, k.bias}) {
-      if (!(p >= T(-1) && p <= T(1))) {
-        return Error{ErrorCode::InvalidArgument, "tension, continuity and bias must be in [-1, 1]", where(i)};
-      }
+    if (!std::isfinite(k.frame)) return fail(ErrorCode::NotFinite, "frame is not finite", {"keys", i, "frame"});
+    if (!track_detail::finite(k.value)) return fail(ErrorCode::NotFinite, "value is not finite", {"keys", i, "value"});
+    if (!track_detail::finite(k.in_tangent)) return fail(ErrorCode::NotFinite, "a tangent is not finite", {"keys", i, "in_tangent"});
+    if (!track_detail::finite(k.out_tangent)) return fail(ErrorCode::NotFinite, "a tangent is not finite", {"keys", i, "out_tangent"});
+    for (auto [member, p] : {std::pair<const char*, T>{"tension", k.tension}, {"continuity", k.continuity}, {"bias", k.bias}}) {
+      if (!(p >= T(-1) && p <= T(1))) return fail(ErrorCode::InvalidArgument, "must be in [-1, 1]", {"keys", i, std::string(member)});
     }
     if (i > 0 && !(k.frame > keys[i - 1].frame)) {
-      return Error{ErrorCode::KeysNotIncreasing,
-                   "frame " + shortest_text(double(k.frame)) + " is not after frame " +
-                       shortest_text(double(keys[i - 1].frame)) + " of key " + std::to_string(i - 1),
-                   where(i)};
+      return fail(ErrorCode::KeysNotIncreasing,
+                  "frame " + shortest_text(double(k.frame)) + " is not after the previous key's frame " +
+                      shortest_text(double(keys[i - 1].frame)) + " (keys must be sorted by strictly increasing frame)",
+                  {"keys", i, "frame"});
     }
   }
   Track<V> tr;
@@ -247,7 +253,7 @@ Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend be
     }
     // Finite keys can still give an infinite slope (values near the type's maximum a frame apart).
     if (!track_detail::finite(in) || !track_detail::finite(out)) {
-      return Error{ErrorCode::NotFinite, "the tangent overflows (values too far apart for the key spacing)", where(i)};
+      return fail(ErrorCode::NotFinite, "the tangent overflows (values too far apart for the key spacing)", {"keys", i});
     }
     tr.in_[i] = in;
     tr.out_[i] = out;

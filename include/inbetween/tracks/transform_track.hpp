@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "inbetween/math/expected.hpp"
@@ -52,6 +53,9 @@ class TransformHierarchy {
  public:
   /// Nodes in the order given to build_hierarchy().
   [[nodiscard]] std::span<const HierarchyNode<T>> nodes() const noexcept { return nodes_; }
+  /// Node indices in evaluation order: every parent before its children (a permutation of
+  /// 0 … nodes().size() − 1).
+  [[nodiscard]] std::span<const std::size_t> evaluation_order() const noexcept { return order_; }
 
   /// World TRS of every node at `frame` (compose() of the chain: exact unless a parent with
   /// non-uniform scale has a rotated child, see compose());
@@ -75,19 +79,21 @@ class TransformHierarchy {
  private:
   template <Real U>
   friend Expected<TransformHierarchy<U>> build_hierarchy(std::vector<HierarchyNode<U>> nodes);
+  TransformHierarchy(std::vector<HierarchyNode<T>> nodes, std::vector<std::size_t> order)
+      : nodes_(std::move(nodes)), order_(std::move(order)) {}
   std::vector<HierarchyNode<T>> nodes_;
   std::vector<std::size_t> order_;  // parents before children
 };
 
 /// Validates the parent links (in range, no node its own ancestor) and orders the evaluation.
-/// Errors name the node ("node 3").
+/// Error locations are {i, "parent"}: node i's parent link.
 template <Real T>
 [[nodiscard]] Expected<TransformHierarchy<T>> build_hierarchy(std::vector<HierarchyNode<T>> nodes) {
   const std::size_t n = nodes.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (nodes[i].parent && *nodes[i].parent >= n) {
-      return Error{ErrorCode::InvalidArgument, "parent index " + std::to_string(*nodes[i].parent) + " is out of range",
-                   "node " + std::to_string(i)};
+      return Error{ErrorCode::InvalidArgument, "parent index " + std::to_string(*nodes[i].parent) + " is out of range", "",
+                   {i, "parent"}};
     }
   }
   // Depth-first ordering with cycle detection (0 = unvisited, 1 = on the current chain, 2 = done).
@@ -104,7 +110,7 @@ template <Real T>
       i = *nodes[i].parent;
       if (state[i] == 1) {
         return Error{ErrorCode::InvalidArgument, "\"" + nodes[i].name + "\" is its own ancestor (the parent links form a cycle)",
-                     "node " + std::to_string(i)};
+                     "", {i, "parent"}};
       }
     }
     for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
@@ -112,10 +118,7 @@ template <Real T>
       order.push_back(*it);
     }
   }
-  TransformHierarchy<T> h;
-  h.nodes_ = std::move(nodes);
-  h.order_ = std::move(order);
-  return h;
+  return TransformHierarchy<T>(std::move(nodes), std::move(order));
 }
 
 }  // namespace inbetween

@@ -1,0 +1,126 @@
+#pragma once
+/// A scene as authored: plain data, one struct per concept of the scene file, no checks.  Member
+/// names mirror the JSON members of docs/scene-format.md ("tracks", "keys", "frame", "parent", …),
+/// and every sequence keeps the file's order, so the structured location of an error from
+/// build_scene() ({"tracks", 2, "keys", 3, "frame"}) is already the JSON pointer of the offending
+/// value.  Readers (io: JSON today, glTF later) fill a RawScene; build_scene() (scene.hpp) checks
+/// everything and makes the runtime Scene.
+///
+/// Where a struct of another module is reused (TrackKey, QuatKey, FCurveKey), its member names are
+/// the file's.  Two deliberate flattenings, both documented at the member: a scalar track's curve
+/// settings sit at the track's level in the file (RawScalarTrack::curve), and the format version
+/// ("inbetween") is the reader's business, not the scene's.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "inbetween/math/quat.hpp"
+#include "inbetween/math/vec.hpp"
+#include "inbetween/tracks/euler_track.hpp"
+#include "inbetween/tracks/fcurve.hpp"
+#include "inbetween/tracks/quat_track.hpp"
+#include "inbetween/tracks/track.hpp"
+
+namespace inbetween {
+
+/// A scalar track with Blender F-curve semantics (file kind "scalar", the default).
+struct RawScalarTrack {
+  std::string name;  ///< output column name, e.g. "cube.location.x" (non-empty)
+  /// "keys", "extrapolation", "auto_smoothing" and "cycles" of the track object: in the file they
+  /// are members of the track itself, so an error at curve.keys[3] is /tracks/i/keys/3.
+  RawFCurve curve;
+};
+
+/// The component count and column letters of a vector track.
+enum class VectorKind : std::uint8_t {
+  vec2,   ///< columns <name>.x .y
+  vec3,   ///< columns <name>.x .y .z
+  vec4,   ///< columns <name>.x .y .z .w
+  color,  ///< columns <name>.r .g .b .a
+};
+
+/// A vector or colour track (file kinds "vec2", "vec3", "vec4", "color").  Values are held as
+/// Vec4d; components beyond the kind's count are zero (and ignored).
+struct RawVectorTrack {
+  std::string name;                          ///< column prefix, e.g. "cube.color" (non-empty)
+  VectorKind kind = VectorKind::vec3;        ///< component count and column letters
+  std::vector<TrackKey<Vec4d>> keys;         ///< ≥ 1 key, frames strictly increasing
+  TrackExtend before = TrackExtend::constant;  ///< before the first key
+  TrackExtend after = TrackExtend::constant;   ///< after the last key
+};
+
+/// Keys and spline options of a quaternion track (shared by quaternion tracks and the rotation
+/// channel of objects).  Values and tangents are [w, x, y, z] in the file.
+struct RawQuatKeys {
+  std::vector<QuatKey<double>> keys;          ///< ≥ 1 key, frames strictly increasing, non-zero values
+  double distance_factor = 1.0 / 3.0;         ///< k of Eq. 3.30, in (0, 1]
+  bool time_aware = true;                     ///< see QuatSplineOptions::time_aware
+};
+
+/// An orientation track (file kind "quaternion"); columns <name>.w .x .y .z.
+struct RawQuatTrack {
+  std::string name;        ///< column prefix (non-empty)
+  std::vector<QuatKey<double>> keys;   ///< ≥ 1 key, frames strictly increasing, non-zero values
+  double distance_factor = 1.0 / 3.0;  ///< k of Eq. 3.30, in (0, 1]
+  bool time_aware = true;              ///< see QuatSplineOptions::time_aware
+};
+
+/// Units of the angles of an Euler track's keys.
+enum class AngleUnits : std::uint8_t {
+  rad,  ///< radians (the default)
+  deg,  ///< degrees
+};
+
+/// One key of an Euler track as in the file: angles in the track's units.
+struct RawEulerKey {
+  double frame = 0;                                 ///< time in frames
+  Vec3d value{};                                    ///< the three angles, in the order of the convention's letters
+  TangentKind tangent = TangentKind::catmull_rom;   ///< angle mode: tangent kind (not explicit_hermite)
+  QuatInterpolation interpolation = QuatInterpolation::slerp;  ///< quaternion mode (not gltf_cubic)
+};
+
+/// An Euler-angle track (file kind "euler"); columns <name>.w .x .y .z of the orientation.
+struct RawEulerTrack {
+  std::string name;                               ///< column prefix (non-empty)
+  std::string convention;                         ///< one of the 24 names, "XYZ", "zxz", … (parse_euler_sequence)
+  AngleUnits units = AngleUnits::rad;             ///< units of the keys' values
+  EulerTrackMode mode = EulerTrackMode::angles;   ///< interpolate angles or orientations
+  bool filter = true;                             ///< apply the Euler filter to successive keys
+  std::vector<RawEulerKey> keys;                  ///< ≥ 1 key, frames strictly increasing
+};
+
+/// One entry of a scene's "tracks": exactly one kind.
+using RawTrack = std::variant<RawScalarTrack, RawVectorTrack, RawQuatTrack, RawEulerTrack>;
+
+/// A translation or scale channel given as a track object {keys, before, after}.
+struct RawVec3Channel {
+  std::vector<TrackKey<Vec3d>> keys;           ///< ≥ 1 key, frames strictly increasing
+  TrackExtend before = TrackExtend::constant;  ///< before the first key
+  TrackExtend after = TrackExtend::constant;   ///< after the last key
+};
+
+/// A named transform: each channel a constant or a track; a parent by name.
+struct RawObject {
+  std::string name;                   ///< object name (non-empty, unique among objects)
+  std::optional<std::string> parent;  ///< name of the parent object; none (or null in the file) for a root
+  /// Constant [x, y, z] or a keyed track (default: 0).
+  std::variant<Vec3d, RawVec3Channel> translation = Vec3d{};
+  /// Constant quaternion of any non-zero length (normalised when built) or a keyed track (default: identity).
+  std::variant<Quatd, RawQuatKeys> rotation = Quatd{};
+  /// Constant [x, y, z] or a keyed track (default: 1).
+  std::variant<Vec3d, RawVec3Channel> scale = Vec3d{1, 1, 1};
+};
+
+/// A whole scene as authored.  Later scene concepts ("paths", "cameras") are further vectors.
+struct RawScene {
+  double fps = 24;                      ///< frames per second (> 0); time = frame / fps
+  std::array<double, 2> range = {1, 1};  ///< [first, last] frame baked by default (first ≤ last)
+  std::vector<RawTrack> tracks;         ///< named tracks, in file order (output columns in this order)
+  std::vector<RawObject> objects;       ///< objects, in file order (columns after all tracks)
+};
+
+}  // namespace inbetween

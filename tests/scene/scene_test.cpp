@@ -1,0 +1,263 @@
+// build_scene(): every check of a scene with the structured location of the offending member, the
+// column list, and Scene::sample() against the tracks and the hierarchy sampled directly.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "inbetween/scene/raw_scene.hpp"
+#include "inbetween/scene/scene.hpp"
+
+namespace inbetween {
+namespace {
+
+static_assert(!std::is_default_constructible_v<Scene>);
+static_assert(std::is_copy_constructible_v<Scene>);
+
+RawScalarTrack scalar(std::string name, std::vector<std::pair<double, double>> keys) {
+  RawScalarTrack t;
+  t.name = std::move(name);
+  for (auto [f, v] : keys) t.curve.keys.push_back(FCurveKey{.frame = f, .value = v});
+  return t;
+}
+
+RawVectorTrack vec2(std::string name, std::vector<std::pair<double, Vec4d>> keys) {
+  RawVectorTrack t;
+  t.name = std::move(name);
+  t.kind = VectorKind::vec2;
+  for (auto [f, v] : keys) t.keys.push_back(TrackKey<Vec4d>{.frame = f, .value = v});
+  return t;
+}
+
+RawObject object(std::string name, std::optional<std::string> parent = std::nullopt) {
+  RawObject o;
+  o.name = std::move(name);
+  o.parent = std::move(parent);
+  return o;
+}
+
+std::string pointer_of(const RawScene& raw) {
+  auto built = build_scene(raw);
+  EXPECT_FALSE(built.has_value());
+  if (built) return "(built)";
+  EXPECT_TRUE(built.error().where.empty());  // structured, nothing to parse back
+  return json_pointer(built.error().location);
+}
+
+TEST(BuildScene, ColumnsFollowTracksThenObjects) {
+  RawScene raw;
+  raw.tracks.push_back(scalar("a", {{1, 0}}));
+  raw.tracks.push_back(vec2("p", {{1, Vec4d{1, 2, 0, 0}}}));
+  RawQuatTrack q;
+  q.name = "q";
+  q.keys.push_back(QuatKey<double>{.frame = 1});
+  raw.tracks.push_back(q);
+  raw.objects.push_back(object("o"));
+  auto scene = build_scene(raw);
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  std::vector<std::string> names;
+  for (const auto& c : scene->columns()) names.push_back(c.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"a", "p.x", "p.y", "q.w", "q.x", "q.y", "q.z", "o.translation.x",
+                                             "o.translation.y", "o.translation.z", "o.rotation.w", "o.rotation.x",
+                                             "o.rotation.y", "o.rotation.z", "o.scale.x", "o.scale.y", "o.scale.z"}));
+  EXPECT_TRUE(scene->columns()[0].single_precision);
+  EXPECT_FALSE(scene->columns()[1].single_precision);
+  std::vector<double> out(names.size());
+  scene->sample(5, out);
+  // Constant tracks and an identity object: the keys' values and the identity TRS.
+  EXPECT_EQ(out, (std::vector<double>{0, 1, 2, 1, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1}));
+}
+
+TEST(BuildScene, ErrorsNameTheMemberAsAJsonPointer) {
+  {
+    RawScene raw;
+    raw.fps = 0;
+    EXPECT_EQ(pointer_of(raw), "/fps");
+  }
+  {
+    RawScene raw;
+    raw.range = {5, 1};
+    EXPECT_EQ(pointer_of(raw), "/range/1");
+  }
+  {
+    RawScene raw;
+    raw.tracks.push_back(scalar("a", {{1, 0}}));
+    raw.tracks.push_back(scalar("b", {{5, 0}, {2, 1}}));
+    EXPECT_EQ(pointer_of(raw), "/tracks/1/keys/1/frame");
+  }
+  {
+    RawScene raw;
+    raw.tracks.push_back(scalar("a", {{1, 0}}));
+    raw.tracks.push_back(scalar("a", {{1, 0}}));
+    EXPECT_EQ(pointer_of(raw), "/tracks/1/name");
+  }
+  {
+    RawScene raw;
+    raw.tracks.push_back(scalar("", {{1, 0}}));
+    EXPECT_EQ(pointer_of(raw), "/tracks/0/name");
+  }
+  {
+    RawScene raw;
+    raw.tracks.push_back(scalar("a", {}));
+    EXPECT_EQ(pointer_of(raw), "/tracks/0/keys");
+  }
+  {
+    RawScene raw;  // a vec2 "p" and a scalar "p.x" both write p.x
+    raw.tracks.push_back(vec2("p", {{1, Vec4d{}}}));
+    raw.tracks.push_back(scalar("p.x", {{1, 0}}));
+    auto built = build_scene(raw);
+    ASSERT_FALSE(built.has_value());
+    EXPECT_EQ(json_pointer(built.error().location), "/tracks/1/name");
+    EXPECT_EQ(built.error().message, "output column \"p.x\" is also a column of /tracks/0/name (names must give distinct columns)");
+  }
+  {
+    RawScene raw;
+    auto v = vec2("p", {{1, Vec4d{}}, {2, Vec4d{}}});
+    v.keys[1].tangent = TangentKind::kochanek_bartels;
+    v.keys[1].tension = 3;
+    raw.tracks.push_back(v);
+    EXPECT_EQ(pointer_of(raw), "/tracks/0/keys/1/tension");
+  }
+  {
+    RawScene raw;
+    RawEulerTrack e;
+    e.name = "e";
+    e.convention = "XXY";
+    e.keys.push_back(RawEulerKey{});
+    raw.tracks.push_back(e);
+    EXPECT_EQ(pointer_of(raw), "/tracks/0/convention");
+    std::get<RawEulerTrack>(raw.tracks[0]).convention = "XYZ";
+    std::get<RawEulerTrack>(raw.tracks[0]).keys[0].interpolation = QuatInterpolation::gltf_cubic;
+    EXPECT_EQ(pointer_of(raw), "/tracks/0/keys/0/interpolation");
+  }
+  {
+    RawScene raw;
+    RawQuatTrack q;
+    q.name = "q";
+    q.distance_factor = 0;
+    q.keys.push_back(QuatKey<double>{.frame = 1});
+    raw.tracks.push_back(q);
+    EXPECT_EQ(pointer_of(raw), "/tracks/0/distance_factor");
+    std::get<RawQuatTrack>(raw.tracks[0]).distance_factor = 0.5;
+    std::get<RawQuatTrack>(raw.tracks[0]).keys[0].value = Quatd::from_wxyz(0, 0, 0, 0);
+    EXPECT_EQ(pointer_of(raw), "/tracks/0/keys/0/value");
+  }
+  {
+    RawScene raw;
+    raw.objects = {object("a"), object("a")};
+    EXPECT_EQ(pointer_of(raw), "/objects/1/name");
+  }
+  {
+    RawScene raw;
+    raw.objects = {object("a", "nobody")};
+    EXPECT_EQ(pointer_of(raw), "/objects/0/parent");
+  }
+  {
+    RawScene raw;
+    raw.objects = {object("a", "b"), object("b", "a")};
+    EXPECT_EQ(pointer_of(raw), "/objects/0/parent");
+  }
+  {
+    RawScene raw;
+    RawObject o = object("a");
+    o.scale = Vec3d{1, std::nan(""), 1};
+    raw.objects = {o};
+    EXPECT_EQ(pointer_of(raw), "/objects/0/scale");
+  }
+  {
+    RawScene raw;
+    RawObject o = object("a");
+    o.rotation = Quatd::from_wxyz(0, 0, 0, 0);
+    raw.objects = {o};
+    EXPECT_EQ(pointer_of(raw), "/objects/0/rotation");
+  }
+  {
+    RawScene raw;
+    RawObject o = object("a");
+    RawVec3Channel keyed;
+    keyed.keys = {TrackKey<Vec3d>{.frame = 2}, TrackKey<Vec3d>{.frame = 1}};
+    o.scale = keyed;
+    raw.objects = {o};
+    EXPECT_EQ(pointer_of(raw), "/objects/0/scale/keys/1/frame");
+  }
+  {
+    RawScene raw;  // a track writing an object's column
+    raw.tracks.push_back(scalar("cube.scale.z", {{1, 0}}));
+    raw.objects = {object("cube")};
+    EXPECT_EQ(pointer_of(raw), "/objects/0/name");
+  }
+}
+
+// A span of the wrong size is a caller bug, caught by INBETWEEN_ASSERT (active without NDEBUG).
+TEST(SceneSample, WrongSpanSizeIsAnAssertion) {
+#if defined(NDEBUG) || defined(INBETWEEN_DISABLE_ASSERTS)
+  GTEST_SKIP() << "assertions are compiled out in this build (NDEBUG)";
+#else
+  RawScene raw;
+  raw.tracks.push_back(scalar("a", {{1, 0}}));
+  auto scene = build_scene(raw);
+  ASSERT_TRUE(scene.has_value());
+  std::vector<double> short_out(0);
+  EXPECT_DEATH(scene->sample(1, short_out), "out.size\\(\\) == columns_.size\\(\\)");
+#endif
+}
+
+TEST(ErrorLocation, RendersOneJsonPointerWithEscapes) {
+  const std::vector<LocationStep> steps = {std::string("tracks"), std::size_t{2}, std::string("a/b~c"), std::size_t{0}};
+  EXPECT_EQ(json_pointer(steps), "/tracks/2/a~1b~0c/0");  // RFC 6901 §3: '~' → ~0, '/' → ~1
+  EXPECT_EQ(json_pointer(std::vector<LocationStep>{}), "");
+  Error e{ErrorCode::InvalidArgument, "bad", "", {std::string("frame")}};
+  e.prepend({std::string("keys"), std::size_t{3}}).prepend({std::string("tracks"), std::size_t{1}});
+  EXPECT_EQ(json_pointer(e.location), "/tracks/1/keys/3/frame");
+  EXPECT_EQ(e.describe(), "/tracks/1/keys/3/frame: bad");
+  EXPECT_EQ(prepended(e, {std::string("x")}).describe(), "/x/tracks/1/keys/3/frame: bad");
+  const Error text{ErrorCode::Parse, "not valid JSON", "line 3, column 5"};
+  EXPECT_EQ(text.describe(), "line 3, column 5: not valid JSON");
+}
+
+// Scene::sample() keeps no scratch: a parent's world transform is read back from its columns.
+// Independent reference: TransformHierarchy::sample_world over the same nodes, compared bit for bit
+// on a chain of 200 objects (more than any fixed buffer) with rotations and non-uniform scale.
+TEST(SceneSample, ObjectsEqualTheHierarchySampledDirectly) {
+  RawScene raw;
+  constexpr std::size_t kObjects = 200;
+  for (std::size_t i = 0; i < kObjects; ++i) {
+    // Children listed before their parents in places, so evaluation order differs from file order.
+    RawObject o = object("o" + std::to_string(i));
+    if (i % 3 != 0) o.parent = "o" + std::to_string(i % 7 == 1 ? i - 1 : i / 2);
+    RawVec3Channel t;
+    t.keys = {TrackKey<Vec3d>{.frame = 0, .value = Vec3d{double(i % 5), 1, 0}},
+              TrackKey<Vec3d>{.frame = 10, .value = Vec3d{0, double(i % 4), 2}}};
+    o.translation = t;
+    RawQuatKeys r;
+    r.keys = {QuatKey<double>{.frame = 0},
+              QuatKey<double>{.frame = 10, .value = Quatd::from_axis_angle(Vec3d{0.3, 1, 0.2}, 0.1 * double(i % 9))}};
+    o.rotation = r;
+    o.scale = Vec3d{1, 1.0 + 0.01 * double(i % 3), 0.99};
+    raw.objects.push_back(o);
+  }
+  auto scene = build_scene(raw);
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  // The reference hierarchy from the built nodes.
+  std::vector<HierarchyNode<double>> nodes(scene->objects().begin(), scene->objects().end());
+  auto reference = build_hierarchy(std::move(nodes));
+  ASSERT_TRUE(reference.has_value());
+  std::vector<double> out(scene->columns().size());
+  std::vector<Transform<double>> world(kObjects);
+  for (double frame : {-1.0, 0.0, 3.25, 7.5, 10.0, 12.0}) {
+    scene->sample(frame, out);
+    reference->sample_world(frame, std::span<Transform<double>>(world));
+    for (std::size_t i = 0; i < kObjects; ++i) {
+      const double* c = out.data() + 10 * i;
+      const Transform<double>& w = world[i];
+      const double expected[10] = {w.translation.x, w.translation.y, w.translation.z, w.rotation.w, w.rotation.x,
+                                   w.rotation.y,    w.rotation.z,    w.scale.x,       w.scale.y,    w.scale.z};
+      for (int k = 0; k < 10; ++k) ASSERT_EQ(c[k], expected[k]) << "object " << i << " column " << k << " frame " << frame;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace inbetween
