@@ -128,17 +128,8 @@ void compute_key_handles(Key& key, const Key* prev, const Key* next, bool smooth
       (!is_aligned(key.left_type) && !is_aligned(key.right_type))) {
     return;
   }
-  // Aligned: Blender's order for a key whose left handle is not selected (left from right first).
-  // Handles that are already collinear through the key (as Blender leaves them after any edit)
-  // are kept as they are: re-aligning them would only add a rounding that Blender's stored
-  // handles do not have.
-  {
-    const Vec2f l{key.left.x - p2.x, key.left.y - p2.y}, r{key.right.x - p2.x, key.right.y - p2.y};
-    const double cr = double(l.x) * r.y - double(l.y) * r.x;
-    const double scale = double(length2(l)) * double(length2(r));
-    const bool opposite = double(l.x) * r.x + double(l.y) * r.y < 0;
-    if (opposite && std::abs(cr) <= 64.0 * double(FLT_EPSILON) * scale) return;
-  }
+  // Aligned: Blender's order for a key whose left handle is not selected (left from right first;
+  // Blender does right from left first when the left handle is selected, a state files do not carry).
   float la = length2(Vec2f{p2.x - key.left.x, p2.y - key.left.y});
   float lb = length2(Vec2f{p2.x - key.right.x, p2.y - key.right.y});
   if (la == 0.0f) la = 1.0f;
@@ -448,6 +439,37 @@ void smooth_handles(std::vector<Key>& keys, bool cyclic) {
   if (count > 1) smooth_run(keys, start, count, cyclic);
 }
 
+// Blender's update() is not idempotent in the last bits: an aligned handle is re-aligned from its
+// stored length, which the previous update() had rounded, and continuous-acceleration smoothing
+// solves from the handles of the keys that bound each run (aligned ones among them), which can
+// magnify such a rounding.  Blender evaluates the handles it stored, not those a second update()
+// would give, so a recomputed handle that differs from the given one by no more than this many
+// float epsilons of the largest magnitude among the key's coordinates and handles (per component:
+// frames with frames, values with values) keeps the given handle bit for bit.  Measured on 43 000
+// random curves exported from Blender 3.4.1 (tools/blender/agreement_cases.py --stress): re-aligning
+// moved handles by at most 136 such epsilons (99.9 % below 43); a handle that a real edit would
+// move is off by orders of magnitude more.
+constexpr float kGivenHandleEpsilons = 256.0f;
+
+void keep_given_handles(std::vector<Key>& keys, const std::vector<Vec2f>& given_left,
+                        const std::vector<Vec2f>& given_right) noexcept {
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    Key& k = keys[i];
+    float scale_x = std::abs(k.x), scale_y = std::abs(k.y);
+    for (const Vec2f& v : {k.left, k.right, given_left[i], given_right[i]}) {
+      scale_x = std::max(scale_x, std::abs(v.x));
+      scale_y = std::max(scale_y, std::abs(v.y));
+    }
+    const float tol_x = kGivenHandleEpsilons * FLT_EPSILON * scale_x;
+    const float tol_y = kGivenHandleEpsilons * FLT_EPSILON * scale_y;
+    auto keep = [&](Vec2f& handle, const Vec2f& given) {
+      if (std::abs(handle.x - given.x) <= tol_x && std::abs(handle.y - given.y) <= tol_y) handle = given;
+    };
+    keep(k.left, given_left[i]);
+    keep(k.right, given_right[i]);
+  }
+}
+
 bool cycle_aware(const std::optional<FCurveCycles>& cycles) noexcept {
   if (!cycles) return false;
   auto periodic = [](CycleMode m) { return m == CycleMode::repeat || m == CycleMode::repeat_offset; };
@@ -463,6 +485,11 @@ void recalc_handles(std::vector<Key>& keys, Extrapolation extrapolation, AutoSmo
   Key& last = keys[n - 1];
   const bool cycle = cycle_aware(cycles) && both_auto(first) && both_auto(last);
   const bool smooth = smoothing != AutoSmoothing::none;
+  std::vector<Vec2f> given_left(keys.size()), given_right(keys.size());
+  for (int i = 0; i < n; ++i) {
+    given_left[i] = keys[i].left;
+    given_right[i] = keys[i].right;
+  }
   Key tmp_prev, tmp_next;
   for (int i = 0; i < n; ++i) {
     Key& k = keys[i];
@@ -494,7 +521,11 @@ void recalc_handles(std::vector<Key>& keys, Extrapolation extrapolation, AutoSmo
     last.left.y = last.right.y = last.y;
     first.locked = last.locked = true;
   }
-  if (smooth) smooth_handles(keys, cycle);
+  keep_given_handles(keys, given_left, given_right);
+  if (smooth) {
+    smooth_handles(keys, cycle);
+    keep_given_handles(keys, given_left, given_right);
+  }
 }
 
 // ------------------------------------------------------------------ evaluation kernels
