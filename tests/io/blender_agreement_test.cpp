@@ -153,7 +153,8 @@ TEST(BlenderAgreement, RandomMixedHandleCurves) {
   const std::vector<std::string> variants{"plain", "aligned,far", "sel"};
   for (std::size_t v = 0; v < variants.size(); ++v) {
     const std::string& variant = variants[v];
-    const std::filesystem::path dir = std::filesystem::path(INBETWEEN_BINARY_DIR) / ("blender-stress-" + std::to_string(v));
+    const std::filesystem::path dir =
+        std::filesystem::path(INBETWEEN_BINARY_DIR) / ("blender-stress-" + std::to_string(v));
     std::filesystem::remove_all(dir);
     const std::string cmd = "blender -b --factory-startup --python-exit-code 1 --python \"" INBETWEEN_SOURCE_DIR
                             "/tools/blender/agreement_cases.py\" -- \"" + dir.string() + "\" " + seed + " --stress " +
