@@ -1,5 +1,5 @@
 // Agreement with Blender on every machine, with or without Blender installed: tests/data/blender/
-// fcurves-blender-3.4.1.json holds 292 F-curves built inside Blender 3.4.1 (Debian 3.4.1+dfsg-2) by
+// fcurves-blender-3.4.1.json holds 294 F-curves built inside Blender 3.4.1 (Debian 3.4.1+dfsg-2) by
 // tools/blender/record_reference.py — every interpolation × easing direction, every handle type ×
 // smoothing × extrapolation, mixed handles, every Cycles before × after mode, single keys, frames
 // ×1000, random curves mixing handle types and easings on each key, the curves of issue 9 defect 10

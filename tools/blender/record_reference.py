@@ -50,8 +50,10 @@ export_fcurves = agreement.export_fcurves
 
 # Curves that disagreed with Blender by more than 1e-5 of their range before the fix of issue 9,
 # defect 10 (handles recomputed from Blender's stored ones differed in the last bits and linear
-# extrapolation or smoothing magnified that), found with agreement_cases.py --stress and written
-# here as authored before Blender's update(): per key frame, value, interpolation, easing, left and
+# extrapolation or smoothing magnified that), and the last two, which still disagreed with earlier
+# versions of the fix (one by 2.6e-5 of its range: an aligned handle read by smoothing before being
+# re-pointed; one by 1e-9: a short handle at a large frame), found with agreement_cases.py --stress
+# and written here as authored before Blender's update(): per key frame, value, interpolation, easing, left and
 # right handle types, left handle (frame, value), right handle (frame, value), back, amplitude,
 # period.  "selection": per key (control point, left handle, right handle) selected, applied before a
 # second update() (Blender then aligns in its other order); "far": samples up to five key spans out.
@@ -126,6 +128,21 @@ REGRESSIONS = [
         [38.528, -5.6877627, "EXPO", "EASE_IN_OUT", "ALIGNED", "VECTOR", 34.88964, -0.7734262, 42.01359, -11.483358, 1.70158, 0.8, 7.23701],
         [39.09165, -9.682586, "QUAD", "EASE_IN", "ALIGNED", "VECTOR", 36.765015, -2.654251, 62.460308, -16.033236, 0, 4.499673, 4.1],
         [39.6837, -2.015328, "BACK", "EASE_OUT", "ALIGNED", "AUTO", 24.933052, -4.3764772, 38.9435, -2.1429458, 0, 0.8, 4.1]]},
+    {"origin": "agreement_cases.py --stress seed 102 count 30000 variant aligned,far case06897",
+     "extrapolation": "CONSTANT", "auto_smoothing": "CONT_ACCEL", "far": True, "selection": None,
+     "keys": [
+        [-26.502792, -1, "BEZIER", "AUTO", "ALIGNED", "VECTOR", -25.40928, -0.10643857, -9.713203, -0.37986887, 1.70158, 0, 8.923786],
+        [-25.502792, -2, "SINE", "AUTO", "ALIGNED", "VECTOR", -28.931746, -7.596501, -26.192884, -7.970854, 0, 0, 0],
+        [-24.57864, -2.949455, "LINEAR", "AUTO", "ALIGNED", "VECTOR", -26.82455, -8.194696, -22.532686, 1.8641173, 0, 14.010588, 0]]},
+    {"origin": "agreement_cases.py --stress seed 102 count 30000 variant aligned,far case05891",
+     "extrapolation": "LINEAR", "auto_smoothing": "CONT_ACCEL", "far": True, "selection": None,
+     "keys": [
+        [27.770287, -9.452497, "ELASTIC", "EASE_IN_OUT", "ALIGNED", "ALIGNED", 15.659345, -2.854323, 30.32488, -14.4638405, 1.70158, 15.119675, 1.1797997],
+        [28.92759, -0.58482796, "BEZIER", "AUTO", "ALIGNED", "FREE", 18.262114, 0.6901688, 27.246902, -0.15012452, 3.102837, 0.8, 9.296127],
+        [32.92759, 4.3315153, "BEZIER", "EASE_IN", "ALIGNED", "VECTOR", 33.309788, -0.26267332, 32.336765, 1.0537578, 1.70158, 0.8, 0],
+        [37.62431, 0, "QUAD", "EASE_IN", "ALIGNED", "AUTO", 38.72781, -0.017434433, 59.10211, 5.3844266, 1.70158, 12.688368, 4.1],
+        [50.201435, 1.315837, "CONSTANT", "AUTO", "ALIGNED", "FREE", 36.074284, 7.6520677, 73.11056, 3.5213802, 1.70158, 0, 0],
+        [54.07973, -3.1916664, "CIRC", "EASE_IN_OUT", "ALIGNED", "VECTOR", 51.581764, -3.4514523, 59.325287, -5.3054056, 2.9164717, 0, 0]]},
 ]
 
 
