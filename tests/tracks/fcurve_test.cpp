@@ -207,6 +207,24 @@ TEST(FCurve, AlignedHandleIsRealignedUnlessOnlyRoundingAway) {
   EXPECT_GT(std::abs(q.y - off.y), 1e-4);
 }
 
+TEST(FCurve, StaleAutomaticHandleIsRecomputedBesideAHugeFreeOne) {
+  // Keys (0, 0), (10, 5), (20, 0) without smoothing: the middle key is an extreme, so its
+  // auto-clamped left handle is flat (y = 5) at x = 10 − 10·2/(2·2.5614) = 6.0959 (Blender's
+  // automatic handle: direction (2, 0), length 10/(2·2.5614) of it), not the default (9, 5) given
+  // here, 2.9 frames away.  A free right handle a million units up must not widen what counts as
+  // rounding on the left side (a tolerance relative to 1e6 would keep the stale (9, 5)).
+  FCurveKey a = inserted(0, 0), b = inserted(10, 5), c = inserted(20, 0);
+  b.handle_right_type = HandleType::free;
+  b.handle_right = Vec2d{11, 1e6};
+  const FCurve curve = build({.keys = {a, b, c}});
+  const FCurve reference = build({.keys = {a, inserted(10, 5), c}});  // same left handle, default right
+  EXPECT_EQ(curve.keys()[1].left.x, reference.keys()[1].left.x);
+  EXPECT_NEAR(curve.keys()[1].left.x, 10 - 20 / (2 * 2.5614), 1e-5);
+  EXPECT_EQ(curve.keys()[1].left.y, 5.f);
+  EXPECT_NE(curve.keys()[1].left.x, 9.f);
+  EXPECT_EQ(curve.keys()[1].right.y, 1e6f);
+}
+
 TEST(FCurve, RebuildingFromItsOwnHandlesKeepsThemBitForBit) {
   // A curve exported from Blender carries the handles Blender's update() stored, and Blender
   // evaluates those.  update() is not idempotent in the last bits (an aligned handle is re-aligned
