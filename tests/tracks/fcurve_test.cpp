@@ -219,7 +219,7 @@ TEST(FCurve, StaleAutomaticHandleIsRecomputedBesideAHugeFreeOne) {
   const FCurve curve = build({.keys = {a, b, c}});
   const FCurve reference = build({.keys = {a, inserted(10, 5), c}});  // same left handle, default right
   EXPECT_EQ(curve.keys()[1].left.x, reference.keys()[1].left.x);
-  EXPECT_NEAR(curve.keys()[1].left.x, 10 - 20 / (2 * 2.5614), 1e-5);
+  EXPECT_NEAR(curve.keys()[1].left.x, 10 - 20 / (2 * 2.5614), kBlenderPrinted);
   EXPECT_EQ(curve.keys()[1].left.y, 5.f);
   EXPECT_NE(curve.keys()[1].left.x, 9.f);
   EXPECT_EQ(curve.keys()[1].right.y, 1e6f);
