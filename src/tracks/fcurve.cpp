@@ -129,17 +129,8 @@ void compute_key_handles(Key& key, const Key* prev, const Key* next, bool smooth
       (!is_aligned(key.left_type) && !is_aligned(key.right_type))) {
     return;
   }
-  // Aligned: Blender's order for a key whose left handle is not selected (left from right first).
-  // Handles that are already collinear through the key (as Blender leaves them after any edit)
-  // are kept as they are: re-aligning them would only add a rounding that Blender's stored
-  // handles do not have.
-  {
-    const Vec2f l{key.left.x - p2.x, key.left.y - p2.y}, r{key.right.x - p2.x, key.right.y - p2.y};
-    const double cr = double(l.x) * r.y - double(l.y) * r.x;
-    const double scale = double(length2(l)) * double(length2(r));
-    const bool opposite = double(l.x) * r.x + double(l.y) * r.y < 0;
-    if (opposite && std::abs(cr) <= 64.0 * double(FLT_EPSILON) * scale) return;
-  }
+  // Aligned: Blender's order for a key whose left handle is not selected (left from right first;
+  // Blender does right from left first when the left handle is selected, a state files do not carry).
   float la = length2(Vec2f{p2.x - key.left.x, p2.y - key.left.y});
   float lb = length2(Vec2f{p2.x - key.right.x, p2.y - key.right.y});
   if (la == 0.0f) la = 1.0f;
@@ -288,6 +279,16 @@ void clamp_range(std::vector<float>& hmax, std::vector<float>& hmin, int i, floa
   }
 }
 
+// An aligned handle `other` of key p re-pointed opposite `mine` (a handle smoothing moved), keeping
+// its length: Blender's bezier_output_handle_inner.
+Vec2f repoint_aligned(Vec2f p, Vec2f other, Vec2f mine) noexcept {
+  const float hlen = length2(Vec2f{p.x - other.x, p.y - other.y});
+  const float h2len = length2(Vec2f{p.x - mine.x, p.y - mine.y});
+  const float f = hlen / h2len;
+  const Vec2f tmp{p.x - mine.x, p.y - mine.y};
+  return Vec2f{p.x + tmp.x * f, p.y + tmp.y * f};
+}
+
 void output_handle(Key& k, bool right, float dy, bool endpoint) {
   Vec2f value = right ? k.right : k.left;
   value.y = k.y + dy;
@@ -298,11 +299,7 @@ void output_handle(Key& k, bool right, float dy, bool endpoint) {
   Vec2f& other = right ? k.left : k.right;
   mine = value;
   if (is_aligned(hm)) {
-    const float hlen = length2(Vec2f{k.x - other.x, k.y - other.y});
-    const float h2len = length2(Vec2f{k.x - mine.x, k.y - mine.y});
-    const float f = hlen / h2len;
-    const Vec2f tmp{k.x - mine.x, k.y - mine.y};
-    other = Vec2f{k.x + tmp.x * f, k.y + tmp.y * f};
+    other = repoint_aligned(Vec2f{k.x, k.y}, other, mine);
   } else if (endpoint && (is_auto(hm) || hm == HandleType::vector)) {
     const Vec2f tmp{k.x - mine.x, k.y - mine.y};
     other = Vec2f{k.x + tmp.x, k.y + tmp.y};
@@ -449,6 +446,86 @@ void smooth_handles(std::vector<Key>& keys, bool cyclic) {
   if (count > 1) smooth_run(keys, start, count, cyclic);
 }
 
+// Blender's update() is not idempotent in the last bits: an aligned handle is re-aligned from its
+// stored length, which the previous update() had rounded, and continuous-acceleration smoothing
+// solves from the handles of the keys that bound each run (aligned ones among them), which can
+// magnify such a rounding.  Blender evaluates the handles it stored, not those a second update()
+// would give, so a recomputed handle that differs from the given one, in frame and in value, by no
+// more than this many float epsilons of the largest magnitude among the key's and the two handles'
+// coordinates keeps the given handle bit for bit.  (Frames and values share one scale: the length
+// of a short handle at a large frame is known only to an epsilon of the frame, and that relative
+// error moves the value of a re-aligned handle.)  Measured on 141 000 random curves exported from
+// Blender 3.4.1 (tools/blender/agreement_cases.py --stress): the final handles differed from the
+// stored ones by at most 25 such epsilons (99.9 % below 16); a handle that an edit moved is off by
+// orders of magnitude more.
+constexpr float kGivenHandleEpsilons = 256.0f;
+
+void keep_given_handles(std::vector<Key>& keys, const std::vector<Vec2f>& given_left,
+                        const std::vector<Vec2f>& given_right) noexcept {
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    Key& k = keys[i];
+    auto keep = [&k](Vec2f& handle, const Vec2f& given) {
+      const float scale = std::max({std::abs(k.x), std::abs(k.y), std::abs(handle.x), std::abs(handle.y),
+                                    std::abs(given.x), std::abs(given.y)});
+      const float tolerance = kGivenHandleEpsilons * FLT_EPSILON * scale;
+      if (std::abs(handle.x - given.x) <= tolerance && std::abs(handle.y - given.y) <= tolerance) handle = given;
+    };
+    keep(k.left, given_left[i]);
+    keep(k.right, given_right[i]);
+  }
+}
+
+// One case keep_given_handles cannot cover.  A key with an aligned handle on one side and a vector
+// handle on the other bounds two smoothing runs: the vector side is solved (and the aligned one
+// re-pointed to stay opposite it, keeping its length) by one run, while the other run reads the
+// aligned handle as a fixed end — in Blender's first update(), the value before re-pointing, which
+// the stored handles no longer contain.  Recomputing it from the stored aligned handle's length
+// rounds differently and the smoothing solve can magnify that beyond kGivenHandleEpsilons (curves
+// rebuilt from their own handles: 5 in 400 000 random ones, up to 8.3e-6 of the range).  That value is recovered instead: it came
+// from the same formula with the handle's authored length, which differs from the stored length
+// by a few float steps; the length within kRecoverySteps steps whose handle, re-pointed opposite the
+// stored vector handle, gives the stored aligned handle bit for bit is taken, the nearest first.
+constexpr int kRecoverySteps = 64;
+
+std::optional<Vec2f> aligned_before_smoothing(Vec2f p, Vec2f opposite_computed, Vec2f opposite_given,
+                                              Vec2f aligned_given, bool aligned_is_left) noexcept {
+  // compute_key_handles' aligned step with the aligned handle's length `own`.
+  float opposite_len = length2(Vec2f{p.x - opposite_computed.x, p.y - opposite_computed.y});
+  if (opposite_len == 0.0f) opposite_len = 1.0f;
+  if (!(opposite_len > 1e-5f)) return std::nullopt;
+  auto aligned = [&](float own) {
+    float f = own / opposite_len;
+    if (!aligned_is_left) f = 1.0f / (opposite_len / own);
+    return Vec2f{p.x + f * (p.x - opposite_computed.x), p.y + f * (p.y - opposite_computed.y)};
+  };
+  auto reproduces = [&](float own) {
+    const Vec2f r = repoint_aligned(p, aligned(own), opposite_given);
+    return r.x == aligned_given.x && r.y == aligned_given.y;
+  };
+  const float start = length2(Vec2f{p.x - aligned_given.x, p.y - aligned_given.y});
+  if (!(start > 0.0f) || !std::isfinite(start)) return std::nullopt;
+  if (reproduces(start)) return aligned(start);
+  float up = start, down = start;
+  for (int step = 0; step < kRecoverySteps; ++step) {
+    up = std::nextafter(up, FLT_MAX);
+    if (reproduces(up)) return aligned(up);
+    down = std::nextafter(down, 0.0f);
+    if (down > 0.0f && reproduces(down)) return aligned(down);
+  }
+  return std::nullopt;
+}
+
+void recover_aligned_before_smoothing(Key& k, const Key& computed, Vec2f given_left, Vec2f given_right) noexcept {
+  const Vec2f p{k.x, k.y};
+  auto moved = [](Vec2f a, Vec2f b) { return a.x != b.x || a.y != b.y; };
+  if (k.left_type == HandleType::aligned && k.right_type == HandleType::vector && moved(given_right, computed.right)) {
+    if (auto a = aligned_before_smoothing(p, computed.right, given_right, given_left, true)) k.left = *a;
+  } else if (k.right_type == HandleType::aligned && k.left_type == HandleType::vector &&
+             moved(given_left, computed.left)) {
+    if (auto a = aligned_before_smoothing(p, computed.left, given_left, given_right, false)) k.right = *a;
+  }
+}
+
 bool cycle_aware(const std::optional<FCurveCycles>& cycles) noexcept {
   if (!cycles) return false;
   auto periodic = [](CycleMode m) { return m == CycleMode::repeat || m == CycleMode::repeat_offset; };
@@ -464,6 +541,11 @@ void recalc_handles(std::vector<Key>& keys, Extrapolation extrapolation, AutoSmo
   Key& last = keys[n - 1];
   const bool cycle = cycle_aware(cycles) && both_auto(first) && both_auto(last);
   const bool smooth = smoothing != AutoSmoothing::none;
+  std::vector<Vec2f> given_left(keys.size()), given_right(keys.size());
+  for (int i = 0; i < n; ++i) {
+    given_left[i] = keys[i].left;
+    given_right[i] = keys[i].right;
+  }
   Key tmp_prev, tmp_next;
   for (int i = 0; i < n; ++i) {
     Key& k = keys[i];
@@ -495,7 +577,13 @@ void recalc_handles(std::vector<Key>& keys, Extrapolation extrapolation, AutoSmo
     last.left.y = last.right.y = last.y;
     first.locked = last.locked = true;
   }
-  if (smooth) smooth_handles(keys, cycle);
+  const std::vector<Key> computed = smooth ? keys : std::vector<Key>{};
+  keep_given_handles(keys, given_left, given_right);
+  if (smooth) {
+    for (int i = 0; i < n; ++i) recover_aligned_before_smoothing(keys[i], computed[i], given_left[i], given_right[i]);
+    smooth_handles(keys, cycle);
+    keep_given_handles(keys, given_left, given_right);
+  }
 }
 
 // ------------------------------------------------------------------ evaluation kernels

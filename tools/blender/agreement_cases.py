@@ -5,6 +5,16 @@ Builds random curves in every mode inside Blender, recomputes their handles with
 exports them with export_fcurves.py to OUTDIR/scene.json and writes Blender's own values
 (FCurve.evaluate) at fractional frames inside and outside the keyed range to OUTDIR/reference.json:
 {"<track name>": {"group": "<mode>", "frames": [...], "values": [...]}}.
+
+    ... agreement_cases.py -- OUTDIR SEED --stress COUNT [VARIANT]
+
+writes COUNT random curves of one kind instead: every key mixes handle types (free, aligned, vector,
+auto, auto_clamped on either side) and interpolations (Bézier, every easing with random easing
+direction and parameters, linear, constant), with random extrapolation and smoothing.  VARIANT is a
+comma-separated set of: "aligned" (every key has an aligned handle on one side), "sel" (random
+handle selection, then a second update(), which makes Blender align in its other order), "far"
+(samples up to five key spans outside the keyed range, where linear extrapolation magnifies a
+handle's last bit).  The same SEED, COUNT and VARIANT give the same curves.
 """
 
 import importlib.util
@@ -39,7 +49,18 @@ def random_keys(rng, n, frame_scale=1.0):
     return frames, values
 
 
-def make_curve(action, index, rng, n, interp, easing, handles, extrapolation, smoothing, cycles, frame_scale=1.0):
+def authored_state(fc):
+    """The curve as authored, before update(): enough for record_reference.py to rebuild it."""
+    keys = []
+    for k in fc.keyframe_points:
+        keys.append([k.co[0], k.co[1], k.interpolation, k.easing, k.handle_left_type, k.handle_right_type,
+                     k.handle_left[0], k.handle_left[1], k.handle_right[0], k.handle_right[1],
+                     k.back, k.amplitude, k.period])
+    return {"extrapolation": fc.extrapolation, "auto_smoothing": fc.auto_smoothing, "keys": keys}
+
+
+def make_curve(action, index, rng, n, interp, easing, handles, extrapolation, smoothing, cycles, frame_scale=1.0,
+               authored=None):
     fc = action.fcurves.new("location", index=index)
     fc.extrapolation = extrapolation
     fc.auto_smoothing = smoothing
@@ -66,6 +87,8 @@ def make_curve(action, index, rng, n, interp, easing, handles, extrapolation, sm
     if cycles is not None:
         m = fc.modifiers.new("CYCLES")
         m.mode_before, m.mode_after, m.cycles_before, m.cycles_after = cycles
+    if authored is not None:
+        authored.append(authored_state(fc))
     fc.update()
     return fc, frames
 
@@ -84,6 +107,51 @@ def sample_frames(rng, frames, span_out):
     for x in range(int(lo) - 3, int(hi) + 4):
         out.append(float(x))
     return [f32(x) for x in out]
+
+
+STRESS_INTERPOLATIONS = ["BEZIER"] * 4 + EASINGS + ["LINEAR", "CONSTANT"]
+EASING_DIRECTIONS = ["AUTO", "EASE_IN", "EASE_OUT", "EASE_IN_OUT"]
+
+
+def stress_curves(rng, action, count, variant, authored=None):
+    """COUNT random mixed-handle curves (see the module text); yields (fcurve, frames to sample)."""
+    def handles():
+        if "aligned" in variant:
+            pair = ["ALIGNED", rng.choice(HANDLES)]
+            rng.shuffle(pair)
+            return tuple(pair)
+        return (rng.choice(HANDLES), rng.choice(HANDLES))
+
+    span_out = 5.0 if "far" in variant else 0.5
+    for i in range(count):
+        fc, _ = make_curve(action, i, rng, rng.randint(2, 7), interp=lambda: rng.choice(STRESS_INTERPOLATIONS),
+                           easing=lambda: rng.choice(EASING_DIRECTIONS), handles=handles,
+                           extrapolation=rng.choice(["CONSTANT", "LINEAR"]),
+                           smoothing=rng.choice(["NONE", "CONT_ACCEL"]), cycles=None, authored=authored)
+        if "sel" in variant:
+            for k in fc.keyframe_points:
+                k.select_control_point = rng.random() < 0.5
+                k.select_left_handle = rng.random() < 0.5
+                k.select_right_handle = rng.random() < 0.5
+            fc.update()
+        yield fc, sample_frames(rng, [k.co[0] for k in fc.keyframe_points], span_out)
+
+
+def main_stress(outdir, seed, count, variant):
+    rng = random.Random(seed)
+    action = bpy.data.actions.new("stress")
+    tracks, reference = [], {}
+    for i, (fc, xs) in enumerate(stress_curves(rng, action, count, variant)):
+        name = "case%05d" % i
+        tracks.append(export_fcurves.fcurve_to_track(fc, name))
+        reference[name] = {"group": "random mixed handles and easings (%s)" % (variant or "plain"), "frames": xs,
+                           "values": [fc.evaluate(x) for x in xs]}
+    os.makedirs(outdir, exist_ok=True)
+    with open(os.path.join(outdir, "scene.json"), "w") as f:
+        json.dump({"inbetween": 1, "fps": 24, "range": [1, 100], "tracks": tracks}, f)
+    with open(os.path.join(outdir, "reference.json"), "w") as f:
+        json.dump(reference, f)
+    print("agreement_cases: %d stress curves (%s) written to %s" % (count, variant or "plain", outdir))
 
 
 def main(outdir, seed):
@@ -170,4 +238,8 @@ def main(outdir, seed):
 
 if __name__ == "__main__":
     args = sys.argv[sys.argv.index("--") + 1:]
-    main(args[0], int(args[1]) if len(args) > 1 else 1)
+    if "--stress" in args:
+        at = args.index("--stress")
+        main_stress(args[0], int(args[1]), int(args[at + 1]), args[at + 2] if len(args) > at + 2 else "")
+    else:
+        main(args[0], int(args[1]) if len(args) > 1 else 1)
