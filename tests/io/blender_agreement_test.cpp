@@ -171,7 +171,8 @@ TEST(BlenderAgreement, RandomMixedHandleCurves) {
     ASSERT_TRUE(scene.has_value()) << scene.error().describe();
     const auto reference = nlohmann::json::parse(slurp(dir / "reference.json"));
     std::vector<const inbetween::SceneScalarTrack*> all;
-    for (const auto& t : scene->scalar_tracks) all.push_back(&t);
+    for (const auto& t : scene->tracks())
+      if (const auto* scalar = std::get_if<inbetween::SceneScalarTrack>(&t)) all.push_back(scalar);
     compare(all, reference, groups);
   }
   print(groups);

@@ -125,13 +125,13 @@ TEST_F(BlenderReference, EveryCurveMatchesBlenderEvaluate) {
   }
   auto parsed = inbetween::parse_scene(scene.dump());
   ASSERT_TRUE(parsed.has_value()) << parsed.error().describe();
-  ASSERT_EQ(parsed->scalar_tracks.size(), curves.size());
+  ASSERT_EQ(parsed->tracks().size(), curves.size());
 
   std::map<std::string, GroupStats> groups;
   std::vector<std::string> exported_names;
   for (std::size_t i = 0; i < curves.size(); ++i) {
     const auto& c = curves[i];
-    const auto& curve = parsed->scalar_tracks[i].curve;
+    const auto& curve = std::get<inbetween::SceneScalarTrack>(parsed->tracks()[i]).curve;
     const std::string group = c.at("group").get<std::string>();
     const auto& track_json = c.at("track");
     if (group == "exported from a saved .blend") exported_names.push_back(track_json.at("name").get<std::string>());
