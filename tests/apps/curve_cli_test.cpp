@@ -174,6 +174,19 @@ TEST(CurveCli, LagrangeNearTheLargestDoubleSamplesAndPlotsFiniteNumbers) {
   EXPECT_EQ(svg.find("inf"), std::string::npos);
 }
 
+// Issue 9, defect 5: this 133-byte curve made `curve info` run 57 s and take 1.55 GB (arc-length
+// subdivision to depth 30 everywhere, driven by the rounding noise of a degree-19 speed).  With the
+// work budget it is a clear user error, after at most 100 000 speed evaluations (the evaluation
+// count is asserted in ArcLength.PathologicalLagrangeStaysWithinTheWorkBudget).
+TEST(CurveCli, PathologicalLagrangeInfoIsABudgetErrorNotAMinuteOfWork) {
+  const auto f = temp_file("lagrange20.json",
+                           R"({"type":"lagrange","points":[9,-9,9,-9,9,-9,9,-9,9,-9,9,-9,9,-9,9,-9,9,-9,9,-9]})");
+  const CliRun r = run_cli("curve info " + f);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.err.find("work budget"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(f), std::string::npos) << r.err;
+}
+
 TEST(CurveCli, HugeCountIsAUserErrorNotAnAllocation) {
   const fs::path svg = inbetween::test::test_dir() / "huge_count.svg";
   fs::remove(svg);

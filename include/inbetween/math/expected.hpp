@@ -21,6 +21,7 @@ enum class ErrorCode {
   Io,                 ///< a file that cannot be opened or written
   Unsupported,        ///< a request outside what the library implements (named in the message)
   NotMonotone,        ///< a timing curve that would run backwards
+  BudgetExceeded,     ///< an adaptive computation ran out of its work budget before its tolerance
 };
 
 /// A user-data error: a code, a human message and the place (JSON pointer, "line 3", "key 4", …).
