@@ -64,7 +64,7 @@ TEST(LagrangeTest, HugeValuesEvaluateWithoutOverflowingIntermediates) {
       const L slope = L(0.8e308) * (2 * L(u) - 3);  // closed form of P′ (up to the rounded 0.5)
       const double d1 = c->derivative(u, 1);
       const L top = L(std::numeric_limits<double>::max());
-      if (std::fabs(slope) < L(0.99) * top) EXPECT_NEAR(L(d1), slope, L(64) * L(test::eps<double>) * L(2.4e308)) << u;
+      if (std::fabs(slope) < L(0.99) * top) EXPECT_NEAR(L(d1), slope, L(64) * L(test::eps<double>) * 2.4e308L) << u;
       else if (std::fabs(slope) > L(1.01) * top) EXPECT_TRUE(std::isinf(d1) && (d1 < 0) == (slope < 0)) << u << " " << d1;
     }
     EXPECT_EQ(non_finite_values, 0);
