@@ -218,8 +218,8 @@ void run_convert(const ConvertArgs& args) {
     const std::vector<double> result = write_rotation(*to, q, args.degrees, gimbal);
     if (gimbal)
       warnings.push_back(where + ": gimbal lock in " + to->sequence.name() +
-                         ": only the sum or difference of the first and third angles is determined; the third "
-                         "angle is set to 0");
+                         ": only the sum or difference of the first and third angles is well determined (they "
+                         "still give this rotation; at lock itself the third angle is set to 0)");
     for (std::size_t k = 0; k < result.size(); ++k) out << (k ? " " : "") << format_number(result[k]);
     out << '\n';
     if (end == input.size()) break;

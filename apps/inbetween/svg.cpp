@@ -25,15 +25,17 @@ std::string escape(const std::string& s) {
 
 SvgCanvas::SvgCanvas(double width_px, double height_px, double x0, double x1, double y0, double y1)
     : w_(width_px), h_(height_px), x0_(x0), y0_(y0) {
-  const double dx = std::max(x1 - x0, 1e-12), dy = std::max(y1 - y0, 1e-12);
+  // Half extents and half differences: x1 − x0 overflows for coordinates near ±1.8e308 (issue 9,
+  // a Lagrange curve from 1.6e308 to −2e307 plotted NaN), x1/2 − x0/2 never does.
+  const double dx = std::max(x1 / 2 - x0 / 2, 0.5e-12), dy = std::max(y1 / 2 - y0 / 2, 0.5e-12);
   const double margin = 0.05;
-  scale_ = std::min(w_ * (1 - 2 * margin) / dx, h_ * (1 - 2 * margin) / dy);
+  scale_ = std::min(w_ * (1 - 2 * margin) / dx, h_ * (1 - 2 * margin) / dy);  // pixels per half unit
   off_x_ = (w_ - dx * scale_) / 2;
   off_y_ = (h_ - dy * scale_) / 2;
 }
 
-double SvgCanvas::map_x(double x) const { return off_x_ + (x - x0_) * scale_; }
-double SvgCanvas::map_y(double y) const { return h_ - (off_y_ + (y - y0_) * scale_); }
+double SvgCanvas::map_x(double x) const { return off_x_ + (x / 2 - x0_ / 2) * scale_; }
+double SvgCanvas::map_y(double y) const { return h_ - (off_y_ + (y / 2 - y0_ / 2) * scale_); }
 
 void SvgCanvas::polyline(const std::vector<SvgPoint>& pts, const std::string& stroke, double width_px,
                          const std::string& dash) {

@@ -125,6 +125,15 @@ T ArcLengthTable<T>::u_at(T s) const noexcept {
   return u_[i] + ((s - s_[i]) / ds) * (u_[i + 1] - u_[i]);
 }
 
+Error budget_error(std::int64_t evaluations, std::int64_t per_segment, const char* method) {
+  return Error{ErrorCode::BudgetExceeded,
+               std::string(method) + " did not reach its tolerance within its work budget (" +
+                   std::to_string(evaluations) + " curve evaluations, " + std::to_string(per_segment) +
+                   " per segment): the curve's speed varies too wildly, or is noisier than the tolerance; "
+                   "raise the tolerance or max_evaluations_per_segment",
+               ""};
+}
+
 template class ArcLengthTable<float>;
 template class ArcLengthTable<double>;
 

@@ -49,14 +49,23 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
   const double t_first = double(data.front().t), t_last = double(data.back().t);
   const std::vector<double> knots = clamped_uniform_knots(t_first, t_last, k, n);
 
-  // N (j × n) and the data (j × dim), in double whatever T is.
+  // N (j × n) and the data (j × dim), in double whatever T is.  The data are divided by 2^scale
+  // (exact) so that their largest coordinate is below 1: the QR solve and the residuals then never
+  // overflow, and a fit whose control points are representable succeeds however large the data.
+  int scale = 0, biggest_row = 0;
+  double biggest = 0;
+  for (int i = 0; i < j; ++i) {
+    const double m = double(max_abs_component(data[std::size_t(i)].p));
+    if (m > biggest) biggest = m, biggest_row = i;
+  }
+  if (biggest > 0) std::frexp(biggest, &scale);
   Eigen::MatrixXd N(j, n);
   Eigen::MatrixXd rhs(j, dim);
   std::vector<double> row(static_cast<std::size_t>(n), 0.0);
   for (int i = 0; i < j; ++i) {
     bspline_basis_all<double>(knots, k, double(data[std::size_t(i)].t), 0, row);
     for (int c = 0; c < n; ++c) N(i, c) = row[std::size_t(c)];
-    for (int d = 0; d < dim; ++d) rhs(i, d) = double(PointTraits<P>::get(data[std::size_t(i)].p, d));
+    for (int d = 0; d < dim; ++d) rhs(i, d) = std::ldexp(double(PointTraits<P>::get(data[std::size_t(i)].p, d)), -scale);
   }
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(N);
   if (qr.rank() < n) {
@@ -74,26 +83,29 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
   for (double x : knots) fit.curve.knots.push_back(T(x));
   for (int c = 0; c < n; ++c) {
     P p{};
-    for (int d = 0; d < dim; ++d) PointTraits<P>::set(p, d, T(B(c, d)));
-    // Finite data can still give control points beyond the range of T (coordinates near the
-    // largest double, or a double solution cast to float): an error, never a curve holding inf/NaN.
+    for (int d = 0; d < dim; ++d) PointTraits<P>::set(p, d, T(std::ldexp(B(c, d), scale)));
+    // Finite data can still give control points beyond the range of T (a spline through data near
+    // the largest value overshoots them, or a double solution cast to float): an error that names
+    // the cause — the data's magnitude, at its largest row — never a curve holding inf/NaN.
     if (!is_finite(p)) {
       return Error{ErrorCode::NotFinite,
-                   "control point " + std::to_string(c) +
-                       " of the fit is not finite (the data are too large for the scalar type)",
-                   "", {"control_points"}};
+                   "the data are too large for this fit: control point " + std::to_string(c) +
+                       " would exceed the largest " + (sizeof(T) >= 8 ? "double" : "float") +
+                       " (the largest coordinate is " + shortest_text<double>(biggest) +
+                       " at this point); scale the data down",
+                   "", {"points", std::size_t(biggest_row)}};
     }
     fit.curve.control_points.push_back(p);
   }
-  const Eigen::MatrixXd residual = N * B - rhs;
+  const Eigen::MatrixXd residual = N * B - rhs;  // at the data's scale 2^-scale
   double sum = 0, worst = 0;
   for (int i = 0; i < j; ++i) {
     const double r = residual.row(i).norm();
     sum += r * r;
     worst = std::max(worst, r);
   }
-  fit.rms_residual = T(std::sqrt(sum / j));
-  fit.max_residual = T(worst);
+  fit.rms_residual = T(std::ldexp(std::sqrt(sum / j), scale));
+  fit.max_residual = T(std::ldexp(worst, scale));
   return fit;
 }
 

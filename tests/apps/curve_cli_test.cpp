@@ -142,6 +142,51 @@ TEST(CurveCli, OverflowingCurvesAreUserErrorsNotNaN) {
 
 // A huge --count used to allocate gigabytes and run for minutes before writing anything; it is a
 // user error naming the option, for sample and plot alike, and nothing is written.
+// Issue 9, defect 4: a Lagrange curve through 1.6e308, 0, 1 sampled to "0,-nan" and -inf and
+// plotted NaN into the SVG, with exit 0.  Its values are all finite (the interpolant is
+// 0.8e308·(u − 1)(u − 2) up to rounding, at most 1.6e308 on [0, 2]): sample and plot must print
+// finite numbers.
+TEST(CurveCli, LagrangeNearTheLargestDoubleSamplesAndPlotsFiniteNumbers) {
+  const auto f = temp_file("lagrange_huge.json", R"({"type":"lagrange","points":[1.6e308,0,1]})");
+  const CliRun r = run_cli("curve sample " + f + " --count 11");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "u,x");
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    const auto comma = line.find(',');
+    ASSERT_NE(comma, std::string::npos) << line;
+    const double u = std::stod(line.substr(0, comma));
+    const double x = std::strtod(line.c_str() + comma + 1, nullptr);
+    EXPECT_TRUE(std::isfinite(x)) << line;
+    EXPECT_NEAR(x, 0.8e308 * (u - 1) * (u - 2), 1e295) << line;  // few ulp of 1.6e308
+    ++rows;
+  }
+  EXPECT_EQ(rows, 11);
+  const auto out = (inbetween::test::test_dir() / "huge.svg").string();
+  const CliRun p = run_cli("curve plot " + f + " -o " + out);
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const std::string svg = inbetween::test::slurp(out);
+  EXPECT_NE(svg.find("<polyline"), std::string::npos);
+  EXPECT_EQ(svg.find("nan"), std::string::npos);
+  EXPECT_EQ(svg.find("inf"), std::string::npos);
+}
+
+// Issue 9, defect 5: this 133-byte curve made `curve info` run 57 s and take 1.55 GB (arc-length
+// subdivision to depth 30 everywhere, driven by the rounding noise of a degree-19 speed).  With the
+// work budget it is a clear user error, after at most 100 000 speed evaluations (the evaluation
+// count is asserted in ArcLength.PathologicalLagrangeStaysWithinTheWorkBudget).
+TEST(CurveCli, PathologicalLagrangeInfoIsABudgetErrorNotAMinuteOfWork) {
+  const auto f = temp_file("lagrange20.json",
+                           R"({"type":"lagrange","points":[9,-9,9,-9,9,-9,9,-9,9,-9,9,-9,9,-9,9,-9,9,-9,9,-9]})");
+  const CliRun r = run_cli("curve info " + f);
+  EXPECT_EQ(r.exit_code, 2) << r.out;
+  EXPECT_NE(r.err.find("work budget"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(f), std::string::npos) << r.err;
+}
+
 TEST(CurveCli, HugeCountIsAUserErrorNotAnAllocation) {
   const fs::path svg = inbetween::test::test_dir() / "huge_count.svg";
   fs::remove(svg);

@@ -188,6 +188,24 @@ TEST(RotationCli, AllTwentyFourEulerConventionsRoundTripThroughTheTool) {
   }
 }
 
+TEST(RotationCli, AxisAngleWithSubnormalAxisIsTheRotationAboutItsDirection) {
+  // Issue 9, defect 3: these printed "inf -nan -inf" and the identity.  Closed forms: the axis
+  // (5e-324, 0, −5e-324) is the direction (1, 0, −1)/√2, so 1 rad about it is
+  // (cos ½, sin ½/√2, 0, −sin ½/√2); the axis (1e-310, 0, 0) is x, so 1 rad about it is (cos ½, sin ½, 0, 0).
+  const CliRun r = run_cli("rotation convert --from axis-angle --to quat", "5e-324 0 -5e-324 1\n1e-310 0 0 1\n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = numbers_of(r.out);
+  ASSERT_EQ(rows.size(), 2u) << r.out;
+  ASSERT_EQ(rows[0].size(), 4u) << r.out;
+  ASSERT_EQ(rows[1].size(), 4u) << r.out;
+  for (const auto& row : rows)
+    for (double v : row) EXPECT_TRUE(std::isfinite(v)) << r.out;
+  const double c = std::cos(0.5), s = std::sin(0.5);
+  const double expect[2][4] = {{c, s / std::sqrt(2.0), 0, -s / std::sqrt(2.0)}, {c, s, 0, 0}};
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(rows[std::size_t(i)][std::size_t(k)], expect[i][k], 1e-15) << r.out;
+}
+
 TEST(RotationCli, DemoShowsTheRotationSection) {
   const CliRun r = run_cli("demo", "");
   ASSERT_EQ(r.exit_code, 0) << r.err;

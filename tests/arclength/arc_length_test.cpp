@@ -4,9 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <type_traits>
 #include <vector>
 
 #include "inbetween/arclength/accuracy.hpp"
+#include "inbetween/curves/lagrange.hpp"
 #include "support/museum_arclength.hpp"
 #include "support/random.hpp"
 
@@ -15,6 +19,125 @@ namespace {
 
 // The issue's target for the default object in double: u(s) within 1e-9 of the curve length.
 constexpr double kDefaultRelTarget = 1e-9;
+
+// Counts the derivative and point evaluations made through it (the work of an arc-length method).
+template <class C>
+struct CountingCurve {
+  using point_type = typename C::point_type;
+  using scalar_type = typename C::scalar_type;
+  C curve;
+  std::int64_t* calls;
+  Interval<scalar_type> domain() const noexcept { return curve.domain(); }
+  int segment_count() const noexcept { return curve.segment_count(); }
+  Interval<scalar_type> segment_domain(int i) const noexcept { return curve.segment_domain(i); }
+  point_type point(scalar_type u) const noexcept { return ++*calls, curve.point(u); }
+  point_type derivative(scalar_type u, int k) const noexcept { return ++*calls, curve.derivative(u, k); }
+};
+
+// Issue 9, defect 5: a 20-point Lagrange curve made `curve info` run 57 s and take 1.55 GB: the
+// speed of a degree-19 polynomial evaluated in Newton form carries rounding noise larger than the
+// per-interval tolerance, so adaptive integration split every interval down to depth 30.  Every
+// adaptive method now has a work budget (max_evaluations_per_segment × segments); the test asserts
+// on the evaluation count, not on time.  The count may exceed the budget only by the fixed work
+// around the adaptive loop: the speed-minima search (33 samples + 200 bisection steps for each of
+// up to 32 minima, 2 derivatives each: 12 866), the speed-scale probe (33), the initial estimate
+// (order 10) and, per piece (≤ 33), its first rule (10) plus the halves of the pending recursion
+// frames (2 × 10 × 31): 33 × 630 = 20 790 — 33 709 in all, rounded up to 50 000.
+// Reference length, independent of quadrature: for a 1-D curve ∫|P'| is the total variation,
+// Σ |P(r_{k+1}) − P(r_k)| over the zeros r_k of P' (found by bisection on sign changes).
+constexpr std::int64_t kBudgetPerSegment = 100'000;   // the default of every adaptive method
+constexpr std::int64_t kBudgetOverhead = 50'000;      // derived above
+
+LagrangeCurve<double> pathological_lagrange() {
+  std::vector<double> pts;
+  for (int i = 0; i < 20; ++i) pts.push_back(i % 2 == 0 ? 9 : -9);  // 133 bytes as a curve file
+  return build_lagrange(pts).value();
+}
+
+double total_variation(const LagrangeCurve<double>& c) {
+  const auto d = c.domain();
+  std::vector<double> stops{d.lo};
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    double lo = d.lo + d.length() * i / n, hi = d.lo + d.length() * (i + 1) / n;
+    if ((c.derivative(lo, 1) < 0) == (c.derivative(hi, 1) < 0)) continue;
+    for (int it = 0; it < 200 && lo < hi; ++it) {
+      const double mid = lo + (hi - lo) / 2;
+      if (!(lo < mid && mid < hi)) break;
+      if ((c.derivative(mid, 1) < 0) == (c.derivative(lo, 1) < 0)) lo = mid; else hi = mid;
+    }
+    stops.push_back(lo);
+  }
+  stops.push_back(d.hi);
+  long double sum = 0;
+  for (std::size_t k = 1; k < stops.size(); ++k) sum += std::fabs((long double)c.point(stops[k]) - c.point(stops[k - 1]));
+  return double(sum);
+}
+
+TEST(ArcLength, PathologicalLagrangeStaysWithinTheWorkBudget) {
+  const LagrangeCurve<double> lagrange = pathological_lagrange();
+  const double exact = total_variation(lagrange);
+  std::printf("[ measured ] 20-point Lagrange (+-9 alternating): total variation %.17g\n", exact);
+  const std::int64_t bound = kBudgetPerSegment * lagrange.segment_count() + kBudgetOverhead;
+  std::int64_t calls = 0;
+  auto arc = make_arc_length(CountingCurve<LagrangeCurve<double>>{lagrange, &calls});
+  std::printf("[ measured ] ArcLength::build: %lld evaluations (bound %lld), %s\n", (long long)calls, (long long)bound,
+              arc ? "built" : arc.error().describe().c_str());
+  EXPECT_LE(calls, bound);
+  if (arc) EXPECT_NEAR(arc->length(), exact, 1e-9 * exact);
+  // The plain adaptive length and the forward-difference table: same budget.
+  calls = 0;
+  const double fallback = adaptive_gauss_length(CountingCurve<LagrangeCurve<double>>{lagrange, &calls},
+                                                lagrange.domain().lo, lagrange.domain().hi,
+                                                AdaptiveGaussOptions<double>{.tolerance = 1e-11 * exact, .order = 10});
+  std::printf("[ measured ] adaptive_gauss_length: %lld evaluations, relative error %.3g\n", (long long)calls,
+              std::fabs(fallback - exact) / exact);
+  EXPECT_LE(calls, bound);
+  // Stops here within budget (no min_depth), accepting intervals at the rounding floor of the
+  // noisy speed: 1.5e-9 relative, the same before and after the budget existed.
+  EXPECT_NEAR(fallback, exact, 1e-8 * exact);
+  // The fallback itself: a budget of 2 000 per segment runs out; the estimate stays finite.
+  calls = 0;
+  const double starved = adaptive_gauss_length(
+      CountingCurve<LagrangeCurve<double>>{lagrange, &calls}, lagrange.domain().lo, lagrange.domain().hi,
+      AdaptiveGaussOptions<double>{.tolerance = 1e-13 * exact, .order = 10, .min_depth = 6,
+                                   .max_evaluations_per_segment = 2'000});
+  std::printf("[ measured ] adaptive_gauss_length with 2000 evaluations per segment: %lld evaluations, relative error %.3g\n",
+              (long long)calls, std::fabs(starved - exact) / exact);
+  EXPECT_LE(calls, 2'000 + kBudgetOverhead);
+  EXPECT_TRUE(std::isfinite(starved));
+  calls = 0;
+  auto fd = adaptive_forward_difference_table(CountingCurve<LagrangeCurve<double>>{lagrange, &calls},
+                                              AdaptiveForwardDifferenceOptions<double>{.tolerance = 1e-9 * exact,
+                                                                                       .max_depth = 40});
+  std::printf("[ measured ] adaptive_forward_difference_table: %lld evaluations, %s\n", (long long)calls,
+              fd ? "built" : fd.error().describe().c_str());
+  EXPECT_LE(calls, bound);
+}
+
+TEST(ArcLength, PathologicalLagrangeStaysWithinTheWorkBudgetInFloatToo) {
+  std::vector<float> pts;
+  for (int i = 0; i < 20; ++i) pts.push_back(i % 2 == 0 ? 9.0f : -9.0f);
+  const auto lagrange = build_lagrange(pts).value();
+  std::int64_t calls = 0;
+  auto arc = make_arc_length(CountingCurve<LagrangeCurve<float>>{lagrange, &calls});
+  std::printf("[ measured ] ArcLength::build (float): %lld evaluations, %s\n", (long long)calls,
+              arc ? "built" : arc.error().describe().c_str());
+  EXPECT_LE(calls, kBudgetPerSegment + kBudgetOverhead);
+}
+
+TEST(ArcLength, MuseumCurvesUseAFractionOfTheBudget) {
+  std::int64_t worst = 0;
+  for (const auto& ex : test::museum_arc_length_curves<double>()) {
+    std::int64_t calls = 0;
+    using Curve = std::decay_t<decltype(ex.curve)>;
+    auto arc = make_arc_length(CountingCurve<Curve>{ex.curve, &calls});
+    ASSERT_TRUE(arc) << ex.name << ": " << arc.error().describe();
+    worst = std::max(worst, calls / std::max(1, ex.curve.segment_count()));
+  }
+  std::printf("[ measured ] museum curves: at most %lld evaluations per segment for ArcLength::build\n", (long long)worst);
+  EXPECT_LE(worst, kBudgetPerSegment / 10);
+}
 
 TEST(ArcLength, DefaultMeetsOneNanoLengthOnEveryMuseumCurve) {
   for (const auto& ex : test::museum_arc_length_curves<double>()) {

@@ -2,6 +2,11 @@
 // knots of multiplicity r, clamped ends, local control over [u_i, u_{i+p+1}], periodic closure.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
 #include "curve_test_util.hpp"
 #include "inbetween/curves/bspline.hpp"
 #include "inbetween/curves/continuity.hpp"
@@ -33,6 +38,50 @@ TYPED_TEST(BSplineCurve, DeBoorEqualsBasisSumAndClampedEndsInterpolate) {
     }
     EXPECT_LT(test::max_abs_diff(c.point(T(0)), pts.front()), T(4) * test::eps<T>);
     EXPECT_LT(test::max_abs_diff(c.point(T(1)), pts.back()), T(4) * test::eps<T>);
+  }
+}
+
+// Issue 9, defect 7c: with control points near 1e307 the points stay finite but the first and second
+// derivatives came out inf and NaN (differencing P_{i+1} − P_i and multiplying by p/Δu overflows,
+// then inf − inf).  Reference: the same spline with every control point divided by 2^E (exact, a
+// power of two); the derivatives of the big one must be those of the small one times 2^E, exactly
+// (power-of-two scaling commutes with rounding), which is ±inf only where the true value exceeds
+// T — the documented saturation — and never NaN.
+TYPED_TEST(BSplineCurve, DerivativesNearTheLargestFiniteValueAreTheScaledDerivatives) {
+  using P = TypeParam;
+  using T = scalar_of<P>;
+  test::Random rng(test::seed_for(343));
+  SCOPED_TRACE(rng.trace());
+  for (const int below : {2, 5, 10}) {
+  const int top = std::numeric_limits<T>::max_exponent - below;  // points up to 2^top (1e307 in double)
+  const int shift = top - 4;                                       // small copy: points up to 2^4
+  int not_finite = 0, nan = 0, compared = 0;
+  for (int degree = 1; degree <= 5; ++degree) {
+    const int count = degree + 9;
+    const auto unit = test::random_points<P>(rng, count);
+    std::vector<P> big, small;
+    for (const P& p : unit) {
+      big.push_back(p * std::ldexp(T(1), top));
+      small.push_back(p * std::ldexp(T(1), top - shift));
+    }
+    const auto cb = build_bspline(big, degree).value();
+    const auto cs = build_bspline(small, degree).value();
+    for (int s = 0; s <= 40; ++s) {
+      const T u = T(s) / T(40);
+      for (int k = 0; k <= 3; ++k) {
+        const P db = cb.derivative(u, k), ds = cs.derivative(u, k);
+        for (int i = 0; i < PointTraits<P>::dim; ++i) {
+          const T vb = PointTraits<P>::get(db, i), want = std::ldexp(PointTraits<P>::get(ds, i), shift);
+          ++compared;
+          if (std::isnan(vb)) ++nan;
+          if (!std::isfinite(vb)) ++not_finite;
+          EXPECT_EQ(vb, want) << "degree " << degree << " u " << u << " k " << k;
+        }
+      }
+    }
+  }
+  std::printf("[ measured ] B-spline derivatives at 2^%d: %d components, %d NaN, %d infinite\n", top, compared, nan,
+              not_finite);
   }
 }
 

@@ -2,8 +2,13 @@
 // oscillation on equally spaced samples of 1/(1 + 25x²).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+#include <vector>
+
 #include "curve_test_util.hpp"
 #include "inbetween/curves/lagrange.hpp"
+#include "support/tolerances.hpp"
 
 namespace inbetween {
 namespace {
@@ -25,6 +30,46 @@ double runge_error(int n) {
     worst = std::max(worst, std::abs(c.point(x) - runge(x)));
   }
   return worst;
+}
+
+// Issue 9, defect 4: the curve through 1.6e308, 0, 1 at u = 0, 1, 2 has finite coefficients
+// (1.6e308, −1.6e308, 0.8e308) but its nested evaluation overflowed an intermediate (−2.4e308 at
+// u = 0, then −inf·0 = NaN), so `curve sample` printed "0,-nan" and -inf.  Reference: the Lagrange
+// form Σ y_i L_i(u) evaluated in long double (whose range holds every intermediate); the double
+// evaluation must agree to a few ulp of the largest term, 1.6e308.  Derivatives: the first is
+// 0.8e308·(2u − 3), whose true value exceeds double near u = 0 — ±inf there (documented
+// saturation), finite elsewhere, never NaN.
+TEST(LagrangeTest, HugeValuesEvaluateWithoutOverflowingIntermediates) {
+  using L = long double;
+  const std::vector<double> ys{1.6e308, 0, 1}, us{0, 1, 2};
+  for (const bool explicit_params : {false, true}) {
+    const auto c = explicit_params ? build_lagrange<double>(ys, us) : build_lagrange<double>(ys);
+    ASSERT_TRUE(c.has_value()) << c.error().describe();
+    int non_finite_values = 0, nan_derivatives = 0;
+    for (int i = 0; i <= 200; ++i) {
+      const double u = 2.0 * i / 200;
+      L want = 0;
+      for (int a = 0; a < 3; ++a) {
+        L basis = 1;
+        for (int b = 0; b < 3; ++b)
+          if (b != a) basis *= (L(u) - L(us[std::size_t(b)])) / (L(us[std::size_t(a)]) - L(us[std::size_t(b)]));
+        want += L(ys[std::size_t(a)]) * basis;
+      }
+      const double got = c->point(u);
+      if (!std::isfinite(got)) ++non_finite_values;
+      // Rounding of the coefficients and of three nested steps: a few ulp of the largest term.
+      EXPECT_NEAR(L(got), want, L(16) * L(test::eps<double>) * L(1.6e308)) << "u = " << u;
+      for (int k = 1; k <= 3; ++k)
+        if (std::isnan(c->derivative(u, k))) ++nan_derivatives;
+      const L slope = L(0.8e308) * (2 * L(u) - 3);  // closed form of P′ (up to the rounded 0.5)
+      const double d1 = c->derivative(u, 1);
+      const L top = L(std::numeric_limits<double>::max());
+      if (std::fabs(slope) < L(0.99) * top) EXPECT_NEAR(L(d1), slope, L(64) * L(test::eps<double>) * 2.4e308L) << u;
+      else if (std::fabs(slope) > L(1.01) * top) EXPECT_TRUE(std::isinf(d1) && (d1 < 0) == (slope < 0)) << u << " " << d1;
+    }
+    EXPECT_EQ(non_finite_values, 0);
+    EXPECT_EQ(nan_derivatives, 0);
+  }
 }
 
 TEST(LagrangeTest, RungeOscillationGrowsWithTheNumberOfEquallySpacedPoints) {

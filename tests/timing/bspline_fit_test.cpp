@@ -163,7 +163,7 @@ TEST(BSplineFit, OverflowingControlPointsAreAnError) {
   auto e = fit_bspline<double>(d, {.degree = 2});
   ASSERT_FALSE(e);
   EXPECT_EQ(e.error().code, ErrorCode::NotFinite);
-  EXPECT_EQ(json_pointer(e.error().location), "/control_points");
+  EXPECT_EQ(json_pointer(e.error().location), "/points/1");  // the largest datum, not the (default) control-point count
   const float bigf = std::numeric_limits<float>::max() / 1.5f;
   const std::vector<TimedPoint<float>> f = {{0, 0}, {1, bigf}, {2, 0}};
   auto ef = fit_bspline<float>(f, {.degree = 2});
@@ -174,6 +174,30 @@ TEST(BSplineFit, OverflowingControlPointsAreAnError) {
   auto ok = fit_bspline<float>(small, {.degree = 2});
   ASSERT_TRUE(ok);
   EXPECT_NEAR(ok->curve.control_points[1], 2.0f, 4 * std::numeric_limits<float>::epsilon());
+}
+
+// Issue 9, defect 8: `path fit` on values of ±1.7e308 blamed --control-points even when it was not
+// given.  The cause is the data's magnitude: the interpolating spline through alternating ±1.7e308
+// needs control points beyond double (B-spline control points overshoot alternating data), so the
+// error must name the largest datum's row and its value.  And data that are large but whose fit is
+// representable must fit: a constant 1.7e308 is reproduced by control points all equal to it
+// (partition of unity), which the unscaled QR solve overflowed.
+TEST(BSplineFit, HugeDataBlameTheDataAndRepresentableFitsSucceed) {
+  const double big = 1.7e308;
+  const std::vector<TimedPoint<double>> alternating = {{0, big}, {1, -big}, {2, big}, {3, -big}, {4, big}};
+  auto e = fit_bspline<double>(alternating, {.degree = 3});
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(e.error().where, "point 0") << e.error().describe();
+  EXPECT_NE(e.error().message.find("1.7e+308"), std::string::npos) << e.error().message;
+  EXPECT_EQ(e.error().message.find("control points <="), std::string::npos) << e.error().message;
+  for (const int m : {0, 4, 5}) {  // square, least squares, square again (0 = one per datum)
+    const std::vector<TimedPoint<double>> constant = {{0, big}, {1, big}, {2, big}, {3, big}, {4, big}};
+    auto ok = fit_bspline<double>(constant, {.degree = 3, .control_points = m});
+    ASSERT_TRUE(ok) << m << ": " << ok.error().describe();
+    for (double c : ok->curve.control_points) EXPECT_NEAR(c, big, 64 * std::numeric_limits<double>::epsilon() * big) << m;
+    EXPECT_LE(ok->max_residual, 64 * std::numeric_limits<double>::epsilon() * big) << m;
+  }
 }
 
 TEST(BSplineFit, FloatAndVec2Instantiations) {

@@ -199,6 +199,32 @@ TYPED_TEST(TrackTest, CursorAndBatchAgreeWithPlainSampling) {
   }
 }
 
+// Issue 9, defect 7a: keys 1e-300 apart sampled at frame 1e9 with cycle_offset gave NaN: the cycle
+// count 1e9/1e-300 overflows to inf and a component whose per-cycle offset is 0 became 0·inf.
+// Closed form: a component with equal first and last values repeats that value whatever the cycle
+// count; a component with a non-zero offset grows past T's range (±inf, the documented saturation
+// of extension modes, never NaN).
+TYPED_TEST(TrackTest, CycleOffsetWithAnOverflowingCycleCountStaysANumber) {
+  using T = TypeParam;
+  const T gap = sizeof(T) == 4 ? std::numeric_limits<T>::min() : T(1e-300);  // keys this far apart
+  const std::vector<TrackKey<Vec3<T>>> keys{key<Vec3<T>>(T(0), Vec3<T>{1, 2, 3}),
+                                            key<Vec3<T>>(gap, Vec3<T>{1, 5, 3})};
+  auto tr = build_track(keys, TrackExtend::cycle_offset, TrackExtend::cycle_offset);
+  ASSERT_TRUE(tr.has_value()) << tr.error().describe();
+  for (const T frame : {T(1e9), T(-1e9), std::numeric_limits<T>::max(), -std::numeric_limits<T>::max()}) {
+    const Vec3<T> v = tr->sample(frame);
+    EXPECT_EQ(v.x, T(1)) << frame;
+    EXPECT_EQ(v.z, T(3)) << frame;
+    EXPECT_EQ(v.y, frame > 0 ? std::numeric_limits<T>::infinity() : -std::numeric_limits<T>::infinity()) << frame;
+  }
+  // A scalar track with equal end values: the offset is 0 and the value stays 7.
+  auto flat = build_track(std::vector<TrackKey<T>>{key<T>(T(0), T(7)), key<T>(gap, T(7))},
+                          TrackExtend::cycle_offset, TrackExtend::cycle_offset);
+  ASSERT_TRUE(flat.has_value());
+  EXPECT_EQ(flat->sample(T(1e9)), T(7));
+  EXPECT_EQ(flat->sample(T(-1e9)), T(7));
+}
+
 TEST(TrackMuseum, EveryExhibitBuildsPassesThroughItsKeysAndStaysFinite) {
   for (const auto& ex : test::museum_track_keys()) {
     SCOPED_TRACE(ex.name);

@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <utility>
@@ -40,6 +41,9 @@ struct ArcLengthOptions {
   int order = 10;      ///< Gauss–Legendre nodes per interval (10 as in texts 004 Figure 3.8)
   int min_depth = 3;   ///< forced subdivision levels per segment (dense rows make good Newton seeds)
   int max_depth = 30;  ///< subdivision cap (cusps, rounding)
+  /// Work budget of the table build, per curve segment (see AdaptiveGaussOptions); running out
+  /// is the error BudgetExceeded.
+  std::int64_t max_evaluations_per_segment = 100'000;
 };
 
 /// Arc-length parameterisation of a curve (a copy of the curve is kept).  Invariants: length() ≥ 0
@@ -51,8 +55,9 @@ class ArcLength {
   using point_type = typename C::point_type;    ///< the curve's point type
   using T = scalar_type;                         ///< shorthand
 
-  /// Builds the table.  Errors: options out of range (InvalidArgument), or a curve whose speed is
-  /// not finite somewhere (NotFinite).
+  /// Builds the table.  Errors: options out of range (InvalidArgument), a curve whose speed is
+  /// not finite somewhere (NotFinite), or a table that needs more than
+  /// opt.max_evaluations_per_segment × segments speed evaluations (BudgetExceeded).
   static Expected<ArcLength> build(C curve, const ArcLengthOptions<T>& opt = {}) {
     if (!(opt.relative_tolerance > T(0)) || opt.order < 1 || opt.order > kMaxGaussLegendreOrder ||
         opt.min_depth < 0 || opt.max_depth < opt.min_depth) {
@@ -68,7 +73,8 @@ class ArcLength {
     const T tol = estimate > T(0) ? opt.relative_tolerance * estimate : opt.relative_tolerance;
     auto table = adaptive_gauss_table(
         curve, AdaptiveGaussOptions<T>{.tolerance = tol, .order = opt.order, .min_depth = opt.min_depth,
-                                       .max_depth = opt.max_depth});
+                                       .max_depth = opt.max_depth,
+                                       .max_evaluations_per_segment = opt.max_evaluations_per_segment});
     if (!table) return table.error();
     if (!std::isfinite(table->length())) {
       return Error{ErrorCode::NotFinite, "the curve's length is not finite", ""};

@@ -123,6 +123,9 @@ Expected<ArcLengthTable<typename C::scalar_type>> forward_difference_table(
   return ArcLengthTable<T>::from_entries(u, s, chords + 1);
 }
 
+/// The error of an adaptive table build that ran out of its work budget (BudgetExceeded).
+Error budget_error(std::int64_t evaluations, std::int64_t per_segment, const char* method);
+
 /// Options of adaptive forward differencing (texts 004 "Adaptive approach").
 template <Real T>
 struct AdaptiveForwardDifferenceOptions {
@@ -131,6 +134,9 @@ struct AdaptiveForwardDifferenceOptions {
   T tolerance = T(1e-6);
   int min_depth = 3;   ///< levels split unconditionally first (guards against the Figure 3.7 trap)
   int max_depth = 24;  ///< no piece is split more often than this
+  /// Work budget: at most this many curve points per segment (shared among the segments); when a
+  /// split is still wanted after that, the build fails with BudgetExceeded.
+  std::int64_t max_evaluations_per_segment = 100'000;
 };
 
 /// Adaptive forward differencing: for each piece [a, b] compare the chord with the two half-chords,
@@ -157,6 +163,11 @@ Expected<ArcLengthTable<typename C::scalar_type>> adaptive_forward_difference_ta
     int depth;
   };
   std::vector<Piece> stack;
+  const std::int64_t segments = std::max<std::int64_t>(curve.segment_count(), 1);
+  const std::int64_t per = std::max<std::int64_t>(opt.max_evaluations_per_segment, 0);
+  const std::int64_t budget = per > std::numeric_limits<std::int64_t>::max() / segments
+                                  ? std::numeric_limits<std::int64_t>::max()
+                                  : per * segments;
   for (int i = int(curve.segment_count()) - 1; i >= 0; --i) {
     const auto d = curve.segment_domain(i);
     if (!(d.lo < d.hi)) continue;
@@ -178,6 +189,8 @@ Expected<ArcLengthTable<typename C::scalar_type>> adaptive_forward_difference_ta
     const T floor = T(16) * std::numeric_limits<T>::epsilon() * (norm(pc.pa) + norm(pm) + norm(pc.pb));
     const T diff = std::fabs(chord - (left + right));
     if (splittable && (pc.depth < opt.min_depth || (diff >= pc.tol && diff > floor))) {
+      // Each split costs the midpoints of its two halves later.
+      if (evals + 2 > budget) return budget_error(evals, opt.max_evaluations_per_segment, "adaptive forward differencing");
       stack.push_back({m, pc.b, pm, pc.pb, pc.tol / T(2), pc.depth + 1});
       stack.push_back({pc.a, m, pc.pa, pm, pc.tol / T(2), pc.depth + 1});
       continue;
@@ -217,12 +230,14 @@ Expected<ArcLengthTable<typename C::scalar_type>> adaptive_gauss_table(
   };
   auto f = [&curve](T x) { return speed_at(curve, x); };
   detail::EvaluationCounter count;
+  count.budget = detail::evaluation_budget(curve, opt);
   const T span = dom.length();
   detail::for_each_smooth_piece(curve, dom.lo, dom.hi, [&](int i, T a, T b) {
     detail::adaptive_gauss_piece<T>(f, a, b, opt.tolerance * ((b - a) / span), opt, leaf, count,
                                     T(64) * std::numeric_limits<T>::epsilon(),
                                     detail::segment_speed_scale(curve, i));
   });
+  if (count.exhausted) return budget_error(count.evaluations, opt.max_evaluations_per_segment, "adaptive Gaussian integration");
   if (u.size() < 2) { u.push_back(dom.hi); s.push_back(T(0)); }
   return ArcLengthTable<T>::from_entries(u, s, count.evaluations);
 }

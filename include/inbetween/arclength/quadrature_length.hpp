@@ -4,6 +4,7 @@
 /// reference used to measure every other method.  Integration is always split at segment joints,
 /// because derivatives may jump there.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -28,6 +29,13 @@ struct AdaptiveGaussOptions {
   int order = 5;       ///< Gauss–Legendre nodes per interval (Figure 3.8 uses 10; 1..64)
   int min_depth = 0;   ///< levels subdivided unconditionally before the test applies
   int max_depth = 30;  ///< no interval is split more often than this (cusps, rounding)
+  /// Work budget: at most this many integrand evaluations per curve segment for the subdivision
+  /// (the budget of a call is this times the number of segments, shared among them).  When it
+  /// runs out no interval is split further: the table builders return BudgetExceeded, the
+  /// length functions return the estimate reached so far (documented fallback).  Sane curves use
+  /// about 1% of the default (the museum: at most 1 395 per segment); a degree-19 Lagrange curve
+  /// whose speed is noisier than the tolerance used 2.6e8 evaluations before there was a budget.
+  std::int64_t max_evaluations_per_segment = 100'000;
 };
 
 /// The speed |dP/du| of `curve` at u (u clamped by the curve), as √(P'·P') — the plain form, as it
@@ -123,10 +131,21 @@ void for_each_smooth_piece(const C& curve, typename C::scalar_type ua, typename 
   });
 }
 
-/// Counts integrand evaluations (for cost reports); plain struct, caller-owned.
+/// Counts integrand evaluations (for cost reports) against a budget; plain struct, caller-owned.
 struct EvaluationCounter {
-  std::int64_t evaluations = 0;
+  std::int64_t evaluations = 0;                                      ///< spent so far
+  std::int64_t budget = std::numeric_limits<std::int64_t>::max();  ///< no split once this is reached
+  bool exhausted = false;  ///< a split was wanted but refused for lack of budget
 };
+
+/// The budget of one call: opt.max_evaluations_per_segment × segments (saturating; ≤ 0 = none left).
+template <Curve C, class R>
+std::int64_t evaluation_budget(const C& curve, const AdaptiveGaussOptions<R>& opt) noexcept {
+  const std::int64_t per = std::max<std::int64_t>(opt.max_evaluations_per_segment, 0);
+  const std::int64_t segments = std::max<std::int64_t>(curve.segment_count(), 1);
+  if (per > std::numeric_limits<std::int64_t>::max() / segments) return std::numeric_limits<std::int64_t>::max();
+  return per * segments;
+}
 
 /// The recursive step of Figure 3.8, corrected: `whole` is the estimate over [a, b]; if the two
 /// halves differ from it by more than `tol` (and depth allows), both halves are subdivided with
@@ -146,8 +165,14 @@ R adaptive_gauss_step(F& f, R a, R b, R whole, R tol, int depth, int min_depth, 
   count.evaluations += 2 * rule.order();
   const R diff = std::fabs(whole - (left + right));
   const R floor = floor_rel * std::fabs(left + right) + floor_per_width * (b - a);
-  const bool splittable = a < mid && mid < b && depth < max_depth;
-  if (splittable && (depth < min_depth || (diff > tol && diff > floor))) {
+  bool splittable = a < mid && mid < b && depth < max_depth;
+  const bool wanted = depth < min_depth || (diff > tol && diff > floor);
+  // The two halves each evaluate their own two halves: 4·order evaluations per split.
+  if (splittable && wanted && count.evaluations + 4 * std::int64_t(rule.order()) > count.budget) {
+    count.exhausted = true;
+    splittable = false;
+  }
+  if (splittable && wanted) {
     return adaptive_gauss_step(f, a, mid, left, tol / R(2), depth + 1, min_depth, max_depth, rule, leaf,
                                count, floor_rel, floor_per_width) +
            adaptive_gauss_step(f, mid, b, right, tol / R(2), depth + 1, min_depth, max_depth, rule, leaf,
@@ -219,6 +244,9 @@ typename C::scalar_type gauss_length(const C& curve, typename C::scalar_type ua,
 /// intervals are the segments split at their speed minima (detail::speed_minima), where the
 /// integrand has kinks that fool the halves test.  Parameters are
 /// clamped; u_b < u_a gives the negative length.  Allocates a little (the speed minima per segment).
+/// Bounded work: when opt.max_evaluations_per_segment runs out, the intervals not yet accepted are
+/// taken at their current Gauss estimate (documented fallback: the result is then finite but no
+/// longer held to the tolerance; use ArcLength or adaptive_gauss_table to get an error instead).
 template <Curve C>
 typename C::scalar_type adaptive_gauss_length(const C& curve, typename C::scalar_type ua,
                                               typename C::scalar_type ub,
@@ -232,6 +260,7 @@ typename C::scalar_type adaptive_gauss_length(const C& curve, typename C::scalar
   auto f = [&curve](T u) { return speed_at(curve, u); };
   auto leaf = [](T, T, T, T, T) {};
   detail::EvaluationCounter count;
+  count.budget = detail::evaluation_budget(curve, opt);
   T sum{};
   const T span = ub - ua;
   detail::for_each_smooth_piece(curve, ua, ub, [&](int i, T a, T b) {
@@ -244,7 +273,8 @@ typename C::scalar_type adaptive_gauss_length(const C& curve, typename C::scalar
 
 /// The analytic integrand route (texts 004 Eqs. 3.6, 3.7, 3.16): LENGTH(u_a, u_b) of a piecewise
 /// cubic curve, integrating √(Av⁴ + Bv³ + Cv² + Dv + E) of each segment's power form over its local
-/// parameter v with adaptive Gaussian integration.  Same clamping as adaptive_gauss_length().
+/// parameter v with adaptive Gaussian integration, on the segments split at their speed minima.
+/// Same clamping and work budget as adaptive_gauss_length().
 template <PiecewiseCubicCurve C>
 typename C::scalar_type analytic_cubic_length(const C& curve, typename C::scalar_type ua,
                                               typename C::scalar_type ub,
@@ -257,9 +287,12 @@ typename C::scalar_type analytic_cubic_length(const C& curve, typename C::scalar
   if (!(ua < ub)) return T(0);
   auto leaf = [](T, T, T, T, T) {};
   detail::EvaluationCounter count;
+  count.budget = detail::evaluation_budget(curve, opt);
   T sum{};
   const T span = ub - ua;
-  detail::for_each_piece(curve, ua, ub, [&](int i, T a, T b) {
+  // Split at the speed minima too (a kink of √quartic where the speed vanishes made the
+  // subdivision of "straight line, doubles back" need more than 10⁶ evaluations).
+  detail::for_each_smooth_piece(curve, ua, ub, [&](int i, T a, T b) {
     const auto d = curve.segment_domain(i);
     const T h = d.length();
     if (!(h > T(0))) return;
@@ -275,7 +308,8 @@ typename C::scalar_type analytic_cubic_length(const C& curve, typename C::scalar
 /// Gauss–Legendre with a tolerance at the rounding level, accumulated in long double, on segments
 /// split at their speed minima.  Accurate to
 /// about 1e-14 relative for double curves, including cusps and zero-speed points (which only slow
-/// it down).  Not meant for per-frame use.
+/// it down).  Not meant for per-frame use.  Bounded work: 2 000 000 evaluations per segment, then
+/// the estimate reached so far.
 template <Curve C>
 typename C::scalar_type reference_length(const C& curve, typename C::scalar_type ua,
                                          typename C::scalar_type ub) {
@@ -289,7 +323,10 @@ typename C::scalar_type reference_length(const C& curve, typename C::scalar_type
   auto f = [&curve](R u) { return R(speed_at(curve, T(u))); };
   auto leaf = [](R, R, R, R, R) {};
   detail::EvaluationCounter count;
-  const AdaptiveGaussOptions<R> opt{.tolerance = 0, .order = 20, .min_depth = 1, .max_depth = 40};
+  // A larger budget than the default (this is the yardstick), still bounded.
+  const AdaptiveGaussOptions<R> opt{
+      .tolerance = 0, .order = 20, .min_depth = 1, .max_depth = 40, .max_evaluations_per_segment = 2'000'000};
+  count.budget = detail::evaluation_budget(curve, opt);
   R sum{};
   detail::for_each_smooth_piece(curve, ua, ub, [&](int i, T a, T b) {
     // A tolerance of 16 ulp of the piece's length: in practice the rounding floor of the

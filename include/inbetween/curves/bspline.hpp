@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -78,7 +80,10 @@ class BSpline {
   }
   /// P(u) by de Boor, u clamped into the domain.
   P point(T u) const noexcept { return derivative(u, 0); }
-  /// d^kP/du^k (k ≥ 0; zero for k > p), right limit at knots, u clamped.
+  /// d^kP/du^k (k ≥ 0; zero for k > p), right limit at knots, u clamped.  Never NaN for a built
+  /// curve: a derivative whose intermediates would overflow (control points near the largest
+  /// finite value) is evaluated with power-of-two scaling, and a component whose true value
+  /// exceeds T saturates to ±inf.
   P derivative(T u, int k) const noexcept {
     u = domain().clamp(u);
     return eval(bspline_span<T>(knots_, degree_, u), u, k);
@@ -119,8 +124,67 @@ class BSpline {
       if (knots_[s] < knots_[s + 1]) spans_.push_back(s);
   }
 
-  // de Boor on knot span s, after differentiating the local control points k times.
+  // de Boor on knot span s, after differentiating the local control points k times.  When a
+  // derivative comes out non-finite (differences of points near the largest value times p/Δu
+  // overflow, then inf − inf), it is recomputed by eval_scaled().
   P eval(int s, T u, int k) const noexcept {
+    P out = eval_plain(s, u, k);
+    if (k > 0 && !is_finite(out)) out = eval_scaled(s, u, k);
+    return out;
+  }
+
+  // The same algorithm on control points and factors p/Δu split into a mantissa part and a
+  // power-of-two exponent that is carried separately and applied once at the end (scale_by_pow2):
+  // every intermediate stays below 2^7 per level, and power-of-two scaling commutes with
+  // rounding, so the result equals the plain evaluation wherever that one does not overflow and
+  // is ±inf only where the true derivative exceeds T (documented saturation; never NaN).
+  P eval_scaled(int s, T u, int k) const noexcept {
+    const int p = degree_;
+    std::array<P, max_degree + 1> d;
+    T big{};
+    for (int j = 0; j <= p; ++j) big = std::fmax(big, max_abs_component(points_[s - p + j]));
+    if (!(big > T(0)) || !std::isfinite(big)) return eval_plain(s, u, k);
+    int e = 0;  // the true coefficients are d[j] · 2^e
+    std::frexp(big, &e);
+    for (int j = 0; j <= p; ++j) d[j] = scale_by_pow2(points_[s - p + j], -e);
+    for (int r = 1; r <= k; ++r) {
+      const int q = p - r + 1;
+      std::array<int, max_degree + 1> de{};
+      int top = std::numeric_limits<int>::min();
+      for (int j = 0; j <= p - r; ++j) {
+        const int i = s - p + r + j;
+        std::frexp(knots_[i + q] - knots_[i], &de[j]);  // Δu = f·2^de, f in [0.5, 1)
+        top = std::max(top, -de[j]);
+      }
+      for (int j = 0; j <= p - r; ++j) {
+        const int i = s - p + r + j;
+        const T du = knots_[i + q] - knots_[i];
+        // q/Δu = (q/f)·2^−de: the mantissa factor q/f ≤ 2q, the exponent moved into e.
+        d[j] = scale_by_pow2(P((d[j + 1] - d[j]) * (T(q) / std::ldexp(du, -de[j]))), -de[j] - top);
+      }
+      e += top;
+      // Renormalise so that the largest coefficient is below 1 again.
+      T level_big{};
+      for (int j = 0; j <= p - r; ++j) level_big = std::fmax(level_big, max_abs_component(d[j]));
+      if (level_big > T(0)) {
+        int le = 0;
+        std::frexp(level_big, &le);
+        for (int j = 0; j <= p - r; ++j) d[j] = scale_by_pow2(d[j], -le);
+        e += le;
+      }
+    }
+    const int q = p - k;
+    for (int r = 1; r <= q; ++r) {
+      for (int j = q; j >= r; --j) {
+        const int i = s - q + j;
+        const T alpha = (u - knots_[i]) / (knots_[i + q + 1 - r] - knots_[i]);
+        d[j] = d[j - 1] + (d[j] - d[j - 1]) * alpha;
+      }
+    }
+    return scale_by_pow2(d[q], e);
+  }
+
+  P eval_plain(int s, T u, int k) const noexcept {
     const int p = degree_;
     if (k > p) return P{};
     std::array<P, max_degree + 1> d;

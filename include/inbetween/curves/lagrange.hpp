@@ -5,6 +5,8 @@
 /// derivatives carried along.  With many equally spaced parameters it oscillates near the ends
 /// (Runge's phenomenon) — the reason animation uses piecewise cubics instead.
 
+#include <array>
+#include <cmath>
 #include <span>
 #include <vector>
 
@@ -80,24 +82,18 @@ class LagrangeCurve {
   Interval<T> segment_domain(int) const noexcept { return domain(); }
   /// P(u), u clamped.
   P point(T u) const noexcept { return derivative(u, 0); }
-  /// d^kP/du^k for k = 0..3 (higher orders are not provided and return zero), u clamped.
+  /// d^kP/du^k for k = 0..3 (higher orders are not provided and return zero), u clamped.  Never
+  /// NaN: when the nested evaluation would overflow an intermediate (values near the largest
+  /// finite T, where the Newton terms are larger than the result), it is redone with a shared
+  /// power-of-two exponent carried beside the partial sums, so the result is finite whenever the
+  /// true value is representable and saturates to ±inf only where it is not (a derivative, or a
+  /// polynomial overshooting past T between its points).
   P derivative(T u, int k) const noexcept {
     u = domain().clamp(u);
-    P d0{}, d1{}, d2{}, d3{};
-    for (int i = int(coeffs_.size()) - 1; i >= 0; --i) {
-      const T x = u - params_[i];
-      d3 = d3 * x + d2 * T(3);
-      d2 = d2 * x + d1 * T(2);
-      d1 = d1 * x + d0;
-      d0 = d0 * x + coeffs_[i];
-    }
-    switch (k) {
-      case 0: return d0;
-      case 1: return d1;
-      case 2: return d2;
-      case 3: return d3;
-      default: return P{};
-    }
+    if (k < 0 || k > 3) return P{};
+    const P plain = derivative_plain(u, k);
+    if (is_finite(plain)) return plain;
+    return derivative_scaled(u, k);
   }
   /// Same as derivative (one segment).
   P segment_derivative(int, T u, int k) const noexcept { return derivative(u, k); }
@@ -115,6 +111,79 @@ class LagrangeCurve {
   Interval<T> influence(int) const noexcept { return domain(); }
 
  private:
+  // Nested multiplication of the Newton form with the derivatives carried along (u in the domain).
+  P derivative_plain(T u, int k) const noexcept {
+    P d0{}, d1{}, d2{}, d3{};
+    for (int i = int(coeffs_.size()) - 1; i >= 0; --i) {
+      const T x = u - params_[i];
+      d3 = d3 * x + d2 * T(3);
+      d2 = d2 * x + d1 * T(2);
+      d1 = d1 * x + d0;
+      d0 = d0 * x + coeffs_[i];
+    }
+    switch (k) {
+      case 0: return d0;
+      case 1: return d1;
+      case 2: return d2;
+      default: return d3;
+    }
+  }
+
+  // The same recurrence on d_j · 2^e with one shared exponent e: before each step the partial
+  // sums are brought to the exponent of the larger of x and the coefficient, so every stored
+  // number stays below 2^4 in magnitude; the exponent is applied once at the end (±inf there only
+  // when the true value exceeds T).  Terms below 2^(e − 1074) are dropped: they are far below
+  // the rounding of the result.
+  P derivative_scaled(T u, int k) const noexcept {
+    std::array<P, 4> d{};
+    int e = 0;
+    bool started = false;
+    const auto rescale = [&](int new_e) {
+      for (P& v : d) v = scale_by_pow2(v, e - new_e);
+      e = new_e;
+    };
+    for (int i = int(coeffs_.size()) - 1; i >= 0; --i) {
+      const T x = u - params_[i];
+      int ex = 0;
+      const T fx = std::frexp(x, &ex);  // x = fx·2^ex, |fx| in [0.5, 1) (or 0)
+      // Multiply by x: the products get exponent e + ex; the added terms (3·d2, 2·d1, d0) keep e.
+      if (ex > 0) {
+        const P a3 = d[3] * fx + scale_by_pow2(P(d[2] * T(3)), -ex);
+        const P a2 = d[2] * fx + scale_by_pow2(P(d[1] * T(2)), -ex);
+        const P a1 = d[1] * fx + scale_by_pow2(d[0], -ex);
+        const P a0 = d[0] * fx;
+        d = {a0, a1, a2, a3};
+        e += ex;
+      } else {
+        const P a3 = d[3] * x + d[2] * T(3);
+        const P a2 = d[2] * x + d[1] * T(2);
+        const P a1 = d[1] * x + d[0];
+        const P a0 = d[0] * x;
+        d = {a0, a1, a2, a3};
+      }
+      // Add the coefficient at a common exponent.
+      const T cbig = max_abs_component(coeffs_[i]);
+      int ec = 0;
+      if (cbig > T(0)) std::frexp(cbig, &ec);
+      if (!started) {
+        e = ec;
+        started = true;
+      } else if (cbig > T(0) && ec > e) {
+        rescale(ec);
+      }
+      d[0] = d[0] + scale_by_pow2(coeffs_[i], -e);
+      // Keep the partial sums below 2^4.
+      T big{};
+      for (const P& v : d) big = std::fmax(big, max_abs_component(v));
+      if (big > T(8)) {
+        int eb = 0;
+        std::frexp(big, &eb);
+        rescale(e + eb);
+      }
+    }
+    return scale_by_pow2(d[std::size_t(k)], e);
+  }
+
   std::vector<T> params_;
   std::vector<P> points_;
   std::vector<P> coeffs_;

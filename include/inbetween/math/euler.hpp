@@ -75,24 +75,33 @@ template <Real T>
 struct EulerAngles {
   EulerTriple<T> angles_rad{};  ///< in the order of the sequence letters; ranges as in the header
   /// True when the middle angle is within EulerOptions::gimbal_tolerance_rad of a singular value
-  /// (±π/2 Tait–Bryan; 0 or π proper): then only the sum or difference of the first and third
-  /// angles is determined, and the third angle is set to 0 (SciPy's choice).
+  /// (±π/2 Tait–Bryan; 0 or π proper): the first and third angles are then ill-conditioned (a tiny
+  /// change of the rotation moves them a lot), though still exact for this rotation.  Only where
+  /// the distance is at the rounding level (detail::gimbal_snap_rad) is their split undetermined;
+  /// there the third angle is set to 0 (SciPy's choice).
   bool gimbal_lock = false;
 };
 
 /// Options of the extraction.
 template <Real T>
 struct EulerOptions {
-  /// Width of the gimbal-lock band around the singular middle angle, in radians.  The default for
-  /// double, 1e-7, is SciPy's.  For float it is 2e-6 (16 float eps): a float quaternion built at
-  /// exactly 90° is only known to within a few 1e-7 of the singular value.  Inside the band the
-  /// third angle is 0 and the rebuilt rotation differs from the input by at most about twice the
-  /// distance to the singular value; 0 gives the exact decomposition everywhere except exactly at
-  /// the singular value.
+  /// Width of the band around the singular middle angle in which gimbal_lock is reported, in
+  /// radians.  The default for double, 1e-7, is SciPy's.  For float it is 2e-6 (16 float eps): a
+  /// float quaternion built at exactly 90° is only known to within a few 1e-7 of the singular
+  /// value.  The angles stay the exact decomposition inside the band; the third angle is set to 0
+  /// only within min(gimbal_tolerance_rad, detail::gimbal_snap_rad) of the singular value, where
+  /// the rebuilt rotation differs from the input by a few ulp.  0 gives the exact decomposition
+  /// everywhere except exactly at the singular value.
   T gimbal_tolerance_rad = sizeof(T) >= 8 ? T(1e-7) : T(2e-6);
 };
 
 namespace detail {
+/// Distance to the singular middle angle below which the split of the free combination is rounding
+/// noise: 8 ulp of 1 (the quaternion's components carry about one ulp each, and the distance is
+/// twice an atan2 of two such components).  Setting the third angle to 0 there moves the rebuilt
+/// rotation by at most about twice this distance (issue 9: the whole 1e-7 band used to, 1.5e-7 rad).
+template <Real T>
+inline constexpr T gimbal_snap_rad = T(8) * std::numeric_limits<T>::epsilon();
 /// Unit quaternion of a rotation by angle_rad about coordinate axis `axis` (0, 1, 2).
 template <Real T>
 Quat<T> axis_quat(int axis, T angle_rad) noexcept {
@@ -182,8 +191,12 @@ EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
   const T to_zero = T(2) * std::atan2(h_cd, h_ab), to_pi = T(2) * std::atan2(h_ab, h_cd);
   const T theta_plus = std::atan2(b, a), theta_minus = std::atan2(d, c);
   const T tol = options.gimbal_tolerance_rad;
-  const bool lock_zero = to_zero <= tol;           // θ− undetermined: only α1 + α3'
-  const bool lock_pi = !lock_zero && to_pi <= tol;  // θ+ undetermined: only α3' − α1
+  // Reported band (ill-conditioned angles) and the much narrower band where the split of the free
+  // combination is rounding noise and the third angle is set to 0.
+  const T snap = std::fmin(tol, detail::gimbal_snap_rad<T>);
+  const bool near_zero = to_zero <= tol, near_pi = !near_zero && to_pi <= tol;
+  const bool lock_zero = to_zero <= snap;           // θ− undetermined: only α1 + α3'
+  const bool lock_pi = !lock_zero && to_pi <= snap;  // θ+ undetermined: only α3' − α1
   T alpha1, alpha3p;
   if (lock_zero || lock_pi) {
     // The free angle: SciPy's choice, the third angle *in the order given* is 0.  For an extrinsic
@@ -204,7 +217,7 @@ EulerAngles<T> euler_from_quat(const EulerSequence& seq, const Quat<T>& q_in,
   const T beta = proper ? (to_zero <= to_pi ? to_zero : pi_v<T> - to_pi)
                         : (to_zero <= to_pi ? to_zero - half_pi : half_pi - to_pi);
   EulerAngles<T> out;
-  out.gimbal_lock = lock_zero || lock_pi;
+  out.gimbal_lock = near_zero || near_pi;
   // θ± ∈ [−π, π], so α1, α3 ∈ [−2π, 2π]: one shift wraps them.
   const T first = detail::wrap_once(alpha1), third = detail::wrap_once(alpha3);
   out.angles_rad = seq.intrinsic ? EulerTriple<T>{third, beta, first} : EulerTriple<T>{first, beta, third};

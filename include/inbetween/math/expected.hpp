@@ -25,6 +25,7 @@ enum class ErrorCode {
   Io,                 ///< a file that cannot be opened or written
   Unsupported,        ///< a request outside what the library implements (named in the message)
   NotMonotone,        ///< a timing curve that would run backwards
+  BudgetExceeded,     ///< an adaptive computation ran out of its work budget before its tolerance
 };
 
 /// One step of a structured error location: a member name (std::string) or an array index

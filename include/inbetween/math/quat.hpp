@@ -22,14 +22,19 @@ struct Quat {
   static constexpr Quat identity() noexcept { return {}; }
   /// The pure quaternion (0, v) used to rotate a vector by q v q⁻¹.
   static constexpr Quat pure(const Vec3<T>& v) noexcept { return {T(0), v.x, v.y, v.z}; }
-  /// Rotation by angle_rad about `axis` (right-hand rule).  The axis is normalised here; a zero or
-  /// non-finite axis gives the identity.
+  /// Rotation by angle_rad about `axis` (right-hand rule).  The axis is normalised here, at any
+  /// finite scale (subnormal components included: the axis is first divided by its largest
+  /// component, so the norm that divides sin(angle/2) lies in [1, √3]); a zero or non-finite axis
+  /// gives the identity (documented fallback).
   static Quat from_axis_angle(const Vec3<T>& axis, T angle_rad) noexcept {
-    const T n = norm(axis);
-    if (!(n > T(0)) || !std::isfinite(n)) return {};
+    const T big = std::fmax(std::abs(axis.x), std::fmax(std::abs(axis.y), std::abs(axis.z)));
+    if (!(big > T(0)) || !std::isfinite(big)) return {};
+    // Exact for the largest component (±1); the others are correctly rounded quotients.
+    const Vec3<T> a{axis.x / big, axis.y / big, axis.z / big};
+    const T n = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
     const T h = angle_rad / T(2);
     const T s = std::sin(h) / n;
-    return {std::cos(h), axis.x * s, axis.y * s, axis.z * s};
+    return {std::cos(h), a.x * s, a.y * s, a.z * s};
   }
   /// The vector part (x, y, z).
   constexpr Vec3<T> vec() const noexcept { return {x, y, z}; }

@@ -210,6 +210,22 @@ scalar_of<P> norm(const P& a) noexcept {
   }
 }
 
+/// Largest |component| of a point (0 for the zero point).
+template <Point P>
+scalar_of<P> max_abs_component(const P& a) noexcept {
+  scalar_of<P> big{};
+  for (int i = 0; i < PointTraits<P>::dim; ++i) big = std::fmax(big, std::abs(PointTraits<P>::get(a, i)));
+  return big;
+}
+
+/// a · 2^e, component by component (std::ldexp: exact unless a component over- or underflows, when
+/// it becomes ±inf or rounds towards 0).  The tool of scaled evaluations near the ends of the range.
+template <Point P>
+P scale_by_pow2(P a, int e) noexcept {
+  for (int i = 0; i < PointTraits<P>::dim; ++i) PointTraits<P>::set(a, i, std::ldexp(PointTraits<P>::get(a, i), e));
+  return a;
+}
+
 /// Distance between two points.
 template <Point P>
 scalar_of<P> distance(const P& a, const P& b) noexcept { return norm(P(b - a)); }

@@ -13,6 +13,9 @@
 /// gain = v²/g (speed squared over gravity, in length units) β is the angle of a coordinated turn:
 /// tan β = v²κ/g, the roll at which the rider feels the apparent weight straight down.
 /// Fallbacks: travel parallel to U (no horizontal plane to turn in) and a zero P′ give β = 0.
+/// Scale: the computation is scale-invariant (a curve scaled by λ with gain λ·g banks like the
+/// original with gain g) from subnormal to near-overflow coordinates; the lateral curvature itself
+/// is ±inf where its true value exceeds T (a bend of subnormal radius), never NaN.
 
 #include <cmath>
 #include <limits>
@@ -49,14 +52,35 @@ Banking<typename C::scalar_type> banking(const C& curve, typename C::scalar_type
   const Vec3<T> level_up = perpendicular_part(up, t);
   const Vec3<T> side = cross(up, t);
   const Vec3<T> d1 = curve.derivative(u, 1), d2 = curve.derivative(u, 2);
-  const T speed2 = dot(d1, d1);
-  if (norm(side) > std::sqrt(std::numeric_limits<T>::epsilon()) && speed2 > T(0) && std::isfinite(speed2)) {
+  // Scale-invariant form: c = (P″⊥ · left)/|P′|² with P′ and P″ each divided by their largest
+  // component and the powers of two put back once at the end (std::ldexp), so neither |P′|²
+  // underflowing (subnormal-size curves) nor P″/|P′|² overflowing turns into 0, inf·0 or NaN.
+  const T s1 = std::fmax(std::abs(d1.x), std::fmax(std::abs(d1.y), std::abs(d1.z)));
+  const T s2 = std::fmax(std::abs(d2.x), std::fmax(std::abs(d2.y), std::abs(d2.z)));
+  if (norm(side) > std::sqrt(std::numeric_limits<T>::epsilon()) && s1 > T(0) && std::isfinite(s1) &&
+      std::isfinite(s2)) {
     const Vec3<T> left = side / norm(side);
-    const Vec3<T> kappa = (d2 - t * dot(d2, t)) / speed2;
-    out.lateral_curvature = dot(kappa, left);
+    int e1 = 0, e2 = 0, eg = 0;
+    const T f1 = std::frexp(s1, &e1);  // s1 = f1·2^e1, f1 in [0.5, 1)
+    const Vec3<T> u1 = d1 / s1;        // largest component ±1
+    const T n1sq = dot(u1, u1);        // in [1, 3]
+    T lateral_mantissa{};              // c = lateral_mantissa · 2^(e2 − 2·e1)
+    if (s2 > T(0)) {
+      const T f2 = std::frexp(s2, &e2);
+      const Vec3<T> u2 = d2 / s2;
+      const T across = dot(u2 - t * dot(u2, t), left);  // in [−√3·2, √3·2]
+      lateral_mantissa = across * f2 / (f1 * f1 * n1sq);
+    }
+    const int exponent = e2 - 2 * e1;
+    out.lateral_curvature = lateral_mantissa == T(0) ? T(0) : std::ldexp(lateral_mantissa, exponent);
     const T limit = clamp(options.max_bank_rad, T(0), pi_v<T> / T(2));
-    const T beta = std::atan(options.gain * out.lateral_curvature);
-    if (std::isfinite(beta)) out.bank_rad = clamp(beta, -limit, limit);
+    if (lateral_mantissa != T(0) && options.gain != T(0) && std::isfinite(options.gain)) {
+      // gain · c with the gain's exponent added to the same power of two (λ·gain on a λ-scaled
+      // curve gives the same angle).
+      const T fg = std::frexp(options.gain, &eg);
+      const T beta = std::atan(std::ldexp(fg * lateral_mantissa, eg + exponent));
+      if (std::isfinite(beta)) out.bank_rad = clamp(beta, -limit, limit);
+    }
   }
   // Rolling up about the tangent by −β turns it towards left = up × t.
   const Vec3<T> n = perpendicular_part(rotate_about(level_up, t, -out.bank_rad), t);

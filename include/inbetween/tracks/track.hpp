@@ -315,7 +315,11 @@ V Track<V>::sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept
       case TrackExtend::cycle_offset:
       case TrackExtend::oscillate: {
         const T rel = frame - first;
-        const T k = std::floor(rel / span);  // cycle number (…, −1 before, 1, 2 … after)
+        // Cycle number (…, −1 before, 1, 2 … after).  Keys very close together and a far frame
+        // overflow it (1e9 / 1e-300): it then acts as ±max, so a zero per-cycle offset stays 0
+        // (not 0·inf = NaN) and a non-zero one saturates to ±inf.
+        T k = std::floor(rel / span);
+        if (std::isinf(k)) k = std::copysign(std::numeric_limits<T>::max(), k);
         T local = rel - k * span;            // in [0, span] up to rounding
         local = std::clamp(local, T(0), span);
         if (mode == TrackExtend::oscillate && std::fmod(std::abs(k), T(2)) == T(1)) local = span - local;
