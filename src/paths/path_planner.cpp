@@ -21,6 +21,8 @@ constexpr int kJoinReach = 2;
 // Arc lengths in the clearance check are taken this much (relative to L) longer than measured, to
 // cover the arc-length table's error (its tolerance is 1e-11 relative, arclength/arc_length.hpp).
 constexpr double kArcLengthSlack = 1e-9;
+// The timing search keeps one byte per (distance step, frame) state: at most 64 MB.
+constexpr double kMaxTimingStates = 64e6;
 
 std::string via_ptr(std::size_t i) {
   std::string s("/via/");
@@ -319,7 +321,7 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
   const int S = std::max(1, int(std::ceil(L / ds - 1e-9)));
   const double nominal = L / options.speed;
   const int J = int(std::ceil(options.max_duration_factor * nominal / dt)) + K + 1;
-  if (double(S + 1) * double(J) > 4e8)
+  if (double(S + 1) * double(J) > kMaxTimingStates)
     return Error{ErrorCode::InvalidArgument,
                  "the timing search needs " + num(double(S + 1) * double(J)) + " states; lower fps or raise speed", "/fps"};
   std::vector<Vec3d> pos(std::size_t(S) + 1);
@@ -351,6 +353,7 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
   for (int j = 0; j + 1 < J && arrival < 0; ++j) {
     std::vector<std::int8_t> next(std::size_t(S) + 1, -1);
     const auto& cur = move[std::size_t(j)];
+    bool any = false;
     for (int i = 0; i <= S; ++i) {
       int best = -1;
       for (int k = std::min(K, i); k >= 0; --k)
@@ -358,8 +361,12 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
           best = k;
           break;
         }
-      if (best >= 0 && free_at(i, j + 1)) next[std::size_t(i)] = std::int8_t(best);
+      if (best >= 0 && free_at(i, j + 1)) {
+        next[std::size_t(i)] = std::int8_t(best);
+        any = true;
+      }
     }
+    if (!any) break;  // every reachable state is hit next frame: waiting longer cannot help
     move.push_back(std::move(next));
     if (move.back()[std::size_t(S)] >= 0) arrival = j + 1;
   }

@@ -129,7 +129,8 @@ struct PathTiming {
 /// time in between (the distance is Lipschitz with constant speed + |v_k|).  The earliest arrival
 /// is kept.  Errors: speed or fps out of range ("/speed", "/fps"), a moving sphere on the start at
 /// t = 0 ("/start"), or no arrival within max_duration_factor × L/speed ("/obstacles/k", the
-/// sphere that blocked the farthest point reached).  A path of length 0 gets keys (0, 0), (1/fps, 0).
+/// sphere that blocked the farthest point reached; also as soon as every reachable state is hit),
+/// or a search of more than 64·10⁶ states ("/fps").  A path of length 0 gets keys (0, 0), (1/fps, 0).
 Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRomSpline<Vec3d>>& path,
                                const PathTimingOptions& options = {});
 
