@@ -126,6 +126,8 @@ Expected<Environment> Environment::build(const RawEnvironment& raw) {
   for (int k = 0; k < 3; ++k)
     if (!(raw.bounds_max[k] > raw.bounds_min[k]))
       return Error{ErrorCode::InvalidArgument, "every component of bounds max must exceed bounds min's", "/bounds/max"};
+  if (!finite(raw.bounds_max - raw.bounds_min))
+    return Error{ErrorCode::NotFinite, "the size of the bounds (max - min) overflows", "/bounds/max"};
   Environment env;
   env.radius_ = raw.radius;
   env.min_ = raw.bounds_min;

@@ -178,7 +178,7 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
   if (margin < 0) margin = h / 4;
   Lattice lat{env, h, margin, 0, 0, 0, {}};
   const double nxd = std::floor(extent.x / h) + 1, nyd = std::floor(extent.y / h) + 1, nzd = std::floor(extent.z / h) + 1;
-  if (nxd * nyd * nzd > double(options.max_nodes) || nxd * nyd * nzd > 1e9)
+  if (!(nxd * nyd * nzd <= double(options.max_nodes)) || nxd * nyd * nzd > 1e9)
     return Error{ErrorCode::InvalidArgument,
                  "cell_size " + num(h) + " gives " + num(nxd * nyd * nzd) + " lattice nodes, more than the limit of " +
                      std::to_string(options.max_nodes),
@@ -318,12 +318,16 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
   out.avoidance = Avoidance::Timing;
   const int K = options.substeps;
   const double ds = options.speed * dt / K;
-  const int S = std::max(1, int(std::ceil(L / ds - 1e-9)));
   const double nominal = L / options.speed;
-  const int J = int(std::ceil(options.max_duration_factor * nominal / dt)) + K + 1;
-  if (double(S + 1) * double(J) > kMaxTimingStates)
+  // Counted in double first: a tiny ds or a long path must not overflow the int counts.
+  const double step_count = std::max(1.0, std::ceil(L / ds - 1e-9));
+  const double frames = std::ceil(options.max_duration_factor * nominal / dt) + K + 1;
+  if (!((step_count + 1) * frames <= kMaxTimingStates))
     return Error{ErrorCode::InvalidArgument,
-                 "the timing search needs " + num(double(S + 1) * double(J)) + " states; lower fps or raise speed", "/fps"};
+                 "the timing search would need " + num((step_count + 1) * frames) + " (distance step, frame) states, more than " +
+                     num(kMaxTimingStates) + "; lower fps or raise speed",
+                 "/fps"};
+  const int S = int(step_count), J = int(frames);
   std::vector<Vec3d> pos(std::size_t(S) + 1);
   for (int i = 0; i <= S; ++i) pos[std::size_t(i)] = path.point_at_length(std::min(L, ds * i));
   std::vector<double> slack;

@@ -10,6 +10,9 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include "support/random.hpp"
 
 namespace {
 
@@ -101,6 +104,58 @@ TEST(EnvironmentFile, MalformedFilesNameThePointer) {
   const auto f = parse_environment_json("{\"inbetween_env\": 1", "env.json");
   ASSERT_FALSE(f);
   EXPECT_EQ(f.error().where, "env.json");
+}
+
+// Robustness: one number of the example replaced by an extreme value, then the whole pipeline of
+// `path find` (parse, build, plan, smooth, arc length, timing).  Each run ends in an Error with a
+// place, or in finite numbers everywhere; never a crash or a NaN.
+void collect_numbers(const nlohmann::json& j, const nlohmann::json::json_pointer& at,
+                     std::vector<nlohmann::json::json_pointer>& out) {
+  if (j.is_number()) out.push_back(at);
+  else if (j.is_array()) for (std::size_t i = 0; i < j.size(); ++i) collect_numbers(j[i], at / i, out);
+  else if (j.is_object()) for (const auto& item : j.items()) collect_numbers(item.value(), at / item.key(), out);
+}
+
+TEST(EnvironmentFile, ExtremeNumbersGiveErrorsOrFiniteResultsSeededLoop) {
+  const nlohmann::json good = nlohmann::json::parse(slurp(kExample));
+  std::vector<nlohmann::json::json_pointer> leaves;
+  collect_numbers(good, nlohmann::json::json_pointer(), leaves);
+  const double extremes[] = {0, -1, 1e-300, -1e-300, 1e300, -1e300, 1.7e308, -1.7e308, 0.5, 50, -50, 1e6};
+  test::Random rng(test::seed_for(1305));
+  SCOPED_TRACE(rng.trace());
+  auto finite3 = [](const Vec3d& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); };
+  for (int trial = 0; trial < 150; ++trial) {
+    nlohmann::json doc = good;
+    const auto& at = leaves[std::size_t(rng.integer(0, int(leaves.size()) - 1))];
+    const double v = extremes[rng.integer(0, 11)];
+    doc[at] = v;
+    SCOPED_TRACE(at.to_string() + " = " + std::to_string(v));
+    auto f = parse_environment_json(doc.dump(), "env.json");
+    if (!f) continue;
+    auto env = Environment::build(f->environment);
+    if (!env) {
+      EXPECT_EQ(env.error().where.rfind("/", 0), 0u) << env.error().describe();
+      continue;
+    }
+    f->planner.max_nodes = 200'000;
+    auto poly = plan_polyline(*env, f->ends, f->planner);
+    if (!poly) {
+      EXPECT_EQ(poly.error().where.rfind("/", 0), 0u) << poly.error().describe();
+      continue;
+    }
+    for (const Vec3d& p : poly->points) ASSERT_TRUE(finite3(p));
+    auto smooth = smooth_planned_path(*env, *poly);
+    ASSERT_TRUE(smooth) << smooth.error().describe();
+    for (const Vec3d& p : smooth->control_points) ASSERT_TRUE(finite3(p));
+    auto arc = ArcLength<CatmullRomSpline<Vec3d>>::build(smooth->curve);
+    if (!arc) continue;  // a path of astronomical length: the arc-length builder refuses it
+    auto timing = time_path(*env, *arc, f->timing);
+    if (!timing) {
+      EXPECT_EQ(timing.error().where.rfind("/", 0), 0u) << timing.error().describe();
+      continue;
+    }
+    for (const auto& k : timing->keys) ASSERT_TRUE(std::isfinite(k.t) && std::isfinite(k.s));
+  }
 }
 
 TEST(EnvironmentFile, LibraryErrorsGetTheFileName) {

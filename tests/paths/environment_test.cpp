@@ -144,6 +144,8 @@ TEST(Environment, BuilderErrorsNameTheObstacle) {
   EXPECT_EQ(Environment::build(raw).error().where, "/radius");
   raw = RawEnvironment{1, {0, 0, 0}, {1, 0, 1}, {}};
   EXPECT_EQ(Environment::build(raw).error().where, "/bounds/max");
+  raw = RawEnvironment{1, {-1e308, 0, 0}, {1e308, 1, 1}, {}};  // max − min overflows
+  EXPECT_EQ(Environment::build(raw).error().where, "/bounds/max");
   // A rotation of norm 2 is normalised.
   e = with(OrientedBoxObstacle{{0, 0, 0}, {1, 1, 1}, Quatd::from_wxyz(2, 0, 0, 0)});
   ASSERT_TRUE(e);
