@@ -20,6 +20,7 @@ namespace {
 
 struct Args {
   std::string input, output, timing = "-";
+  bool no_steering = false;
 };
 
 // A library error located in the environment file; `what` introduces impossible problems.
@@ -29,27 +30,34 @@ struct Args {
   throw CommandError{located.describe()};
 }
 
-std::string timing_json(const PlannedPolyline& poly, const SmoothPath& smooth, double length, const PathTiming& t,
-                        const PathTimingOptions& options) {
+std::string timing_json(const FoundPath& f, const PathTimingOptions& options) {
+  const PathTiming& t = f.timing;
   nlohmann::json j;
   j["inbetween_timing"] = 1;
-  j["avoidance"] = std::string(avoidance_name(t.avoidance));
+  j["avoidance"] = std::string(avoidance_name(f.avoidance));
   j["speed"] = options.speed;
   j["fps"] = options.fps;
-  j["length"] = length;
+  j["length"] = f.arc.length();
   j["duration"] = t.duration;
   j["wait"] = t.wait;
   j["clearance_slack"] = t.clearance_slack;
   nlohmann::json keys = nlohmann::json::array();
   for (const auto& k : t.keys) keys.push_back({k.t, k.s});
   j["keys"] = keys;
+  nlohmann::json detours = nlohmann::json::array();
+  for (const Detour& d : f.detours)
+    detours.push_back({{"obstacle", d.obstacle},
+                       {"side", d.front ? "front" : "behind"},
+                       {"point", {d.point.x, d.point.y, d.point.z}}});
+  j["detours"] = detours;
+  const PlannedPolyline& poly = f.polyline;
   j["polyline"] = {{"points", poly.points.size()},       {"length", poly.length},
                    {"lattice_length", poly.lattice_length}, {"cell_size", poly.cell_size},
                    {"margin", poly.margin},                 {"expanded", poly.expanded}};
-  j["spline"] = {{"control_points", smooth.control_points.size()},
-                 {"refinements", smooth.refinements},
-                 {"polyline_fallback", smooth.polyline_fallback},
-                 {"sample_step", smooth.sample_step}};
+  j["spline"] = {{"control_points", f.smooth.control_points.size()},
+                 {"refinements", f.smooth.refinements},
+                 {"polyline_fallback", f.smooth.polyline_fallback},
+                 {"sample_step", f.smooth.sample_step}};
   return j.dump(2) + "\n";
 }
 
@@ -67,6 +75,8 @@ void setup(CLI::App& root) {
       ->required();
   find->add_option("--timing", args->timing, "where the timing JSON goes (default: standard output)")
       ->capture_default_str();
+  find->add_flag("--no-steering", args->no_steering,
+                 "avoid moving spheres by the timing only (no detours in front of or behind them)");
   find->callback([args] {
     const std::string& file = args->input;
     if (args->output == args->timing && args->output != "")
@@ -75,16 +85,14 @@ void setup(CLI::App& root) {
     if (!parsed) throw CommandError{parsed.error().describe()};
     const auto env = Environment::build(parsed->environment);
     if (!env) fail(env.error(), file);
-    const auto poly = plan_polyline(*env, parsed->ends, parsed->planner);
-    if (!poly) fail(poly.error(), file, "no path: ");
-    const auto smooth = smooth_planned_path(*env, *poly);
-    if (!smooth) fail(smooth.error(), file);
-    const auto arc = ArcLength<CatmullRomSpline<Vec3d>>::build(smooth->curve);
-    if (!arc) fail(arc.error(), file);
-    const auto timing = time_path(*env, *arc, parsed->timing);
-    if (!timing) fail(timing.error(), file, timing.error().where.rfind("/obstacles/", 0) == 0 ? "no timing: " : "");
-    const std::string curve = write_curve_json(AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{smooth->curve}});
-    const std::string report = timing_json(*poly, *smooth, arc->length(), *timing, parsed->timing);
+    const auto found = find_path(*env, parsed->ends,
+                                 {.planner = parsed->planner, .timing = parsed->timing, .steering = !args->no_steering});
+    if (!found) {
+      const std::string& w = found.error().where;
+      fail(found.error(), file, w.rfind("/obstacles/", 0) == 0 ? "no timing: " : w == "/fps" || w == "/speed" ? "" : "no path: ");
+    }
+    const std::string curve = write_curve_json(AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{found->smooth.curve}});
+    const std::string report = timing_json(*found, parsed->timing);
     write_output(args->output, curve);
     write_output(args->timing, report);
   });

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <optional>
 #include <queue>
 #include <set>
 #include <tuple>
@@ -284,7 +285,9 @@ Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPo
   }
 }
 
-std::string_view avoidance_name(Avoidance a) noexcept { return a == Avoidance::Timing ? "timing" : "none"; }
+std::string_view avoidance_name(Avoidance a) noexcept {
+  return a == Avoidance::Timing ? "timing" : a == Avoidance::Steering ? "steering" : "none";
+}
 
 Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRomSpline<Vec3d>>& path,
                                const PathTimingOptions& options) {
@@ -396,6 +399,114 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
   }
   out.clearance_slack = *std::max_element(slack.begin(), slack.end());
   return finish();
+}
+
+}  // namespace inbetween
+
+namespace inbetween {
+namespace {
+
+// One attempt: plan, smooth, measure, time.
+struct Attempt {
+  std::optional<PlannedPolyline> polyline;
+  std::optional<SmoothPath> smooth;
+  std::optional<ArcLength<CatmullRomSpline<Vec3d>>> arc;
+  std::optional<Expected<PathTiming>> timing;
+};
+
+Expected<Attempt> attempt(const Environment& env, const PathEnds& ends, const FindPathOptions& o) {
+  Attempt a;
+  auto poly = plan_polyline(env, ends, o.planner);
+  if (!poly) return poly.error();
+  auto smooth = smooth_planned_path(env, *poly, o.smoothing);
+  if (!smooth) return smooth.error();
+  auto arc = ArcLength<CatmullRomSpline<Vec3d>>::build(smooth->curve);
+  if (!arc) return arc.error();
+  a.timing = time_path(env, *arc, o.timing);
+  a.polyline = std::move(*poly);
+  a.smooth = std::move(*smooth);
+  a.arc = std::move(*arc);
+  return a;
+}
+
+// The first frame at which constant-speed motion comes closer to a mover than time_path allows.
+struct Meeting {
+  int obstacle = -1;
+  double t = 0, s = 0;
+};
+Meeting first_meeting(const Environment& env, const ArcLength<CatmullRomSpline<Vec3d>>& arc, const PathTimingOptions& o) {
+  const double L = arc.length(), dt = 1 / o.fps;
+  const int frames = int(std::min(1e7, std::ceil(L / (o.speed * dt))));
+  for (int j = 0; j <= frames; ++j) {
+    const double t = j * dt, s = std::min(L, o.speed * t);
+    const Vec3d p = arc.point_at_length(s);
+    for (int k : env.moving_indices()) {
+      const auto& m = std::get<MovingSphereObstacle>(env.obstacles()[std::size_t(k)]);
+      if (env.moving_clearance(k, p, t) < (o.speed + norm(m.velocity)) * dt / 2) return {k, t, s};
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, const FindPathOptions& options) {
+  auto first = attempt(env, ends, options);
+  if (!first) return first.error();
+  Attempt cur = std::move(*first);
+  PathEnds cur_ends = ends;
+  std::vector<Detour> detours;
+  const Error timing_error = cur.timing->has_value() ? Error{} : cur.timing->error();
+  while (!cur.timing->has_value()) {
+    if (!options.steering || int(detours.size()) >= options.max_detours) return timing_error;
+    const auto& arc = *cur.arc;
+    const Meeting meet = first_meeting(env, arc, options.timing);
+    if (meet.obstacle < 0) return timing_error;
+    const auto& mover = std::get<MovingSphereObstacle>(env.obstacles()[std::size_t(meet.obstacle)]);
+    const double u = arc.u_at(meet.s);
+    const Vec3d tangent = normalized(arc.curve().derivative(u, 1), Vec3d{1, 0, 0});
+    const Vec3d p = arc.curve().point(u), c = mover.center_at(meet.t);
+    auto across = [&](const Vec3d& v) { return v - tangent * dot(v, tangent); };
+    Vec3d dir = across(mover.velocity);
+    if (!(norm(dir) > 1e-9 * (norm(mover.velocity) + 1))) dir = across(p - c);
+    if (!(norm(dir) > 1e-9)) dir = across(std::abs(tangent.z) < 0.9 ? Vec3d{0, 0, 1} : Vec3d{1, 0, 0});
+    dir = normalized(dir, Vec3d{0, 1, 0});
+    // Where the detour goes among the via points: after every via point passed before s_c.
+    std::size_t insert_at = 0;
+    const auto breaks = cur.smooth->curve.breakpoints();
+    for (int vi : cur.smooth->via_control_index)
+      if (arc.s_at(breaks[std::size_t(vi)]) < meet.s) ++insert_at;
+    std::optional<Attempt> progress;
+    std::optional<PathEnds> progress_ends;
+    std::optional<Detour> progress_detour;
+    bool solved = false;
+    for (const bool front : {false, true}) {
+      for (const double scale : {1.5, 3.0}) {
+        const Vec3d q = c + dir * ((front ? 1.0 : -1.0) * scale * (mover.radius + env.radius()));
+        if (!env.in_bounds(q) || env.blocking_static(q, 0) >= 0) continue;
+        PathEnds trial = cur_ends;
+        trial.via.insert(trial.via.begin() + std::ptrdiff_t(insert_at), q);
+        auto a = attempt(env, trial, options);
+        if (!a) continue;
+        const bool ok = a->timing->has_value();
+        if (ok || (!progress && first_meeting(env, *a->arc, options.timing).t > meet.t)) {
+          progress = std::move(*a);
+          progress_ends = trial;
+          progress_detour = Detour{meet.obstacle, front, q};
+          solved = ok;
+        }
+        if (solved) break;
+      }
+      if (solved) break;
+    }
+    if (!progress) return timing_error;
+    cur = std::move(*progress);
+    cur_ends = *progress_ends;
+    detours.push_back(*progress_detour);
+  }
+  const Avoidance avoidance = detours.empty() ? cur.timing->value().avoidance : Avoidance::Steering;
+  return FoundPath{std::move(*cur.polyline), std::move(*cur.smooth), std::move(*cur.arc),
+                   std::move(*cur.timing).value(), avoidance, std::move(detours), std::move(cur_ends)};
 }
 
 }  // namespace inbetween

@@ -134,6 +134,40 @@ TEST(PathFindCli, ImpossibleProblemsExit2WithTheReason) {
   EXPECT_NE(r.err.find("env.json:/obstacles/4: no timing:"), std::string::npos) << r.err;
 }
 
+// A mover coming head-on down the straight path: the timing alone cannot avoid it (exit 2 with
+// --no-steering); the default steers around it and says so.
+TEST(PathFindCli, SteeringIsReportedWhenTheTimingAloneFails) {
+  const std::string text =
+      R"({"inbetween_env": 1, "radius": 0.3, "start": [1, 5, 5], "goal": [9, 5, 5],
+          "bounds": {"min": [0, 0, 0], "max": [10, 10, 10]},
+          "obstacles": [{"moving_sphere": {"center": [9, 5, 5], "velocity": [-1, 0, 0], "radius": 1}}],
+          "speed": 2, "fps": 24})";
+  const auto env = write_test_file("env.json", text);
+  const auto out = test::test_dir() / "path.json";
+  CliRun r = run_cli("path find '" + env.string() + "' -o '" + out.string() + "' --no-steering");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("env.json:/obstacles/0: no timing:"), std::string::npos) << r.err;
+  r = run_cli("path find '" + env.string() + "' -o '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto timing = nlohmann::json::parse(r.out);
+  EXPECT_EQ(timing.at("avoidance"), "steering");
+  ASSERT_GE(timing.at("detours").size(), 1u);
+  EXPECT_EQ(timing.at("detours")[0].at("obstacle"), 0);
+  // The timed motion read back from the files clears the mover at every sampled time.
+  const auto curve = parse_curve_json(slurp(out), "path.json");
+  ASSERT_TRUE(curve);
+  const auto arc = make_arc_length(*curve);
+  ASSERT_TRUE(arc);
+  const double duration = timing.at("duration");
+  const int n = int(std::ceil(duration * 24 * 16));
+  for (int i = 0; i <= n; ++i) {
+    const double t = duration * i / n;
+    const Vec3d p = arc->point_at_length(s_at(timing.at("keys"), t));
+    // centre(t) = (9 − t, 5, 5); clearance ≥ 1 + 0.3.
+    ASSERT_GE(distance(p, Vec3d{9 - t, 5, 5}), 1.3 - 1e-9) << "t = " << t;
+  }
+}
+
 TEST(PathFindCli, MalformedFilesExit2WithThePointer) {
   CliRun r = run_on(edited([](auto& d) { d["obstacles"][1]["box"]["max"] = {5, 10}; }));
   EXPECT_EQ(r.exit_code, 2);

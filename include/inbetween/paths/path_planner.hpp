@@ -97,11 +97,12 @@ Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPo
 
 /// How moving obstacles were avoided.
 enum class Avoidance {
-  None,    ///< no moving obstacle: constant speed
-  Timing,  ///< the speed along the path: constant, with waits where a moving sphere crosses
+  None,      ///< no moving obstacle: constant speed
+  Timing,    ///< the speed along the path: constant, with waits where a moving sphere crosses
+  Steering,  ///< detours in front of or behind movers (find_path), then the timing as above
 };
 
-/// The JSON name of an Avoidance ("none", "timing").
+/// The JSON name of an Avoidance ("none", "timing", "steering").
 std::string_view avoidance_name(Avoidance a) noexcept;
 
 /// Options of time_path().
@@ -133,5 +134,48 @@ struct PathTiming {
 /// or a search of more than 64·10⁶ states ("/fps").  A path of length 0 gets keys (0, 0), (1/fps, 0).
 Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRomSpline<Vec3d>>& path,
                                const PathTimingOptions& options = {});
+
+}  // namespace inbetween
+
+namespace inbetween {
+
+/// Options of find_path().
+struct FindPathOptions {
+  PlannerOptions planner{};           ///< the static planner
+  PathSmoothingOptions smoothing{};   ///< the spline and its check
+  PathTimingOptions timing{};         ///< speed, frame rate
+  bool steering = true;               ///< try detours when the timing alone cannot avoid a mover
+  int max_detours = 3;                ///< at most this many detours (one mover at a time)
+};
+
+/// A detour added by the greedy steering.
+struct Detour {
+  int obstacle = -1;   ///< the moving sphere (file index) it avoids
+  bool front = false;  ///< true: in front of the mover (along its motion); false: behind it
+  Vec3d point{};       ///< the via point inserted
+};
+
+/// A found path: the polyline, the checked spline, its arc length and its timing.
+struct FoundPath {
+  PlannedPolyline polyline;                  ///< through the static obstacles
+  SmoothPath smooth;                         ///< the checked spline
+  ArcLength<CatmullRomSpline<Vec3d>> arc;    ///< arc length of smooth.curve
+  PathTiming timing;                         ///< s(t) along it
+  Avoidance avoidance = Avoidance::None;     ///< none, timing, or steering (when detours were added)
+  std::vector<Detour> detours;               ///< in the order they were added
+  PathEnds ends;                             ///< the ends with the detour points among the via points
+};
+
+/// The whole of texts 004 §3.4.5: plan_polyline, smooth_planned_path, ArcLength, time_path, and
+/// when the timing alone cannot avoid the moving spheres, the texts' greedy steering one mover at a
+/// time: moving at constant speed, find the first mover k met (at time t_c, the object at p, the
+/// mover's centre at c); let û be the part of k's velocity across the path's tangent (for a mover
+/// along the path, the part of p − c across it, or any perpendicular).  Try the detour points
+/// c − d·û ("behind", through where the mover has been) and c + d·û ("in front"), d = 1.5 and 3 ×
+/// (R_k + r), as extra via points (inside the bounds and clear of the static obstacles), and keep
+/// the first whose timing succeeds, or else the first that meets its first mover later.  Every
+/// result has passed time_path, so its guarantee holds.  Errors: those of the steps; when steering
+/// fails too, the timing error of the path without detours.
+Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, const FindPathOptions& options = {});
 
 }  // namespace inbetween
