@@ -338,17 +338,55 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
     const auto& m = std::get<MovingSphereObstacle>(env.obstacles()[std::size_t(k)]);
     slack.push_back((options.speed + norm(m.velocity)) * dt / 2);
   }
+  // Path points in blocks of kTimingBlock with a bounding sphere, so that each frame only the
+  // blocks a mover can reach are tested point by point.
+  constexpr int kTimingBlock = 16;
+  struct Block {
+    Vec3d centre{};
+    double radius = 0;
+  };
+  std::vector<Block> blocks;
+  for (int b = 0; b <= S; b += kTimingBlock) {
+    const int e = std::min(S + 1, b + kTimingBlock);
+    Vec3d lo = pos[std::size_t(b)], hi = lo;
+    for (int i = b; i < e; ++i)
+      for (int c = 0; c < 3; ++c) {
+        lo[c] = std::min(lo[c], pos[std::size_t(i)][c]);
+        hi[c] = std::max(hi[c], pos[std::size_t(i)][c]);
+      }
+    const Vec3d centre = (lo + hi) * 0.5;
+    double radius = 0;
+    for (int i = b; i < e; ++i) radius = std::max(radius, distance(centre, pos[std::size_t(i)]));
+    blocks.push_back({centre, radius});
+  }
+  std::vector<int> hit(std::size_t(S) + 1, -1);  // for frame `marked`: the mover (index into moving) or −1
+  int marked = -1;
+  auto mark = [&](int j) {
+    std::fill(hit.begin(), hit.end(), -1);
+    for (std::size_t q = 0; q < moving.size(); ++q) {
+      const auto& m = std::get<MovingSphereObstacle>(env.obstacles()[std::size_t(moving[q])]);
+      const Vec3d c = m.center_at(dt * j);
+      const double reach = m.radius + env.radius() + slack[q];
+      for (std::size_t b = 0; b < blocks.size(); ++b) {
+        if (!(distance(c, blocks[b].centre) < reach + blocks[b].radius)) continue;
+        const int e = std::min(S + 1, int(b) * kTimingBlock + kTimingBlock);
+        for (int i = int(b) * kTimingBlock; i < e; ++i)
+          if (hit[std::size_t(i)] < 0 && env.moving_clearance(moving[q], pos[std::size_t(i)], dt * j) < slack[q])
+            hit[std::size_t(i)] = int(q);
+      }
+    }
+    marked = j;
+  };
   int blocker = moving.front(), blocked_at = -1;
   auto free_at = [&](int i, int j) {
-    for (std::size_t q = 0; q < moving.size(); ++q)
-      if (env.moving_clearance(moving[q], pos[std::size_t(i)], dt * j) < slack[q]) {
-        if (i > blocked_at) {
-          blocked_at = i;
-          blocker = moving[q];
-        }
-        return false;
-      }
-    return true;
+    if (j != marked) mark(j);
+    const int q = hit[std::size_t(i)];
+    if (q < 0) return true;
+    if (i > blocked_at) {
+      blocked_at = i;
+      blocker = moving[std::size_t(q)];
+    }
+    return false;
   };
   if (!free_at(0, 0))
     return Error{ErrorCode::InvalidArgument,
