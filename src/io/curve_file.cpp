@@ -3,8 +3,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "json_read.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -13,11 +11,40 @@
 namespace inbetween {
 namespace {
 
-using io_detail::json;
-using io_detail::located;
-using io_detail::ptr;
-using io_detail::read_number;
-using io_detail::Reader;
+using json = nlohmann::json;
+
+// "file:/points/3", or just "file" for the document root (whose JSON pointer is empty).
+std::string located(const std::string& source, const std::string& pointer) {
+  return pointer.empty() ? source : source + ":" + pointer;
+}
+
+struct Reader {
+  std::string source;
+  Error fail(std::string pointer, std::string message, ErrorCode code = ErrorCode::Parse) const {
+    return Error{code, std::move(message), located(source, pointer)};
+  }
+};
+
+// JSON pointers are built with append() rather than "/" + … : GCC 12 warns (-Wrestrict, a known
+// false positive) on operator+ with a literal on the left.
+std::string ptr(std::string_view field) {
+  std::string s("/");
+  s.append(field);
+  return s;
+}
+std::string ptr(std::string_view field, std::size_t i) {
+  std::string s = ptr(field);
+  s.append("/").append(std::to_string(i));
+  return s;
+}
+
+// Reads a number; an error names the pointer.
+Expected<double> read_number(const Reader& r, const json& v, const std::string& pointer) {
+  if (!v.is_number()) return r.fail(pointer, "expected a number, got " + std::string(v.type_name()));
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) return r.fail(pointer, "number is not finite", ErrorCode::NotFinite);
+  return d;
+}
 
 // Reads an array of points, all of the same dimension (`dim` fixed by the first point when 0).
 Expected<std::vector<Vec3d>> read_points(const Reader& r, const json& doc, std::string_view field, int& dim,

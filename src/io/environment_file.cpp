@@ -16,9 +16,21 @@ using io_detail::located;
 using io_detail::read_number;
 using io_detail::Reader;
 
+// Longest member name quoted in an error place or message (a file's odd keys stay bounded).
+constexpr std::size_t kMaxQuotedKey = 40;
+
+// `base` + "/" + the member name, escaped as RFC 6901 asks ('~' → "~0", '/' → "~1") and cut to
+// kMaxQuotedKey characters with "..." when longer.
 std::string join(const std::string& base, std::string_view field) {
   std::string s(base);
-  s.append("/").append(field);
+  s.append("/");
+  const std::size_t n = std::min(field.size(), kMaxQuotedKey);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (field[i] == '~') s.append("~0");
+    else if (field[i] == '/') s.append("~1");
+    else s.push_back(field[i]);
+  }
+  if (field.size() > kMaxQuotedKey) s.append("...");
   return s;
 }
 
@@ -123,7 +135,7 @@ Expected<RawObstacle> read_obstacle(const Reader& r, const json& o, const std::s
     }
     return RawObstacle{MovingSphereObstacle{*c, *vel, *rad, t0}};
   }
-  return r.fail(at, "unknown obstacle kind \"" + kind + "\"; expected sphere, box, obb or moving_sphere",
+  return r.fail(at, "unknown obstacle kind; expected sphere, box, obb or moving_sphere",
                 ErrorCode::Unsupported);
 }
 
@@ -135,14 +147,20 @@ Expected<EnvironmentFile> parse_environment_json(std::string_view text, std::str
   try {
     doc = json::parse(text.begin(), text.end());
   } catch (const json::exception& e) {
-    return Error{ErrorCode::Parse, std::string("invalid JSON: ") + e.what(), r.source};
+    // nlohmann quotes the token it stopped in ("last read: '…'"), which can be the rest of the
+    // file: keep the position and the description, cut the quote.
+    constexpr std::size_t kMaxParseMessage = 200;
+    std::string what = e.what();
+    if (what.size() > kMaxParseMessage) what = what.substr(0, kMaxParseMessage) + "...";
+    return Error{ErrorCode::Parse, "invalid JSON: " + what, r.source};
   }
   if (!doc.is_object()) return r.fail("", "expected a JSON object with \"inbetween_env\": 1");
   if (!doc.contains("inbetween_env")) return r.fail("/inbetween_env", "missing required field (the format version, 1)");
   {
     const json& v = doc["inbetween_env"];
     if (!v.is_number_integer() || v.get<long long>() != environment_format_version)
-      return r.fail("/inbetween_env", "unsupported version " + v.dump() + "; this reader knows version " +
+      return r.fail("/inbetween_env", "unsupported version " + (v.is_number() ? v.dump() : std::string(v.type_name())) +
+                                          "; this reader knows version " +
                                           std::to_string(environment_format_version), ErrorCode::Unsupported);
   }
   if (auto ok = only_fields(r, doc, "", {"inbetween_env", "radius", "start", "goal", "via", "bounds", "obstacles",

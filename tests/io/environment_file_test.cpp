@@ -100,6 +100,16 @@ TEST(EnvironmentFile, MalformedFilesNameThePointer) {
   const auto big = parse_environment_json(text, "env.json");
   ASSERT_FALSE(big);
   EXPECT_EQ(big.error().where, "env.json");
+  // Messages stay short whatever the file holds: an unterminated string of 10⁵ characters, a member
+  // name of 10⁵ characters, 10⁵ nested arrays where the version goes.
+  const std::string long_text(100000, 'a');
+  for (const std::string& bad : {"{\"inbetween_env\": \"" + long_text,
+                                 "{\"inbetween_env\": 1, \"" + long_text + "\": 1}",
+                                 "{\"inbetween_env\": " + std::string(100000, '[') + std::string(100000, ']') + "}"}) {
+    const auto e = parse_environment_json(bad, "env.json");
+    ASSERT_FALSE(e);
+    EXPECT_LT(e.error().describe().size(), 400u) << e.error().describe().substr(0, 400);
+  }
   // Not JSON at all: the file is the place.
   const auto f = parse_environment_json("{\"inbetween_env\": 1", "env.json");
   ASSERT_FALSE(f);
