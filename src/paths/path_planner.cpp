@@ -22,6 +22,11 @@ constexpr int kJoinReach = 2;
 // Arc lengths in the clearance check are taken this much (relative to L) longer than measured, to
 // cover the arc-length table's error (its tolerance is 1e-11 relative, arclength/arc_length.hpp).
 constexpr double kArcLengthSlack = 1e-9;
+// Relative slack when counting distance steps, so that L/ds a hair above an integer (rounding)
+// does not add an empty step.
+constexpr double kStepRounding = 1e-9;
+// A mover's velocity across the path counts as zero below this fraction of (its speed + 1).
+constexpr double kAcrossTolerance = 1e-9;
 // The timing search keeps one byte per (distance step, frame) state: at most 64 MB.
 constexpr double kMaxTimingStates = 64e6;
 
@@ -323,7 +328,7 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
   const double ds = options.speed * dt / K;
   const double nominal = L / options.speed;
   // Counted in double first: a tiny ds or a long path must not overflow the int counts.
-  const double step_count = std::max(1.0, std::ceil(L / ds - 1e-9));
+  const double step_count = std::max(1.0, std::ceil(L / ds - kStepRounding));
   const double frames = std::ceil(options.max_duration_factor * nominal / dt) + K + 1;
   if (!((step_count + 1) * frames <= kMaxTimingStates))
     return Error{ErrorCode::InvalidArgument,
@@ -506,8 +511,8 @@ Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, cons
     const Vec3d p = arc.curve().point(u), c = mover.center_at(meet.t);
     auto across = [&](const Vec3d& v) { return v - tangent * dot(v, tangent); };
     Vec3d dir = across(mover.velocity);
-    if (!(norm(dir) > 1e-9 * (norm(mover.velocity) + 1))) dir = across(p - c);
-    if (!(norm(dir) > 1e-9)) dir = across(std::abs(tangent.z) < 0.9 ? Vec3d{0, 0, 1} : Vec3d{1, 0, 0});
+    if (!(norm(dir) > kAcrossTolerance * (norm(mover.velocity) + 1))) dir = across(p - c);
+    if (!(norm(dir) > kAcrossTolerance)) dir = across(std::abs(tangent.z) < 0.9 ? Vec3d{0, 0, 1} : Vec3d{1, 0, 0});
     dir = normalized(dir, Vec3d{0, 1, 0});
     // Where the detour goes among the via points: after every via point passed before s_c.
     std::size_t insert_at = 0;

@@ -17,6 +17,14 @@
 
 namespace {
 
+// Named tolerances.  Coordinates are of order 10, so a distance computed in double is off by
+// about 1e-14; kExact allows for that.  kRounding also covers the arc-length inverse (16ε·L,
+// arclength/arc_length.hpp) and s(t) interpolation; neither hides a real overlap, which the
+// guarantees under test make non-negative.
+constexpr double kExact = 1e-12;
+constexpr double kRounding = 1e-9;
+
+
 namespace fs = std::filesystem;
 using namespace inbetween;
 using inbetween::test::CliRun;
@@ -57,22 +65,22 @@ TEST(PathFindCli, ExamplePathClearsEveryObstacleAtEverySampledTime) {
   ASSERT_TRUE(env);
   const auto arc = make_arc_length(*curve);
   ASSERT_TRUE(arc);
-  EXPECT_NEAR(arc->length(), timing.at("length").get<double>(), 1e-9);
+  EXPECT_NEAR(arc->length(), timing.at("length").get<double>(), kRounding);
   // The start, the via point and the goal, in this order along the curve.
   const std::vector<Vec3d> stops{file->ends.start, file->ends.via[0], file->ends.goal};
   const double L = arc->length(), duration = timing.at("duration");
   const nlohmann::json& keys = timing.at("keys");
-  EXPECT_NEAR(s_at(keys, duration), L, 1e-9);
+  EXPECT_NEAR(s_at(keys, duration), L, kRounding);
   const int n = int(std::ceil(duration * 24 * 16));  // 16 samples per frame of the file's fps 24
   std::vector<double> best(stops.size(), 1e300), best_s(stops.size(), 0);
   double prev_s = 0;
   for (int i = 0; i <= n; ++i) {
     const double t = duration * i / n, s = s_at(keys, t);
-    ASSERT_GE(s, prev_s - 1e-12);
+    ASSERT_GE(s, prev_s - kExact);
     prev_s = s;
     const Vec3d p = arc->point_at_length(s);
-    ASSERT_GE(env->static_clearance(p), -1e-9) << "t = " << t;
-    for (int k : env->moving_indices()) ASSERT_GE(env->moving_clearance(k, p, t), -1e-9) << "t = " << t;
+    ASSERT_GE(env->static_clearance(p), -kRounding) << "t = " << t;
+    for (int k : env->moving_indices()) ASSERT_GE(env->moving_clearance(k, p, t), -kRounding) << "t = " << t;
   }
   for (int i = 0; i <= 20000; ++i) {
     const double s = L * i / 20000;
@@ -164,7 +172,7 @@ TEST(PathFindCli, SteeringIsReportedWhenTheTimingAloneFails) {
     const double t = duration * i / n;
     const Vec3d p = arc->point_at_length(s_at(timing.at("keys"), t));
     // centre(t) = (9 − t, 5, 5); clearance ≥ 1 + 0.3.
-    ASSERT_GE(distance(p, Vec3d{9 - t, 5, 5}), 1.3 - 1e-9) << "t = " << t;
+    ASSERT_GE(distance(p, Vec3d{9 - t, 5, 5}), 1.3 - kRounding) << "t = " << t;
   }
 }
 

@@ -11,6 +11,14 @@
 
 namespace {
 
+// Named tolerances.  Coordinates are of order 10, so a distance computed in double is off by
+// about 1e-14; kExact allows for that.  kRounding also covers the arc-length inverse (16ε·L,
+// arclength/arc_length.hpp) and s(t) interpolation; neither hides a real overlap, which the
+// guarantees under test make non-negative.
+constexpr double kExact = 1e-12;
+constexpr double kRounding = 1e-9;
+
+
 using namespace inbetween;
 
 // Minimum of the point distance over 20001 points of the segment: an independent upper bound on
@@ -33,8 +41,8 @@ TEST(EnvironmentDistance, ClosedForms) {
   EXPECT_DOUBLE_EQ(distance_to_obstacle(box, Vec3d{0.5, 1, 1}), 0.0);
   // An oriented box turned 90° about z is the axis-aligned box with x and y extents swapped.
   const OrientedBoxObstacle obb{{0, 0, 0}, {1, 2, 3}, Quatd::from_axis_angle(Vec3d{0, 0, 1}, pi_v<double> / 2)};
-  EXPECT_NEAR(distance_to_obstacle(obb, Vec3d{5, 0, 0}), 3.0, 1e-12);  // x half extent is now 2
-  EXPECT_NEAR(distance_to_obstacle(obb, Vec3d{0, 4, 0}), 3.0, 1e-12);  // y half extent is now 1
+  EXPECT_NEAR(distance_to_obstacle(obb, Vec3d{5, 0, 0}), 3.0, kExact);  // x half extent is now 2
+  EXPECT_NEAR(distance_to_obstacle(obb, Vec3d{0, 4, 0}), 3.0, kExact);  // y half extent is now 1
   // Segment past a sphere: the closest point is the foot of the perpendicular.
   EXPECT_DOUBLE_EQ(segment_distance_to_obstacle(SphereObstacle{{0, 0, 0}, 1}, Vec3d{-5, 3, 0}, Vec3d{5, 3, 0}), 2.0);
   // Segment parallel to a box edge at distance (1, 1): √2.
@@ -51,14 +59,14 @@ TEST(EnvironmentDistance, SegmentToBoxMatchesDenseSamplingSeededLoop) {
     const Vec3d a = rng.vec3(-3.0, 3.0), b = rng.vec3(-3.0, 3.0);
     const BoxObstacle box{c - h, c + h};
     const OrientedBoxObstacle obb{c, h, rng.rotation()};
-    const double tol = distance(a, b) / 40000 + 1e-12;  // the sampling bound of the reference
+    const double tol = distance(a, b) / 40000 + kExact;  // the sampling bound of the reference
     const double exact_box = segment_distance_to_obstacle(box, a, b);
     const double sampled_box = sampled_segment_distance(box, a, b);
-    EXPECT_LE(exact_box, sampled_box + 1e-12) << trial;
+    EXPECT_LE(exact_box, sampled_box + kExact) << trial;
     EXPECT_GE(exact_box, sampled_box - tol) << trial;
     const double exact_obb = segment_distance_to_obstacle(obb, a, b);
     const double sampled_obb = sampled_segment_distance(obb, a, b);
-    EXPECT_LE(exact_obb, sampled_obb + 1e-12) << trial;
+    EXPECT_LE(exact_obb, sampled_obb + kExact) << trial;
     EXPECT_GE(exact_obb, sampled_obb - tol) << trial;
   }
 }

@@ -13,6 +13,14 @@
 
 namespace {
 
+// Named tolerances.  Coordinates are of order 10, so a distance computed in double is off by
+// about 1e-14; kExact allows for that.  kRounding also covers the arc-length inverse (16ε·L,
+// arclength/arc_length.hpp) and s(t) interpolation; neither hides a real overlap, which the
+// guarantees under test make non-negative.
+constexpr double kExact = 1e-12;
+constexpr double kRounding = 1e-9;
+
+
 using namespace inbetween;
 
 // Segment distance to obstacle k by a plain loop (moving spheres: +∞).
@@ -107,7 +115,7 @@ void expect_curve_clear(const Environment& env, const SmoothPath& path) {
   const int n = 16 * std::max(1, int(std::ceil(1 / path.sample_step))) * path.curve.segment_count();
   for (int i = 0; i <= n; ++i) {
     const Vec3d p = path.curve.point(dom.lo + (dom.hi - dom.lo) * i / n);
-    ASSERT_GE(env.static_clearance(p), -1e-9) << "u index " << i;
+    ASSERT_GE(env.static_clearance(p), -kRounding) << "u index " << i;
   }
 }
 
@@ -126,15 +134,15 @@ TEST(PathPlanner, ThroughTheHoleAndSmoothClearOfEveryObstacle) {
   const auto p = plan_polyline(*env, {{1, 2, 5}, {}, {9, 8, 5}}, {.cell_size = 0.5});
   ASSERT_TRUE(p) << p.error().describe();
   expect_polyline_clear(*env, *p);
-  EXPECT_LE(p->length, p->lattice_length + 1e-12);  // shortcutting never lengthens
+  EXPECT_LE(p->length, p->lattice_length + kExact);  // shortcutting never lengthens
   // Through a hole of half-width 1 − r = 0.7 about (x, 5, 5): the path crosses x = 4.5 there.
   bool crossed = false;
   for (std::size_t i = 1; i < p->points.size(); ++i) {
     const Vec3d a = p->points[i - 1], b = p->points[i];
     if ((a.x - 4.5) * (b.x - 4.5) <= 0 && a.x != b.x) {
       const Vec3d c = a + (b - a) * ((4.5 - a.x) / (b.x - a.x));
-      EXPECT_LE(std::abs(c.y - 5), 0.7 + 1e-9);
-      EXPECT_LE(std::abs(c.z - 5), 0.7 + 1e-9);
+      EXPECT_LE(std::abs(c.y - 5), 0.7 + kRounding);
+      EXPECT_LE(std::abs(c.z - 5), 0.7 + kRounding);
       crossed = true;
     }
   }
@@ -175,12 +183,12 @@ TEST(PathPlanner, AgreesWithBruteForceLatticeDijkstraOnSmallCases) {
       continue;
     }
     ++compared;
-    EXPECT_NEAR(p->lattice_length, ref, 1e-9) << trial;
+    EXPECT_NEAR(p->lattice_length, ref, kRounding) << trial;
     expect_polyline_clear(*env, *p);
     const double fine = brute_lattice_length(*env, a, b, h / 3, margin);
     ASSERT_LT(fine, 1e300) << trial;
     EXPECT_LE(p->length, kappa * fine + 4 * h) << trial;
-    EXPECT_GE(p->length, distance(a, b) - 1e-12) << trial;
+    EXPECT_GE(p->length, distance(a, b) - kExact) << trial;
   }
   EXPECT_GE(compared, 6);
 }
@@ -205,7 +213,7 @@ TEST(PathPlanner, PassesViaPointsInOrder) {
   const auto breaks = s->curve.breakpoints();
   for (std::size_t i = 0; i < via.size(); ++i) {
     const double u = breaks[std::size_t(s->via_control_index[i])];
-    EXPECT_LT(distance(s->curve.point(u), via[i]), 1e-12) << i;
+    EXPECT_LT(distance(s->curve.point(u), via[i]), kExact) << i;
     if (i > 0) EXPECT_LT(breaks[std::size_t(s->via_control_index[i - 1])], u);
   }
 }
@@ -315,7 +323,7 @@ TEST(PathTiming, WaitsForACrossingSphere) {
   const auto t = time_path(*env, *arc, {.speed = 2, .fps = fps});
   ASSERT_TRUE(t) << t.error().describe();
   EXPECT_EQ(t->avoidance, Avoidance::Timing);
-  EXPECT_GT(t->duration, arc->length() / 2 + 1e-9);
+  EXPECT_GT(t->duration, arc->length() / 2 + kRounding);
   EXPECT_GT(t->wait, 0.0);
   EXPECT_DOUBLE_EQ(t->distance(t->duration), arc->length());
   const int n = int(std::ceil(t->duration * fps * 16));
@@ -323,10 +331,10 @@ TEST(PathTiming, WaitsForACrossingSphere) {
   for (int i = 0; i <= n; ++i) {
     const double time = t->duration * i / n;
     const double sd = t->distance(time);
-    ASSERT_GE(sd, prev - 1e-12) << "backs up at t = " << time;
+    ASSERT_GE(sd, prev - kExact) << "backs up at t = " << time;
     prev = sd;
     const Vec3d q = arc->point_at_length(sd);
-    ASSERT_GE(env->moving_clearance(0, q, time), -1e-9) << "t = " << time;
+    ASSERT_GE(env->moving_clearance(0, q, time), -kRounding) << "t = " << time;
   }
 }
 
@@ -340,7 +348,7 @@ TEST(PathTiming, ConstantSpeedWithoutMovingObstaclesAndErrors) {
   const auto t = time_path(*env, *arc, {.speed = 2});
   ASSERT_TRUE(t);
   EXPECT_EQ(t->avoidance, Avoidance::None);
-  EXPECT_NEAR(t->duration, 2.5, 1e-9);  // length 5 (a 3-4-5 triangle) at speed 2
+  EXPECT_NEAR(t->duration, 2.5, kRounding);  // length 5 (a 3-4-5 triangle) at speed 2
   EXPECT_EQ(time_path(*env, *arc, {.speed = 0}).error().where, "/speed");
   EXPECT_EQ(time_path(*env, *arc, {.fps = std::nan("")}).error().where, "/fps");
   // A sphere that sweeps back along the whole path toward the start: waiting cannot help.
@@ -366,8 +374,8 @@ void expect_timed_motion_clear(const Environment& env, const FoundPath& f, doubl
   for (int i = 0; i <= n; ++i) {
     const double t = f.timing.duration * i / n;
     const Vec3d q = f.arc.point_at_length(f.timing.distance(t));
-    ASSERT_GE(env.static_clearance(q), -1e-9) << "t = " << t;
-    for (int k : env.moving_indices()) ASSERT_GE(env.moving_clearance(k, q, t), -1e-9) << "t = " << t;
+    ASSERT_GE(env.static_clearance(q), -kRounding) << "t = " << t;
+    for (int k : env.moving_indices()) ASSERT_GE(env.moving_clearance(k, q, t), -kRounding) << "t = " << t;
   }
 }
 
