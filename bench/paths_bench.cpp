@@ -14,6 +14,7 @@
 #include "inbetween/paths/camera.hpp"
 #include "inbetween/paths/frenet_frames.hpp"
 #include "inbetween/paths/path_finding.hpp"
+#include "inbetween/paths/path_planner.hpp"
 #include "inbetween/paths/rotation_minimizing_frames.hpp"
 #include "inbetween/paths/smoothing.hpp"
 
@@ -152,6 +153,106 @@ void BM_AStar(benchmark::State& state) {
   state.counters["cells"] = double(n) * n;
 }
 BENCHMARK(BM_AStar)->Arg(64)->Arg(256);
+
+// 3-D path finding (issue 13): 1000 obstacles in a 100³ box — 320 spheres, 320 boxes, 320
+// oriented boxes (sizes 0.5 … 2.5) and 40 moving spheres — kept 4 units clear of the start
+// (2, 2, 2) and the goal (98, 98, 98); object radius 0.5.  Seeded, so the same scene every run.
+RawEnvironment thousand_obstacles() {
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> pos(0, 100), size(0.5, 2.5), unit(-1, 1);
+  RawEnvironment raw{0.5, {0, 0, 0}, {100, 100, 100}, {}};
+  const Vec3d start{2, 2, 2}, goal{98, 98, 98};
+  while (raw.obstacles.size() < 1000) {
+    const Vec3d c{pos(rng), pos(rng), pos(rng)};
+    if (distance(c, start) < 8 || distance(c, goal) < 8) continue;
+    const Vec3d h{size(rng), size(rng), size(rng)};
+    const std::size_t i = raw.obstacles.size();
+    if (i >= 960) raw.obstacles.push_back(MovingSphereObstacle{c, Vec3d{unit(rng), unit(rng), unit(rng)} * 3.0, h.x, 0});
+    else if (i % 3 == 0) raw.obstacles.push_back(SphereObstacle{c, h.x});
+    else if (i % 3 == 1) raw.obstacles.push_back(BoxObstacle{c - h, c + h});
+    else raw.obstacles.push_back(OrientedBoxObstacle{c, h, normalized(Quatd::from_wxyz(unit(rng), unit(rng), unit(rng), unit(rng)))});
+  }
+  return raw;
+}
+
+const PathEnds kThousandEnds{{2, 2, 2}, {Vec3d{50, 90, 10}}, {98, 98, 98}};
+
+void BM_EnvironmentBuild1000(benchmark::State& state) {
+  const RawEnvironment raw = thousand_obstacles();
+  for (auto _ : state) benchmark::DoNotOptimize(Environment::build(raw));
+}
+BENCHMARK(BM_EnvironmentBuild1000)->Unit(benchmark::kMicrosecond);
+
+// Segment queries of length 5 through the scene: the hierarchy against the plain loop (the peer).
+template <bool kHierarchy>
+void segment_queries(benchmark::State& state) {
+  const auto env = Environment::build(thousand_obstacles());
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> pos(0, 100), dir(-1, 1);
+  std::vector<std::pair<Vec3d, Vec3d>> segs;
+  for (int i = 0; i < 1024; ++i) {
+    const Vec3d a{pos(rng), pos(rng), pos(rng)};
+    segs.emplace_back(a, a + normalized(Vec3d{dir(rng), dir(rng), dir(rng)}, Vec3d{1, 0, 0}) * 5.0);
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& [a, b] = segs[i++ & 1023];
+    if constexpr (kHierarchy) {
+      benchmark::DoNotOptimize(env->blocking_static(a, b, 0.1));
+    } else {
+      bool hit = false;
+      for (const RawObstacle& o : env->obstacles())
+        hit |= std::visit(
+            [&](const auto& x) {
+              if constexpr (std::is_same_v<std::decay_t<decltype(x)>, MovingSphereObstacle>) return false;
+              else return segment_distance_to_obstacle(x, a, b) < 0.6;
+            },
+            o);
+      benchmark::DoNotOptimize(hit);
+    }
+  }
+}
+void BM_SegmentQuery1000_Hierarchy(benchmark::State& state) { segment_queries<true>(state); }
+void BM_SegmentQuery1000_PlainLoop(benchmark::State& state) { segment_queries<false>(state); }
+BENCHMARK(BM_SegmentQuery1000_Hierarchy);
+BENCHMARK(BM_SegmentQuery1000_PlainLoop);
+
+// Planning start → via → goal on the lattice (argument: cells along the 100-unit side).
+void BM_PlanPolyline1000(benchmark::State& state) {
+  const auto env = Environment::build(thousand_obstacles());
+  const double h = 100.0 / double(state.range(0));
+  long long expanded = 0;
+  double length = 0;
+  for (auto _ : state) {
+    auto p = plan_polyline(*env, kThousandEnds, {.cell_size = h});
+    if (!p) state.SkipWithError(p.error().describe().c_str());
+    else expanded = p->expanded, length = p->length;
+    benchmark::DoNotOptimize(p);
+  }
+  state.counters["expanded"] = double(expanded);
+  state.counters["length"] = length;
+}
+BENCHMARK(BM_PlanPolyline1000)->Arg(48)->Arg(96)->Unit(benchmark::kMillisecond);
+
+// The whole of `path find` (find_path): plan, smooth (checked and refined), arc length, timing
+// around the 40 moving spheres at 24 fps and speed 10 (steering when the timing alone fails).
+void BM_FindPath1000(benchmark::State& state) {
+  const auto env = Environment::build(thousand_obstacles());
+  double wait = 0, detours = 0;
+  for (auto _ : state) {
+    auto f = find_path(*env, kThousandEnds, {.timing = {.speed = 10, .fps = 24}});
+    if (!f) {
+      state.SkipWithError(f.error().describe().c_str());
+      break;
+    }
+    wait = f->timing.wait;
+    detours = double(f->detours.size());
+    benchmark::DoNotOptimize(f);
+  }
+  state.counters["wait_s"] = wait;
+  state.counters["detours"] = detours;
+}
+BENCHMARK(BM_FindPath1000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

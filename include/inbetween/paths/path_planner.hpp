@@ -1,0 +1,181 @@
+#pragma once
+/// Path finding among obstacles in 3-D (texts 004 §3.4.5): a lattice A* with line-of-sight
+/// shortcutting through the static obstacles, legs between via points, a Catmull-Rom spline that is
+/// checked against the grown obstacles and refined where it cuts into one, and a distance–time
+/// function (timing module) that waits for the moving spheres.  docs/paths.md states the planner's
+/// completeness and optimality; in short:
+///
+/// - Lattice: nodes at bounds_min + h·(i, j, k) inside the bounds, 26 neighbours; a node is usable
+///   when it clears every static obstacle by r + margin, an edge when the whole segment does
+///   (exact segment distances, environment.hpp).  The start and goal of a leg join the lattice
+///   nodes within 2h that they see (segments clear by r).  A* with the 3-D octile heuristic finds
+///   a shortest lattice path (resolution complete: if none is found, no path exists on this
+///   lattice; a gap narrower than about h + 2(r + margin) may be missed).
+/// - Shortcutting: from each kept vertex, jump to the farthest later vertex whose segment clears
+///   by r + margin; this never lengthens the path (triangle inequality), so the polyline is at most
+///   as long as the shortest lattice path.
+/// - Via points: each leg start → via_1 → … → goal is planned on its own, so the path passes the
+///   via points exactly and in order.
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "inbetween/arclength/arc_length.hpp"
+#include "inbetween/curves/catmull_rom.hpp"
+#include "inbetween/math/expected.hpp"
+#include "inbetween/paths/environment.hpp"
+#include "inbetween/timing/distance_time.hpp"
+
+namespace inbetween {
+
+/// Options of plan_polyline().
+struct PlannerOptions {
+  /// Lattice spacing h > 0; 0 picks the longest bounds side / 48.
+  double cell_size = 0;
+  /// Extra clearance of lattice nodes, edges and shortcuts beyond r (room for the spline to bend);
+  /// < 0 picks h/4.  The start, goal and via points only need to clear r.
+  double margin = -1;
+  /// Refuse lattices with more nodes than this (InvalidArgument, where "/cell_size").
+  long long max_nodes = 8'000'000;
+};
+
+/// What to plan: the start, the via points in order and the goal (the object's centre).
+struct PathEnds {
+  Vec3d start{};            ///< where the object's centre starts
+  std::vector<Vec3d> via;   ///< points to pass in this order
+  Vec3d goal{};             ///< where it ends
+};
+
+/// A collision-free polyline through the static obstacles.
+struct PlannedPolyline {
+  std::vector<Vec3d> points;   ///< start … goal (shortcut)
+  std::vector<int> via_index;  ///< index into points of each via point, in order
+  double length = 0;           ///< length of `points`
+  double lattice_length = 0;   ///< length of the un-shortcut lattice path (≥ length)
+  double cell_size = 0;        ///< the lattice spacing h used
+  double margin = 0;           ///< the extra clearance used
+  long long expanded = 0;      ///< lattice nodes taken from the open list, all legs
+};
+
+/// Plans start → via → goal through the static obstacles.  Errors (where = JSON pointer of the
+/// environment file): a point outside the bounds or inside a grown static obstacle ("/start",
+/// "/via/i", "/goal", naming the obstacle), options out of range ("/cell_size", "/margin"), and a
+/// leg without a path ("/via/i" or "/goal": "cannot be reached from …").
+Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& ends, const PlannerOptions& options = {});
+
+/// Options of smooth_planned_path().
+struct PathSmoothingOptions {
+  double alpha = 0.5;        ///< Catmull-Rom knot exponent (centripetal: no cusps or loops)
+  int max_refinements = 12;  ///< refinement rounds before falling back to the polyline
+  /// Arc-length step Δs of the clearance check; 0 picks h/4.  The curve is sampled at arc length
+  /// s_0 = 0 < s_1 < … < s_n = L with s_{i+1} − s_i ≤ Δs.  The piece between samples p_i and p_{i+1}
+  /// (arc length ℓ, chord c) lies in the ellipsoid with foci p_i, p_{i+1} and major axis ℓ, whose
+  /// points are within e = ½√(ℓ² − c²) of the chord; so the piece clears when the chord segment
+  /// clears every grown static obstacle by e (exact segment test).  On straight pieces e = 0.
+  double sample_step = 0;
+};
+
+/// A smooth path through the planned polyline.
+struct SmoothPath {
+  CatmullRomSpline<Vec3d> curve;       ///< through control_points; the via points are among them
+  std::vector<Vec3d> control_points;   ///< the polyline's vertices plus points inserted on its segments
+  std::vector<int> via_control_index;  ///< index into control_points of each via point
+  int refinements = 0;                 ///< rounds that inserted points
+  bool polyline_fallback = false;      ///< true: tension 0, the curve traces the polyline exactly
+  double sample_step = 0;              ///< Δs used by the check
+};
+
+/// A centripetal Catmull-Rom spline through the polyline's vertices, checked by sampling (see
+/// PathSmoothingOptions::sample_step; ℓ is taken 1e-9·L longer than measured to cover the arc-length
+/// table's error) and refined where a sample fails: points are inserted at
+/// 1/4 and 3/4 of the polyline pieces under the failing spans, which pulls the spline onto the
+/// polyline.  After max_refinements rounds the tension is set to 0, which makes every span the
+/// straight polyline segment (Hermite with zero tangents), itself checked exactly by the planner.
+Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPolyline& polyline,
+                                         const PathSmoothingOptions& options = {});
+
+/// How moving obstacles were avoided.
+enum class Avoidance {
+  None,      ///< no moving obstacle: constant speed
+  Timing,    ///< the speed along the path: constant, with waits where a moving sphere crosses
+  Steering,  ///< detours in front of or behind movers (find_path), then the timing as above
+};
+
+/// The JSON name of an Avoidance ("none", "timing", "steering").
+std::string_view avoidance_name(Avoidance a) noexcept;
+
+/// Options of time_path().
+struct PathTimingOptions {
+  double speed = 1;             ///< cruising speed, units per second, > 0
+  double fps = 24;              ///< time samples per second, > 0 (the check's time step is 1/fps)
+  int substeps = 4;             ///< distance steps per frame at cruising speed (≥ 1)
+  double max_duration_factor = 20;  ///< give up after this many times the constant-speed duration
+};
+
+/// The timing of an object along a path.
+struct PathTiming {
+  DistanceTimeCurve<double> distance;   ///< s(t), t ∈ [0, duration], piecewise linear (Linear keys)
+  std::vector<TimeDistanceKey<double>> keys;  ///< its keys
+  Avoidance avoidance = Avoidance::None;       ///< what was used
+  double duration = 0;                         ///< seconds
+  double wait = 0;                             ///< seconds spent standing still
+  double clearance_slack = 0;                  ///< the extra clearance demanded at samples (see below)
+};
+
+/// Times the motion along `path` (arc length s from 0 to L) starting at t = 0.  Search over
+/// (distance step, frame) states: each frame the object advances 0 … `substeps` steps of
+/// ds = speed/(fps·substeps); a state is allowed when the point clears every moving sphere k by
+/// (speed + |v_k|)/(2·fps) beyond r + R_k at that frame's time, which guarantees clearance at every
+/// time in between (the distance is Lipschitz with constant speed + |v_k|).  The earliest arrival
+/// is kept.  Errors: speed or fps out of range ("/speed", "/fps"), a moving sphere on the start at
+/// t = 0 ("/start"), or no arrival within max_duration_factor × L/speed ("/obstacles/k", the
+/// sphere that blocked the farthest point reached; also as soon as every reachable state is hit),
+/// or a search of more than 64·10⁶ states ("/fps").  A path of length 0 gets keys (0, 0), (1/fps, 0).
+Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRomSpline<Vec3d>>& path,
+                               const PathTimingOptions& options = {});
+
+}  // namespace inbetween
+
+namespace inbetween {
+
+/// Options of find_path().
+struct FindPathOptions {
+  PlannerOptions planner{};           ///< the static planner
+  PathSmoothingOptions smoothing{};   ///< the spline and its check
+  PathTimingOptions timing{};         ///< speed, frame rate
+  bool steering = true;               ///< try detours when the timing alone cannot avoid a mover
+  int max_detours = 3;                ///< at most this many detours (one mover at a time)
+};
+
+/// A detour added by the greedy steering.
+struct Detour {
+  int obstacle = -1;   ///< the moving sphere (file index) it avoids
+  bool front = false;  ///< true: in front of the mover (along its motion); false: behind it
+  Vec3d point{};       ///< the via point inserted
+};
+
+/// A found path: the polyline, the checked spline, its arc length and its timing.
+struct FoundPath {
+  PlannedPolyline polyline;                  ///< through the static obstacles
+  SmoothPath smooth;                         ///< the checked spline
+  ArcLength<CatmullRomSpline<Vec3d>> arc;    ///< arc length of smooth.curve
+  PathTiming timing;                         ///< s(t) along it
+  Avoidance avoidance = Avoidance::None;     ///< none, timing, or steering (when detours were added)
+  std::vector<Detour> detours;               ///< in the order they were added
+  PathEnds ends;                             ///< the ends with the detour points among the via points
+};
+
+/// The whole of texts 004 §3.4.5: plan_polyline, smooth_planned_path, ArcLength, time_path, and
+/// when the timing alone cannot avoid the moving spheres, the texts' greedy steering one mover at a
+/// time: moving at constant speed, find the first mover k met (at time t_c, the object at p, the
+/// mover's centre at c); let û be the part of k's velocity across the path's tangent (for a mover
+/// along the path, the part of p − c across it, or any perpendicular).  Try the detour points
+/// c − d·û ("behind", through where the mover has been) and c + d·û ("in front"), d = 1.5 and 3 ×
+/// (R_k + r), as extra via points (inside the bounds and clear of the static obstacles), and keep
+/// the first whose timing succeeds, or else the first that meets its first mover later.  Every
+/// result has passed time_path, so its guarantee holds.  Errors: those of the steps; when steering
+/// fails too, the timing error of the path without detours.
+Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, const FindPathOptions& options = {});
+
+}  // namespace inbetween
