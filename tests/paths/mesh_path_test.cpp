@@ -419,6 +419,35 @@ TEST(MeshPath, DownhillNeverGoesUpAndFindsTheValley) {
   EXPECT_LE(end.y, -kBump + 4.5 * kBump * h * h);
 }
 
+TEST(MeshPath, ANotchTrapsTheGreedyAndPlaneWalksButNotTheEdgePath) {
+  // A flat 6 × 6 grid with the squares i = 3, k = 0..3 removed: a notch from the side k = 0 into
+  // the middle.  From (1, 0) to (5, 0) the straight line runs across the notch.
+  const int n = 6;
+  RawMesh<double> raw = flat_grid<double>(n);
+  std::vector<std::array<int, 3>> kept;
+  for (std::size_t t = 0; t < raw.triangles.size(); ++t) {
+    const int square = int(t / 2), i = square / n, k = square % n;  // grid_mesh's order: i outer, k inner
+    if (!(i == 3 && k <= 3)) kept.push_back(raw.triangles[t]);
+  }
+  raw.triangles = kept;
+  const auto mesh = build_triangle_mesh(raw);
+  ASSERT_TRUE(mesh);
+  const int from = 1 * (n + 1), to = 5 * (n + 1);
+  auto plane = plane_mesh_path(*mesh, from, to);
+  ASSERT_FALSE(plane);  // the plane (normal +y, through both) is z = 0, the boundary; it leaves at the notch
+  EXPECT_EQ(plane.error().describe(), "vertex 21: the plane leaves the mesh at vertex 21 (boundary)");
+  auto greedy = greedy_mesh_path(*mesh, from, to);
+  ASSERT_FALSE(greedy);  // it reaches the notch's corner (3, 0) = vertex 21, and would come back to it
+  EXPECT_EQ(greedy.error().describe(), "vertex 21: the greedy walk would return to vertex 21 (a trap); use --method edges");
+  auto edges = edge_mesh_path(*mesh, from, to);
+  ASSERT_TRUE(edges);
+  expect_joins_on_mesh(raw, *edges, from, to);
+  // Around the notch: (1, 0) → (3, 4) is 2√2 + 2 (the grid's closed form), across the top 1, and
+  // (4, 4) → (5, 0) with opposite steps 1 + 4: 8 + 2√2 in all; and Floyd–Warshall agrees.
+  EXPECT_NEAR(polyline_length(*edges), 8 + 2 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(polyline_length(*edges), floyd_warshall(raw)[std::size_t(from)][std::size_t(to)], 1e-12);
+}
+
 TEST(MeshPath, ErrorsNameTheArgumentOrThePlace) {
   const auto mesh = build_triangle_mesh(flat_grid<double>(3));
   ASSERT_TRUE(mesh);
