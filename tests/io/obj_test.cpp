@@ -240,6 +240,28 @@ TEST(Obj, MalformedFilesNameTheLine) {
   EXPECT_NE(message_of("# nothing\n").find("no vertices"), std::string::npos);
 }
 
+TEST(Obj, ConcavePolygonsAreSplitFromACornerThatSeesThemWhole) {
+  // An L of area 3 in y = 0, listed from (2, 0): the fan from its first corner would fold over
+  // (triangle (2,0),(1,1),(1,2) turns the other way); the fan from (0, 0) covers it exactly.
+  auto l_shape = parse_obj("v 2 0 0\nv 2 0 1\nv 1 0 1\nv 1 0 2\nv 0 0 2\nv 0 0 0\nf 1 2 3 4 5 6\n", "l.obj");
+  ASSERT_TRUE(l_shape) << l_shape.error().describe();
+  ASSERT_EQ(l_shape->face_count(), 4);
+  double area = 0;
+  for (int f = 0; f < l_shape->face_count(); ++f) {
+    const auto& [a, b, c] = l_shape->face(f);
+    area += norm(cross(Vec3d(l_shape->vertex(b) - l_shape->vertex(a)), Vec3d(l_shape->vertex(c) - l_shape->vertex(a)))) / 2;
+    EXPECT_EQ(l_shape->face_normal(f), l_shape->face_normal(0));  // all turn the same way
+  }
+  EXPECT_NEAR(area, 3.0, 1e-15);
+  // A U with deep arms is star-shaped from none of its corners: an error at its line.
+  auto u_shape = parse_obj("# U\nv 0 0 0\nv 5 0 0\nv 5 0 5\nv 4 0 5\nv 4 0 1\nv 1 0 1\nv 1 0 5\nv 0 0 5\n"
+                           "f 1 2 3 4 5 6 7 8\n",
+                           "u.obj");
+  ASSERT_FALSE(u_shape);
+  EXPECT_EQ(u_shape.error().where, "u.obj: line 10");
+  EXPECT_NE(u_shape.error().message.find("cannot be split"), std::string::npos);
+}
+
 TEST(Obj, NormalsOnlyWhenEveryVertexHasOne) {
   auto with = parse_obj(std::string(kSquare) + "vn 0 1 0\nf 1//1 3//1 2//1\nf 1//1 4//1 3//1\n", "m.obj");
   ASSERT_TRUE(with) << with.error().describe();

@@ -419,6 +419,58 @@ TEST(MeshPath, DownhillNeverGoesUpAndFindsTheValley) {
   EXPECT_LE(end.y, -kBump + 4.5 * kBump * h * h);
 }
 
+TYPED_TEST(MeshPathTyped, RandomBumpyFieldsEveryResultHoldsItsGuarantees) {
+  // Random fields y = Σ a sin(ωx x + φ) cos(ωz z + ψ) on random grids, random pairs (boundary
+  // vertices included): every method returns either an Error with a reason, or a path that starts
+  // and ends at the vertices, has finite points on the mesh (within 64 ulp of the box diagonal: the
+  // rounding of one interpolation, with room) and, for downhill, strictly falls.
+  using T = TypeParam;
+  Random rng(test::seed_for(1305));
+  SCOPED_TRACE(rng.trace());
+  int succeeded = 0, failed = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const int n = rng.integer(3, 12);
+    const T a1 = rng.uniform<T>(T(0), T(0.6)), a2 = rng.uniform<T>(T(0), T(0.3)), w1 = rng.uniform<T>(T(0.5), T(2.5)),
+            w2 = rng.uniform<T>(T(0.5), T(4)), ph = rng.uniform<T>(T(0), T(3));
+    const RawMesh<T> raw = grid_mesh<T>(n, T(4) / T(n), T(-2), T(-2), [&](T x, T z) {
+      return a1 * std::sin(w1 * x + ph) * std::cos(w1 * z) + a2 * std::sin(w2 * z) * std::cos(w2 * x - ph);
+    });
+    const auto mesh = build_triangle_mesh(raw);
+    ASSERT_TRUE(mesh);
+    const double tol = 64 * double(std::numeric_limits<T>::epsilon()) * double(mesh->scale());
+    for (int pair = 0; pair < 8; ++pair) {
+      const int from = rng.integer(0, mesh->vertex_count() - 1), to = rng.integer(0, mesh->vertex_count() - 1);
+      SCOPED_TRACE("trial " + std::to_string(trial) + " from " + std::to_string(from) + " to " + std::to_string(to));
+      for (int method = 0; method < 3; ++method) {
+        auto path = method == 0 ? plane_mesh_path(*mesh, from, to)
+                    : method == 1 ? greedy_mesh_path(*mesh, from, to)
+                                  : edge_mesh_path(*mesh, from, to);
+        if (!path) {
+          EXPECT_FALSE(path.error().message.empty());
+          EXPECT_FALSE(path.error().where.empty());
+          EXPECT_NE(method, 2);  // a grid is connected
+          ++failed;
+          continue;
+        }
+        ++succeeded;
+        EXPECT_EQ(path->front(), mesh->vertex(from));
+        EXPECT_EQ(path->back(), mesh->vertex(to));
+        for (const Vec3<T>& p : *path) {
+          EXPECT_TRUE(is_finite(p));
+          EXPECT_LE(distance_to_mesh(raw, p), tol);
+        }
+      }
+      auto down = downhill_mesh_path(*mesh, from);
+      ASSERT_TRUE(down);
+      for (std::size_t i = 1; i < down->points.size(); ++i) {
+        EXPECT_LT(down->points[i].y, down->points[i - 1].y);
+        EXPECT_LE(distance_to_mesh(raw, down->points[i]), tol);
+      }
+    }
+  }
+  EXPECT_GT(succeeded, 5 * failed);  // the walks are meant to work on fields like these
+}
+
 TEST(MeshPath, ANotchTrapsTheGreedyAndPlaneWalksButNotTheEdgePath) {
   // A flat 6 × 6 grid with the squares i = 3, k = 0..3 removed: a notch from the side k = 0 into
   // the middle.  From (1, 0) to (5, 0) the straight line runs across the notch.
@@ -438,7 +490,7 @@ TEST(MeshPath, ANotchTrapsTheGreedyAndPlaneWalksButNotTheEdgePath) {
   EXPECT_EQ(plane.error().describe(), "vertex 21: the plane leaves the mesh at vertex 21 (boundary)");
   auto greedy = greedy_mesh_path(*mesh, from, to);
   ASSERT_FALSE(greedy);  // it reaches the notch's corner (3, 0) = vertex 21, and would come back to it
-  EXPECT_EQ(greedy.error().describe(), "vertex 21: the greedy walk would return to vertex 21 (a trap); use --method edges");
+  EXPECT_EQ(greedy.error().describe(), "vertex 21: the greedy walk would return to vertex 21 (a trap)");
   auto edges = edge_mesh_path(*mesh, from, to);
   ASSERT_TRUE(edges);
   expect_joins_on_mesh(raw, *edges, from, to);

@@ -321,7 +321,7 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
   const auto go_vertex = [&](int v) -> Expected<void> {
     if (vertex_seen[std::size_t(v)])
       return Error{ErrorCode::InvalidArgument,
-                   "the greedy walk would return to vertex " + std::to_string(v) + " (a trap); use --method edges",
+                   "the greedy walk would return to vertex " + std::to_string(v) + " (a trap)",
                    "vertex " + std::to_string(v)};
     vertex_seen[std::size_t(v)] = 1;
     out.push_back(mesh.vertex(v));
@@ -335,6 +335,10 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
       const int v = spot.vertex;
       const V pv = mesh.vertex(v);
       const V to_goal = target - pv;
+      if (squared_norm(to_goal) == T(0)) {  // another vertex at J's position: J is reached
+        out.push_back(target);
+        return out;
+      }
       // A face with J as a corner: straight to J.
       for (int f : mesh.faces_around(v))
         for (int x : mesh.face(f))
@@ -368,6 +372,9 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
         const T c = dot(e, to_goal) / (norm(e) * norm(to_goal));
         if (c > best_cos) best_cos = c, best = nb;
       }
+      if (best < 0)  // cannot happen: a vertex in a face has neighbours, and their cosines are finite
+        return Error{ErrorCode::InvalidArgument, "the greedy walk is stuck at vertex " + std::to_string(v),
+                     "vertex " + std::to_string(v)};
       if (auto ok = go_vertex(best); !ok) return ok.error();
       continue;
     }
@@ -375,7 +382,7 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
     const V q = out.back();
     if (f >= 0 && face_seen[std::size_t(f)])
       return Error{ErrorCode::InvalidArgument,
-                   "the greedy walk would enter face " + std::to_string(f) + " again (a trap); use --method edges",
+                   "the greedy walk would enter face " + std::to_string(f) + " again (a trap)",
                    "face " + std::to_string(f)};
     detail::FaceCross<T> cr{};
     if (f >= 0) {
