@@ -74,6 +74,7 @@ T polyline_length(const std::vector<Vec3<T>>& points) noexcept {
 
 namespace detail {
 
+/// An Error naming `name` unless v is a vertex of the mesh that belongs to a face.
 template <Real T>
 Expected<void> check_mesh_vertex(const TriangleMesh<T>& mesh, int v, const char* name) {
   if (v < 0 || v >= mesh.vertex_count())
@@ -86,6 +87,7 @@ Expected<void> check_mesh_vertex(const TriangleMesh<T>& mesh, int v, const char*
   return {};
 }
 
+/// "edge a-b", smaller index first.
 inline std::string edge_name(int a, int b) { return "edge " + std::to_string(std::min(a, b)) + "-" + std::to_string(std::max(a, b)); }
 
 /// The corners of face f other than v, in the face's order after v.
@@ -117,18 +119,23 @@ std::array<T, 2> in_basis(const Vec3<T>& e1, const Vec3<T>& e2, const Vec3<T>& d
 /// Where a walk is: at a vertex, or on the edge (a, b) at lerp(P_a, P_b, w) having come from face
 /// `from` (−1 at the start).
 struct MeshSpot {
-  int vertex = -1;  ///< ≥ 0 when at a vertex
-  int a = -1, b = -1;
-  double w = 0;     ///< weight of b (kept in double; the point is recomputed in T)
-  int from = -1;    ///< the face just left
+  int vertex = -1;     ///< ≥ 0 when at a vertex
+  int a = -1, b = -1;  ///< the edge, when not at a vertex
+  double w = 0;        ///< weight of b on the edge
+  int from = -1;       ///< the face just left
 };
 
 /// The result of crossing a face from an edge point along a direction.
-enum class CrossKind { Back, Edge, Vertex };
+enum class CrossKind {
+  Back,    ///< the direction does not enter the face
+  Edge,    ///< leaves through an edge
+  Vertex,  ///< leaves through a corner
+};
 
+/// Where a straight walk across one face leaves it.
 template <Real T>
 struct FaceCross {
-  CrossKind kind = CrossKind::Back;
+  CrossKind kind = CrossKind::Back;  ///< back out, through an edge, or through a corner
   int a = -1, b = -1;  ///< exit edge (Edge), or a = the vertex (Vertex)
   T w{};               ///< weight of b on the exit edge
 };
@@ -186,6 +193,7 @@ FaceCross<T> cross_face_from_vertex(const TriangleMesh<T>& mesh, int f, int v, c
   return {CrossKind::Edge, a, b, wb};
 }
 
+/// d with its component along face f's normal removed.
 template <Real T>
 Vec3<T> on_plane_of(const TriangleMesh<T>& mesh, int f, const Vec3<T>& d) noexcept {
   const Vec3<T>& n = mesh.face_normal(f);
