@@ -2,8 +2,8 @@
 // `v`, `vn` and `f` and checks what tinyobjloader passes over silently (it reads "nan" or a missing
 // coordinate as 0, skips faces with fewer than 3 corners, stores corner counts in a byte, and does
 // not check face indices against the vertices); tinyobjloader then does the parsing proper, and the
-// mesh builder checks the geometry (index range, zero area, shared edges), whose places are
-// translated back to lines here.
+// mesh builder checks the geometry (zero area, repeated vertices, shared edges, normals) and names
+// its places through a MeshPlaceNamer that gives the file's lines.
 #include "inbetween/io/obj.hpp"
 
 #include <tiny_obj_loader.h>
@@ -219,25 +219,14 @@ Expected<ObjRawMesh> parse_obj_raw(std::string_view text, std::string_view sourc
 Expected<TriangleMesh<double>> parse_obj(std::string_view text, std::string_view source_name) {
   auto raw = parse_obj_raw(text, source_name);
   if (!raw) return raw.error();
-  auto mesh = build_triangle_mesh(raw->mesh);
-  if (mesh) return mesh;
-  Error e = mesh.error();
-  const auto number_after = [&](std::string_view prefix) -> long {
-    if (e.where.rfind(prefix, 0) != 0) return -1;
-    return std::strtol(e.where.c_str() + prefix.size(), nullptr, 10);
+  // The builder names its places through this: a vertex or a normal by its `v` line, a triangle by
+  // the line of the face it was split from, a whole member by the file.
+  const MeshPlaceNamer place = [&](std::string_view member, std::size_t index) {
+    if (index == kWholeMeshMember) return std::string(source_name);
+    const std::vector<int>& lines = member == "triangles" ? raw->triangle_lines : raw->vertex_lines;
+    return index < lines.size() ? at_line(source_name, lines[index]) : std::string(source_name);
   };
-  if (const long f = number_after("face "); f >= 0 && std::size_t(f) < raw->triangle_lines.size()) {
-    e.where = at_line(source_name, raw->triangle_lines[std::size_t(f)]);
-    e.message = "face: " + e.message;
-  } else if (const long v = number_after("vertex "); v >= 0 && std::size_t(v) < raw->vertex_lines.size()) {
-    e.where = at_line(source_name, raw->vertex_lines[std::size_t(v)]);
-  } else if (const long nn = number_after("normal "); nn >= 0 && std::size_t(nn) < raw->vertex_lines.size()) {
-    e.where = at_line(source_name, raw->vertex_lines[std::size_t(nn)]);
-    e.message += " (the sum of the 'vn' its face corners name)";
-  } else {
-    e.where = std::string(source_name);
-  }
-  return e;
+  return build_triangle_mesh(raw->mesh, place);
 }
 
 }  // namespace inbetween

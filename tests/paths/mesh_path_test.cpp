@@ -216,6 +216,15 @@ TEST(TriangleMesh, BadInputIsNamed) {
   EXPECT_EQ(where(bad), "normals");
   bad.normals = {{0, 1, 0}, {0, 1, 0}, {0, 0, 0}, {0, 1, 0}};
   EXPECT_EQ(where(bad), "normal 2");
+  // A caller's names for the places (a reader's lines, say): member and index, never parsed text.
+  const MeshPlaceNamer place = [](std::string_view member, std::size_t index) {
+    return std::string(member) + (index == kWholeMeshMember ? "" : "[" + std::to_string(index) + "]");
+  };
+  EXPECT_EQ(build_triangle_mesh(bad, place).error().where, "normals[2]");
+  bad = raw;
+  bad.triangles[1][2] = 4;
+  EXPECT_EQ(build_triangle_mesh(bad, place).error().where, "triangles[1]");
+  EXPECT_EQ(build_triangle_mesh(RawMesh<double>{}, place).error().where, "vertices");
 }
 
 // ------------------------------------------------------------------------------ flat meshes

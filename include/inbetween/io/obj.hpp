@@ -35,7 +35,8 @@ struct ObjRawMesh {
 /// Parses OBJ text (no build; errors as in the file comment except those of the builder).
 Expected<ObjRawMesh> parse_obj_raw(std::string_view text, std::string_view source_name);
 
-/// Parses and builds: builder errors ("vertex i", "face f", "normal i") come back as the line.
+/// Parses and builds: the builder's errors name the line (of the vertex's `v`, of the face's `f`)
+/// through a MeshPlaceNamer.
 Expected<TriangleMesh<double>> parse_obj(std::string_view text, std::string_view source_name);
 
 }  // namespace inbetween

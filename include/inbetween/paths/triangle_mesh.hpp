@@ -3,7 +3,8 @@
 /// gives) → build_triangle_mesh → TriangleMesh, an immutable mesh with unit vertex normals and the
 /// adjacency the surface walks need (faces around a vertex, the face across each edge).
 ///
-/// What the builder accepts (everything else is an Error whose `where` names the item):
+/// What the builder accepts (everything else is an Error whose `where` names the item, in the
+/// builder's words below or through a MeshPlaceNamer):
 ///   - at least one vertex ("vertices") and one triangle ("triangles");
 ///   - finite vertex coordinates ("vertex i");
 ///   - triangles whose three indices are in range and distinct ("face f");
@@ -20,9 +21,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <span>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -49,9 +52,26 @@ struct RawMesh {
 template <Real T>
 class TriangleMesh;
 
-/// Checks `raw` (file comment) and builds the mesh with its adjacency.
+/// Index passed to a MeshPlaceNamer for an error about a whole member (an empty mesh, a normal
+/// count that does not match).
+inline constexpr std::size_t kWholeMeshMember = static_cast<std::size_t>(-1);
+
+/// Names the place of a builder error from the RawMesh member ("vertices", "triangles" or
+/// "normals") and the index in it (or kWholeMeshMember), so that a reader can say "line 12" of its
+/// file without parsing a place back out of text.  Empty: default_mesh_place.
+using MeshPlaceNamer = std::function<std::string(std::string_view member, std::size_t index)>;
+
+/// The builder's own names: "vertex i", "face f", "normal i", or the member's name for the whole.
+inline std::string default_mesh_place(std::string_view member, std::size_t index) {
+  if (index == kWholeMeshMember) return std::string(member);
+  const char* item = member == "vertices" ? "vertex " : (member == "triangles" ? "face " : "normal ");
+  return item + std::to_string(index);
+}
+
+/// Checks `raw` (file comment) and builds the mesh with its adjacency; errors name their place
+/// through `place` (default_mesh_place when empty).
 template <Real T>
-Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw);
+Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshPlaceNamer& place = {});
 
 /// An immutable, valid triangle mesh (see the file comment for what valid means).
 template <Real T>
@@ -105,7 +125,7 @@ class TriangleMesh {
 
  private:
   TriangleMesh() = default;
-  friend Expected<TriangleMesh<T>> build_triangle_mesh<T>(const RawMesh<T>& raw);
+  friend Expected<TriangleMesh<T>> build_triangle_mesh<T>(const RawMesh<T>& raw, const MeshPlaceNamer& place);
 
   std::vector<Vec3<T>> vertices_;
   std::vector<Vec3<T>> normals_;
@@ -121,16 +141,21 @@ class TriangleMesh {
 };
 
 template <Real T>
-Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw) {
+Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshPlaceNamer& place) {
   using V = Vec3<T>;
-  const auto face_name = [](std::size_t f) { return "face " + std::to_string(f); };
-  if (raw.vertices.empty()) return Error{ErrorCode::TooFewPoints, "the mesh has no vertices", "vertices"};
-  if (raw.triangles.empty()) return Error{ErrorCode::TooFewPoints, "the mesh has no faces", "triangles"};
+  const auto name = [&](std::string_view member, std::size_t index) {
+    return place ? place(member, index) : default_mesh_place(member, index);
+  };
+  const auto face_name = [&](std::size_t f) { return name("triangles", f); };
+  if (raw.vertices.empty())
+    return Error{ErrorCode::TooFewPoints, "the mesh has no vertices", name("vertices", kWholeMeshMember)};
+  if (raw.triangles.empty())
+    return Error{ErrorCode::TooFewPoints, "the mesh has no faces", name("triangles", kWholeMeshMember)};
   const int n = int(raw.vertices.size());
   for (std::size_t i = 0; i < raw.vertices.size(); ++i)
     if (!is_finite(raw.vertices[i]))
       return Error{ErrorCode::NotFinite, "vertex " + std::to_string(i) + " has a coordinate that is not finite",
-                   "vertex " + std::to_string(i)};
+                   name("vertices", i)};
   TriangleMesh<T> mesh;
   mesh.vertices_ = raw.vertices;
   mesh.faces_ = raw.triangles;
@@ -213,13 +238,13 @@ Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw) {
       return Error{ErrorCode::WrongArity,
                    "there are " + std::to_string(raw.normals.size()) + " normals for " + std::to_string(n) +
                        " vertices; give one per vertex or none",
-                   "normals"};
+                   name("normals", kWholeMeshMember)};
     mesh.normals_.resize(raw.normals.size());
     for (std::size_t i = 0; i < raw.normals.size(); ++i) {
       const T len = norm(raw.normals[i]);
       if (!is_finite(raw.normals[i]) || !(len > T(0)))
         return Error{is_finite(raw.normals[i]) ? ErrorCode::InvalidArgument : ErrorCode::NotFinite,
-                     "the normal of vertex " + std::to_string(i) + " is zero or not finite", "normal " + std::to_string(i)};
+                     "the normal of vertex " + std::to_string(i) + " is zero or not finite", name("normals", i)};
       mesh.normals_[i] = raw.normals[i] / len;
     }
     mesh.given_normals_ = true;
