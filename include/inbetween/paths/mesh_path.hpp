@@ -252,7 +252,10 @@ Expected<std::vector<Vec3<T>>> plane_mesh_path(const TriangleMesh<T>& mesh, int 
         const int sa = side(a), sb = side(b);
         for (int x : {a, b})
           if (side(x) == 0) {
-            if (x == to) return out.push_back(p1), out;
+            if (x == to) {  // the plane runs along the edge v-J
+              out.push_back(p1);
+              return out;
+            }
             if (vertex_seen[std::size_t(x)]) blocked = true;
             else cands.push_back({x, -1, -1, -1, mesh.vertex(x)});
           }
@@ -350,7 +353,10 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
       // A face with J as a corner: straight to J.
       for (int f : mesh.faces_around(v))
         for (int x : mesh.face(f))
-          if (x == to) return out.push_back(target), out;
+          if (x == to) {
+            out.push_back(target);
+            return out;
+          }
       int best_face = -1;
       detail::FaceCross<T> best_cross{};
       T best_cos = -std::numeric_limits<T>::infinity();
