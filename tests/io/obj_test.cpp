@@ -227,6 +227,7 @@ TEST(Obj, MalformedFilesNameTheLine) {
   EXPECT_EQ(where_of("v 0 0 0\nv nan 0 0\nv 0 0 1\nf 1 2 3\n"), "m.obj: line 2");
   EXPECT_EQ(where_of("v 0 0 0\nv 1 0 inf\nv 0 0 1\nf 1 2 3\n"), "m.obj: line 2");
   EXPECT_EQ(where_of("v 0 0 0\nv 1 0\nv 0 0 1\nf 1 2 3\n"), "m.obj: line 2");
+  EXPECT_EQ(where_of("v 0 0 0\nv 1 0 0\nv 0 0 1e308\nf 1 2 3\n"), "m.obj: line 3");  // beyond kMeshMaxCoordinate
   EXPECT_EQ(where_of("v 0 0 0\nv 1 x 0\nv 0 0 1\nf 1 2 3\n"), "m.obj: line 2");
   EXPECT_EQ(where_of(std::string(kSquare) + "vn 0 nan 1\nf 1 2 3\n"), "m.obj: line 5");
   EXPECT_EQ(where_of(std::string(kSquare) + "f 1 2\n"), "m.obj: line 5");

@@ -480,6 +480,49 @@ TYPED_TEST(MeshPathTyped, RandomBumpyFieldsEveryResultHoldsItsGuarantees) {
   EXPECT_GT(succeeded, 5 * failed);  // the walks are meant to work on fields like these
 }
 
+TEST(MeshPath, HugeAndTinyMeshesGiveTheSamePathsScaled) {
+  // Scaling every coordinate by a power of two is exact, and every decision of the walks is
+  // relative (tolerances in units of the mesh's size, bases in units of their edges, cosines of
+  // unit vectors), so the paths on the scaled mesh are the paths on the unit mesh scaled, exactly:
+  // at 2^996 ≈ 6.7e299 (where a squared length would overflow) and 2^-900 ≈ 1.2e-271 (where a 4th
+  // power would underflow).
+  const RawMesh<double> unit = bumpy_grid(8);
+  const auto base = build_triangle_mesh(unit);
+  ASSERT_TRUE(base);
+  for (const int e : {996, -900}) {
+    SCOPED_TRACE("2^" + std::to_string(e));
+    RawMesh<double> raw = unit;
+    for (Vec3d& p : raw.vertices) p = Vec3d{std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e)};
+    const auto mesh = build_triangle_mesh(raw);
+    ASSERT_TRUE(mesh) << mesh.error().describe();
+    for (int v = 0; v < mesh->vertex_count(); ++v) EXPECT_EQ(mesh->normal(v), base->normal(v));
+    const auto scaled = [e](std::vector<Vec3d> pts) {
+      for (Vec3d& p : pts) p = Vec3d{std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e)};
+      return pts;
+    };
+    for (const auto& [from, to] : std::vector<std::pair<int, int>>{{10, 70}, {0, 80}, {31, 44}, {72, 8}}) {
+      SCOPED_TRACE(std::to_string(from) + " to " + std::to_string(to));
+      auto p0 = plane_mesh_path(*base, from, to), p1 = plane_mesh_path(*mesh, from, to);
+      ASSERT_EQ(p0.has_value(), p1.has_value());
+      if (p0) EXPECT_EQ(*p1, scaled(*p0));
+      auto g0 = greedy_mesh_path(*base, from, to), g1 = greedy_mesh_path(*mesh, from, to);
+      ASSERT_TRUE(g0 && g1);
+      EXPECT_EQ(*g1, scaled(*g0));
+      auto e0 = edge_mesh_path(*base, from, to), e1 = edge_mesh_path(*mesh, from, to);
+      ASSERT_TRUE(e0 && e1);
+      EXPECT_EQ(*e1, scaled(*e0));
+      auto d0 = downhill_mesh_path(*base, from), d1 = downhill_mesh_path(*mesh, from);
+      ASSERT_TRUE(d0 && d1);
+      EXPECT_EQ(d1->points, scaled(d0->points));
+      EXPECT_EQ(d1->stop, d0->stop);
+    }
+  }
+  // Beyond an eighth of the largest double a coordinate is refused, naming the vertex.
+  RawMesh<double> too_big = unit;
+  too_big.vertices[5].x = 1e308;
+  EXPECT_EQ(build_triangle_mesh(too_big).error().where, "vertex 5");
+}
+
 TEST(MeshPath, ANotchTrapsTheGreedyAndPlaneWalksButNotTheEdgePath) {
   // A flat 6 × 6 grid with the squares i = 3, k = 0..3 removed: a notch from the side k = 0 into
   // the middle.  From (1, 0) to (5, 0) the straight line runs across the notch.

@@ -107,9 +107,15 @@ int third_corner(const TriangleMesh<T>& mesh, int f, int a, int b) noexcept {
 }
 
 /// Coordinates (α, β) of the in-plane part of d in the basis (e1, e2): least squares through the
-/// 2×2 Gram system (e1, e2 independent: faces are not degenerate).
+/// 2×2 Gram system (e1, e2 independent: faces are not degenerate).  Solved in units of the longer
+/// of e1 and e2, so that the Gram determinant (4th powers of lengths) neither overflows nor
+/// underflows.
 template <Real T>
-std::array<T, 2> in_basis(const Vec3<T>& e1, const Vec3<T>& e2, const Vec3<T>& d) noexcept {
+std::array<T, 2> in_basis(Vec3<T> e1, Vec3<T> e2, Vec3<T> d) noexcept {
+  const T unit = std::max(norm(e1), norm(e2));
+  e1 /= unit;
+  e2 /= unit;
+  d /= unit;
   const T g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2);
   const T r1 = dot(e1, d), r2 = dot(e2, d);
   const T det = g11 * g22 - g12 * g12;
@@ -346,7 +352,7 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
       const int v = spot.vertex;
       const V pv = mesh.vertex(v);
       const V to_goal = target - pv;
-      if (squared_norm(to_goal) == T(0)) {  // another vertex at J's position: J is reached
+      if (to_goal == V{}) {  // another vertex at J's position: J is reached (exact test: a squared norm underflows)
         out.push_back(target);
         return out;
       }
@@ -365,7 +371,7 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
         const V d = detail::on_plane_of(mesh, f, to_goal);
         const auto cr = detail::cross_face_from_vertex(mesh, f, v, d);
         if (cr.kind == detail::CrossKind::Back) continue;
-        const T c = dot(normalized(d, V{}), to_goal) / norm(to_goal);
+        const T c = dot(normalized(d, V{}), normalized(to_goal, V{}));
         if (c > best_cos) best_cos = c, best_face = f, best_cross = cr;
       }
       if (best_face >= 0) {
@@ -382,8 +388,7 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
       int best = -1;
       best_cos = -std::numeric_limits<T>::infinity();
       for (int nb : mesh.neighbours(v)) {
-        const V e = mesh.vertex(nb) - pv;
-        const T c = dot(e, to_goal) / (norm(e) * norm(to_goal));
+        const T c = dot(normalized(V(mesh.vertex(nb) - pv), V{}), normalized(to_goal, V{}));
         if (c > best_cos) best_cos = c, best = nb;
       }
       if (best < 0)  // cannot happen: a vertex in a face has neighbours, and their cosines are finite
@@ -488,8 +493,7 @@ Expected<DownhillPath<T>> downhill_mesh_path(const TriangleMesh<T>& mesh, int st
         if (slope > best_slope) best_slope = slope, best_face = f, best_cross = cr;
       }
       for (int nb : mesh.neighbours(v)) {
-        const V e = mesh.vertex(nb) - pv;
-        const T slope = -dot(e, u) / norm(e);
+        const T slope = -dot(normalized(V(mesh.vertex(nb) - pv), V{}), u);
         if (slope > best_slope) best_slope = slope, best_face = -1, best_vertex = nb;
       }
       if (best_face < 0 && best_vertex < 0) return out;  // a minimum

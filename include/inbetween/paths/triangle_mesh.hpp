@@ -6,7 +6,8 @@
 /// What the builder accepts (everything else is an Error whose `where` names the item, in the
 /// builder's words below or through a MeshPlaceNamer):
 ///   - at least one vertex ("vertices") and one triangle ("triangles");
-///   - finite vertex coordinates ("vertex i");
+///   - finite vertex coordinates of magnitude at most kMeshMaxCoordinate ("vertex i"), so that
+///     every difference of two vertices, and its length, is finite;
 ///   - triangles whose three indices are in range and distinct ("face f");
 ///   - no zero-area triangle ("face f"): |(b − a) × (c − a)| ≤ kMeshAreaTolerance · (longest edge)²
 ///     is rejected, not dropped, because dropping it would silently cut the surface there;
@@ -39,6 +40,13 @@ namespace inbetween {
 /// hundred ulp of T, so that rounding in the cross product of a thin but genuine triangle never trips it.
 template <Real T>
 inline constexpr T kMeshAreaTolerance = T(256) * std::numeric_limits<T>::epsilon();
+
+/// Largest accepted |coordinate|: an eighth of the largest finite T, so that a difference of two
+/// vertices (at most a quarter) and its length (at most √3/4 of the maximum) never overflow.  The
+/// walks compute in scaled units beyond that, so any mesh within this range works (tested at 1e300
+/// and 1e-300).
+template <Real T>
+inline constexpr T kMeshMaxCoordinate = std::numeric_limits<T>::max() / T(8);
 
 /// A mesh as given: positions, triangles as vertex indices (counter-clockwise seen from outside, for
 /// computed normals), and optionally one normal per vertex.
@@ -152,10 +160,20 @@ Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshP
   if (raw.triangles.empty())
     return Error{ErrorCode::TooFewPoints, "the mesh has no faces", name("triangles", kWholeMeshMember)};
   const int n = int(raw.vertices.size());
-  for (std::size_t i = 0; i < raw.vertices.size(); ++i)
+  T extent{};  // the largest |coordinate|: area weights are computed in units of it
+  for (std::size_t i = 0; i < raw.vertices.size(); ++i) {
     if (!is_finite(raw.vertices[i]))
       return Error{ErrorCode::NotFinite, "vertex " + std::to_string(i) + " has a coordinate that is not finite",
                    name("vertices", i)};
+    const T big = std::max({std::abs(raw.vertices[i].x), std::abs(raw.vertices[i].y), std::abs(raw.vertices[i].z)});
+    if (big > kMeshMaxCoordinate<T>)
+      return Error{ErrorCode::InvalidArgument,
+                   "vertex " + std::to_string(i) + " has a coordinate of magnitude " + std::to_string(double(big)) +
+                       ", beyond the mesh limit " + std::to_string(double(kMeshMaxCoordinate<T>)),
+                   name("vertices", i)};
+    extent = std::max(extent, big);
+  }
+  const T unit = extent > T(0) ? extent : T(1);
   TriangleMesh<T> mesh;
   mesh.vertices_ = raw.vertices;
   mesh.faces_ = raw.triangles;
@@ -179,15 +197,19 @@ Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshP
     const V& a = raw.vertices[std::size_t(t[0])];
     const V& b = raw.vertices[std::size_t(t[1])];
     const V& c = raw.vertices[std::size_t(t[2])];
-    const V area2 = cross(V(b - a), V(c - a));  // twice the area times the unit normal
+    // The degeneracy test in units of the longest edge, so that it neither overflows nor underflows.
     const T longest = std::max({norm(V(b - a)), norm(V(c - b)), norm(V(a - c))});
-    const T area_norm = norm(area2);
-    if (!(area_norm > kMeshAreaTolerance<T> * longest * longest) || !std::isfinite(area_norm))
+    const V rel = longest > T(0) ? cross(V((b - a) / longest), V((c - a) / longest)) : V{};
+    const T rel_norm = norm(rel);
+    if (!(rel_norm > kMeshAreaTolerance<T>))
       return Error{ErrorCode::InvalidArgument,
                    "face (vertices " + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " +
                        std::to_string(t[2]) + ") has zero area",
                    face_name(f)};
-    mesh.face_normals_[f] = area2 / area_norm;
+    mesh.face_normals_[f] = rel / rel_norm;
+    // Twice the area times the unit normal, in units of the mesh's extent (differences ≤ 2, no
+    // overflow); a face below ~1e-154 of the extent underflows to weight 0.
+    const V area2 = cross(V((b - a) / unit), V((c - a) / unit));
     for (int v : t) area_normals[std::size_t(v)] += area2;
   }
   // Edges: (low, high, face, corner) sorted, so the faces of an edge are adjacent entries.
