@@ -60,6 +60,7 @@
 #include "inbetween/paths/camera.hpp"
 #include "inbetween/paths/frenet_frames.hpp"
 #include "inbetween/paths/graph_path.hpp"
+#include "inbetween/paths/mesh_path.hpp"
 #include "inbetween/paths/path_finding.hpp"
 #include "inbetween/paths/path_frame.hpp"
 #include "inbetween/paths/path_pose.hpp"
@@ -67,6 +68,7 @@
 #include "inbetween/paths/smooth_bspline.hpp"  // uses fit_bspline from inbetween_eigen (link inbetween::eigen)
 #include "inbetween/paths/smoothing.hpp"
 #include "inbetween/paths/surface_path.hpp"
+#include "inbetween/paths/triangle_mesh.hpp"
 
 // scene
 #include "inbetween/scene/camera_view.hpp"

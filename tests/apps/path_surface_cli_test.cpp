@@ -1,0 +1,146 @@
+// `inbetween path surface`: runs the built CLI on OBJ files.  Expected numbers: the library's own
+// paths (the tool must only format them), the chord on a flat mesh, and the torus's closed forms
+// (tests/io/obj_test.cpp) for the Blender export in tests/data/obj/.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "inbetween/io/obj.hpp"
+#include "inbetween/paths/mesh_path.hpp"
+#include "support/cli.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using inbetween::Vec3d;
+using inbetween::test::CliRun;
+using inbetween::test::run_cli;
+using inbetween::test::slurp;
+using inbetween::test::test_dir;
+using inbetween::test::write_test_file;
+
+const std::string kTorus = std::string(INBETWEEN_SOURCE_DIR) + "/tests/data/obj/blender_torus.obj";
+
+// A 2 × 2 grid of unit squares in y = 0 as quads (vertex (i, k) is line i·3 + k + 1).
+std::string flat_obj() {
+  std::string s = "# 3 x 3 vertices\n";
+  for (int i = 0; i <= 2; ++i)
+    for (int k = 0; k <= 2; ++k) s += "v " + std::to_string(i) + " 0 " + std::to_string(k) + "\n";
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k < 2; ++k) {
+      const int a = i * 3 + k + 1;
+      s += "f " + std::to_string(a) + " " + std::to_string(a + 1) + " " + std::to_string(a + 4) + " " +
+           std::to_string(a + 3) + "\n";
+    }
+  return s;
+}
+
+std::vector<Vec3d> parse_rows(const std::string& text) {
+  std::vector<Vec3d> out;
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "x,y,z");
+  while (std::getline(in, line)) {
+    Vec3d p;
+    char c1 = 0, c2 = 0;
+    std::istringstream ls(line);
+    ls >> p.x >> c1 >> p.y >> c2 >> p.z;
+    EXPECT_TRUE(ls && c1 == ',' && c2 == ',') << line;
+    out.push_back(p);
+  }
+  return out;
+}
+
+double length(const std::vector<Vec3d>& pts) { return inbetween::polyline_length(pts); }
+
+TEST(PathSurfaceCli, FlatMeshPlaneAndGreedyAreTheChord) {
+  const auto obj = write_test_file("flat.obj", flat_obj());
+  for (const char* method : {"plane", "greedy"}) {
+    SCOPED_TRACE(method);
+    // Vertex 0 = (0, 0, 0), vertex 7 = (2, 0, 1): the chord √5.
+    const CliRun r = run_cli("path surface " + obj.string() + " --from 0 --to 7 --method " + method);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto rows = parse_rows(r.out);
+    ASSERT_GE(rows.size(), 2u);
+    EXPECT_EQ(rows.front(), (Vec3d{0, 0, 0}));
+    EXPECT_EQ(rows.back(), (Vec3d{2, 0, 1}));
+    EXPECT_NEAR(length(rows), std::sqrt(5.0), 1e-12);
+  }
+  // Edges: the quads are split along their (first, third) corner diagonal, (i, k)-(i+1, k+1);
+  // (0,0) → (2,1) is one diagonal and one unit edge, √2 + 1.
+  const CliRun r = run_cli("path surface " + obj.string() + " --from 0 --to 7 --method edges");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(length(parse_rows(r.out)), std::sqrt(2.0) + 1, 1e-12);
+}
+
+TEST(PathSurfaceCli, BlenderTorusRowsAreTheLibrarysPath) {
+  auto mesh = inbetween::parse_obj(slurp(kTorus), "torus.obj");
+  ASSERT_TRUE(mesh);
+  for (const char* method : {"plane", "greedy", "edges"}) {
+    SCOPED_TRACE(method);
+    const CliRun r = run_cli("path surface " + kTorus + " --from 0 --to 24 --method " + method);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string m = method;
+    auto want = m == "plane" ? inbetween::plane_mesh_path(*mesh, 0, 24)
+                : m == "greedy" ? inbetween::greedy_mesh_path(*mesh, 0, 24)
+                                : inbetween::edge_mesh_path(*mesh, 0, 24);
+    ASSERT_TRUE(want);
+    EXPECT_EQ(parse_rows(r.out), *want);  // shortest round-trip text: exact
+  }
+  // Downhill from the top of the tube (vertex 2) to the lowest ring, y = −0.35; written to a file.
+  const auto out = test_dir() / "down.csv";
+  const CliRun r = run_cli("path surface " + kTorus + " --downhill 2 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  const auto rows = parse_rows(slurp(out));
+  ASSERT_GE(rows.size(), 2u);
+  EXPECT_EQ(rows.front(), mesh->vertex(2));
+  EXPECT_NEAR(rows.back().y, -0.35, 1e-12);
+  // --up -y: "downhill" is then up, to the top ring, y = 0.35.
+  const CliRun up = run_cli("path surface " + kTorus + " --downhill 6 --up 0 -1 0");
+  ASSERT_EQ(up.exit_code, 0) << up.err;
+  EXPECT_NEAR(parse_rows(up.out).back().y, 0.35, 1e-12);
+}
+
+struct Bad {
+  std::string obj, args, expect;
+};
+
+TEST(PathSurfaceCli, BadInputExitsTwoNamingTheLineOrArgument) {
+  const std::string square = "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\n";
+  const std::vector<Bad> cases = {
+      {square + "f 1 2 3\nf 1 3 5\n", "--from 0 --to 2", "m.obj: line 6: face names vertex 5"},  // missing vertex
+      {square + "f 1 2 3\nf 1 3 -9\n", "--from 0 --to 2", "m.obj: line 6:"},                     // relative, out of range
+      {"v 0 0 0\nv nan 1 0\nv 0 0 1\nf 1 2 3\n", "--from 0 --to 2", "m.obj: line 2: 'v' coordinate 'nan' is not finite"},
+      {"", "--from 0 --to 1", "m.obj: the mesh has no vertices"},
+      {square, "--from 0 --to 1", "m.obj: the mesh has no faces"},
+      {square + "f 1 2 3 4\n", "--from 0 --to 4", "--to 4: vertex 4 is not one of the mesh's 4 vertices"},
+      {square + "f 1 2 3 4\n", "--from -1 --to 2", "--from -1: vertex -1 is not one of"},
+      {square + "f 1 2 3 4\n", "--downhill 9", "--downhill 9: vertex 9 is not one of"},
+      {square + "f 1 2 3 4\n", "--from 0", "give --from I and --to J, or --downhill I"},
+      {square + "f 1 2 3 4\n", "--downhill 0 --method plane", "--downhill takes no --from, --to or --method"},
+      {square + "f 1 2 3 4\n", "--downhill 0 --up 0 0 0", "--up: up must be a non-zero finite vector"},
+      {square + "f 1 2 3\nv 5 5 5\nv 6 5 5\nv 5 5 6\nf 5 6 7\n", "--from 0 --to 4 --method edges", "not connected"},
+  };
+  for (const Bad& c : cases) {
+    SCOPED_TRACE(c.args + " on:\n" + c.obj);
+    const auto obj = write_test_file("m.obj", c.obj);
+    const auto out = test_dir() / "out.csv";
+    const CliRun r = run_cli("path surface " + obj.string() + " " + c.args + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));  // nothing written on an error
+  }
+  // The texts' plane walk that closes a loop on the torus: exit 2 with the reason, no rows.
+  const CliRun loop = run_cli("path surface " + kTorus + " --from 2 --to 44 --method plane");
+  EXPECT_EQ(loop.exit_code, 2);
+  EXPECT_EQ(loop.out, "");
+  EXPECT_NE(loop.err.find("vertex 2: the plane walk returns to vertex 2"), std::string::npos) << loop.err;
+}
+
+}  // namespace
