@@ -188,7 +188,7 @@ TEST(BSplineFit, HugeDataBlameTheDataAndRepresentableFitsSucceed) {
   auto e = fit_bspline<double>(alternating, {.degree = 3});
   ASSERT_FALSE(e);
   EXPECT_EQ(e.error().code, ErrorCode::NotFinite);
-  EXPECT_EQ(e.error().where, "point 0") << e.error().describe();
+  EXPECT_EQ(json_pointer(e.error().location), "/points/0") << e.error().describe();
   EXPECT_NE(e.error().message.find("1.7e+308"), std::string::npos) << e.error().message;
   EXPECT_EQ(e.error().message.find("control points <="), std::string::npos) << e.error().message;
   for (const int m : {0, 4, 5}) {  // square, least squares, square again (0 = one per datum)
