@@ -20,6 +20,7 @@ struct ConvertOptions {
   double reduce = 0;  // 0: keep keys where glTF holds them exactly
   int substeps = 4;
   bool quiet = false;
+  bool no_cubic = false;
 };
 
 bool ends_with(const std::string& s, const std::string& tail) {
@@ -42,6 +43,7 @@ void run_convert(const ConvertOptions& opt) {
   o.reduce = opt.reduce > 0;
   o.substeps = opt.substeps;
   o.binary = glb;
+  o.cubic = !opt.no_cubic;
   auto out = export_gltf(*raw, *scene, o);
   if (!out) throw CommandError{opt.input + ": " + out.error().describe()};
   write_output(opt.output, out->bytes);
@@ -75,6 +77,8 @@ const RegisterCommand kConvert{{"convert", 45, [](CLI::App& root) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--substeps", opt->substeps, "Grid points per frame where channels are sampled and checked")
       ->check(CLI::Range(1, 64));
+  cmd->add_flag("--no-cubic", opt->no_cubic,
+                 "Write STEP and LINEAR samplers only (Blender 3.4's importer ignores CUBICSPLINE tangents)");
   cmd->add_flag("-q,--quiet", opt->quiet, "Do not print the channel report");
   cmd->callback([opt] { run_convert(*opt); });
 }}};

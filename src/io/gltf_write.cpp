@@ -90,8 +90,15 @@ std::string quat_exactness(const RawQuatKeys& ch, double first, double last, Ref
 }
 
 // The channel as written, in seconds, rounded to float exactly as the file holds it.
+// STEP key times are rounded down to float, so that a player at the key's exact time already
+// shows the key's value (bake's convention at a key frame), not the previous one.
 RefitKeys as_written(RefitKeys k, double first, double fps) {
-  for (double& f : k.frames) f = double(float((f - first) / fps));
+  for (double& f : k.frames) {
+    const double t = (f - first) / fps;
+    float tf = float(t);
+    if (k.interpolation == RefitInterpolation::step && double(tf) > t) tf = std::nextafter(tf, -1.0f);
+    f = double(tf);
+  }
   for (double& v : k.values) v = double(float(v));
   for (double& s : k.in_slopes) s = double(float(s * fps));
   for (double& s : k.out_slopes) s = double(float(s * fps));
@@ -228,6 +235,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
       }
       RefitInterpolation kind = RefitInterpolation::cubic;
       std::string why = options.reduce ? "reduce" : vec3_exactness(rc, first, last, kind);
+      if (why.empty() && kind == RefitInterpolation::cubic && !options.cubic) why = "CUBICSPLINE not allowed";
       RefitKeys keys;
       if (why.empty()) {
         keys.interpolation = kind;
@@ -252,7 +260,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
           range = std::max(range, hi - lo);
         }
         rep.tolerance = options.tolerance * (range > 0 ? range : 1.0);
-        auto fit = refit_vector(grid, samples, 3, {.tolerance = rep.tolerance});
+        auto fit = refit_vector(grid, samples, 3, {.tolerance = rep.tolerance, .allow_cubic = options.cubic});
         if (!fit) return prepended(fit.error(), {"objects", i, std::string(path)});
         keys = std::move(*fit);
         rep.refitted = true;
@@ -282,6 +290,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
       for (double f : grid) samples.push_back(track.sample(f));
       RefitInterpolation kind = RefitInterpolation::cubic;
       std::string why = options.reduce ? "reduce" : quat_exactness(rc, first, last, kind);
+      if (why.empty() && kind == RefitInterpolation::cubic && !options.cubic) why = "CUBICSPLINE not allowed";
       RefitKeys keys;
       if (why.empty()) {
         keys.interpolation = kind;
@@ -302,7 +311,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
         }
       } else {
         rep.tolerance = options.tolerance;
-        auto fit = refit_rotation(grid, samples, {.tolerance = rep.tolerance});
+        auto fit = refit_rotation(grid, samples, {.tolerance = rep.tolerance, .allow_cubic = options.cubic});
         if (!fit) return prepended(fit.error(), {"objects", i, "rotation"});
         keys = std::move(*fit);
         rep.refitted = true;

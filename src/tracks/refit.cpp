@@ -228,9 +228,24 @@ Quatd evaluate_refit_rotation(const RefitKeys& k, double frame) noexcept {
 
 namespace {
 
-// Runs every allowed kind through `fit_kind` and keeps the one with the fewest keys.
+// A STEP fit with keys on three consecutive grid points follows a continuous change (a value that
+// moves at every grid step), not jumps: between grid points it would hold while the source moves.
+bool follows_continuous_change(const RefitKeys& k, std::span<const double> frames) {
+  std::size_t j = 0, run = 1;  // j: grid index of the previous key
+  for (std::size_t i = 1; i < k.size(); ++i) {
+    std::size_t next = j;
+    while (next < frames.size() && frames[next] < k.frames[i]) ++next;
+    run = next == j + 1 ? run + 1 : 1;
+    if (run >= 3) return true;
+    j = next;
+  }
+  return false;
+}
+
+// Runs every allowed kind through `fit_kind` and keeps the one with the fewest keys.  A STEP fit
+// that follows a continuous change is not considered (unless no other kind is allowed).
 template <class FitKind>
-RefitKeys choose(const RefitOptions& o, FitKind&& fit_kind) {
+RefitKeys choose(const RefitOptions& o, std::span<const double> frames, FitKind&& fit_kind) {
   RefitKeys best;
   bool have = false;
   for (RefitInterpolation kind : {RefitInterpolation::step, RefitInterpolation::linear, RefitInterpolation::cubic}) {
@@ -239,6 +254,7 @@ RefitKeys choose(const RefitOptions& o, FitKind&& fit_kind) {
       continue;
     }
     RefitKeys k = fit_kind(kind);
+    if (kind == RefitInterpolation::step && (o.allow_linear || o.allow_cubic) && follows_continuous_change(k, frames)) continue;
     if (!have || k.size() < best.size()) {
       best = std::move(k);
       have = true;
@@ -291,7 +307,7 @@ Expected<RefitKeys> refit_vector(std::span<const double> frames, std::span<const
     });
     return k;
   };
-  return choose(o, fit_kind);
+  return choose(o, frames, fit_kind);
 }
 
 Expected<RefitKeys> refit_rotation(std::span<const double> frames, std::span<const Quatd> quats, const RefitOptions& o) {
@@ -345,7 +361,7 @@ Expected<RefitKeys> refit_rotation(std::span<const double> frames, std::span<con
     k.max_error = grid_error(n, [&](std::size_t j) { return rotation_angle_between(evaluate_refit_rotation(k, frames[j]), q[j]); });
     return k;
   };
-  return choose(o, fit_kind);
+  return choose(o, frames, fit_kind);
 }
 
 }  // namespace inbetween

@@ -25,6 +25,10 @@ struct GltfExportOptions {
   int substeps = 4;     ///< grid points per frame where channels are sampled and errors checked (1..64)
   bool reduce = false;  ///< refit every channel, also those glTF could hold exactly
   bool binary = true;   ///< GLB (true) or .gltf JSON with the buffer embedded as a data URI
+  /// Allow CUBICSPLINE samplers.  false writes STEP and LINEAR only (cubic channels refitted):
+  /// Blender 3.4's importer drops CUBICSPLINE tangents (it sets automatic handles), so files meant
+  /// for Blender should be written without them (docs/gltf.md).
+  bool cubic = true;
 };
 
 /// What happened to one animated channel.

@@ -7,7 +7,9 @@
 /// then bisection) to the farthest grid point whose fit keeps the error at every grid point in
 /// between within the tolerance.  A cubic segment's two slopes are the least-squares fit to the
 /// grid points inside it (the end values are the samples themselves).  The sampler kind with the
-/// fewest keys wins (ties: step, then linear, then cubic).  docs/gltf.md has the figures.
+/// fewest keys wins (ties: step, then linear, then cubic), except that a STEP fit with keys on three
+/// consecutive grid points is not taken when another kind is allowed: it follows a continuously
+/// moving value, which it would hold between grid points.  docs/gltf.md has the figures.
 ///
 /// Errors are measured on the grid only: a jump between two grid points is invisible to it (the
 /// caller's grid decides what "checked densely" means).
