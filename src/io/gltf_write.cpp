@@ -291,6 +291,19 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
       RefitInterpolation kind = RefitInterpolation::cubic;
       std::string why = options.reduce ? "reduce" : quat_exactness(rc, first, last, kind);
       if (why.empty() && kind == RefitInterpolation::cubic && !options.cubic) why = "CUBICSPLINE not allowed";
+      if (why.empty() && kind == RefitInterpolation::linear && !options.cubic) {
+        // Files without cubic keys are meant for Blender, which plays LINEAR rotations
+        // component-wise: keys too far apart for that are refitted.
+        for (std::size_t j = 0; j < grid.size() && why.empty(); ++j) {
+          const double f = grid[j];
+          const auto frames = track.frames();
+          if (f <= frames.front() || f >= frames.back()) continue;
+          const std::size_t k = std::size_t(std::upper_bound(frames.begin(), frames.end(), f) - frames.begin()) - 1;
+          const double u = (f - frames[k]) / (frames[k + 1] - frames[k]);
+          const Quatd n = normalized(track.keys()[k] * (1 - u) + track.keys()[k + 1] * u);
+          if (rotation_angle_between(n, samples[j]) > options.tolerance) why = "slerp keys too far apart for component-wise (Blender) playback";
+        }
+      }
       RefitKeys keys;
       if (why.empty()) {
         keys.interpolation = kind;
@@ -311,7 +324,8 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
         }
       } else {
         rep.tolerance = options.tolerance;
-        auto fit = refit_rotation(grid, samples, {.tolerance = rep.tolerance, .allow_cubic = options.cubic});
+        auto fit = refit_rotation(grid, samples, {.tolerance = rep.tolerance, .allow_cubic = options.cubic,
+                                                  .linear_rotation_also_nlerp = !options.cubic});
         if (!fit) return prepended(fit.error(), {"objects", i, "rotation"});
         keys = std::move(*fit);
         rep.refitted = true;

@@ -354,6 +354,10 @@ Expected<RefitKeys> refit_rotation(std::span<const double> frames, std::span<con
           v = normalized(raw);
         }
         if (!(rotation_angle_between(v, q[j]) <= o.tolerance)) return false;
+        if (kind == RefitInterpolation::linear && o.linear_rotation_also_nlerp) {
+          const Quatd b_near = dot(a, b) < 0 ? -b : b;
+          if (!(rotation_angle_between(normalized(a * (1 - u) + b_near * u), q[j]) <= o.tolerance)) return false;
+        }
       }
       return true;
     };

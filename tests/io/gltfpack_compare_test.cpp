@@ -23,78 +23,12 @@
 #include "inbetween/tracks/refit.hpp"
 #include "support/cli.hpp"
 #include "support/random.hpp"
+#include "gltf_read_back.hpp"
 
 namespace inbetween {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Accessor values as doubles; normalised integers decoded as glTF 2.0 §3.11 says
-// (signed: max(c / (2^(b−1) − 1), −1); unsigned: c / (2^b − 1)).
-std::vector<double> read_accessor(const tinygltf::Model& m, int index) {
-  const auto& a = m.accessors[index];
-  const auto& v = m.bufferViews[a.bufferView];
-  const int comps = tinygltf::GetNumComponentsInType(a.type);
-  const int size = tinygltf::GetComponentSizeInBytes(a.componentType);
-  const std::size_t stride = v.byteStride ? v.byteStride : std::size_t(comps * size);
-  const unsigned char* base = m.buffers[v.buffer].data.data() + v.byteOffset + a.byteOffset;
-  std::vector<double> out;
-  for (std::size_t i = 0; i < a.count; ++i) {
-    for (int c = 0; c < comps; ++c) {
-      const unsigned char* p = base + i * stride + std::size_t(c * size);
-      double x = 0;
-      switch (a.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); x = f; break; }
-        case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t s; std::memcpy(&s, p, 2); x = a.normalized ? std::max(s / 32767.0, -1.0) : s; break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t s; std::memcpy(&s, p, 2); x = a.normalized ? s / 65535.0 : s; break; }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t s; std::memcpy(&s, p, 1); x = a.normalized ? std::max(s / 127.0, -1.0) : s; break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { std::uint8_t s = *p; x = a.normalized ? s / 255.0 : s; break; }
-        default: ADD_FAILURE() << "component type " << a.componentType;
-      }
-      out.push_back(x);
-    }
-  }
-  return out;
-}
-
-// Every channel as RefitKeys in seconds (rotations w, x, y, z), by "node.path".
-std::map<std::string, RefitKeys> read_channels(const fs::path& file) {
-  tinygltf::TinyGLTF loader;
-  tinygltf::Model m;
-  std::string err, warn;
-  EXPECT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, file.string())) << err;
-  std::map<std::string, RefitKeys> out;
-  if (m.animations.empty()) return out;
-  for (const auto& c : m.animations[0].channels) {
-    const auto& s = m.animations[0].samplers[c.sampler];
-    RefitKeys k;
-    k.interpolation = s.interpolation == "STEP" ? RefitInterpolation::step
-                      : s.interpolation == "CUBICSPLINE" ? RefitInterpolation::cubic : RefitInterpolation::linear;
-    const bool rot = c.target_path == "rotation";
-    k.dim = rot ? 4 : 3;
-    k.frames = read_accessor(m, s.input);
-    const std::vector<double> v = read_accessor(m, s.output);
-    const std::size_t per = k.interpolation == RefitInterpolation::cubic ? 3 : 1;
-    auto push = [&](std::vector<double>& dst, std::size_t e) {
-      if (rot) {
-        for (int i : {3, 0, 1, 2}) dst.push_back(v[e * 4 + std::size_t(i)]);
-      } else {
-        for (std::size_t i = 0; i < 3; ++i) dst.push_back(v[e * 3 + i]);
-      }
-    };
-    for (std::size_t i = 0; i < k.frames.size(); ++i) {
-      if (per == 3) {
-        push(k.in_slopes, 3 * i);
-        push(k.values, 3 * i + 1);
-        push(k.out_slopes, 3 * i + 2);
-      } else {
-        push(k.values, i);
-      }
-    }
-    out[m.nodes[c.target_node].name + "." + c.target_path] = k;
-  }
-  return out;
-}
 
 struct Row {
   std::size_t keys = 0;
@@ -169,7 +103,7 @@ TEST(Gltfpack, ReductionAgainstGltfpackResampling) {
     const fs::path packed = test::test_dir() / "gltfpack.glb";
     const std::string cmd = "gltfpack -i '" + in.string() + "' -o '" + packed.string() + "' > /dev/null 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-    const auto pack = read_channels(packed);
+    const auto pack = test::read_channels(packed);
     for (const char* path : {"translation", "rotation"}) {
       const Row g = measure(*scene, pack, "body", path);
       ASSERT_GE(g.error, 0) << "gltfpack dropped " << path;
@@ -190,16 +124,16 @@ TEST(Gltfpack, ReductionAgainstGltfpackResampling) {
       auto ours = export_gltf(raw, *scene, {.tolerance = 0.95 * g.error / range, .reduce = true});
       ASSERT_TRUE(ours) << ours.error().describe();
       const fs::path mine = test::write_test_file("inbetween.glb", ours->bytes);
-      const Row o = measure(*scene, read_channels(mine), "body", path);
+      const Row o = measure(*scene, test::read_channels(mine), "body", path);
       // And at the default tolerance (1e-5 of the range; 1e-5 rad).
       auto def = export_gltf(raw, *scene, {.reduce = true});
       ASSERT_TRUE(def);
-      const Row d = measure(*scene, read_channels(test::write_test_file("default.glb", def->bytes)), "body", path);
+      const Row d = measure(*scene, test::read_channels(test::write_test_file("default.glb", def->bytes)), "body", path);
       // Per-frame data is known at its frames only: the same reduction checked at frames
       // (substeps 1), its error still measured at 4 points per frame.
       auto at_frames = export_gltf(raw, *scene, {.substeps = 1, .reduce = true});
       ASSERT_TRUE(at_frames);
-      const Row a = measure(*scene, read_channels(test::write_test_file("frames.glb", at_frames->bytes)), "body", path);
+      const Row a = measure(*scene, test::read_channels(test::write_test_file("frames.glb", at_frames->bytes)), "body", path);
       std::printf("| %s | %s | %zu | %zu | %.3g | %zu | %.3g | %zu | %.3g | %zu | %.3g |\n", c.name, path,
                   std::get<RawVec3Channel>(raw.objects[0].translation).keys.size(), g.keys, g.error, o.keys, o.error, d.keys,
                   d.error, a.keys, a.error);

@@ -3,6 +3,7 @@
 // error of every result is re-measured here independently of the refitter's own figure.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -126,6 +127,24 @@ TEST(Refit, RotationsAreRefittedOnTheSphere) {
   ASSERT_TRUE(k) << k.error().describe();
   EXPECT_EQ(k->interpolation, RefitInterpolation::linear);
   EXPECT_LE(k->size(), 3u);  // 4.8 rad total: two keys would slerp the short way (< π); one split
+  // The same keys played component-wise (Blender): with linear_rotation_also_nlerp every segment
+  // is short enough for both; measured here with an independent nlerp.
+  auto kn = refit_rotation(f, q, {.tolerance = 1e-6, .allow_cubic = false, .linear_rotation_also_nlerp = true});
+  ASSERT_TRUE(kn);
+  EXPECT_EQ(kn->interpolation, RefitInterpolation::linear);
+  EXPECT_GT(kn->size(), k->size());
+  double worst_nlerp = 0;
+  for (std::size_t j = 0; j < f.size(); ++j) {
+    const auto it = std::upper_bound(kn->frames.begin(), kn->frames.end(), f[j]);
+    const std::size_t i = std::min<std::size_t>(std::size_t(std::max<std::ptrdiff_t>(it - kn->frames.begin() - 1, 0)), kn->size() - 2);
+    const double u = std::clamp((f[j] - kn->frames[i]) / (kn->frames[i + 1] - kn->frames[i]), 0.0, 1.0);
+    const double* a = kn->values.data() + 4 * i;
+    const Quatd n = normalized(Quatd::from_wxyz(a[0], a[1], a[2], a[3]) * (1 - u) + Quatd::from_wxyz(a[4], a[5], a[6], a[7]) * u);
+    worst_nlerp = std::max(worst_nlerp, rotation_angle_between(n, q[j]));
+  }
+  EXPECT_LE(worst_nlerp, 1e-6);
+  std::printf("[ rotation ] constant spin 4.8 rad, tol 1e-6: slerp %zu keys, slerp+nlerp %zu keys (nlerp error %.3g)\n",
+              k->size(), kn->size(), worst_nlerp);
   // A wobbling axis: cubic keys; error as rotation angle, re-measured with the math module's angle.
   std::vector<Quatd> w;
   for (double t : f) {

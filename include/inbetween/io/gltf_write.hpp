@@ -27,7 +27,9 @@ struct GltfExportOptions {
   bool binary = true;   ///< GLB (true) or .gltf JSON with the buffer embedded as a data URI
   /// Allow CUBICSPLINE samplers.  false writes STEP and LINEAR only (cubic channels refitted):
   /// Blender 3.4's importer drops CUBICSPLINE tangents (it sets automatic handles), so files meant
-  /// for Blender should be written without them (docs/gltf.md).
+  /// for Blender should be written without them (docs/gltf-export.md).  Without cubic keys, LINEAR
+  /// rotation keys are also kept close enough for Blender's component-wise quaternion
+  /// interpolation (refitted otherwise).
   bool cubic = true;
 };
 

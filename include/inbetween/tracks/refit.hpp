@@ -37,6 +37,9 @@ struct RefitOptions {
   bool allow_step = true;     ///< consider STEP
   bool allow_linear = true;   ///< consider LINEAR
   bool allow_cubic = true;    ///< consider CUBICSPLINE
+  /// Rotations: LINEAR segments must also stay within the tolerance when played component-wise
+  /// (normalised lerp), as Blender's glTF importer plays them; the keys then serve both players.
+  bool linear_rotation_also_nlerp = false;
 };
 
 /// Keys of a refitted channel of `dim` components.  Slopes are per frame (glTF tangent = slope ×
