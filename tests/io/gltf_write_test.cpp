@@ -7,6 +7,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -295,6 +296,75 @@ TEST(GltfWrite, ThreeJsPlaysExportsAsBakeDoes) {
     EXPECT_LE(worst_pos, 1e-5 * extent) << p;
     EXPECT_LE(worst_rot, 1e-5) << p;
     EXPECT_LE(worst_scale, 1e-5) << p;
+  }
+}
+
+}  // namespace
+}  // namespace inbetween
+
+namespace inbetween {
+namespace {
+
+TEST(GltfWrite, GltfKeysGoBackByteForByte) {
+  // What the glTF reader makes of a file (issue 10, import): frame = time × fps, CUBICSPLINE keys as
+  // explicit Hermite keys with slope = tangent / fps, rotations as gltf_cubic keys with their
+  // tangents per frame, LINEAR rotations as slerp keys.  Re-exporting must give the same float
+  // accessors, bit for bit (rotation LINEAR keys up to the sign that makes them continuous).
+  test::Random rng(test::seed_for(1501));
+  SCOPED_TRACE(rng.trace());
+  const double fps = 24;
+  for (int round = 0; round < 20; ++round) {
+    std::vector<float> times;
+    float t = 0;
+    for (int k = 0; k < 8; ++k) {
+      times.push_back(t);
+      t += float(rng.uniform(0.01, 0.7));
+    }
+    RawScene raw;
+    raw.fps = fps;
+    raw.range = {0, double(times.back()) * fps};
+    RawObject o;
+    o.name = "n";
+    RawVec3Channel tr;
+    RawQuatKeys rot;
+    std::vector<float> tr_out, rot_out;  // glTF order: in, value, out per key (x y z [w])
+    auto f3 = [&] { return std::array<float, 3>{float(rng.uniform(-5.0, 5.0)), float(rng.uniform(-5.0, 5.0)), float(rng.uniform(-5.0, 5.0))}; };
+    for (float tk : times) {
+      const auto in = f3(), v = f3(), out = f3();
+      tr_out.insert(tr_out.end(), {in[0], in[1], in[2], v[0], v[1], v[2], out[0], out[1], out[2]});
+      tr.keys.push_back({.frame = double(tk) * fps, .value = Vec3d{v[0], v[1], v[2]}, .tangent = TangentKind::explicit_hermite,
+                         .in_tangent = Vec3d{in[0], in[1], in[2]} / fps, .out_tangent = Vec3d{out[0], out[1], out[2]} / fps});
+      const Quatd q = rng.rotation<double>();
+      const float qx = float(q.x), qy = float(q.y), qz = float(q.z), qw = float(q.w);
+      const auto qi = f3(), qo = f3();
+      rot_out.insert(rot_out.end(), {qi[0], qi[1], qi[2], 0.25f, qx, qy, qz, qw, qo[0], qo[1], qo[2], -0.5f});
+      rot.keys.push_back({.frame = double(tk) * fps, .value = Quatd::from_wxyz(qw, qx, qy, qz),
+                          .interpolation = QuatInterpolation::gltf_cubic,
+                          .in_tangent = Quatd::from_wxyz(0.25, qi[0], qi[1], qi[2]) / fps,
+                          .out_tangent = Quatd::from_wxyz(-0.5, qo[0], qo[1], qo[2]) / fps});
+    }
+    o.translation = tr;
+    o.rotation = rot;
+    raw.objects.push_back(o);
+    auto scene = build_scene(raw);
+    ASSERT_TRUE(scene) << scene.error().describe();
+    auto out = export_gltf(raw, *scene);
+    ASSERT_TRUE(out) << out.error().describe();
+    for (const auto& c : out->channels) ASSERT_FALSE(c.refitted) << c.path << ": " << c.reason;
+    const tinygltf::Model m = read_back(out->bytes);
+    const auto& anim = m.animations.at(0);
+    ASSERT_EQ(anim.channels.size(), 2u);
+    for (const auto& c : anim.channels) {
+      const auto& s = anim.samplers[c.sampler];
+      EXPECT_EQ(s.interpolation, "CUBICSPLINE");
+      const auto in = floats(m, s.input);
+      ASSERT_EQ(in.size(), times.size());
+      EXPECT_EQ(std::memcmp(in.data(), times.data(), 4 * times.size()), 0) << "times, round " << round;
+      const auto v = floats(m, s.output);
+      const auto& expect = c.target_path == "rotation" ? rot_out : tr_out;
+      ASSERT_EQ(v.size(), expect.size());
+      for (std::size_t i = 0; i < v.size(); ++i) EXPECT_EQ(v[i], expect[i]) << c.target_path << " float " << i << ", round " << round;
+    }
   }
 }
 
