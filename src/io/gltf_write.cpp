@@ -310,15 +310,19 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
         keys.dim = 4;
         for (std::size_t k = 0; k < track.size(); ++k) {
           keys.frames.push_back(track.frames()[k]);
+          // The authored value where it is unit to float precision (so that keys read from a glTF
+          // file go back byte for byte), else the normalised one.
+          const QuatKey<double>& a = rc.keys[k];
+          const Quatd authored = std::abs(norm(a.value) - 1) <= 1e-7 ? a.value : normalized(a.value);
           if (kind == RefitInterpolation::cubic) {
-            // glTF cubic: the authored signs and tangents (see quat_track.hpp), value normalised.
-            const QuatKey<double>& a = rc.keys[k];
-            const Quatd q = normalized(a.value);
+            // glTF cubic: the authored signs and tangents (see quat_track.hpp).
+            const Quatd q = authored;
             keys.values.insert(keys.values.end(), {q.w, q.x, q.y, q.z});
             keys.in_slopes.insert(keys.in_slopes.end(), {a.in_tangent.w, a.in_tangent.x, a.in_tangent.y, a.in_tangent.z});
             keys.out_slopes.insert(keys.out_slopes.end(), {a.out_tangent.w, a.out_tangent.x, a.out_tangent.y, a.out_tangent.z});
           } else {
-            const Quatd q = track.keys()[k];  // normalised, signs continuous
+            // Signs continuous (the track's choice), otherwise as authored.
+            const Quatd q = dot(track.keys()[k], authored) < 0 ? -authored : authored;
             keys.values.insert(keys.values.end(), {q.w, q.x, q.y, q.z});
           }
         }
