@@ -8,7 +8,7 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 # independent references (rotation conventions, least squares, the scene JSON Schema) that tests use
 # through /usr/bin/python3; those tests skip when they are absent.
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
-        nlohmann-json3-dev libtinyobjloader-dev libeigen3-dev python3 python3-scipy python3-jsonschema
+        nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev gltfpack libeigen3-dev python3 python3-scipy python3-jsonschema
 
 .PHONY: all deps configure build test demo bench asan clean
 
@@ -31,6 +31,12 @@ deps:
 	  npm ci --prefix tools/threejs --no-audit --no-fund --loglevel=error \
 	    || echo "make: npm could not install three.js; the glTF cross-check test will skip"; \
 	else echo "make: npm not found; the three.js glTF cross-check test will skip"; fi
+	@# The Khronos glTF validator, run on exported files by an optional test (skips without it).
+	@if [ -f tools/gltf-validator/node_modules/gltf-validator/package.json ]; then :; \
+	elif command -v npm >/dev/null 2>&1; then \
+	  npm ci --prefix tools/gltf-validator --no-audit --no-fund --loglevel=error \
+	    || echo "make: npm could not install gltf-validator; the glTF validation test will skip"; \
+	else echo "make: npm not found; the glTF validation test will skip"; fi
 
 configure: deps
 	cmake --preset $(PRESET)

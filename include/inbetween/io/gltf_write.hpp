@@ -1,0 +1,63 @@
+#pragma once
+/// glTF 2.0 export of a scene (docs/gltf.md): every object becomes a node (hierarchy kept, local
+/// TRS), with one animation.  glTF time = (frame − first frame of the scene's range) / fps, as
+/// Blender's exporter does.  Keys stay keys where glTF holds them exactly (all stepped → STEP,
+/// linear tangents and slerp → LINEAR, Hermite-family tangents and glTF cubic rotations →
+/// CUBICSPLINE with tangent = slope × fps); every other channel is refitted (tracks/refit.hpp) on
+/// a grid of `substeps` points per frame over the range, and the report says why, with how many
+/// keys and the measured error.  Written through Debian's tinygltf (it serialises JSON and GLB).
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "inbetween/math/expected.hpp"
+#include "inbetween/scene/raw_scene.hpp"
+#include "inbetween/scene/scene.hpp"
+
+namespace inbetween {
+
+/// Options of export_gltf().
+struct GltfExportOptions {
+  /// Largest error of a refitted channel: a fraction of the channel's range (largest max − min
+  /// over its components, 1 when constant) for translation and scale; radians for rotations.
+  double tolerance = 1e-5;
+  int substeps = 4;     ///< grid points per frame where channels are sampled and errors checked (1..64)
+  bool reduce = false;  ///< refit every channel, also those glTF could hold exactly
+  bool binary = true;   ///< GLB (true) or .gltf JSON with the buffer embedded as a data URI
+  /// Allow CUBICSPLINE samplers.  false writes STEP and LINEAR only (cubic channels refitted):
+  /// Blender 3.4's importer drops CUBICSPLINE tangents (it sets automatic handles), so files meant
+  /// for Blender should be written without them (docs/gltf-export.md).  Without cubic keys, LINEAR
+  /// rotation keys are also kept close enough for Blender's component-wise quaternion
+  /// interpolation (refitted otherwise).
+  bool cubic = true;
+};
+
+/// What happened to one animated channel.
+struct GltfChannelReport {
+  std::string object;        ///< object (node) name
+  std::string path;          ///< "translation", "rotation" or "scale"
+  std::string interpolation; ///< "STEP", "LINEAR" or "CUBICSPLINE" as written
+  bool refitted = false;     ///< false: the authored keys were written as they are
+  std::string reason;        ///< why refitted (empty when kept)
+  std::size_t keys_before = 0;  ///< authored keys
+  std::size_t keys_after = 0;   ///< keys written
+  /// Largest error over the grid of what is written (float keys, times and tangents, played with
+  /// glTF's formulas) against the scene's own local channel: value units, radians for rotations.
+  double max_error = 0;
+  double tolerance = 0;      ///< the absolute tolerance used (refitted channels)
+};
+
+/// The exported file and the report.
+struct GltfExport {
+  std::string bytes;                        ///< the .glb or .gltf content
+  std::vector<GltfChannelReport> channels;  ///< one entry per animated channel
+  std::vector<std::string> notes;           ///< what the file cannot carry (named tracks, …)
+};
+
+/// Exports `scene` (built from `raw`, which gives the authored keys and their kinds).  Errors:
+/// InvalidArgument for options ({"tolerance"}, {"substeps"}), Unsupported when the scene has no
+/// objects, and the refitter's errors prefixed with {"objects", i, channel}.
+[[nodiscard]] Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const GltfExportOptions& options = {});
+
+}  // namespace inbetween

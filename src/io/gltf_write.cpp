@@ -1,0 +1,372 @@
+// glTF 2.0 export of a scene (io/gltf_write.hpp, docs/gltf.md).  tinygltf (Debian's
+// libtinygltf-dev) builds the document and serialises it; this file decides keys and samplers.
+// The one definition of TINYGLTF_IMPLEMENTATION in inbetween_io (CMake adds the NO_STB_IMAGE*
+// definitions to every user of the header).
+#define TINYGLTF_IMPLEMENTATION
+#include <tiny_gltf.h>
+
+#include "inbetween/io/gltf_write.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <variant>
+
+#include "inbetween/tracks/refit.hpp"
+
+namespace inbetween {
+
+namespace {
+
+const char* sampler_name(RefitInterpolation k) {
+  switch (k) {
+    case RefitInterpolation::step: return "STEP";
+    case RefitInterpolation::linear: return "LINEAR";
+    case RefitInterpolation::cubic: return "CUBICSPLINE";
+  }
+  return "LINEAR";
+}
+
+// The grid of frames where channels are sampled and errors measured: `substeps` points per frame
+// over [first, last], the last frame always included.
+std::vector<double> make_grid(double first, double last, int substeps) {
+  std::vector<double> g;
+  const double span = last - first;
+  const auto n = std::size_t(std::floor(span * substeps + 1e-9));
+  for (std::size_t j = 0; j <= n; ++j) g.push_back(first + double(j) / substeps);
+  if (g.back() < last) g.push_back(last);
+  return g;
+}
+
+// Why a vector channel's authored keys cannot be written exactly (empty: they can), and the kind.
+std::string vec3_exactness(const RawVec3Channel& ch, double first, double last, RefitInterpolation& kind) {
+  const auto& k = ch.keys;
+  const std::size_t n = k.size();
+  if (k.front().frame < first || k.back().frame > last) return "keys outside the scene's range";
+  if (n > 1 && ch.before != TrackExtend::constant && k.front().frame > first) return "extension before the first key inside the range";
+  if (n > 1 && ch.after != TrackExtend::constant && k.back().frame < last) return "extension after the last key inside the range";
+  std::size_t stepped = 0, linear = 0;
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    if (k[i].tangent == TangentKind::stepped) ++stepped;
+    if (k[i].tangent == TangentKind::linear && k[i + 1].tangent == TangentKind::linear) ++linear;
+  }
+  if (n == 1 || stepped == n - 1) {
+    kind = RefitInterpolation::step;
+    return "";
+  }
+  if (stepped > 0) return "stepped and smooth keys mixed";
+  kind = linear == n - 1 ? RefitInterpolation::linear : RefitInterpolation::cubic;
+  return "";
+}
+
+std::string quat_exactness(const RawQuatKeys& ch, double first, double last, RefitInterpolation& kind) {
+  const auto& k = ch.keys;
+  const std::size_t n = k.size();
+  if (k.front().frame < first || k.back().frame > last) return "keys outside the scene's range";
+  std::size_t count[5] = {0, 0, 0, 0, 0};
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    ++count[std::size_t(k[i].interpolation)];
+    if (k[i + 1].long_way) return "a segment the long way round";
+  }
+  if (n == 1 || count[std::size_t(QuatInterpolation::step)] == n - 1) {
+    kind = RefitInterpolation::step;
+    return "";
+  }
+  if (count[std::size_t(QuatInterpolation::slerp)] == n - 1) {
+    kind = RefitInterpolation::linear;
+    return "";
+  }
+  if (count[std::size_t(QuatInterpolation::gltf_cubic)] == n - 1) {
+    kind = RefitInterpolation::cubic;
+    return "";
+  }
+  if (count[std::size_t(QuatInterpolation::bezier)] + count[std::size_t(QuatInterpolation::squad)] > 0) {
+    return "quaternion Bezier/squad segments";
+  }
+  return "interpolations mixed";
+}
+
+// The channel as written, in seconds, rounded to float exactly as the file holds it.
+// STEP key times are rounded down to float, so that a player at the key's exact time already
+// shows the key's value (bake's convention at a key frame), not the previous one.
+RefitKeys as_written(RefitKeys k, double first, double fps) {
+  for (double& f : k.frames) {
+    const double t = (f - first) / fps;
+    float tf = float(t);
+    if (k.interpolation == RefitInterpolation::step && double(tf) > t) tf = std::nextafter(tf, -1.0f);
+    f = double(tf);
+  }
+  for (double& v : k.values) v = double(float(v));
+  for (double& s : k.in_slopes) s = double(float(s * fps));
+  for (double& s : k.out_slopes) s = double(float(s * fps));
+  return k;
+}
+
+struct Builder {
+  tinygltf::Model model;
+  std::vector<unsigned char>& data() { return model.buffers[0].data; }
+
+  int add_accessor(const std::vector<float>& values, int type, std::size_t count, bool minmax) {
+    auto& d = data();
+    while (d.size() % 4) d.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = d.size();
+    view.byteLength = values.size() * sizeof(float);
+    const auto* bytes = reinterpret_cast<const unsigned char*>(values.data());
+    d.insert(d.end(), bytes, bytes + view.byteLength);
+    model.bufferViews.push_back(view);
+    tinygltf::Accessor a;
+    a.bufferView = int(model.bufferViews.size() - 1);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.type = type;
+    a.count = count;
+    if (minmax) {
+      const int comps = tinygltf::GetNumComponentsInType(type);
+      a.minValues.assign(comps, std::numeric_limits<double>::infinity());
+      a.maxValues.assign(comps, -std::numeric_limits<double>::infinity());
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        const auto c = i % std::size_t(comps);
+        a.minValues[c] = std::min(a.minValues[c], double(values[i]));
+        a.maxValues[c] = std::max(a.maxValues[c], double(values[i]));
+      }
+    }
+    model.accessors.push_back(a);
+    return int(model.accessors.size() - 1);
+  }
+
+  // Adds a sampler and channel for `k` (already in seconds and float-exact, see as_written).
+  void add_channel(const RefitKeys& k, int node, const std::string& path, bool rotation) {
+    std::vector<float> times(k.frames.begin(), k.frames.end());
+    const int input = add_accessor(times, TINYGLTF_TYPE_SCALAR, times.size(), true);
+    const std::size_t d = k.dim;
+    // glTF quaternions are x, y, z, w; ours w, x, y, z.
+    auto push = [&](std::vector<float>& out, const double* v) {
+      if (rotation) {
+        for (int c : {1, 2, 3, 0}) out.push_back(float(v[c]));
+      } else {
+        for (std::size_t c = 0; c < d; ++c) out.push_back(float(v[c]));
+      }
+    };
+    std::vector<float> out;
+    for (std::size_t i = 0; i < k.size(); ++i) {
+      if (k.interpolation == RefitInterpolation::cubic) push(out, k.in_slopes.data() + i * d);
+      push(out, k.values.data() + i * d);
+      if (k.interpolation == RefitInterpolation::cubic) push(out, k.out_slopes.data() + i * d);
+    }
+    const std::size_t count = k.size() * (k.interpolation == RefitInterpolation::cubic ? 3 : 1);
+    const int output = add_accessor(out, rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3, count, false);
+    auto& anim = model.animations[0];
+    tinygltf::AnimationSampler s;
+    s.input = input;
+    s.output = output;
+    s.interpolation = sampler_name(k.interpolation);
+    anim.samplers.push_back(s);
+    tinygltf::AnimationChannel c;
+    c.sampler = int(anim.samplers.size() - 1);
+    c.target_node = node;
+    c.target_path = path;
+    anim.channels.push_back(c);
+  }
+};
+
+}  // namespace
+
+Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const GltfExportOptions& options) {
+  if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) {
+    return Error{ErrorCode::InvalidArgument, "tolerance must be finite and > 0", "", {"tolerance"}};
+  }
+  if (options.substeps < 1 || options.substeps > 64) {
+    return Error{ErrorCode::InvalidArgument, "substeps must be in 1..64", "", {"substeps"}};
+  }
+  const auto nodes = scene.objects();
+  if (nodes.empty()) return Error{ErrorCode::Unsupported, "the scene has no objects to export as glTF nodes", "", {"objects"}};
+  INBETWEEN_ASSERT(nodes.size() == raw.objects.size());
+  const double first = scene.range_start(), last = scene.range_end(), fps = scene.fps();
+  const std::vector<double> grid = make_grid(first, last, options.substeps);
+  std::vector<double> grid_t(grid.size());
+  for (std::size_t j = 0; j < grid.size(); ++j) grid_t[j] = (grid[j] - first) / fps;
+
+  GltfExport result;
+  for (const SceneTrack& t : scene.tracks()) {
+    const std::string name = std::visit([](const auto& tr) { return tr.name; }, t);
+    result.notes.push_back("track '" + name + "': not exported (glTF animates node transforms; a named track is no node property)");
+  }
+
+  Builder b;
+  b.model.asset.version = "2.0";
+  b.model.asset.generator = "inbetween";
+  b.model.buffers.emplace_back();
+  b.model.animations.emplace_back();
+  b.model.animations[0].name = "scene";
+  tinygltf::Scene gscene;
+  gscene.name = "scene";
+
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const HierarchyNode<double>& node = nodes[i];
+    const RawObject& ro = raw.objects[i];
+    tinygltf::Node gn;
+    gn.name = node.name;
+    const Transform<double> at_first = node.local.sample(first);
+    const Quatd r = normalized(at_first.rotation);
+    gn.translation = {at_first.translation.x, at_first.translation.y, at_first.translation.z};
+    gn.rotation = {r.x, r.y, r.z, r.w};
+    gn.scale = {at_first.scale.x, at_first.scale.y, at_first.scale.z};
+    b.model.nodes.push_back(gn);
+    if (node.parent) {
+      // children are filled below, after every node exists
+    } else {
+      gscene.nodes.push_back(int(i));
+    }
+
+    auto vec3_channel = [&](const char* path, const std::optional<Track<Vec3d>>& track,
+                            const std::variant<Vec3d, RawVec3Channel>& raw_channel) -> Expected<void> {
+      if (!track) return {};
+      const auto& rc = std::get<RawVec3Channel>(raw_channel);
+      GltfChannelReport rep{node.name, path, "", false, "", rc.keys.size(), 0, 0, 0};
+      std::vector<double> samples;
+      samples.reserve(grid.size() * 3);
+      for (double f : grid) {
+        const Vec3d v = track->sample(f);
+        samples.insert(samples.end(), {v.x, v.y, v.z});
+      }
+      RefitInterpolation kind = RefitInterpolation::cubic;
+      std::string why = options.reduce ? "reduce" : vec3_exactness(rc, first, last, kind);
+      if (why.empty() && kind == RefitInterpolation::cubic && !options.cubic) why = "CUBICSPLINE not allowed";
+      RefitKeys keys;
+      if (why.empty()) {
+        keys.interpolation = kind;
+        keys.dim = 3;
+        for (std::size_t k = 0; k < track->size(); ++k) {
+          keys.frames.push_back(track->frames()[k]);
+          const Vec3d v = track->values()[k], in = track->in_tangents()[k], out = track->out_tangents()[k];
+          keys.values.insert(keys.values.end(), {v.x, v.y, v.z});
+          if (kind == RefitInterpolation::cubic) {
+            keys.in_slopes.insert(keys.in_slopes.end(), {in.x, in.y, in.z});
+            keys.out_slopes.insert(keys.out_slopes.end(), {out.x, out.y, out.z});
+          }
+        }
+      } else {
+        double range = 0;
+        for (int c = 0; c < 3; ++c) {
+          double lo = samples[std::size_t(c)], hi = lo;
+          for (std::size_t j = 0; j < grid.size(); ++j) {
+            lo = std::min(lo, samples[3 * j + std::size_t(c)]);
+            hi = std::max(hi, samples[3 * j + std::size_t(c)]);
+          }
+          range = std::max(range, hi - lo);
+        }
+        rep.tolerance = options.tolerance * (range > 0 ? range : 1.0);
+        auto fit = refit_vector(grid, samples, 3, {.tolerance = rep.tolerance, .allow_cubic = options.cubic});
+        if (!fit) return prepended(fit.error(), {"objects", i, std::string(path)});
+        keys = std::move(*fit);
+        rep.refitted = true;
+        rep.reason = why;
+      }
+      const RefitKeys written = as_written(keys, first, fps);
+      double worst = 0, v[3];
+      for (std::size_t j = 0; j < grid.size(); ++j) {
+        evaluate_refit(written, grid_t[j], v);
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(v[c] - samples[3 * j + std::size_t(c)]));
+      }
+      rep.max_error = worst;
+      rep.keys_after = written.size();
+      rep.interpolation = sampler_name(written.interpolation);
+      b.add_channel(written, int(i), path, false);
+      result.channels.push_back(rep);
+      return {};
+    };
+
+    if (auto ok = vec3_channel("translation", node.local.translation, ro.translation); !ok) return ok.error();
+    if (node.local.rotation) {
+      const QuatTrack<double>& track = *node.local.rotation;
+      const auto& rc = std::get<RawQuatKeys>(ro.rotation);
+      GltfChannelReport rep{node.name, "rotation", "", false, "", rc.keys.size(), 0, 0, 0};
+      std::vector<Quatd> samples;
+      samples.reserve(grid.size());
+      for (double f : grid) samples.push_back(track.sample(f));
+      RefitInterpolation kind = RefitInterpolation::cubic;
+      std::string why = options.reduce ? "reduce" : quat_exactness(rc, first, last, kind);
+      if (why.empty() && kind == RefitInterpolation::cubic && !options.cubic) why = "CUBICSPLINE not allowed";
+      if (why.empty() && kind == RefitInterpolation::linear && !options.cubic) {
+        // Files without cubic keys are meant for Blender, which plays LINEAR rotations
+        // component-wise: keys too far apart for that are refitted.
+        for (std::size_t j = 0; j < grid.size() && why.empty(); ++j) {
+          const double f = grid[j];
+          const auto frames = track.frames();
+          if (f <= frames.front() || f >= frames.back()) continue;
+          const std::size_t k = std::size_t(std::upper_bound(frames.begin(), frames.end(), f) - frames.begin()) - 1;
+          const double u = (f - frames[k]) / (frames[k + 1] - frames[k]);
+          const Quatd n = normalized(track.keys()[k] * (1 - u) + track.keys()[k + 1] * u);
+          if (rotation_angle_between(n, samples[j]) > options.tolerance) why = "slerp keys too far apart for component-wise (Blender) playback";
+        }
+      }
+      RefitKeys keys;
+      if (why.empty()) {
+        keys.interpolation = kind;
+        keys.dim = 4;
+        for (std::size_t k = 0; k < track.size(); ++k) {
+          keys.frames.push_back(track.frames()[k]);
+          // The authored value where it is unit to float precision (so that keys read from a glTF
+          // file go back byte for byte), else the normalised one.
+          const QuatKey<double>& a = rc.keys[k];
+          const Quatd authored = std::abs(norm(a.value) - 1) <= 1e-7 ? a.value : normalized(a.value);
+          if (kind == RefitInterpolation::cubic) {
+            // glTF cubic: the authored signs and tangents (see quat_track.hpp).
+            const Quatd q = authored;
+            keys.values.insert(keys.values.end(), {q.w, q.x, q.y, q.z});
+            keys.in_slopes.insert(keys.in_slopes.end(), {a.in_tangent.w, a.in_tangent.x, a.in_tangent.y, a.in_tangent.z});
+            keys.out_slopes.insert(keys.out_slopes.end(), {a.out_tangent.w, a.out_tangent.x, a.out_tangent.y, a.out_tangent.z});
+          } else {
+            // Signs continuous (the track's choice), otherwise as authored.
+            const Quatd q = dot(track.keys()[k], authored) < 0 ? -authored : authored;
+            keys.values.insert(keys.values.end(), {q.w, q.x, q.y, q.z});
+          }
+        }
+      } else {
+        rep.tolerance = options.tolerance;
+        auto fit = refit_rotation(grid, samples, {.tolerance = rep.tolerance, .allow_cubic = options.cubic,
+                                                  .linear_rotation_also_nlerp = !options.cubic});
+        if (!fit) return prepended(fit.error(), {"objects", i, "rotation"});
+        keys = std::move(*fit);
+        rep.refitted = true;
+        rep.reason = why;
+      }
+      RefitKeys written = as_written(keys, first, fps);
+      double worst = 0;
+      for (std::size_t j = 0; j < grid.size(); ++j) {
+        worst = std::max(worst, rotation_angle_between(evaluate_refit_rotation(written, grid_t[j]), samples[j]));
+      }
+      rep.max_error = worst;
+      rep.keys_after = written.size();
+      rep.interpolation = sampler_name(written.interpolation);
+      b.add_channel(written, int(i), "rotation", true);
+      result.channels.push_back(rep);
+    }
+    if (auto ok = vec3_channel("scale", node.local.scale, ro.scale); !ok) return ok.error();
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].parent) b.model.nodes[*nodes[i].parent].children.push_back(int(i));
+  }
+  b.model.scenes.push_back(gscene);
+  b.model.defaultScene = 0;
+  if (b.model.animations[0].channels.empty()) b.model.animations.clear();
+  if (b.data().empty()) {
+    b.model.buffers.clear();
+  } else {
+    while (b.data().size() % 4) b.data().push_back(0);
+  }
+
+  tinygltf::TinyGLTF writer;
+  std::ostringstream os;
+  if (!writer.WriteGltfSceneToStream(&b.model, os, !options.binary, options.binary)) {
+    return Error{ErrorCode::Io, "tinygltf could not serialise the document", ""};
+  }
+  result.bytes = os.str();
+  return result;
+}
+
+}  // namespace inbetween

@@ -1,0 +1,60 @@
+// `inbetween convert SCENE.json OUT.gltf|OUT.glb`: the file and the channel report; exit 2 with a
+// message naming the place for bad input, and no output file then.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "support/cli.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using inbetween::test::run_cli;
+
+const std::string kZoo = std::string(INBETWEEN_SOURCE_DIR) + "/tests/data/scenes/gltf_export_zoo.json";
+
+TEST(ConvertCli, WritesGlbAndReportsEveryChannel) {
+  const fs::path out = inbetween::test::test_dir() / "zoo.glb";
+  const auto r = run_cli("convert '" + kZoo + "' '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(out));
+  EXPECT_EQ(inbetween::test::slurp(out).substr(0, 4), "glTF");  // GLB magic
+  // One line per animated channel (10 in the zoo), refitted ones with their reason.
+  EXPECT_NE(r.err.find("base.translation: CUBICSPLINE, 3 keys -> 3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("lamp.rotation: STEP, 3 keys -> 3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("arm.rotation: CUBICSPLINE, 4 keys -> "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("(refitted: quaternion Bezier/squad segments; tolerance 1e-05)"), std::string::npos) << r.err;
+  // --no-cubic: no CUBICSPLINE sampler left.
+  const auto lin = run_cli("convert '" + kZoo + "' '" + (inbetween::test::test_dir() / "zoo.gltf").string() + "' --no-cubic");
+  ASSERT_EQ(lin.exit_code, 0) << lin.err;
+  EXPECT_EQ(lin.err.find("CUBICSPLINE,"), std::string::npos) << lin.err;
+  const std::string gltf = inbetween::test::slurp(inbetween::test::test_dir() / "zoo.gltf");
+  EXPECT_NE(gltf.find("\"asset\""), std::string::npos);
+  EXPECT_NE(gltf.find("data:application/octet-stream;base64,"), std::string::npos);
+}
+
+TEST(ConvertCli, BadInputExitsTwoWithoutOutput) {
+  const fs::path dir = inbetween::test::test_dir();
+  const fs::path bad = inbetween::test::write_test_file(
+      "bad.json", R"({"inbetween": 1, "fps": 24, "range": [1, 10], "objects": [{"name": "a", "translation": {"keys": [
+        {"frame": 5, "value": [0, 0, 0]}, {"frame": 3, "value": [1, 0, 0]}]}}]})");
+  const fs::path out = dir / "bad.glb";
+  auto r = run_cli("convert '" + bad.string() + "' '" + out.string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("/objects/0/translation/keys/1/frame"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  r = run_cli("convert '" + kZoo + "' '" + (dir / "zoo.txt").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(".gltf or .glb"), std::string::npos) << r.err;
+  r = run_cli("convert '" + kZoo + "' '" + (dir / "z.glb").string() + "' --substeps 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir / "z.glb"));
+  const fs::path no_objects = inbetween::test::write_test_file("empty.json", R"({"inbetween": 1, "fps": 24, "range": [1, 2]})");
+  r = run_cli("convert '" + no_objects.string() + "' '" + (dir / "e.glb").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no objects"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "e.glb"));
+}
+
+}  // namespace
