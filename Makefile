@@ -25,6 +25,14 @@ deps:
 	  $$SUDO apt-get update -qq && \
 	  DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
+	@# npm (Debian's) for the JavaScript references below, where the machine has none: a fresh
+	@# Debian 12 has no npm; a machine with its own Node.js and npm keeps them.
+	@if ! command -v npm >/dev/null 2>&1; then \
+	  echo "make: installing Debian's npm (for three.js, gltf-validator and the browser tests)"; \
+	  SUDO=""; [ "$$(id -u)" -eq 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends npm \
+	    || echo "make: npm could not be installed; the JavaScript cross-checks will skip"; \
+	fi
 	@# three.js, the independent glTF reference of an optional test (skips without it).
 	@if [ -f tools/threejs/node_modules/three/package.json ]; then :; \
 	elif command -v npm >/dev/null 2>&1; then \
