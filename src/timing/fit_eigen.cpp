@@ -85,15 +85,26 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
     }
     fit.curve.control_points.push_back(p);
   }
-  const Eigen::MatrixXd residual = N * B - rhs;
+  // Residuals in units of the largest data or control-point magnitude, so that neither N·B − rhs nor
+  // the sum of squares overflows for data near the largest double (found by fuzz/csv_fuzz.cpp: rows
+  // of ±1e300 gave rms_residual = inf).
+  const double scale = std::max(rhs.cwiseAbs().maxCoeff(), B.cwiseAbs().maxCoeff());
   double sum = 0, worst = 0;
-  for (int i = 0; i < j; ++i) {
-    const double r = residual.row(i).norm();
-    sum += r * r;
-    worst = std::max(worst, r);
+  if (scale > 0) {
+    const Eigen::MatrixXd residual = N * (B / scale) - rhs / scale;
+    for (int i = 0; i < j; ++i) {
+      const double r = residual.row(i).norm();  // ≤ 2·√dim: no overflow
+      sum += r * r;
+      worst = std::max(worst, r);
+    }
   }
-  fit.rms_residual = T(std::sqrt(sum / j));
-  fit.max_residual = T(worst);
+  fit.rms_residual = T(std::sqrt(sum / j) * scale);
+  fit.max_residual = T(worst * scale);
+  if (!std::isfinite(fit.rms_residual) || !std::isfinite(fit.max_residual)) {
+    return Error{ErrorCode::NotFinite,
+                 "the fit's residual is beyond the range of the scalar type (data too close to its largest value)",
+                 ""};
+  }
   return fit;
 }
 

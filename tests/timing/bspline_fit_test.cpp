@@ -176,6 +176,22 @@ TEST(BSplineFit, OverflowingControlPointsAreAnError) {
   EXPECT_NEAR(ok->curve.control_points[1], 2.0f, 4 * std::numeric_limits<float>::epsilon());
 }
 
+// Found by fuzz/csv_fuzz.cpp (fuzz/corpus/csv/regression-fit-residual-overflow.csv): data of ±1e300 fit to finite control
+// points, but the residual's squares overflowed and rms_residual was inf.  The square case
+// interpolates, so both residuals are rounding only: at most 16·eps·√n·max|B| as in
+// SquareCaseInterpolatesTheDataExactly (n = 5 rows here).
+TEST(BSplineFit, ResidualOfHugeDataIsFinite) {
+  const std::vector<TimedPoint<double>> d = {{0, 1}, {0.5, 1e300}, {1, -1e300}, {1.5, 2}, {2, 3}};
+  auto fit = fit_bspline<double>(d, {.degree = 3});
+  ASSERT_TRUE(fit) << fit.error().describe();
+  double max_b = 0;
+  for (double b : fit->curve.control_points) max_b = std::max(max_b, std::abs(b));
+  const double bound = 16 * std::numeric_limits<double>::epsilon() * std::sqrt(5.0) * max_b;
+  EXPECT_TRUE(std::isfinite(fit->rms_residual));
+  EXPECT_LE(fit->max_residual, bound);
+  EXPECT_LE(fit->rms_residual, fit->max_residual);
+}
+
 TEST(BSplineFit, FloatAndVec2Instantiations) {
   const std::vector<TimedPoint<Vec2f>> data = {{0, {0, 0}}, {1, {1, 2}}, {2, {3, 1}}, {3, {4, 4}}};
   auto fit = fit_bspline<Vec2f>(data, {.degree = 2});
