@@ -42,9 +42,11 @@ build: configure
 
 # `make test` (what CI runs) is the release suite, then the asan preset: the whole suite under
 # AddressSanitizer + UndefinedBehaviorSanitizer and a short fixed run of each fuzz target
-# (fuzz/README.md).  SKIP_ASAN=1 runs the release suite alone.
+# (fuzz/README.md).  SKIP_ASAN=1 runs the release suite alone.  Skipped tests (a reference tool
+# absent) are listed with their reason after each ctest summary.
 test: build
 	ctest --preset $(PRESET)
+	@tools/report_skips.sh $(BUILD)
 	@if [ "$(PRESET)" = release ] && [ -z "$(SKIP_ASAN)" ]; then $(MAKE) --no-print-directory asan; fi
 
 demo: build
@@ -67,9 +69,12 @@ fuzz:
 	@set -e; for t in $(FUZZ_TARGETS); do \
 	  d=build/asan/fuzz; mkdir -p $$d/corpus-$$t $$d/artifacts-$$t; \
 	  echo "== fuzz $$t for $(FUZZ_SECONDS) s"; \
-	  $$d/inbetween_fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -timeout=10 -print_final_stats=1 \
-	    -artifact_prefix=$$d/artifacts-$$t/ $$d/corpus-$$t fuzz/corpus/$$t; \
+	  $$d/inbetween_fuzz_$$t -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+	    -max_total_time=$(FUZZ_SECONDS) -timeout=10 -dict=fuzz/dict/$$t.dict -print_final_stats=1 \
+	    -artifact_prefix=$$d/artifacts-$$t/ $$d/corpus-$$t fuzz/corpus/$$t 2>&1 | grep -E '^#|INFO: (exiting|fuzzed)' | tail -3; \
 	done
+	@n=$$(ls build/asan/fuzz/artifacts-*/ 2>/dev/null | grep -c -E '^(crash|timeout|oom|leak)-'); \
+	if [ "$$n" -gt 0 ]; then ls build/asan/fuzz/artifacts-*/; echo "make: $$n fuzz findings (fuzz/README.md)"; exit 1; fi
 
 clean:
 	rm -rf build

@@ -2,7 +2,7 @@
 # fixed random seed so the run is the same every time.  New inputs land in WORK_DIR (cleared first).
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}/corpus" "${WORK_DIR}/artifacts")
-execute_process(COMMAND "${FUZZER}" -runs=${RUNS} -seed=1 -timeout=60 -rss_limit_mb=2048
+execute_process(COMMAND "${FUZZER}" -runs=${RUNS} -seed=1 -timeout=60 -rss_limit_mb=2048 -dict=${DICT}
                         -artifact_prefix=${WORK_DIR}/artifacts/ "${WORK_DIR}/corpus" "${SEEDS}"
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 string(REGEX MATCH "Done [0-9]+ runs in [0-9]+ second" done "${err}")

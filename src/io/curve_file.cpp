@@ -25,6 +25,23 @@ struct Reader {
   }
 };
 
+// Nesting deeper than this is refused while parsing: a curve file needs three levels (the document,
+// "points", one point), and nlohmann's printing recurses, so 100 000 levels overflowed the stack
+// when an error message printed the value (issue 9, defect 2).
+constexpr int kMaxJsonDepth = 32;
+struct TooDeep {};
+
+// At most this many characters of a value or a parser message go into an error message.
+constexpr std::size_t kMaxQuoted = 80;
+
+std::string clipped(std::string text) {
+  if (text.size() > kMaxQuoted) text = text.substr(0, kMaxQuoted) + "…";
+  return text;
+}
+
+// A value for an error message: scalars as JSON (clipped), arrays and objects by their type only.
+std::string brief(const json& v) { return v.is_structured() ? std::string("an ") + v.type_name() : clipped(v.dump()); }
+
 // JSON pointers are built with append() rather than "/" + … : GCC 12 warns (-Wrestrict, a known
 // false positive) on operator+ with a literal on the left.
 std::string ptr(std::string_view field) {
@@ -170,15 +187,21 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
   const Reader r{std::string(source_name)};
   json doc;
   try {
-    doc = json::parse(text.begin(), text.end());
+    doc = json::parse(text.begin(), text.end(), [](int depth, json::parse_event_t, json&) {
+      if (depth > kMaxJsonDepth) throw TooDeep{};
+      return true;
+    });
   } catch (const json::exception& e) {
-    return Error{ErrorCode::Parse, std::string("invalid JSON: ") + e.what(), r.source};
+    return Error{ErrorCode::Parse, "invalid JSON: " + clipped(e.what()), r.source};
+  } catch (const TooDeep&) {
+    return Error{ErrorCode::Parse, "invalid JSON: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels",
+                 r.source};
   }
   if (!doc.is_object()) return r.fail("", "expected a JSON object with a \"type\" field");
   if (doc.contains("version")) {
     const json& v = doc["version"];
     if (!v.is_number_integer() || v.get<long long>() != curve_format_version)
-      return r.fail("/version", "unsupported version " + v.dump() + "; this reader knows version " +
+      return r.fail("/version", "unsupported version " + brief(v) + "; this reader knows version " +
                                     std::to_string(curve_format_version), ErrorCode::Unsupported);
   }
   if (!doc.contains("type") || !doc["type"].is_string()) return r.fail("/type", "missing or not a string");
@@ -201,7 +224,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
       const std::string& key = item.key();
       if (key == "version" || key == "type" || key == "points") continue;
       if (std::find(extra.begin(), extra.end(), key) == extra.end())
-        return r.fail(ptr(key), "unknown field for type \"" + type + "\"", ErrorCode::Parse);
+        return r.fail(ptr(clipped(key)), "unknown field for type \"" + type + "\"", ErrorCode::Parse);
     }
   }
 
@@ -298,7 +321,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
     }
     return wrap(r, CurveKind::Lagrange, dim, build_lagrange(pts, params));
   }
-  return r.fail("/type", "unknown curve type \"" + type +
+  return r.fail("/type", "unknown curve type \"" + clipped(type) +
                              "\"; expected one of bezier, bezier-path, hermite, catmull-rom, natural, "
                              "kochanek-bartels, parabolic, bspline, lagrange",
                 ErrorCode::Unsupported);
