@@ -6,11 +6,13 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 
 # Build and test dependencies (Debian 12 package names).  python3-scipy and python3-jsonschema are
 # independent references (rotation conventions, least squares, the scene JSON Schema) that tests use
-# through /usr/bin/python3; those tests skip when they are absent.
+# through /usr/bin/python3; those tests skip when they are absent.  clang and libclang-rt-dev
+# (libFuzzer, the sanitizer runtimes) build the asan preset that `make test` also runs.
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
-        nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev gltfpack libeigen3-dev python3 python3-scipy python3-jsonschema
+        nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev gltfpack libeigen3-dev python3 python3-scipy python3-jsonschema \
+        clang libclang-rt-dev
 
-.PHONY: all deps configure build test demo bench asan clean
+.PHONY: all deps configure build test demo bench asan fuzz clean
 
 all: build
 
@@ -52,8 +54,14 @@ configure: deps
 build: configure
 	cmake --build --preset $(PRESET) -j $(JOBS)
 
+# `make test` (what CI runs) is the release suite, then the asan preset: the whole suite under
+# AddressSanitizer + UndefinedBehaviorSanitizer and a short fixed run of each fuzz target
+# (fuzz/README.md).  SKIP_ASAN=1 runs the release suite alone.  Skipped tests (a reference tool
+# absent) are listed with their reason after each ctest summary.
 test: build
 	ctest --preset $(PRESET)
+	@tools/report_skips.sh $(BUILD)
+	@if [ "$(PRESET)" = release ] && [ -z "$(SKIP_ASAN)" ]; then $(MAKE) --no-print-directory asan; fi
 
 demo: build
 	./$(BUILD)/inbetween demo
@@ -64,6 +72,23 @@ bench: build
 
 asan:
 	$(MAKE) test PRESET=asan
+
+# Each libFuzzer target for FUZZ_SECONDS (asan preset); the corpus grows in build/asan/fuzz/corpus-*,
+# crashes land in build/asan/fuzz/artifacts-*/ (see fuzz/README.md for what to do with them).
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS := scene curve csv rotation_line
+fuzz:
+	$(MAKE) configure PRESET=asan
+	cmake --build --preset asan -j $(JOBS) --target $(addprefix inbetween_fuzz_,$(FUZZ_TARGETS))
+	@set -e; for t in $(FUZZ_TARGETS); do \
+	  d=build/asan/fuzz; mkdir -p $$d/corpus-$$t $$d/artifacts-$$t; \
+	  echo "== fuzz $$t for $(FUZZ_SECONDS) s"; \
+	  $$d/inbetween_fuzz_$$t -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+	    -max_total_time=$(FUZZ_SECONDS) -timeout=10 -dict=fuzz/dict/$$t.dict -print_final_stats=1 \
+	    -artifact_prefix=$$d/artifacts-$$t/ $$d/corpus-$$t fuzz/corpus/$$t 2>&1 | grep -E '^#|INFO: (exiting|fuzzed)' | tail -3; \
+	done
+	@n=$$(ls build/asan/fuzz/artifacts-*/ 2>/dev/null | grep -c -E '^(crash|timeout|oom|leak)-'); \
+	if [ "$$n" -gt 0 ]; then ls build/asan/fuzz/artifacts-*/; echo "make: $$n fuzz findings (fuzz/README.md)"; exit 1; fi
 
 clean:
 	rm -rf build

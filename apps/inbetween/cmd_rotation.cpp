@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "rotation_text.hpp"
 #include "inbetween/math/euler.hpp"
 #include "inbetween/math/orientation_interp.hpp"
 #include "inbetween/math/rotation.hpp"
@@ -20,166 +21,6 @@
 namespace inbetween::cli {
 namespace {
 
-enum class FormatKind { Quat, QuatXyzw, Matrix, AxisAngle, RotVec, Euler };
-
-struct Format {
-  FormatKind kind = FormatKind::Quat;
-  EulerSequence sequence{};  // for Euler
-  std::string name;
-
-  [[nodiscard]] std::size_t arity() const {
-    switch (kind) {
-      case FormatKind::Quat:
-      case FormatKind::QuatXyzw:
-      case FormatKind::AxisAngle: return 4;
-      case FormatKind::Matrix: return 9;
-      case FormatKind::RotVec:
-      case FormatKind::Euler: return 3;
-    }
-    return 0;
-  }
-  [[nodiscard]] std::string layout() const {
-    switch (kind) {
-      case FormatKind::Quat: return "w x y z";
-      case FormatKind::QuatXyzw: return "x y z w";
-      case FormatKind::Matrix: return "9 entries, row-major";
-      case FormatKind::AxisAngle: return "x y z angle";
-      case FormatKind::RotVec: return "x y z";
-      case FormatKind::Euler: return "three angles in the order of " + sequence.name();
-    }
-    return {};
-  }
-};
-
-const char* const kFormatHelp =
-    "quat (w x y z), quat-xyzw (x y z w), matrix (9 numbers, row-major, v' = R v), "
-    "axis-angle (x y z angle), rotvec (x y z, axis times angle), euler:SEQ (SEQ as in SciPy: "
-    "XYZ intrinsic, xyz extrinsic, any of the 24)";
-
-std::optional<Format> parse_format(const std::string& text, std::string& why) {
-  Format f;
-  f.name = text;
-  if (text == "quat") f.kind = FormatKind::Quat;
-  else if (text == "quat-xyzw") f.kind = FormatKind::QuatXyzw;
-  else if (text == "matrix") f.kind = FormatKind::Matrix;
-  else if (text == "axis-angle") f.kind = FormatKind::AxisAngle;
-  else if (text == "rotvec") f.kind = FormatKind::RotVec;
-  else if (text.rfind("euler:", 0) == 0) {
-    auto seq = parse_euler_sequence(std::string_view(text).substr(6));
-    if (!seq) {
-      why = seq.error().message;
-      return std::nullopt;
-    }
-    f.kind = FormatKind::Euler;
-    f.sequence = *seq;
-  } else {
-    why = "unknown format '" + text + "'; expected one of: " + kFormatHelp;
-    return std::nullopt;
-  }
-  return f;
-}
-
-/// Splits a data line into numbers: separators are runs of blanks holding at most one comma.
-/// Returns an error message (empty on success).
-std::string split_numbers(std::string_view line, std::vector<double>& out) {
-  out.clear();
-  std::size_t i = 0;
-  const auto is_blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
-  bool need_number = true;  // at the start, and after a comma
-  bool after_comma = false;
-  while (i < line.size()) {
-    while (i < line.size() && is_blank(line[i])) ++i;
-    if (i >= line.size()) break;
-    if (line[i] == ',') {
-      if (need_number) return after_comma ? "two commas in a row" : "a comma before the first number";
-      need_number = true;
-      after_comma = true;
-      ++i;
-      continue;
-    }
-    std::size_t j = i;
-    while (j < line.size() && !is_blank(line[j]) && line[j] != ',') ++j;
-    std::string_view token = line.substr(i, j - i);
-    std::string_view digits = token;
-    if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-    double v = 0;
-    const auto res = std::from_chars(digits.data(), digits.data() + digits.size(), v);
-    if (res.ec != std::errc() || res.ptr != digits.data() + digits.size() || digits.empty())
-      return "'" + std::string(token) + "' is not a number";
-    if (!std::isfinite(v)) return "'" + std::string(token) + "' is not a finite number";
-    out.push_back(v);
-    need_number = false;
-    after_comma = false;
-    i = j;
-  }
-  if (after_comma) return "a comma after the last number";
-  return {};
-}
-
-double angle_in(double v, bool degrees) { return degrees ? deg_to_rad(v) : v; }
-double angle_out(double v, bool degrees) { return degrees ? rad_to_deg(v) : v; }
-
-/// Reads one rotation; throws CommandError naming the line.
-Quatd read_rotation(const Format& f, const std::vector<double>& v, bool degrees, const std::string& where) {
-  switch (f.kind) {
-    case FormatKind::Quat:
-    case FormatKind::QuatXyzw: {
-      const Quatd q = f.kind == FormatKind::Quat ? Quatd::from_wxyz(v[0], v[1], v[2], v[3])
-                                                 : Quatd::from_xyzw(v[0], v[1], v[2], v[3]);
-      if (!(norm(q) > 0)) throw CommandError{where + ": a zero quaternion is not a rotation"};
-      return normalized(q);
-    }
-    case FormatKind::Matrix: {
-      const Mat3d r{{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}}};
-      auto q = quat_from_rotation_matrix_checked(r);
-      if (!q) throw CommandError{where + ": not a rotation matrix within 1e-6: " + q.error().message};
-      return *q;
-    }
-    case FormatKind::AxisAngle: {
-      const Vec3d axis{v[0], v[1], v[2]};
-      if (!(norm(axis) > 0)) throw CommandError{where + ": the axis (0, 0, 0) has no direction"};
-      return Quatd::from_axis_angle(axis, angle_in(v[3], degrees));
-    }
-    case FormatKind::RotVec: {
-      const Vec3d r{v[0], v[1], v[2]};
-      return quat_from_rotation_vector(degrees ? r * (pi_v<double> / 180) : r);
-    }
-    case FormatKind::Euler:
-      return quat_from_euler(f.sequence, EulerTriple<double>{angle_in(v[0], degrees), angle_in(v[1], degrees),
-                                                             angle_in(v[2], degrees)});
-  }
-  return {};
-}
-
-/// Writes one rotation as numbers; reports gimbal lock through `gimbal`.
-std::vector<double> write_rotation(const Format& f, const Quatd& q_in, bool degrees, bool& gimbal) {
-  gimbal = false;
-  const Quatd q = canonical(q_in);
-  switch (f.kind) {
-    case FormatKind::Quat: return {q.w, q.x, q.y, q.z};
-    case FormatKind::QuatXyzw: return {q.x, q.y, q.z, q.w};
-    case FormatKind::Matrix: {
-      const Mat3d r = matrix_from_quat(q);
-      return {r.m[0][0], r.m[0][1], r.m[0][2], r.m[1][0], r.m[1][1], r.m[1][2], r.m[2][0], r.m[2][1], r.m[2][2]};
-    }
-    case FormatKind::AxisAngle: {
-      const AxisAngled aa = axis_angle_from_quat(q);
-      return {aa.axis.x, aa.axis.y, aa.axis.z, angle_out(aa.angle_rad, degrees)};
-    }
-    case FormatKind::RotVec: {
-      const Vec3d r = rotation_vector_from_quat(q) * (degrees ? 180 / pi_v<double> : 1.0);
-      return {r.x, r.y, r.z};
-    }
-    case FormatKind::Euler: {
-      const EulerAngles<double> e = euler_from_quat(f.sequence, q);
-      gimbal = e.gimbal_lock;
-      return {angle_out(e.angles_rad[0], degrees), angle_out(e.angles_rad[1], degrees),
-              angle_out(e.angles_rad[2], degrees)};
-    }
-  }
-  return {};
-}
-
 struct ConvertArgs {
   std::string from, to;
   bool degrees = false;
@@ -187,14 +28,13 @@ struct ConvertArgs {
 
 void run_convert(const ConvertArgs& args) {
   std::string why;
-  const auto from = parse_format(args.from, why);
+  const auto from = parse_rotation_format(args.from, why);
   if (!from) throw CommandError{"--from: " + why};
-  const auto to = parse_format(args.to, why);
+  const auto to = parse_rotation_format(args.to, why);
   if (!to) throw CommandError{"--to: " + why};
   const std::string input = read_input("-");
   std::ostringstream out;
   std::vector<std::string> warnings;
-  std::vector<double> numbers;
   std::size_t line_no = 0, start = 0;
   while (start <= input.size()) {
     std::size_t end = input.find('\n', start);
@@ -208,14 +48,8 @@ void run_convert(const ConvertArgs& args) {
       continue;
     }
     const std::string where = "line " + std::to_string(line_no);
-    const std::string err = split_numbers(line, numbers);
-    if (!err.empty()) throw CommandError{where + ": " + err};
-    if (numbers.size() != from->arity())
-      throw CommandError{where + ": " + from->name + " needs " + std::to_string(from->arity()) + " numbers (" +
-                         from->layout() + "), got " + std::to_string(numbers.size())};
-    const Quatd q = read_rotation(*from, numbers, args.degrees, where);
     bool gimbal = false;
-    const std::vector<double> result = write_rotation(*to, q, args.degrees, gimbal);
+    const std::vector<double> result = convert_rotation_line(*from, *to, line, args.degrees, where, gimbal);
     if (gimbal)
       warnings.push_back(where + ": gimbal lock in " + to->sequence.name() +
                          ": only the sum or difference of the first and third angles is well determined (they "
@@ -236,8 +70,8 @@ void setup_rotation(CLI::App& root) {
       "convert",
       "Read one rotation per line on standard input (numbers separated by spaces or commas; blank lines and "
       "# lines skipped) and write it in another representation, one line each, shortest round-trip numbers");
-  convert->add_option("--from", args->from, std::string("Input format: ") + kFormatHelp)->required();
-  convert->add_option("--to", args->to, std::string("Output format: ") + kFormatHelp)->required();
+  convert->add_option("--from", args->from, std::string("Input format: ") + kRotationFormatHelp)->required();
+  convert->add_option("--to", args->to, std::string("Output format: ") + kRotationFormatHelp)->required();
   convert->add_flag("--degrees", args->degrees, "Angles in degrees instead of radians (input and output)");
   convert->callback([args] { run_convert(*args); });
 }

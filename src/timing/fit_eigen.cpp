@@ -97,7 +97,10 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
     }
     fit.curve.control_points.push_back(p);
   }
-  const Eigen::MatrixXd residual = N * B - rhs;  // at the data's scale 2^-scale
+  // The residuals at the data's scale 2^-scale, so that neither N·B − rhs nor the sum of squares
+  // overflows for data near the largest double (fuzz/csv_fuzz.cpp: rows of ±1e300 gave an infinite
+  // rms residual); back at the data's scale a residual beyond the scalar type is an error.
+  const Eigen::MatrixXd residual = N * B - rhs;
   double sum = 0, worst = 0;
   for (int i = 0; i < j; ++i) {
     const double r = residual.row(i).norm();
@@ -106,6 +109,11 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
   }
   fit.rms_residual = T(std::ldexp(std::sqrt(sum / j), scale));
   fit.max_residual = T(std::ldexp(worst, scale));
+  if (!std::isfinite(fit.rms_residual) || !std::isfinite(fit.max_residual)) {
+    return Error{ErrorCode::NotFinite,
+                 "the fit's residual is beyond the range of the scalar type (data too close to its largest value)",
+                 ""};
+  }
   return fit;
 }
 

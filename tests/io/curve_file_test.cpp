@@ -2,6 +2,8 @@
 // through write_curve_json; errors name the JSON pointer.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "inbetween/curves/continuity.hpp"
 #include "inbetween/io/curve_file.hpp"
 
@@ -103,6 +105,33 @@ TEST(CurveFile, ErrorsNameTheJsonPointer) {
   const auto r = parse_curve_json(R"({"type": "bezier", "points": [[0,0,0],[1,1,1],[2,2,2],[3,3]]})", "f.json");
   EXPECT_EQ(r.error().describe(), "f.json:/points/3: expected 3 numbers (the dimension of the first point), got 2");
   EXPECT_FALSE(parse_curve_json("{not json", "f.json").has_value());
+}
+
+// Issue 9, defect 2: 100 000 levels of [[[…]]] as "version" crashed (SIGSEGV: the error message
+// printed the value recursively).  Nesting is bounded while parsing, and no error message quotes
+// more than a short piece of the input, whatever its size.
+TEST(CurveFile, DeepOrHugeValuesGiveShortErrors) {
+  const std::size_t n = 100000;
+  const std::string deep = std::string(n, '[') + std::string(n, ']');
+  const std::string huge(1000000, 'x');
+  const std::string cases[] = {
+      R"({"version": )" + deep + R"(, "type": "bezier", "points": [0, 1]})",
+      R"({"type": "bezier", "points": )" + deep + "}",
+      R"({"version": ")" + huge + R"(", "type": "bezier", "points": [0, 1]})",
+      R"({"type": ")" + huge + R"(", "points": [0, 1]})",
+      R"({"type": "bezier", "points": [0, 1], ")" + huge + R"(": 1})",
+      R"({"type": "bezier", "points": [0, 1], "x": ")" + huge,  // unterminated string: a parse error
+  };
+  for (const std::string& text : cases) {
+    const auto r = parse_curve_json(text, "f.json");
+    ASSERT_FALSE(r.has_value()) << text.substr(0, 60);
+    EXPECT_LT(r.error().describe().size(), 400u) << r.error().describe().substr(0, 400);
+  }
+  const auto r = parse_curve_json(cases[0], "f.json");
+  EXPECT_EQ(r.error().describe(), "f.json: invalid JSON: nested deeper than 32 levels");
+  // A structured version is named by its type, not printed.
+  const auto v = parse_curve_json(R"({"version": [[2]], "type": "bezier", "points": [0, 1]})", "f.json");
+  EXPECT_EQ(v.error().describe(), "f.json:/version: unsupported version an array; this reader knows version 1");
 }
 
 }  // namespace

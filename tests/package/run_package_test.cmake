@@ -13,7 +13,9 @@ run_step(${CMAKE_COMMAND} --install "${BINARY_DIR}" --prefix "${WORK_DIR}/prefix
 run_step(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/package/consumer" -B "${WORK_DIR}/build"
          -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
          # The consumer is built with the same flags as the installed archives (sanitizers included).
-         "-DCMAKE_CXX_FLAGS=${CONSUMER_CXX_FLAGS}")
+         "-DCMAKE_CXX_FLAGS=${CONSUMER_CXX_FLAGS}"
+         # and the same compiler (the asan preset's archives are clang's, with its sanitizer runtime).
+         "-DCMAKE_CXX_COMPILER=${CONSUMER_CXX_COMPILER}")
 run_step(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
 run_step("${WORK_DIR}/build/consumer")
 if(NOT step_output MATCHES "consumer ok")

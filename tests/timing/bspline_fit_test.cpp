@@ -198,6 +198,21 @@ TEST(BSplineFit, HugeDataBlameTheDataAndRepresentableFitsSucceed) {
     for (double c : ok->curve.control_points) EXPECT_NEAR(c, big, 64 * std::numeric_limits<double>::epsilon() * big) << m;
     EXPECT_LE(ok->max_residual, 64 * std::numeric_limits<double>::epsilon() * big) << m;
   }
+
+// Found by fuzz/csv_fuzz.cpp (fuzz/corpus/csv/regression-fit-residual-overflow.csv): data of ±1e300 fit to finite control
+// points, but the residual's squares overflowed and rms_residual was inf.  The square case
+// interpolates, so both residuals are rounding only: at most 16·eps·√n·max|B| as in
+// SquareCaseInterpolatesTheDataExactly (n = 5 rows here).
+TEST(BSplineFit, ResidualOfHugeDataIsFinite) {
+  const std::vector<TimedPoint<double>> d = {{0, 1}, {0.5, 1e300}, {1, -1e300}, {1.5, 2}, {2, 3}};
+  auto fit = fit_bspline<double>(d, {.degree = 3});
+  ASSERT_TRUE(fit) << fit.error().describe();
+  double max_b = 0;
+  for (double b : fit->curve.control_points) max_b = std::max(max_b, std::abs(b));
+  const double bound = 16 * std::numeric_limits<double>::epsilon() * std::sqrt(5.0) * max_b;
+  EXPECT_TRUE(std::isfinite(fit->rms_residual));
+  EXPECT_LE(fit->max_residual, bound);
+  EXPECT_LE(fit->rms_residual, fit->max_residual);
 }
 
 TEST(BSplineFit, FloatAndVec2Instantiations) {
