@@ -189,7 +189,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
       const std::string& key = item.key();
       if (key == "version" || key == "type" || key == "points") continue;
       if (std::find(extra.begin(), extra.end(), key) == extra.end())
-        return r.fail(ptr(key), "unknown field for type \"" + type + "\"", ErrorCode::Parse);
+        return r.fail(ptr(io_detail::truncated(key)), "unknown field for type \"" + type + "\"", ErrorCode::Parse);
     }
   }
 
@@ -282,7 +282,7 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
     }
     return wrap(r, CurveKind::Lagrange, dim, build_lagrange(pts, params));
   }
-  return r.fail(ptr("type"), "unknown curve type \"" + type +
+  return r.fail(ptr("type"), "unknown curve type \"" + io_detail::truncated(type) +
                              "\"; expected one of bezier, bezier-path, hermite, catmull-rom, natural, "
                              "kochanek-bartels, parabolic, bspline, lagrange",
                 ErrorCode::Unsupported);

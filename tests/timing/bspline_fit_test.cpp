@@ -198,6 +198,7 @@ TEST(BSplineFit, HugeDataBlameTheDataAndRepresentableFitsSucceed) {
     for (double c : ok->curve.control_points) EXPECT_NEAR(c, big, 64 * std::numeric_limits<double>::epsilon() * big) << m;
     EXPECT_LE(ok->max_residual, 64 * std::numeric_limits<double>::epsilon() * big) << m;
   }
+}
 
 // Found by fuzz/csv_fuzz.cpp (fuzz/corpus/csv/regression-fit-residual-overflow.csv): data of ±1e300 fit to finite control
 // points, but the residual's squares overflowed and rms_residual was inf.  The square case
