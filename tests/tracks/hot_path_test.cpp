@@ -6,9 +6,12 @@
 
 #include <cstdlib>
 #include <new>
+#include <span>
 #include <utility>
 #include <vector>
 
+#include "inbetween/arclength/arc_length_inverse.hpp"
+#include "inbetween/curves/bezier.hpp"
 #include "inbetween/tracks/euler_track.hpp"
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
@@ -45,6 +48,23 @@ long allocations_in(F&& f) {
 TEST(HotPath, CounterSeesAnAllocation) {
   // The counter itself can fail: a vector of one element allocates once.
   EXPECT_EQ(allocations_in([] { std::vector<int> v(1); (void)v; }), 1);
+}
+
+TEST(HotPath, ArcLengthInverseQueriesNeverAllocate) {
+  // Issue 12: u(s) from the piecewise inverse, one at a time and in batch, into caller-owned spans.
+  const auto bez = build_bezier(std::vector<Vec3d>{{0, 0, 0}, {1, 2, 0}, {2, -1, 1}, {3, 0, 0}});
+  ASSERT_TRUE(bez);
+  const auto inv = make_arc_length_inverse(*make_arc_length(*bez));
+  ASSERT_TRUE(inv);
+  std::vector<double> s(64), u(64);
+  for (std::size_t k = 0; k < s.size(); ++k) s[k] = inv->length() * double(k) / 63.0;
+  double sink = 0;
+  EXPECT_EQ(allocations_in([&] {
+              for (const double sk : s) sink += inv->u_at(sk);
+              inv->u_at(std::span<const double>(s), std::span<double>(u));
+            }),
+            0);
+  EXPECT_GT(sink + u.back(), 0.0);
 }
 
 template <class T>
