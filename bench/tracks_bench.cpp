@@ -10,6 +10,7 @@
 
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
+#include "inbetween/tracks/runtime/rig_clip.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace {
@@ -165,7 +166,7 @@ BENCHMARK(BM_FCurveSequential)->RangeMultiplier(16)->Range(16, 1 << 16);
 // frame.  Floor: a plain read of the same bytes the sampling touches (the two bracketing keys'
 // frames and values of every channel, found with the same cursors), so the ratio shows how far
 // per-track sampling is from memory-bound.  One iteration = one character; divide by J for a joint.
-// No runtime layer yet (see bench/RESULTS.md).
+// BM_RigRuntime below samples the same rig through the runtime layer.
 struct RigJoint {
   Track<Vec3d> translation, scale;
   QuatTrack<double> rotation;
@@ -259,6 +260,28 @@ void BM_RigMemoryFloor(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_RigMemoryFloor)->Arg(25)->Arg(64)->Arg(71)->Arg(551)->Arg(1024);
+
+// The same rig compiled into the runtime layer (RigClip: SoA power-form segments, fast_slerp, one
+// context with every cursor, one call per character).
+void BM_RigRuntime(benchmark::State& state) {
+  const auto rig = make_rig(int(state.range(0)));
+  std::vector<Track<Vec3d>> tv, sv;
+  std::vector<QuatTrack<double>> rv;
+  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
+  const auto clip = build_rig_clip<double>(tv, rv, sv).value();
+  const double end = rig_end(rig);
+  RigContext ctx = make_rig_context(clip);
+  std::vector<JointPose<double>> pose(rig.size());
+  double frame = 0;
+  for (auto _ : state) {
+    sample_rig(clip, frame, ctx, std::span<JointPose<double>>(pose));
+    benchmark::DoNotOptimize(pose.data());
+    benchmark::ClobberMemory();
+    frame += 0.5;
+    if (frame > end) frame = 0;
+  }
+}
+BENCHMARK(BM_RigRuntime)->Arg(25)->Arg(64)->Arg(71)->Arg(551)->Arg(1024);
 }  // namespace
 
 BENCHMARK_MAIN();
