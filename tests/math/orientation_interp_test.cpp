@@ -173,6 +173,14 @@ TYPED_TEST(OrientationInterp, FastSlerpWithinStatedBound) {
     EXPECT_LE(err, double(fast_slerp_max_error_rad<T>)) << "u=" << u << " angle=" << angle_between(a, b);
     // Norm: a unit result within the same bound (no renormalisation inside).
     EXPECT_NEAR(double(norm(got)), 1.0, double(fast_slerp_max_error_rad<T>));
+    // The precomputed-arc form (a runtime's slerp segment) on the shortest-arc end, same bound.
+    const Quat<T> b_short = dot(a, b) < T(0) ? -b : b;
+    const Quat<T> on_arc = fast_slerp_on_arc(a, b_short, fast_slerp_arc(a, b_short), u);
+    const double err_arc = double(angle_between(normalized(on_arc.template cast<L>()),
+                                                slerp(a.template cast<L>(), b_short.template cast<L>(), L(u),
+                                                      {.path = RotationPath::AsGiven})));
+    EXPECT_LE(err_arc, double(fast_slerp_max_error_rad<T>)) << "on arc, u=" << u;
+    worst = std::max(worst, err_arc);
   };
   const auto us = [&] { return std::array<T, 5>{T(0), T(1), T(0.5), rng.uniform<T>(T(0), T(1)), rng.uniform<T>(T(0), T(1))}; };
   for (int n = 0; n < 4000; ++n) {

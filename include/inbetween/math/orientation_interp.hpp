@@ -236,4 +236,36 @@ template <Real T>
           T(W(a.z) * wa + W(b.z) * wb)};
 }
 
+/// The per-arc part of fast_slerp for unit a, b with a·b ≥ 0 (cos θ in [0, 1]), computed once when
+/// the same pair is interpolated at many u (a runtime's slerp segment): then fast_slerp_on_arc
+/// skips the dot product, the square root and the division.
+template <Real T>
+struct FastSlerpArc {
+  detail::fast_slerp_weight_t<T> y{};    ///< cos(θ/2) − 1
+  detail::fast_slerp_weight_t<T> inv{};  ///< 1/(2 cos(θ/2))
+};
+
+/// Precomputes the arc of a → b (unit quaternions, a·b ≥ 0: the caller chose the signs).
+template <Real T>
+FastSlerpArc<T> fast_slerp_arc(const Quat<T>& a, const Quat<T>& b) noexcept {
+  using W = detail::fast_slerp_weight_t<T>;
+  const W d = W(a.w) * W(b.w) + W(a.x) * W(b.x) + W(a.y) * W(b.y) + W(a.z) * W(b.z);
+  const W x = std::clamp(d, W(0), W(1));
+  const W h = std::sqrt(W(0.5) + W(0.5) * x);
+  return {(x - W(1)) / (W(2) * (h + W(1))), W(1) / (W(2) * h)};
+}
+
+/// fast_slerp(a, b, u) on a precomputed arc (same series, same bound fast_slerp_max_error_rad<T>).
+template <Real T>
+[[gnu::always_inline]] inline Quat<T> fast_slerp_on_arc(const Quat<T>& a, const Quat<T>& b, const FastSlerpArc<T>& arc,
+                                                        T u) noexcept {
+  using W = detail::fast_slerp_weight_t<T>;
+  constexpr int n = detail::fast_slerp_terms<T>;
+  const detail::fast_slerp_lanes<W> w =
+      detail::sin_ratio_series<W, n>(detail::fast_slerp_lanes<W>{W(2) * (W(1) - W(u)), W(2) * W(u)}, arc.y) * arc.inv;
+  const W wa = w[0], wb = w[1];
+  return {T(W(a.w) * wa + W(b.w) * wb), T(W(a.x) * wa + W(b.x) * wb), T(W(a.y) * wa + W(b.y) * wb),
+          T(W(a.z) * wa + W(b.z) * wb)};
+}
+
 }  // namespace inbetween

@@ -3,7 +3,8 @@
 /// immutable clip compiled from per-joint translation, rotation and scale tracks, with every key
 /// laid out for the sampler — structure of arrays per channel kind, Vec3 segments pre-converted
 /// from Hermite to power form in the segment's local parameter, rotation segments kept as key
-/// pairs for fast_slerp — and a RigContext that carries every channel's cursor.  One call,
+/// pairs with their slerp arc precomputed (fast_slerp_on_arc: no dot, root or division per
+/// sample) — and a RigContext that carries every channel's cursor.  One call,
 /// sample_rig(), fills a caller-owned span with every joint's pose and never allocates.
 ///
 /// Supported input (anything else is refused by build_rig_clip with Unsupported and the place):
@@ -85,6 +86,7 @@ class RigClip {
     std::vector<std::uint32_t> begin, count;
     std::vector<T> start, inv_length;
     std::vector<Quat<T>> q0, q1;
+    std::vector<FastSlerpArc<T>> arc;  // per segment: the slerp arc, precomputed
     std::vector<std::uint8_t> step;
     std::vector<T> first, last;
     std::vector<Quat<T>> first_value, last_value;
@@ -202,6 +204,7 @@ Expected<RigClip<T>> build_rig_clip(std::span<const Track<Vec3<T>>> translations
       ch.inv_length.push_back(T(0));
       ch.q0.push_back(k[0]);
       ch.q1.push_back(k[0]);
+      ch.arc.push_back({});
       ch.step.push_back(1);
       continue;
     }
@@ -219,6 +222,7 @@ Expected<RigClip<T>> build_rig_clip(std::span<const Track<Vec3<T>>> translations
       ch.inv_length.push_back(T(1) / (f[i + 1] - f[i]));
       ch.q0.push_back(k[i]);
       ch.q1.push_back(k[i + 1]);
+      ch.arc.push_back(fast_slerp_arc(k[i], k[i + 1]));
       ch.step.push_back(mode == QuatInterpolation::step ? 1 : 0);
     }
   }
@@ -266,7 +270,7 @@ void sample_rig(const RigClip<T>& clip, T frame, RigContext& context, std::span<
       context.segment[3 * j + 1] = k;
       const std::size_t s = b + k;
       const T u = std::clamp((frame - rc.start[s]) * rc.inv_length[s], T(0), T(1));
-      out[j].rotation = rc.step[s] ? rc.q0[s] : fast_slerp(rc.q0[s], rc.q1[s], u);
+      out[j].rotation = rc.step[s] ? rc.q0[s] : fast_slerp_on_arc(rc.q0[s], rc.q1[s], rc.arc[s], u);
     }
   }
 }
