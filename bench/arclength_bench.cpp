@@ -9,12 +9,14 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "../tests/support/museum_arclength.hpp"
 #include "inbetween/arclength/accuracy.hpp"
 #include "inbetween/arclength/arc_length.hpp"
+#include "inbetween/arclength/arc_length_inverse.hpp"
 #include "inbetween/arclength/arc_length_table.hpp"
 #include "inbetween/arclength/quadrature_length.hpp"
 
@@ -163,6 +165,35 @@ void BM_ArcLengthDefault_UofS(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ArcLengthDefault_UofS);
+
+// Issue 12: u(s) from the piecewise Chebyshev inverse (ArcLengthInverse), against one point()
+// (BM_CurvePoint) and the Newton u_at above, on the same curve and the same s sequence; and the
+// batch form over 1024 s values (time per value).
+void BM_ArcLengthInverse_UofS(benchmark::State& state) {
+  const auto inv = *make_arc_length_inverse(*make_arc_length(bench_curve()));
+  double s = 0;
+  const double L = inv.length();
+  for (auto _ : state) {
+    s += 0.000123 * L;
+    if (s > L) s -= L;
+    benchmark::DoNotOptimize(inv.u_at(s));
+  }
+  state.counters["pieces"] = double(inv.pieces());
+}
+BENCHMARK(BM_ArcLengthInverse_UofS);
+
+void BM_ArcLengthInverse_UofS_Batch(benchmark::State& state) {
+  const auto inv = *make_arc_length_inverse(*make_arc_length(bench_curve()));
+  std::vector<double> s(1024), u(1024);
+  for (std::size_t k = 0; k < s.size(); ++k) s[k] = inv.length() * double((k * 7919) % 1024) / 1024.0;
+  for (auto _ : state) {
+    inv.u_at(std::span<const double>(s), std::span<double>(u));
+    benchmark::DoNotOptimize(u.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * std::int64_t(s.size()));
+}
+BENCHMARK(BM_ArcLengthInverse_UofS_Batch);
 
 void BM_ArcLengthDefault_SofU(benchmark::State& state) {
   const auto a = *make_arc_length(bench_curve());

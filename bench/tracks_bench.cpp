@@ -3,11 +3,14 @@
 // sample is a binary search, O(log n).  Peers side by side: cursor, no cursor, Blender F-curve.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
+#include "inbetween/tracks/runtime/rig_clip.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace {
@@ -154,6 +157,131 @@ void BM_FCurveSequential(benchmark::State& state) {
 }
 BENCHMARK(BM_FCurveSequential)->RangeMultiplier(16)->Range(16, 1 << 16);
 
+
+// ---------------------------------------------------------------- whole rigs (issue 12)
+// A character rig of J joints, each with translation and scale Track<Vec3d> (linear keys) and a
+// QuatTrack (slerp keys), 30 keys per channel at uneven frames, played back sequentially (half a
+// frame per call, every joint's three cursors kept) through today's per-track API.  Reported per
+// character and per joint, next to a game's 1 ms animation budget per
+// frame.  Floor: a plain read of the same bytes the sampling touches (the two bracketing keys'
+// frames and values of every channel, found with the same cursors), so the ratio shows how far
+// per-track sampling is from memory-bound.  One iteration = one character; divide by J for a joint.
+// BM_RigRuntime below samples the same rig through the runtime layer.
+struct RigJoint {
+  Track<Vec3d> translation, scale;
+  QuatTrack<double> rotation;
+};
+
+std::vector<RigJoint> make_rig(int joints) {
+  std::mt19937_64 rng(1212);
+  std::uniform_real_distribution<double> d(-1, 1), step(0.5, 1.5);
+  std::vector<RigJoint> rig;
+  for (int j = 0; j < joints; ++j) {
+    std::vector<TrackKey<Vec3d>> tk, sk;
+    std::vector<QuatKey<double>> rk;
+    double f = 0;
+    for (int k = 0; k < 30; ++k) {
+      TrackKey<Vec3d> t;
+      t.frame = f;
+      t.value = {d(rng), d(rng), d(rng)};
+      t.tangent = TangentKind::linear;
+      tk.push_back(t);
+      TrackKey<Vec3d> sc = t;
+      sc.value = {1 + 0.1 * d(rng), 1 + 0.1 * d(rng), 1 + 0.1 * d(rng)};
+      sk.push_back(sc);
+      QuatKey<double> r;
+      r.frame = f;
+      r.value = Quatd::from_axis_angle(Vec3d{d(rng), d(rng), d(rng) + 2}, 1.5 * d(rng));
+      r.interpolation = QuatInterpolation::slerp;
+      rk.push_back(r);
+      f += step(rng);
+    }
+    rig.push_back({build_track(tk).value(), build_track(sk).value(), build_quat_track(rk).value()});
+  }
+  return rig;
+}
+
+double rig_end(const std::vector<RigJoint>& rig) {
+  double end = 1e300;
+  for (const auto& j : rig) end = std::min({end, j.translation.frames().back(), j.rotation.frames().back()});
+  return end;
+}
+
+void BM_RigPerTrack(benchmark::State& state) {
+  const auto rig = make_rig(int(state.range(0)));
+  const double end = rig_end(rig);
+  std::vector<TrackCursor> cursors(rig.size() * 3);
+  std::vector<Vec3d> t(rig.size()), sc(rig.size());
+  std::vector<Quatd> r(rig.size());
+  double frame = 0;
+  for (auto _ : state) {
+    for (std::size_t j = 0; j < rig.size(); ++j) {
+      t[j] = rig[j].translation.sample(frame, cursors[3 * j]);
+      r[j] = rig[j].rotation.sample(frame, cursors[3 * j + 1]);
+      sc[j] = rig[j].scale.sample(frame, cursors[3 * j + 2]);
+    }
+    benchmark::DoNotOptimize(t.data());
+    benchmark::DoNotOptimize(r.data());
+    benchmark::DoNotOptimize(sc.data());
+    benchmark::ClobberMemory();
+    frame += 0.5;
+    if (frame > end) frame = 0;
+  }
+}
+BENCHMARK(BM_RigPerTrack)->Arg(25)->Arg(64)->Arg(71)->Arg(551)->Arg(1024);
+
+void BM_RigMemoryFloor(benchmark::State& state) {
+  const auto rig = make_rig(int(state.range(0)));
+  const double end = rig_end(rig);
+  std::vector<std::size_t> seg(rig.size() * 3, 0);
+  double frame = 0;
+  for (auto _ : state) {
+    double acc = 0;
+    for (std::size_t j = 0; j < rig.size(); ++j) {
+      // Same bytes as sampling: both bracketing keys' frame and value, per channel.
+      const auto read = [&](std::span<const double> frames, auto values, std::size_t& i) {
+        while (i + 2 < frames.size() && frames[i + 1] <= frame) ++i;
+        if (frame < frames[i]) i = 0;
+        const auto& a = values[i];
+        const auto& b = values[i + 1];
+        const double* pa = reinterpret_cast<const double*>(&a);
+        const double* pb = reinterpret_cast<const double*>(&b);
+        double sum = frames[i] + frames[i + 1];
+        for (std::size_t c = 0; c < sizeof(a) / sizeof(double); ++c) sum += pa[c] + pb[c];
+        return sum;
+      };
+      acc += read(rig[j].translation.frames(), rig[j].translation.values(), seg[3 * j]);
+      acc += read(rig[j].rotation.frames(), rig[j].rotation.keys(), seg[3 * j + 1]);
+      acc += read(rig[j].scale.frames(), rig[j].scale.values(), seg[3 * j + 2]);
+    }
+    benchmark::DoNotOptimize(acc);
+    frame += 0.5;
+    if (frame > end) frame = 0;
+  }
+}
+BENCHMARK(BM_RigMemoryFloor)->Arg(25)->Arg(64)->Arg(71)->Arg(551)->Arg(1024);
+
+// The same rig compiled into the runtime layer (RigClip: SoA power-form segments, fast_slerp, one
+// context with every cursor, one call per character).
+void BM_RigRuntime(benchmark::State& state) {
+  const auto rig = make_rig(int(state.range(0)));
+  std::vector<Track<Vec3d>> tv, sv;
+  std::vector<QuatTrack<double>> rv;
+  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
+  const auto clip = build_rig_clip<double>(tv, rv, sv).value();
+  const double end = rig_end(rig);
+  RigContext ctx = make_rig_context(clip);
+  std::vector<JointPose<double>> pose(rig.size());
+  double frame = 0;
+  for (auto _ : state) {
+    sample_rig(clip, frame, ctx, std::span<JointPose<double>>(pose));
+    benchmark::DoNotOptimize(pose.data());
+    benchmark::ClobberMemory();
+    frame += 0.5;
+    if (frame > end) frame = 0;
+  }
+}
+BENCHMARK(BM_RigRuntime)->Arg(25)->Arg(64)->Arg(71)->Arg(551)->Arg(1024);
 }  // namespace
 
 BENCHMARK_MAIN();

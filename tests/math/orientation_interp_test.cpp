@@ -5,7 +5,10 @@
 // interpolation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <iostream>
 #include <limits>
 
 #include "inbetween/math/orientation_interp.hpp"
@@ -143,6 +146,62 @@ TYPED_TEST(OrientationInterp, SlerpErrorAgainstLongDoubleNeedsNoCutOff) {
   EXPECT_LE(ours.worst(), 8.0);
   // The texts' cut-off is a measured loss, not an assertion about our code: it must be worse.
   EXPECT_GT(texts.worst(), ours.worst());
+}
+
+TYPED_TEST(OrientationInterp, FastSlerpWithinStatedBound) {
+  // fast_slerp (Eberly's series after one half-angle step) against slerp() in long double on the
+  // same rounded inputs: the rotation angle between them stays within fast_slerp_max_error_rad<T>,
+  // over uniform random pairs, nearly identical pairs (angles 3·2^-k down to below ε, both sides of
+  // the near-path switch), nearly opposite pairs (the shortest arc's largest angle, θ → π), the
+  // museum, and u in [0, 1] including the endpoints.
+  using T = TypeParam;
+  using L = long double;
+  test::Random rng(test::seed_for(303));
+  SCOPED_TRACE(rng.trace());
+  double worst = 0;
+  const auto check = [&](const Quat<T>& a, const Quat<T>& b, T u) {
+    const Quat<T> got = fast_slerp(a, b, u);
+    ASSERT_TRUE(is_finite(got));
+    const Quat<L> gotl = normalized(got.template cast<L>());
+    double err = double(angle_between(gotl, slerp(a.template cast<L>(), b.template cast<L>(), L(u))));
+    // a·b within rounding of 0 (ends a half turn apart): both arcs are shortest, either is right.
+    if (std::abs(double(dot(a, b))) <= 4 * double(std::numeric_limits<T>::epsilon()))
+      for (const Quat<T>& end : {b, -b})
+        err = std::min(err, double(angle_between(gotl, slerp(a.template cast<L>(), end.template cast<L>(), L(u),
+                                                               {.path = RotationPath::AsGiven}))));
+    worst = std::max(worst, err);
+    EXPECT_LE(err, double(fast_slerp_max_error_rad<T>)) << "u=" << u << " angle=" << angle_between(a, b);
+    // Norm: a unit result within the same bound (no renormalisation inside).
+    EXPECT_NEAR(double(norm(got)), 1.0, double(fast_slerp_max_error_rad<T>));
+    // The precomputed-arc form (a runtime's slerp segment) on the shortest-arc end, same bound.
+    const Quat<T> b_short = dot(a, b) < T(0) ? -b : b;
+    const Quat<T> on_arc = fast_slerp_on_arc(a, b_short, fast_slerp_arc(a, b_short), u);
+    const double err_arc = double(angle_between(normalized(on_arc.template cast<L>()),
+                                                slerp(a.template cast<L>(), b_short.template cast<L>(), L(u),
+                                                      {.path = RotationPath::AsGiven})));
+    EXPECT_LE(err_arc, double(fast_slerp_max_error_rad<T>)) << "on arc, u=" << u;
+    worst = std::max(worst, err_arc);
+  };
+  const auto us = [&] { return std::array<T, 5>{T(0), T(1), T(0.5), rng.uniform<T>(T(0), T(1)), rng.uniform<T>(T(0), T(1))}; };
+  for (int n = 0; n < 4000; ++n) {
+    const Quat<T> a = rng.rotation<T>(), b = rng.rotation<T>();
+    for (const T u : us()) check(a, b, u);
+  }
+  for (int k = 0; k <= std::numeric_limits<T>::digits + 4; ++k) {
+    const T angle = T(3) * std::ldexp(T(1), -k);
+    for (int n = 0; n < 40; ++n) {
+      const Quat<T> a = rng.rotation<T>();
+      const Quat<T> b = normalized(a * Quat<T>::from_axis_angle(rng.unit_vec3<T>(), angle));
+      for (const T u : us()) check(a, b, u);
+      // Nearly opposite rotations: rotation angle π − angle, the far end of the shortest arc.
+      const Quat<T> c = normalized(a * Quat<T>::from_axis_angle(rng.unit_vec3<T>(), pi_v<T> - angle));
+      for (const T u : us()) check(a, c, u);
+    }
+  }
+  for (const auto& pair : test::museum_quat_pairs<T>())
+    for (const T u : us()) check(pair.a, pair.b, u);
+  std::cout << "fast_slerp<" << (sizeof(T) == 4 ? "float" : "double") << "> worst angle error " << worst
+            << " rad (bound " << fast_slerp_max_error_rad<T> << ")\n";
 }
 
 TYPED_TEST(OrientationInterp, NlerpFollowsTheArcWithUnevenSpeed) {

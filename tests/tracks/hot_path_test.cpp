@@ -6,13 +6,17 @@
 
 #include <cstdlib>
 #include <new>
+#include <span>
 #include <utility>
 #include <vector>
 
+#include "inbetween/arclength/arc_length_inverse.hpp"
+#include "inbetween/curves/bezier.hpp"
 #include "inbetween/tracks/euler_track.hpp"
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
+#include "inbetween/tracks/runtime/rig_clip.hpp"
 #include "inbetween/tracks/transform_track.hpp"
 #include "support/museum_tracks.hpp"
 
@@ -45,6 +49,50 @@ long allocations_in(F&& f) {
 TEST(HotPath, CounterSeesAnAllocation) {
   // The counter itself can fail: a vector of one element allocates once.
   EXPECT_EQ(allocations_in([] { std::vector<int> v(1); (void)v; }), 1);
+}
+
+TEST(HotPath, ArcLengthInverseQueriesNeverAllocate) {
+  // Issue 12: u(s) from the piecewise inverse, one at a time and in batch, into caller-owned spans.
+  const auto bez = build_bezier(std::vector<Vec3d>{{0, 0, 0}, {1, 2, 0}, {2, -1, 1}, {3, 0, 0}});
+  ASSERT_TRUE(bez);
+  const auto inv = make_arc_length_inverse(*make_arc_length(*bez));
+  ASSERT_TRUE(inv);
+  std::vector<double> s(64), u(64);
+  for (std::size_t k = 0; k < s.size(); ++k) s[k] = inv->length() * double(k) / 63.0;
+  double sink = 0;
+  EXPECT_EQ(allocations_in([&] {
+              for (const double sk : s) sink += inv->u_at(sk);
+              inv->u_at(std::span<const double>(s), std::span<double>(u));
+            }),
+            0);
+  EXPECT_GT(sink + u.back(), 0.0);
+}
+
+TEST(HotPath, RigClipSamplingNeverAllocates) {
+  // Issue 12: one sample_rig call fills every joint's pose into a caller-owned span.
+  std::vector<TrackKey<Vec3d>> tk;
+  std::vector<QuatKey<double>> rk;
+  for (int i = 0; i < 8; ++i) {
+    TrackKey<Vec3d> t;
+    t.frame = double(i);
+    t.value = Vec3d{double(i % 3), 1.0, double(i)};
+    tk.push_back(t);
+    QuatKey<double> r;
+    r.frame = double(i);
+    r.value = Quatd::from_axis_angle(Vec3d{0, 0, 1}, 0.4 * i);
+    rk.push_back(r);
+  }
+  const std::vector<Track<Vec3d>> tv(30, *build_track(tk));
+  const std::vector<QuatTrack<double>> rv(30, *build_quat_track(rk));
+  const auto clip = build_rig_clip<double>(tv, rv, tv);
+  ASSERT_TRUE(clip);
+  RigContext ctx = make_rig_context(*clip);
+  std::vector<JointPose<double>> pose(clip->joints());
+  EXPECT_EQ(allocations_in([&] {
+              for (double f = -1; f < 9; f += 0.25) sample_rig(*clip, f, ctx, std::span<JointPose<double>>(pose));
+            }),
+            0);
+  EXPECT_NEAR(pose[0].translation.z, 7.0, 1e-12);  // held after the last key (closed form)
 }
 
 template <class T>

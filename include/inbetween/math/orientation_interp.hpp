@@ -5,6 +5,9 @@
 /// (right path, uneven speed) and slerp (the great arc at constant angular speed).
 /// u is the interpolation parameter in [0, 1] (not clamped: values outside extrapolate).
 
+#include <algorithm>
+#include <array>
+#include <type_traits>
 #include <cmath>
 
 #include "inbetween/math/euler.hpp"
@@ -130,6 +133,139 @@ template <Real T>
 Quat<T> slerp_by_power(const Quat<T>& a, const Quat<T>& b_in, T u, const SlerpOptions& options = {}) noexcept {
   const Quat<T> b = detail::oriented_end(a, b_in, options.path);
   return a * pow(conjugate(a) * b, u);
+}
+
+namespace detail {
+/// Terms of the series sin(sφ)/sin φ = s·(1 + b₁(1 + b₂(1 + …))) in y = cos φ − 1, with
+/// b_i = (s²/(i(2i+1)) − i/(2i+1))·y (Eberly 2011, "A fast and accurate algorithm for computing
+/// SLERP", eq. 7-9).  After one half-angle step |y| ≤ 1 − cos(π/4) ≈ 0.293, so each term shrinks by
+/// about |y|/2 ≤ 0.146.  Float inputs are weighted in double (free on scalar x86, and it keeps the
+/// weights' rounding below a float ulp): 8 terms truncate at 5e-9, below float rounding; double
+/// needs 17 (truncation 5e-16; measured against long double, see fast_slerp_max_error_rad).
+template <Real T>
+inline constexpr int fast_slerp_terms = sizeof(T) <= 4 ? 8 : 17;
+/// Precision of fast_slerp's weights: double for float inputs, else the input precision.
+template <Real T>
+using fast_slerp_weight_t = std::conditional_t<(sizeof(T) <= 4), double, T>;
+
+/// Two lanes of W (the weights of a and of b), evaluated together: GCC/Clang vector extension,
+/// one SSE2 register for double, so the two series cost one instruction stream instead of two.
+template <Real W>
+using fast_slerp_lanes [[gnu::vector_size(2 * sizeof(W))]] = W;
+
+/// The series' term b_i = (s²/(i(2i+1)) − i/(2i+1))·y in both lanes (constants fold).
+template <Real W, int I>
+[[gnu::always_inline]] inline fast_slerp_lanes<W> sin_ratio_term(fast_slerp_lanes<W> s2, W y) noexcept {
+  constexpr W ui = W(1) / W(I * (2 * I + 1)), vi = W(I) / W(2 * I + 1);
+  return (ui * s2 - vi) * y;
+}
+
+/// 1 + b_I(1 + b_{I+1}(1 + … (1 + b_N))), taken two terms at a time,
+/// 1 + b_i(1 + b_{i+1}·r) = (1 + b_i) + (b_i b_{i+1})·r, which halves the dependent chain.
+template <Real W, int I, int N>
+[[gnu::always_inline]] inline fast_slerp_lanes<W> sin_ratio_nest(fast_slerp_lanes<W> s2, W y) noexcept {
+  if constexpr (I > N) {
+    return fast_slerp_lanes<W>{} + W(1);
+  } else if constexpr (I == N) {
+    return W(1) + sin_ratio_term<W, I>(s2, y);
+  } else {
+    const fast_slerp_lanes<W> bi = sin_ratio_term<W, I>(s2, y), bj = sin_ratio_term<W, I + 1>(s2, y);
+    return (W(1) + bi) + (bi * bj) * sin_ratio_nest<W, I + 2, N>(s2, y);
+  }
+}
+
+/// sin(sφ)/sin φ ≈ s·(1 + b₁(1 + … (1 + b_N))) with y = cos φ − 1, for the two lanes of s.
+template <Real W, int N>
+[[gnu::always_inline]] inline fast_slerp_lanes<W> sin_ratio_series(fast_slerp_lanes<W> s, W y) noexcept {
+  return s * sin_ratio_nest<W, 1, N>(s * s, y);
+}
+
+/// Below this distance of cos θ from 1, two terms of the series without the half-angle step reach
+/// the weights' rounding: for s in [0, 1] the first dropped term is s·b₁b₂b₃ with
+/// |b₁b₂b₃| ≤ (1/3)(1/5)(3/7)|y|³ < |y|³/35, i.e. 3e-20 for double at 2^-20 and 4e-13 for the float
+/// path's double weights at 2^-12 (both far below the rounding of the result).
+template <Real T>
+inline constexpr double fast_slerp_near_cut = sizeof(T) <= 4 ? 0x1p-12 : 0x1p-20;
+}  // namespace detail
+
+/// Largest rotation-angle error (radians) of fast_slerp() against slerp() evaluated in long double
+/// on the same inputs, over unit inputs and u in [0, 1]: about twice the measured maximum
+/// (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.2e-7 in float, 7.2e-16 in
+/// double, over random, nearly identical, nearly opposite and museum pairs).  glm and Eigen slerp
+/// measure 1.9e-7 to 2.3e-7 (float) and 3e-16 to 4e-16 (double) on the benchmark's pairs
+/// (bench/RESULTS.md).
+template <Real T>
+inline constexpr T fast_slerp_max_error_rad = sizeof(T) <= 4 ? T(4e-7) : T(1.5e-15);
+
+/// Slerp without trigonometry, along the shortest arc only (b is flipped to −b when a·b < 0):
+/// the weights sin((1−u)θ)/sin θ and sin(uθ)/sin θ come from one half-angle step
+/// (cos(θ/2) = √((1 + cos θ)/2)) and Eberly's series in cos(θ/2) − 1, truncated where it reaches
+/// the scalar's rounding.  Branch-free apart from the sign flip; one square root and one division.
+/// Accuracy: rotation angle within fast_slerp_max_error_rad<T> of the exact great arc (so endpoints
+/// are reproduced within that bound, not bit-exactly as slerp() does); slerp() stays the reference.
+/// When a·b is within rounding of 0 the two arcs are equally long and either may be taken.
+/// Unit inputs expected (the result has the inputs' norm within the bound); u in [0, 1] (outside,
+/// the series still extrapolates but the bound is not claimed).
+/// Forced inline: a sampling loop calls it per channel, and GCC's size heuristic otherwise keeps
+/// the call.
+template <Real T>
+[[gnu::always_inline]] inline Quat<T> fast_slerp(const Quat<T>& a, const Quat<T>& b, T u) noexcept {
+  using W = detail::fast_slerp_weight_t<T>;
+  const W d = W(a.w) * W(b.w) + W(a.x) * W(b.x) + W(a.y) * W(b.y) + W(a.z) * W(b.z);
+  // Shortest arc: b → −b when a·b < 0, as slerp() (d + 0 turns −0 into +0; branch-free).
+  const W sign = std::copysign(W(1), d + W(0));
+  const W x = std::min(std::abs(d), W(1));  // cos θ in [0, 1]
+  if (x > W(1) - W(detail::fast_slerp_near_cut<T>)) {
+    // Nearly identical ends: two terms of the series in cos θ − 1 itself, no root, no division.
+    const detail::fast_slerp_lanes<W> w = detail::sin_ratio_series<W, 2>(detail::fast_slerp_lanes<W>{W(1) - W(u), W(u)}, x - W(1));
+    const W wa = w[0], wb = w[1] * sign;
+    return {T(W(a.w) * wa + W(b.w) * wb), T(W(a.x) * wa + W(b.x) * wb), T(W(a.y) * wa + W(b.y) * wb),
+            T(W(a.z) * wa + W(b.z) * wb)};
+  }
+  const W h = std::sqrt(W(0.5) + W(0.5) * x);  // cos(θ/2) in [cos(π/4), 1]
+  const W k = W(1) / (W(4) * h * (h + W(1)));
+  const W y = (x - W(1)) * (W(2) * h) * k;  // cos(θ/2) − 1 = (x − 1)/(2(h + 1)), no cancellation
+  const W inv = W(2) * (h + W(1)) * k;      // 1/(2 cos(θ/2)) = sin(θ/2)/sin θ
+  // sin(uθ)/sin θ = [sin(2u·θ/2)/sin(θ/2)]·[sin(θ/2)/sin θ]
+  constexpr int n = detail::fast_slerp_terms<T>;
+  const detail::fast_slerp_lanes<W> w =
+      detail::sin_ratio_series<W, n>(detail::fast_slerp_lanes<W>{W(2) * (W(1) - W(u)), W(2) * W(u)}, y) * inv;
+  const W wa = w[0], wb = w[1] * sign;
+  // Blended in W too, so that a float result is rounded once per component.
+  return {T(W(a.w) * wa + W(b.w) * wb), T(W(a.x) * wa + W(b.x) * wb), T(W(a.y) * wa + W(b.y) * wb),
+          T(W(a.z) * wa + W(b.z) * wb)};
+}
+
+/// The per-arc part of fast_slerp for unit a, b with a·b ≥ 0 (cos θ in [0, 1]), computed once when
+/// the same pair is interpolated at many u (a runtime's slerp segment): then fast_slerp_on_arc
+/// skips the dot product, the square root and the division.
+template <Real T>
+struct FastSlerpArc {
+  detail::fast_slerp_weight_t<T> y{};    ///< cos(θ/2) − 1
+  detail::fast_slerp_weight_t<T> inv{};  ///< 1/(2 cos(θ/2))
+};
+
+/// Precomputes the arc of a → b (unit quaternions, a·b ≥ 0: the caller chose the signs).
+template <Real T>
+FastSlerpArc<T> fast_slerp_arc(const Quat<T>& a, const Quat<T>& b) noexcept {
+  using W = detail::fast_slerp_weight_t<T>;
+  const W d = W(a.w) * W(b.w) + W(a.x) * W(b.x) + W(a.y) * W(b.y) + W(a.z) * W(b.z);
+  const W x = std::clamp(d, W(0), W(1));
+  const W h = std::sqrt(W(0.5) + W(0.5) * x);
+  return {(x - W(1)) / (W(2) * (h + W(1))), W(1) / (W(2) * h)};
+}
+
+/// fast_slerp(a, b, u) on a precomputed arc (same series, same bound fast_slerp_max_error_rad<T>).
+template <Real T>
+[[gnu::always_inline]] inline Quat<T> fast_slerp_on_arc(const Quat<T>& a, const Quat<T>& b, const FastSlerpArc<T>& arc,
+                                                        T u) noexcept {
+  using W = detail::fast_slerp_weight_t<T>;
+  constexpr int n = detail::fast_slerp_terms<T>;
+  const detail::fast_slerp_lanes<W> w =
+      detail::sin_ratio_series<W, n>(detail::fast_slerp_lanes<W>{W(2) * (W(1) - W(u)), W(2) * W(u)}, arc.y) * arc.inv;
+  const W wa = w[0], wb = w[1];
+  return {T(W(a.w) * wa + W(b.w) * wb), T(W(a.x) * wa + W(b.x) * wb), T(W(a.y) * wa + W(b.y) * wb),
+          T(W(a.z) * wa + W(b.z) * wb)};
 }
 
 }  // namespace inbetween

@@ -109,6 +109,8 @@ class QuatTrack {
   [[nodiscard]] std::span<const T> frames() const noexcept { return frames_; }
   /// Keys after normalisation and sign continuity.
   [[nodiscard]] std::span<const Quat<T>> keys() const noexcept { return keys_; }
+  /// Interpolation of the segment that starts at key i (i < size()).
+  [[nodiscard]] QuatInterpolation interpolation(std::size_t i) const noexcept { return mode_[i]; }
   /// Bézier control point after key i (a'_i of §3.3.1, scaled by the distance factor).
   [[nodiscard]] const Quat<T>& control_after(std::size_t i) const noexcept { return after_[i]; }
   /// Bézier control point before key i (b'_i).

@@ -84,6 +84,12 @@ class Track {
   [[nodiscard]] std::span<const V> in_tangents() const noexcept { return in_; }
   /// Resolved outgoing slope of each key (value per frame).
   [[nodiscard]] std::span<const V> out_tangents() const noexcept { return out_; }
+  /// True when the segment after key i holds key i's value (TangentKind::stepped); i < size().
+  [[nodiscard]] bool stepped(std::size_t i) const noexcept { return stepped_[i] != 0; }
+  /// Behaviour before the first key.
+  [[nodiscard]] TrackExtend extend_before() const noexcept { return before_; }
+  /// Behaviour after the last key.
+  [[nodiscard]] TrackExtend extend_after() const noexcept { return after_; }
 
   /// Value at `frame`; outside the keys the extend modes apply.  NaN gives the first value; ±inf
   /// acts as the largest finite frame of that sign.
