@@ -8,7 +8,7 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 # independent references (rotation conventions, least squares, the scene JSON Schema) that tests use
 # through /usr/bin/python3; those tests skip when they are absent.
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
-        nlohmann-json3-dev libeigen3-dev python3 python3-scipy python3-jsonschema
+        nlohmann-json3-dev libtinygltf-dev libeigen3-dev python3 python3-scipy python3-jsonschema
 
 .PHONY: all deps configure build test demo bench asan clean
 

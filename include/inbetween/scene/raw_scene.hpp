@@ -37,13 +37,14 @@ struct RawScalarTrack {
 
 /// The component count and column letters of a vector track.
 enum class VectorKind : std::uint8_t {
+  vec1,   ///< one column named <name> itself (a double-precision Hermite scalar, e.g. glTF morph weights)
   vec2,   ///< columns <name>.x .y
   vec3,   ///< columns <name>.x .y .z
   vec4,   ///< columns <name>.x .y .z .w
   color,  ///< columns <name>.r .g .b .a
 };
 
-/// A vector or colour track (file kinds "vec2", "vec3", "vec4", "color").  Values are held as
+/// A vector or colour track (file kinds "vec1", "vec2", "vec3", "vec4", "color").  Values are held as
 /// Vec4d; components beyond the kind's count are zero (and ignored).
 struct RawVectorTrack {
   std::string name;                          ///< column prefix, e.g. "cube.color" (non-empty)
