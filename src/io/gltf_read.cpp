@@ -33,6 +33,9 @@ namespace tg = tinygltf;
 // bounded by any buffer, so it is bounded here (16 Mi elements) to keep a hostile count from
 // allocating without limit.
 constexpr std::size_t kMaxUnbackedElements = std::size_t(1) << 24;
+// Weights columns (nodes × their mesh's morph targets): many nodes sharing a mesh with many targets
+// would multiply two small numbers of the file into an unbounded number of tracks.
+constexpr std::size_t kMaxWeightColumns = std::size_t(1) << 20;
 
 Error error_at(ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
   Error e{code, std::move(message), ""};
@@ -665,6 +668,16 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
     if (start <= end) scene.range = {start, end};
   }
 
+  std::size_t weight_columns = 0;
+  for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+    weight_columns += morph_targets(model, model.nodes[i]);
+    if (weight_columns > kMaxWeightColumns) {
+      return error_at(ErrorCode::Unsupported,
+                      "node " + std::to_string(i) + ": more than " + std::to_string(kMaxWeightColumns) +
+                          " morph weight columns in the file (nodes × morph targets)",
+                      {"nodes", i, "mesh"});
+    }
+  }
   for (std::size_t i = 0; i < model.nodes.size(); ++i) {
     const tg::Node& node = model.nodes[i];
     auto rest = rest_pose(node, i);
