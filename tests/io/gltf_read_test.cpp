@@ -542,6 +542,10 @@ TEST(GltfMalformed, MoreFaultsNamedByIndex) {
       {"duplicate target", [](GltfBuilder& g) { g.doc["animations"][0]["channels"].push_back(g.doc["animations"][0]["channels"][0]); }, "/animations/0/channels/1/target"},
       {"two parents", [](GltfBuilder& g) { g.add_node({{"children", {0}}}); g.add_node({{"children", {0}}}); }, "/nodes/2/children/0"},
       {"cycle", [](GltfBuilder& g) { g.doc["nodes"][0]["children"] = {1}; g.add_node({{"children", {0}}}, false); }, "/nodes/0/children"},
+      {"too many weights columns (15 nodes × 1100 morph targets > 2^14)", [](GltfBuilder& g) {
+         const int mesh = g.add_morph_mesh(1100);
+         for (int i = 0; i < 15; ++i) g.add_node({{"mesh", mesh}});
+       }, "/nodes/15/mesh"},
       {"zero quaternion", [](GltfBuilder& g) { g.doc["nodes"][0]["rotation"] = {0, 0, 0, 0}; }, "/nodes/0/rotation"},
       {"sparse index out of range", [](GltfBuilder& g) {
          const int v = g.add_view(std::vector<std::uint8_t>{7, 0, 0, 0}.data(), 4);
