@@ -14,7 +14,7 @@
 namespace inbetween {
 namespace {
 
-using json = nlohmann::json;
+using json = nlohmann::ordered_json;  // members in the order written: "inbetween" first, then "fps" …
 
 // The enumeration names of the format, by enumerator position (as the reader's tables).
 constexpr std::string_view kTangents[] = {"hermite", "catmull_rom", "kochanek_bartels", "flat",
@@ -226,6 +226,53 @@ class Writer {
   }
 };
 
+// Indented JSON in which every array or object that fits in kOneLine characters stays on one line
+// (a key, a vector, a constant channel), so a scene with thousands of keys reads as one key a line.
+constexpr std::size_t kOneLine = 100;
+
+std::string scalar_text(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+// One line with a space after each ':' and ',': {"frame": 0, "value": [1, 2, 3]}.
+std::string one_line(const json& j) {
+  if (!j.is_structured()) return scalar_text(j);
+  std::string out = j.is_object() ? "{" : "[";
+  bool first = true;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    out += first ? "" : ", ";
+    first = false;
+    if (j.is_object()) out += scalar_text(json(it.key())) + ": ";
+    out += one_line(it.value());
+  }
+  return out + (j.is_object() ? "}" : "]");
+}
+
+void pretty(const json& j, int indent, int depth, std::string& out) {
+  std::string flat = one_line(j);
+  if (!j.is_structured() || j.empty() || flat.size() <= kOneLine) {
+    out += flat;
+    return;
+  }
+  const std::string pad(std::size_t(indent * (depth + 1)), ' '), end_pad(std::size_t(indent * depth), ' ');
+  out += j.is_object() ? "{\n" : "[\n";
+  bool first = true;
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      out += first ? "" : ",\n";
+      first = false;
+      out += pad + scalar_text(json(it.key())) + ": ";
+      pretty(it.value(), indent, depth + 1, out);
+    }
+  } else {
+    for (const json& item : j) {
+      out += first ? "" : ",\n";
+      first = false;
+      out += pad;
+      pretty(item, indent, depth + 1, out);
+    }
+  }
+  out += "\n" + end_pad + (j.is_object() ? "}" : "]");
+}
+
 }  // namespace
 
 Expected<std::string> write_scene_json(const RawScene& scene, const SceneWriteOptions& options) {
@@ -246,8 +293,11 @@ Expected<std::string> write_scene_json(const RawScene& scene, const SceneWriteOp
     root["objects"] = std::move(objects);
   }
   if (w.failure) return *w.failure;
-  // Names are arbitrary bytes in a RawScene: replace invalid UTF-8 rather than throw.
-  return root.dump(options.indent, ' ', false, json::error_handler_t::replace) + "\n";
+  // Names are arbitrary bytes in a RawScene: invalid UTF-8 is replaced rather than thrown on.
+  if (options.indent < 0) return root.dump(-1, ' ', false, json::error_handler_t::replace) + "\n";
+  std::string out;
+  pretty(root, options.indent, 0, out);
+  return out + "\n";
 }
 
 }  // namespace inbetween

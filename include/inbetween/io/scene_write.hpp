@@ -17,7 +17,8 @@ namespace inbetween {
 
 /// Options of write_scene_json().
 struct SceneWriteOptions {
-  /// Spaces of indentation per level (nlohmann::json::dump); negative for a single line.
+  /// Spaces of indentation per level; an array or object whose text fits in 100 characters (a
+  /// key, a vector) stays on one line.  Negative: the whole document on one line.
   int indent = 2;
 };
 
