@@ -23,8 +23,8 @@ constexpr std::string_view kExtend[] = {"constant", "linear", "cycle", "cycle_of
 constexpr std::string_view kQuatInterp[] = {"step", "slerp", "bezier", "squad", "gltf_cubic"};
 constexpr std::string_view kUnits[] = {"rad", "deg"};
 constexpr std::string_view kEulerModes[] = {"angles", "quaternion"};
-constexpr std::string_view kVectorKinds[] = {"vec1", "vec2", "vec3", "vec4", "color"};
-constexpr int kVectorDims[] = {1, 2, 3, 4, 4};
+constexpr std::string_view kVectorKinds[] = {"vec2", "vec3", "vec4", "color", "vec1"};  // VectorKind order
+constexpr int kVectorDims[] = {2, 3, 4, 4, 1};
 
 template <class Enum, std::size_t N>
 std::string name_of(Enum v, const std::string_view (&names)[N]) {

@@ -37,11 +37,11 @@ struct RawScalarTrack {
 
 /// The component count and column letters of a vector track.
 enum class VectorKind : std::uint8_t {
-  vec1,   ///< one column named <name> itself (a double-precision Hermite scalar, e.g. glTF morph weights)
   vec2,   ///< columns <name>.x .y
   vec3,   ///< columns <name>.x .y .z
   vec4,   ///< columns <name>.x .y .z .w
   color,  ///< columns <name>.r .g .b .a
+  vec1,   ///< one column named <name> itself (a double-precision Hermite scalar, e.g. glTF morph weights)
 };
 
 /// A vector or colour track (file kinds "vec1", "vec2", "vec3", "vec4", "color").  Values are held as
