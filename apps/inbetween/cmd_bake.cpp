@@ -1,5 +1,6 @@
-// `inbetween bake SCENE`: evaluates every track of a scene file at every frame of a range and
-// writes a CSV or JSON table.  Rows are written as they are computed (frame i is a + i·step, made
+// `inbetween bake SCENE|MODEL.gltf|MODEL.glb`: evaluates every track of a scene file (or every
+// node of a glTF animation, read into the same scene by inbetween/io/gltf.hpp) at every frame of a
+// range and writes a CSV or JSON table.  Rows are written as they are computed (frame i is a + i·step, made
 // on the fly), so memory does not grow with the frame count; to a file through a temporary that is
 // renamed at the end (an error leaves nothing), to standard output directly.  Parsing lives in the
 // library (inbetween/io/scene.hpp reads, inbetween/scene/scene.hpp builds and samples); this file
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "gltf_input.hpp"
 #include "inbetween/io/scene.hpp"
 #include "output.hpp"
 #include "progress.hpp"
@@ -95,6 +97,7 @@ void append_number(std::string& line, T v) {
 
 struct BakeOptions {
   std::string scene_path;
+  std::string animation;
   std::string frames;
   double fps = 0;
   std::string format = "csv";
@@ -103,12 +106,18 @@ struct BakeOptions {
 };
 
 void run_bake(const BakeOptions& opt) {
-  const std::string text = read_input(opt.scene_path);
-  auto scene = parse_scene(text);
-  if (!scene) throw CommandError{opt.scene_path + ": " + scene.error().describe()};
-  const double fps = opt.fps > 0 ? opt.fps : scene->fps();
-  const std::span<const SceneColumn> columns = scene->columns();
-  const FrameRange frames = frame_range(opt.frames, scene->range_start(), scene->range_end());
+  // A glTF file's keys are in seconds: --fps (default 24) sets frame = time · fps, and the scene
+  // read from it carries that fps.  A scene file's --fps only relabels the time column.
+  const bool gltf = is_gltf_input(opt.scene_path);
+  if (!gltf && !opt.animation.empty()) throw CommandError{"--animation: only for glTF input (.gltf, .glb)"};
+  auto scene = gltf ? load_gltf_scene(opt.scene_path, opt.animation, opt.fps) : [&] {
+    auto parsed = parse_scene(read_input(opt.scene_path));
+    if (!parsed) throw CommandError{opt.scene_path + ": " + parsed.error().describe()};
+    return std::move(*parsed);
+  }();
+  const double fps = opt.fps > 0 ? opt.fps : scene.fps();
+  const std::span<const SceneColumn> columns = scene.columns();
+  const FrameRange frames = frame_range(opt.frames, scene.range_start(), scene.range_end());
   std::vector<double> row(columns.size());
 
   // Finite keys can still give values beyond the number type (linear extrapolation to frame 1e300,
@@ -117,7 +126,7 @@ void run_bake(const BakeOptions& opt) {
     if (!std::isfinite(f / fps)) {
       throw CommandError{"frame " + format_number(f) + ": time = frame / fps " + format_number(fps) + " overflows"};
     }
-    scene->sample(f, row);
+    scene.sample(f, row);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
       if (!std::isfinite(v)) {
@@ -176,9 +185,12 @@ void run_bake(const BakeOptions& opt) {
 const RegisterCommand kBake{{"bake", 40, [](CLI::App& root) {
   auto opt = std::make_shared<BakeOptions>();
   auto* cmd = root.add_subcommand("bake", "Evaluate every track of a scene file at every frame (CSV or JSON)");
-  cmd->add_option("scene", opt->scene_path, "Scene file (docs/scene-format.md); - for standard input")->required();
-  cmd->add_option("--frames", opt->frames, "A:B[:STEP] frames to evaluate (default: the scene's range, step 1)");
-  cmd->add_option("--fps", opt->fps, "Frames per second for the time column (default: the scene's fps)")
+  cmd->add_option("scene", opt->scene_path,
+                  "Scene file (docs/scene-format.md; - for standard input) or glTF 2.0 file (.gltf, .glb; docs/gltf.md)")
+      ->required();
+  cmd->add_option("--animation", opt->animation, "glTF input: the animation's NAME or INDEX (default: the first)");
+  cmd->add_option("--frames", opt->frames, "A:B[:STEP] frames to evaluate (default: the scene's range, step 1; glTF: the animation's time range × fps)");
+  cmd->add_option("--fps", opt->fps, "Frames per second: of the time column (default: the scene's fps); glTF input: frame = time · fps (default 24)")
       ->check(CLI::Validator(
           [](std::string& text) -> std::string {
             // CLI::PositiveNumber lets "nan" through (then silently ignored) and prints a 300-digit bound.

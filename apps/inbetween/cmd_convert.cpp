@@ -1,21 +1,29 @@
-// `inbetween convert SCENE.json OUT.gltf|OUT.glb [--tolerance T] [--reduce TOL] [--substeps N]`:
-// exports a scene as glTF 2.0 (io/gltf_write.hpp) and prints which channels kept their keys and
-// which were refitted (why, keys before/after, measured max error).  glTF input (convert
-// MODEL.glb OUT.json, --reduce on a .glb) belongs to the glTF reader.
+// `inbetween convert IN OUT`: between file formats, told apart by extension.
+//   - glTF (.gltf, .glb) → scene file (.json): the same animation as keyframes (inbetween/io/gltf.hpp
+//     reads, inbetween/io/scene_write.hpp writes), so that `bake OUT.json` equals `bake IN.glb`;
+//   - scene file or glTF → glTF (.gltf, .glb): exported by io/gltf_write.hpp, keys kept where glTF
+//     holds them exactly and refitted otherwise (or every channel with --reduce), with a report of
+//     each channel (why, keys before/after, measured max error) on standard error.
+// The output is written whole or not at all.
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "command.hpp"
+#include "gltf_input.hpp"
 #include "inbetween/io/gltf_write.hpp"
 #include "inbetween/io/scene.hpp"
+#include "inbetween/io/scene_write.hpp"
 
 namespace inbetween::cli {
 namespace {
 
 struct ConvertOptions {
   std::string input, output;
+  std::string animation;  // glTF input: NAME or INDEX
+  double fps = 0;         // glTF input: frame = time · fps (0: 24)
   double tolerance = 1e-5;
   double reduce = 0;  // 0: keep keys where glTF holds them exactly
   int substeps = 4;
@@ -27,33 +35,20 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-void run_convert(const ConvertOptions& opt) {
-  const bool glb = ends_with(opt.output, ".glb"), gltf = ends_with(opt.output, ".gltf");
-  if (ends_with(opt.input, ".glb") || ends_with(opt.input, ".gltf")) {
-    throw CommandError{opt.input + ": reading glTF needs the glTF reader (convert of glTF input is not in this build)"};
-  }
-  if (!glb && !gltf) throw CommandError{opt.output + ": the output must end in .gltf or .glb"};
-  const std::string text = read_input(opt.input);
-  auto raw = read_scene_json(text);
+// The input as a raw scene: a glTF animation or a scene file.
+RawScene read_raw(const ConvertOptions& opt) {
+  if (is_gltf_input(opt.input)) return load_gltf_raw(opt.input, opt.animation, opt.fps);
+  auto raw = read_scene_json(read_input(opt.input));
   if (!raw) throw CommandError{opt.input + ": " + raw.error().describe()};
-  auto scene = build_scene(*raw);
-  if (!scene) throw CommandError{opt.input + ": " + scene.error().describe()};
-  GltfExportOptions o;
-  o.tolerance = opt.reduce > 0 ? opt.reduce : opt.tolerance;
-  o.reduce = opt.reduce > 0;
-  o.substeps = opt.substeps;
-  o.binary = glb;
-  o.cubic = !opt.no_cubic;
-  auto out = export_gltf(*raw, *scene, o);
-  if (!out) throw CommandError{opt.input + ": " + out.error().describe()};
-  write_output(opt.output, out->bytes);
-  if (opt.quiet) return;
-  for (const std::string& note : out->notes) std::cerr << "note: " << note << '\n';
-  for (const GltfChannelReport& c : out->channels) {
+  return std::move(*raw);
+}
+
+void print_report(const GltfExport& out) {
+  for (const std::string& note : out.notes) std::cerr << "note: " << note << '\n';
+  for (const GltfChannelReport& c : out.channels) {
     char line[512];
     std::snprintf(line, sizeof line, "%s.%s: %s, %zu keys -> %zu, max error %.3g%s", c.object.c_str(), c.path.c_str(),
-                  c.interpolation.c_str(), c.keys_before, c.keys_after, c.max_error,
-                  c.path == "rotation" ? " rad" : "");
+                  c.interpolation.c_str(), c.keys_before, c.keys_after, c.max_error, c.path == "rotation" ? " rad" : "");
     std::cerr << line;
     if (c.refitted) {
       std::snprintf(line, sizeof line, " (refitted: %s; tolerance %.3g)", c.reason.c_str(), c.tolerance);
@@ -65,11 +60,47 @@ void run_convert(const ConvertOptions& opt) {
   }
 }
 
+void run_convert(const ConvertOptions& opt) {
+  if (!std::isfinite(opt.fps)) throw CommandError{"--fps: not a finite positive number"};
+  const bool to_json = ends_with(opt.output, ".json");
+  const bool glb = ends_with(opt.output, ".glb"), gltf = ends_with(opt.output, ".gltf");
+  if (to_json && is_gltf_input(opt.input)) {
+    const RawScene raw = load_gltf_raw(opt.input, opt.animation, opt.fps);
+    if (auto scene = build_scene(raw); !scene) throw CommandError{opt.input + ": " + scene.error().describe()};
+    auto text = write_scene_json(raw);
+    if (!text) throw CommandError{opt.input + ": " + text.error().describe()};
+    write_output(opt.output, *text);
+    return;
+  }
+  if (!glb && !gltf) {
+    throw CommandError{"convert: " + opt.input + " → " + opt.output +
+                       " is not a supported conversion (supported: MODEL.gltf|MODEL.glb → SCENE.json, "
+                       "SCENE.json|MODEL.gltf|MODEL.glb → OUT.gltf|OUT.glb)"};
+  }
+  const RawScene raw = read_raw(opt);
+  auto scene = build_scene(raw);
+  if (!scene) throw CommandError{opt.input + ": " + scene.error().describe()};
+  GltfExportOptions o;
+  o.tolerance = opt.reduce > 0 ? opt.reduce : opt.tolerance;
+  o.reduce = opt.reduce > 0;
+  o.substeps = opt.substeps;
+  o.binary = glb;
+  o.cubic = !opt.no_cubic;
+  auto out = export_gltf(raw, *scene, o);
+  if (!out) throw CommandError{opt.input + ": " + out.error().describe()};
+  write_output(opt.output, out->bytes);
+  if (!opt.quiet) print_report(*out);
+}
+
 const RegisterCommand kConvert{{"convert", 45, [](CLI::App& root) {
   auto opt = std::make_shared<ConvertOptions>();
-  auto* cmd = root.add_subcommand("convert", "Export a scene as glTF 2.0 (.gltf or .glb), refitting what glTF cannot hold");
-  cmd->add_option("input", opt->input, "Scene file (docs/scene-format.md); - for standard input")->required();
-  cmd->add_option("output", opt->output, "Output file ending in .gltf or .glb")->required();
+  auto* cmd = root.add_subcommand("convert", "Convert between glTF 2.0 and scene files (by extension), refitting what glTF cannot hold");
+  cmd->add_option("input", opt->input, "Scene file (docs/scene-format.md; - for standard input) or glTF 2.0 (.gltf, .glb)")
+      ->required();
+  cmd->add_option("output", opt->output, "Output: .gltf or .glb (export), or .json (scene file, from glTF input)")->required();
+  cmd->add_option("--animation", opt->animation, "glTF input: the animation's NAME or INDEX (default: the first)");
+  cmd->add_option("--fps", opt->fps, "glTF input: frames per second, frame = time · fps (default 24)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--tolerance", opt->tolerance,
                   "Largest error of a refitted channel: fraction of its range (translation, scale), radians (rotation)")
       ->check(CLI::PositiveNumber);
@@ -78,7 +109,7 @@ const RegisterCommand kConvert{{"convert", 45, [](CLI::App& root) {
   cmd->add_option("--substeps", opt->substeps, "Grid points per frame where channels are sampled and checked")
       ->check(CLI::Range(1, 64));
   cmd->add_flag("--no-cubic", opt->no_cubic,
-                 "Write STEP and LINEAR samplers only (Blender 3.4's importer ignores CUBICSPLINE tangents)");
+                "Write STEP and LINEAR samplers only (Blender 3.4's importer ignores CUBICSPLINE tangents)");
   cmd->add_flag("-q,--quiet", opt->quiet, "Do not print the channel report");
   cmd->callback([opt] { run_convert(*opt); });
 }}};

@@ -363,7 +363,7 @@ Expected<RawVectorTrack> read_vector_track(const json& j, const Loc& loc, Vector
   if (!name) return name.error();
   track.name = *name;
   track.kind = kind;
-  const int dim = kind == VectorKind::vec2 ? 2 : (kind == VectorKind::vec3 ? 3 : 4);
+  const int dim = kind == VectorKind::vec1 ? 1 : kind == VectorKind::vec2 ? 2 : (kind == VectorKind::vec3 ? 3 : 4);
   if (auto ok = read_vector_keys<Vec4d>(j, loc, dim, track.keys, track.before, track.after); !ok) return ok.error();
   return track;
 }
@@ -479,6 +479,7 @@ Expected<RawTrack> read_track(const json& tj, const Loc& loc) {
     return RawTrack{std::move(*t)};
   };
   if (kind == "scalar") return wrap(read_scalar_track(tj, loc));
+  if (kind == "vec1") return wrap(read_vector_track(tj, loc, VectorKind::vec1));
   if (kind == "vec2") return wrap(read_vector_track(tj, loc, VectorKind::vec2));
   if (kind == "vec3") return wrap(read_vector_track(tj, loc, VectorKind::vec3));
   if (kind == "vec4") return wrap(read_vector_track(tj, loc, VectorKind::vec4));
@@ -487,7 +488,7 @@ Expected<RawTrack> read_track(const json& tj, const Loc& loc) {
   if (kind == "euler") return wrap(read_euler_track(tj, loc));
   return error_at(ErrorCode::InvalidArgument,
                   "unknown track kind \"" + io_detail::truncated(kind) +
-                      "\" (expected one of: scalar, vec2, vec3, vec4, color, quaternion, euler)",
+                      "\" (expected one of: scalar, vec1, vec2, vec3, vec4, color, quaternion, euler)",
                   at(loc, "kind"));
 }
 

@@ -46,6 +46,7 @@ Expected<void> check_name(const std::string& name, std::initializer_list<Locatio
 
 std::string_view vector_components(VectorKind kind) {
   switch (kind) {
+    case VectorKind::vec1: return "";
     case VectorKind::vec2: return "xy";
     case VectorKind::vec3: return "xyz";
     case VectorKind::vec4: return "xyzw";
@@ -216,14 +217,15 @@ Expected<Scene> build_scene(const RawScene& raw) {
         return error_at(ErrorCode::InvalidArgument, "duplicate track name \"" + name + "\"", {"tracks", i, "name"});
       }
     }
-    // One letter per component column; none for a scalar track.
+    // One letter per component column; none for a scalar or vec1 track (only F-curves are single precision).
     const std::string suffixes = std::visit(Overloaded{[](const SceneScalarTrack&) { return std::string(); },
                                                        [](const SceneVectorTrack& t) { return t.components; },
                                                        [](const SceneQuatTrack&) { return std::string("wxyz"); },
                                                        [](const SceneEulerTrack&) { return std::string("wxyz"); }},
                                             *track);
     if (suffixes.empty()) {
-      if (auto ok = claim(name, true, {"tracks", i, "name"}); !ok) return ok.error();
+      const bool single = std::holds_alternative<SceneScalarTrack>(*track);
+      if (auto ok = claim(name, single, {"tracks", i, "name"}); !ok) return ok.error();
     }
     for (char c : suffixes) {
       if (auto ok = claim(name + "." + c, false, {"tracks", i, "name"}); !ok) return ok.error();
@@ -288,6 +290,7 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
     std::visit(Overloaded{[&](const SceneScalarTrack& t) { *col++ = t.curve.evaluate(single_precision_frame); },
                           [&](const SceneVectorTrack& t) {
                             const Vec4d v = t.track.sample(frame);
+                            if (t.components.empty()) *col++ = v[0];  // vec1
                             for (std::size_t c = 0; c < t.components.size(); ++c) *col++ = v[int(c)];
                           },
                           [&](const SceneQuatTrack& t) { put_quat(t.track.sample(frame)); },

@@ -41,9 +41,10 @@ enum class VectorKind : std::uint8_t {
   vec3,   ///< columns <name>.x .y .z
   vec4,   ///< columns <name>.x .y .z .w
   color,  ///< columns <name>.r .g .b .a
+  vec1,   ///< one column named <name> itself (a double-precision Hermite scalar, e.g. glTF morph weights)
 };
 
-/// A vector or colour track (file kinds "vec2", "vec3", "vec4", "color").  Values are held as
+/// A vector or colour track (file kinds "vec1", "vec2", "vec3", "vec4", "color").  Values are held as
 /// Vec4d; components beyond the kind's count are zero (and ignored).
 struct RawVectorTrack {
   std::string name;                          ///< column prefix, e.g. "cube.color" (non-empty)

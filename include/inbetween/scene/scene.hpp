@@ -33,10 +33,11 @@ struct SceneScalarTrack {
   FCurve curve;      ///< the built curve
 };
 
-/// A built vector or colour track: columns <name>.<letter> for each letter of `components`.
+/// A built vector or colour track: columns <name>.<letter> for each letter of `components`;
+/// one column <name> for a vec1 track (empty `components`).
 struct SceneVectorTrack {
   std::string name;        ///< column prefix
-  std::string components;  ///< column letters: "xy", "xyz", "xyzw" or "rgba" (2 to 4 components)
+  std::string components;  ///< column letters: "" (vec1), "xy", "xyz", "xyzw" or "rgba"
   Track<Vec4d> track;      ///< the built track (components beyond the count are zero)
 };
 

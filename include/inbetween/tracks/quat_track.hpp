@@ -161,6 +161,7 @@ class QuatTrack {
   std::vector<T> frames_;
   std::vector<Quat<T>> keys_, after_, before_, squad_, tin_, tout_;
   std::vector<T> sign_;  // ±1 applied to each authored key (and its tangents) for continuity
+  std::vector<T> length_;  // |authored key|: glTF cubic segments use the key as authored, not normalised
   std::vector<QuatInterpolation> mode_;
 };
 
@@ -200,6 +201,7 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const 
   tr.tin_.resize(n);
   tr.tout_.resize(n);
   tr.sign_.resize(n);
+  tr.length_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& k = keys[i];
     if (!std::isfinite(k.frame)) return fail(ErrorCode::NotFinite, "frame is not finite", {"keys", i, "frame"});
@@ -225,6 +227,7 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const 
     tr.tin_[i] = k.in_tangent * sign;
     tr.tout_[i] = k.out_tangent * sign;
     tr.sign_[i] = sign;
+    tr.length_[i] = len;
     tr.mode_[i] = k.interpolation;
   }
   // Bézier control points (§3.3.1): a_i = bisect(double(q_{i−1}, q_i), q_{i+1}), b_i = double(a_i, q_i);
@@ -292,10 +295,12 @@ Quat<T> QuatTrack<T>::sample(T frame, TrackCursor& cursor, bool use_cursor) cons
       return slerp_unit(slerp_unit(keys_[i], keys_[i + 1], u), slerp_unit(squad_[i], squad_[i + 1], u),
                         T(2) * u * (T(1) - u));
     case QuatInterpolation::gltf_cubic: {
-      // In the authored signs (undo the continuity flip of each end together with its tangent).
+      // The keys as authored (undo the continuity flip of each end together with its tangent, and
+      // the normalisation: the glTF specification normalises only the result).
       const T u2 = u * u, u3 = u2 * u;
-      const Quat<T> start = (keys_[i] * (T(2) * u3 - T(3) * u2 + T(1)) + tout_[i] * ((u3 - T(2) * u2 + u) * h)) * sign_[i];
-      const Quat<T> end = (keys_[i + 1] * (T(-2) * u3 + T(3) * u2) + tin_[i + 1] * ((u3 - u2) * h)) * sign_[i + 1];
+      const Quat<T> start =
+          (keys_[i] * ((T(2) * u3 - T(3) * u2 + T(1)) * length_[i]) + tout_[i] * ((u3 - T(2) * u2 + u) * h)) * sign_[i];
+      const Quat<T> end = (keys_[i + 1] * ((T(-2) * u3 + T(3) * u2) * length_[i + 1]) + tin_[i + 1] * ((u3 - u2) * h)) * sign_[i + 1];
       return normalized(start + end);
     }
   }
