@@ -104,12 +104,14 @@ struct BakeOptions {
 
 void run_bake(const BakeOptions& opt) {
   const std::string text = read_input(opt.scene_path);
-  auto scene = parse_scene(text);
+  auto scene = parse_scene(text, opt.scene_path);  // curve files relative to the scene's folder
   if (!scene) throw CommandError{opt.scene_path + ": " + scene.error().describe()};
   const double fps = opt.fps > 0 ? opt.fps : scene->fps();
   const std::span<const SceneColumn> columns = scene->columns();
   const FrameRange frames = frame_range(opt.frames, scene->range_start(), scene->range_end());
   std::vector<double> row(columns.size());
+  // Frames in sequence: rotations of path objects and cameras sign-continuous (SceneCursor).
+  SceneCursor cursor(*scene);
 
   // Finite keys can still give values beyond the number type (linear extrapolation to frame 1e300,
   // a tiny fps): name the frame and column instead of writing inf.
@@ -117,7 +119,7 @@ void run_bake(const BakeOptions& opt) {
     if (!std::isfinite(f / fps)) {
       throw CommandError{"frame " + format_number(f) + ": time = frame / fps " + format_number(fps) + " overflows"};
     }
-    scene->sample(f, row);
+    scene->sample(f, row, cursor);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
       if (!std::isfinite(v)) {
