@@ -53,6 +53,18 @@ TEST(BakeV2Cli, Frame22RunsFromAnotherDirectoryWithItsDefaultRange) {
   EXPECT_NE(r.out.find("\"hold_cam.target.z\""), std::string::npos);
 }
 
+// The demo runs the same scene (built into the tool) and prints the key frames: at rest on 22, 67, 80.
+TEST(BakeV2Cli, DemoPrintsTheFrame22Scene) {
+  const auto r = run_cli("demo");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto at = r.out.find("== scene: the frame-22 scenario ==");
+  ASSERT_NE(at, std::string::npos);
+  const std::string section = r.out.substr(at);
+  EXPECT_NE(section.find("     22   (-5.000, 0.000, 0.000)       0.000    0.000"), std::string::npos) << section;
+  EXPECT_NE(section.find("     67   (5.000, 0.000, 0.000)"), std::string::npos) << section;
+  EXPECT_NE(section.find("     80   (5.000, 10.000, 0.000)"), std::string::npos) << section;
+}
+
 struct BadScene {
   const char* name;
   std::string scene;
