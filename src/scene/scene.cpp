@@ -376,6 +376,15 @@ Expected<Scene> build_scene(const RawScene& raw) {
         auto built = build_path_motion(motion, raw.fps);
         if (!built) {
           Error e = built.error();
+          const std::vector<LocationStep> track_keys{"speed", "track", "keys"};
+          if (leg.speed.kind == SpeedKind::track && e.location.size() > 3 &&
+              std::equal(track_keys.begin(), track_keys.end(), e.location.begin())) {
+            // A key of the named distance track: its place is the track's own key in /tracks.
+            e.location.erase(e.location.begin(), e.location.begin() + 2);
+            e.location.insert(e.location.begin(), {LocationStep{"tracks"}, LocationStep{scalar_tracks.at(leg.speed_track).first}});
+            e.message += " (the distance track of " + json_pointer(at) + ")";
+            return e;
+          }
           e.location.insert(e.location.begin(), at.begin(), at.end());
           return e;
         }

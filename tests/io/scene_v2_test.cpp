@@ -203,5 +203,31 @@ TEST(SceneV2, InlineCurveErrorsNameTheirPlace) {
   EXPECT_EQ(r.error().where, "/objects/0/path/curve/points");
 }
 
+
+// A scalar track of the scene drives the distance (so a graph editor can); a track key beyond the
+// path's length is reported at the track's own key.
+TEST(SceneV2, TrackSpeedReadsTheNamedScalarTrack) {
+  const auto text = [](double last) {
+    return R"({"inbetween": 2, "tracks": [{"name": "d", "keys": [{"frame": 0, "value": 0, "interpolation": "linear"},
+                                                                 {"frame": 10, "value": )" +
+           std::to_string(last) + R"(, "interpolation": "linear"}]}],
+      "objects": [{"name": "o", "path": {"curve": {"type": "bezier", "points": [[0, 0, 0], [3, 0, 0]]},
+                                         "speed": {"kind": "track", "track": "d"}}}]})";
+  };
+  auto scene = parse(text(2));
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  std::vector<double> row(scene->columns().size());
+  scene->sample(5, row);
+  // Column 0 is the track (single precision, exact for 1), then o's TRS, distance, speed.
+  EXPECT_EQ(row[0], 1.0);
+  EXPECT_NEAR(row[1 + 10], 1.0, 1e-6);     // distance = the track's value (float evaluation)
+  EXPECT_NEAR(row[1], 1.0, 1e-6);          // x on the straight path = distance
+  EXPECT_NEAR(row[1 + 11], 0.2 * 24, 1e-5);  // speed: slope 0.2 per frame at 24 fps
+  auto bad = parse(text(5));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/tracks/0/keys/1");
+  EXPECT_NE(bad.error().message.find("/objects/0/path"), std::string::npos) << bad.error().message;
+}
+
 }  // namespace
 }  // namespace inbetween

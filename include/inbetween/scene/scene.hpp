@@ -106,6 +106,8 @@ class Scene {
   /// The tracks, in the RawScene's order.
   [[nodiscard]] std::span<const SceneTrack> tracks() const noexcept { return tracks_; }
   /// The objects with their parent links and local animation; empty when the scene has none.
+  /// For a path object the node's local animation holds its scale only (path_legs() has the
+  /// rest); for a camera, its translation and scale (camera() has the view).
   [[nodiscard]] std::span<const HierarchyNode<double>> objects() const noexcept {
     return objects_ ? objects_->nodes() : std::span<const HierarchyNode<double>>{};
   }
