@@ -229,5 +229,43 @@ TEST(SceneV2, TrackSpeedReadsTheNamedScalarTrack) {
   EXPECT_NE(bad.error().message.find("/objects/0/path"), std::string::npos) << bad.error().message;
 }
 
+
+// The new columns take part in the column-ownership check.
+TEST(SceneV2, PathColumnsAreOwnedLikeAnyOther) {
+  auto r = parse(R"({"inbetween": 2, "tracks": [{"name": "o.speed", "keys": [{"frame": 0, "value": 0}]}],
+    "objects": [{"name": "o", "path": {"curve": {"type": "bezier", "points": [[0, 0, 0], [1, 0, 0]]},
+                                       "speed": {"kind": "ease", "start_frame": 0, "end_frame": 1}}}]})");
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().where, "/objects/0/name");
+  EXPECT_NE(r.error().message.find("/tracks/0/name"), std::string::npos) << r.error().message;
+}
+
+// A camera on a path with its COI on a second path (at the same fraction of its length), an up
+// path and a keyed tilt: it still points at its target column (the tilt rolls about the view), and
+// the target is the second path's point.  The camera path runs along +X (length 10), the COI path
+// along +X 5 higher (length 10): at fraction f the COI is (10 f, 5, −4).
+TEST(SceneV2, CoiPathCameraWithUpPathAndKeyedTilt) {
+  auto scene = parse(R"({"inbetween": 2,
+    "tracks": [{"name": "tilt", "keys": [{"frame": 0, "value": 0, "interpolation": "linear"}, {"frame": 10, "value": 90}]}],
+    "paths": [{"name": "coi", "curve": {"type": "bezier", "points": [[0, 5, -4], [10, 5, -4]]}},
+              {"name": "sky", "curve": {"type": "bezier", "points": [[0, 20, 0], [10, 20, 0]]}}],
+    "objects": [{"name": "cam", "path": {"curve": {"type": "bezier", "points": [[0, 0, 0], [10, 0, 0]]},
+                                         "speed": {"kind": "ease", "start_frame": 0, "end_frame": 10}},
+                 "camera": {"coi_path": "coi", "up_path": "sky", "tilt_track": "tilt"}}]})");
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  std::vector<double> row(scene->columns().size());
+  for (double f : {0.0, 2.5, 7.0, 10.0}) {
+    scene->sample(f, row);
+    // Columns: tilt, then cam's TRS (1 … 10), distance, speed, target.
+    EXPECT_NEAR(row[13], f, 1e-9);
+    EXPECT_NEAR(row[14], 5, 1e-12);
+    EXPECT_NEAR(row[15], -4, 1e-12);
+    const Quatd q = Quatd::from_wxyz(row[4], row[5], row[6], row[7]);
+    const Vec3d view = rotate(q, Vec3d{0, 0, -1});
+    const Vec3d d = Vec3d{row[13], row[14], row[15]} - Vec3d{row[1], row[2], row[3]};
+    EXPECT_LE(std::atan2(norm(cross(view, d)), dot(view, d)), 1e-9) << "frame " << f;
+  }
+}
+
 }  // namespace
 }  // namespace inbetween
