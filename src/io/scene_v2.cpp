@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 #include <string>
 #include <utility>
 #include <variant>
@@ -82,6 +83,10 @@ Expected<const json*> object_array(const json& obj, const Loc& loc, std::string_
 // in the included file after its name: "climb.json:/points/3: expected 3 numbers".
 Expected<AnyCurve> read_curve_file(const std::string& file, const Loc& loc, const Context& cx) {
   const std::filesystem::path resolved = cx.base_dir / std::filesystem::path(file);
+  std::error_code ec;
+  if (std::filesystem::is_directory(resolved, ec)) {
+    return error_at(ErrorCode::Io, "\"" + resolved.string() + "\" is a directory, not a curve file", loc);
+  }
   std::ifstream in(resolved, std::ios::binary);
   if (!in) {
     const int err = errno;

@@ -416,10 +416,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
         }
         // Where each target name is first written in the camera object.
         auto target_member = [&](const std::string& name) -> std::vector<LocationStep> {
-          if (const auto* look = std::get_if<RawLookAt<double>>(&rc.coi)) {
-            (void)look;
-            return {"objects", i, "camera", "look_at"};
-          }
+          if (std::holds_alternative<RawLookAt<double>>(rc.coi)) return {"objects", i, "camera", "look_at"};
           if (const auto* hold = std::get_if<RawHoldThenMove<double>>(&rc.coi)) {
             for (std::size_t h = 0; h < hold->segments.size(); ++h) {
               const auto* t = std::get_if<std::string>(&hold->segments[h].target);
