@@ -111,7 +111,7 @@ void run_bake(const BakeOptions& opt) {
   const bool gltf = is_gltf_input(opt.scene_path);
   if (!gltf && !opt.animation.empty()) throw CommandError{"--animation: only for glTF input (.gltf, .glb)"};
   auto scene = gltf ? load_gltf_scene(opt.scene_path, opt.animation, opt.fps) : [&] {
-    auto parsed = parse_scene(read_input(opt.scene_path));
+    auto parsed = parse_scene(read_input(opt.scene_path), opt.scene_path);  // curve files relative to the scene's folder
     if (!parsed) throw CommandError{opt.scene_path + ": " + parsed.error().describe()};
     return std::move(*parsed);
   }();
@@ -119,6 +119,8 @@ void run_bake(const BakeOptions& opt) {
   const std::span<const SceneColumn> columns = scene.columns();
   const FrameRange frames = frame_range(opt.frames, scene.range_start(), scene.range_end());
   std::vector<double> row(columns.size());
+  // Frames in sequence: rotations of path objects and cameras sign-continuous (SceneCursor).
+  SceneCursor cursor(scene);
 
   // Finite keys can still give values beyond the number type (linear extrapolation to frame 1e300,
   // a tiny fps): name the frame and column instead of writing inf.
@@ -126,7 +128,7 @@ void run_bake(const BakeOptions& opt) {
     if (!std::isfinite(f / fps)) {
       throw CommandError{"frame " + format_number(f) + ": time = frame / fps " + format_number(fps) + " overflows"};
     }
-    scene.sample(f, row);
+    scene.sample(f, row, cursor);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
       if (!std::isfinite(v)) {

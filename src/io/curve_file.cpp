@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "curve_value.hpp"
 #include "json_text.hpp"
 
 #include <algorithm>
@@ -23,10 +24,10 @@ std::string located(const std::string& source, const std::string& pointer) {
 using Loc = std::vector<LocationStep>;
 
 struct Reader {
-  std::string source;
-  // The error at `loc` (structured while descending, rendered once by json_pointer()).
+  // The error at `loc`, structured (relative to the curve object); parse_curve_json() renders it
+  // once with json_pointer(), a scene file prepends the curve's own place.
   Error fail(const Loc& loc, std::string message, ErrorCode code = ErrorCode::Parse) const {
-    return Error{code, std::move(message), located(source, json_pointer(loc))};
+    return Error{code, std::move(message), "", loc};
   }
 };
 
@@ -112,9 +113,7 @@ Expected<std::optional<double>> read_optional_number(const Reader& r, const json
 
 // A builder's error location names the builder's inputs by the curve file's member names
 // ({"points", 3}, {"knots"}, {"alpha"}), so it is the JSON pointer of the offending value as it is.
-Error relocate(const Reader& r, const Error& e) {
-  return Error{e.code, e.message, located(r.source, json_pointer(e.location))};
-}
+Error relocate(const Reader&, const Error& e) { return e; }
 
 template <class C>
 Expected<AnyCurve> wrap(const Reader& r, CurveKind kind, int dim, Expected<C> built) {
@@ -143,25 +142,36 @@ Expected<std::vector<double>> read_tcb(const Reader& r, const json& doc, std::st
 }  // namespace
 
 Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view source_name) {
-  const Reader r{std::string(source_name)};
+  const std::string source(source_name);
   io_detail::JsonText parsed = io_detail::parse_json_text(text);
   switch (parsed.failure) {
     case io_detail::JsonFailure::none:
       break;
     case io_detail::JsonFailure::syntax:
-      return Error{ErrorCode::Parse, "invalid JSON: " + parsed.detail, r.source};
+      return Error{ErrorCode::Parse, "invalid JSON: " + parsed.detail, source};
     case io_detail::JsonFailure::number_out_of_range:
       return Error{ErrorCode::Parse,
                    "invalid JSON: the number " + parsed.detail + " at line " + std::to_string(parsed.line) + ", column " +
                        std::to_string(parsed.column) + " is beyond double precision's range",
-                   r.source};
+                   source};
     case io_detail::JsonFailure::too_deep:
       return Error{ErrorCode::Parse,
                    "invalid JSON: " + parsed.detail + " at line " + std::to_string(parsed.line) + ", column " +
                        std::to_string(parsed.column),
-                   r.source};
+                   source};
   }
-  const json& doc = parsed.value;
+  auto curve = io_detail::read_curve_value(parsed.value);
+  if (curve) return curve;
+  // The structured place rendered once: "path.json:/points/3".
+  Error e = curve.error();
+  e.where = located(source, json_pointer(e.location));
+  e.location.clear();
+  return e;
+}
+
+Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
+  const Reader r{};
+  const json& doc = value;
   if (!doc.is_object()) return r.fail({}, "expected a JSON object with a \"type\" field");
   if (doc.contains("version")) {
     const json& v = doc["version"];

@@ -280,10 +280,10 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
       return {};
     };
 
-    if (auto ok = vec3_channel("translation", node.local.translation, ro.translation); !ok) return ok.error();
+    if (auto ok = vec3_channel("translation", node.local.translation, ro.translation.value_or(std::variant<Vec3d, RawVec3Channel>{Vec3d{}})); !ok) return ok.error();
     if (node.local.rotation) {
       const QuatTrack<double>& track = *node.local.rotation;
-      const auto& rc = std::get<RawQuatKeys>(ro.rotation);
+      const auto& rc = std::get<RawQuatKeys>(*ro.rotation);
       GltfChannelReport rep{node.name, "rotation", "", false, "", rc.keys.size(), 0, 0, 0};
       std::vector<Quatd> samples;
       samples.reserve(grid.size());

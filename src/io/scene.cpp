@@ -1,5 +1,6 @@
-// Reads the inbetween scene JSON format (docs/scene-format.md) into a RawScene.  nlohmann_json
-// stays inside src/io.  The reader checks shape only (syntax, member types, unknown members, names
+// Reads the inbetween scene JSON format (docs/scene-format.md) into a RawScene: the document,
+// tracks and version-1 objects here, version-2 members in scene_v2.cpp, shared helpers in
+// scene_json.hpp.  nlohmann_json stays inside src/io.  The reader checks shape only (syntax, member types, unknown members, names
 // of enumerations, the version); build_scene() does every other check.  Errors carry the JSON
 // pointer as structured location steps; parse_scene() renders it once.
 #include "inbetween/io/scene.hpp"
@@ -7,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <initializer_list>
 #include <limits>
 #include <optional>
@@ -16,183 +18,13 @@
 #include <utility>
 #include <vector>
 
-#include "json_text.hpp"
+#include "scene_json.hpp"
 
 namespace inbetween {
 
 namespace {
 
-using nlohmann::json;
-using Loc = std::vector<LocationStep>;
-
-// The location one step further in.
-Loc at(const Loc& loc, LocationStep step) {
-  Loc out = loc;
-  out.push_back(std::move(step));
-  return out;
-}
-
-std::string type_name(const json& j) { return j.type_name(); }
-
-Error error_at(ErrorCode code, std::string message, Loc loc) { return Error{code, std::move(message), "", std::move(loc)}; }
-
-std::string name_list(std::span<const std::string_view> names) {
-  std::string list;
-  for (std::string_view a : names) list += (list.empty() ? "" : ", ") + std::string(a);
-  return list;
-}
-std::string name_list(std::initializer_list<std::string_view> names) {
-  return name_list(std::span<const std::string_view>(names.begin(), names.size()));
-}
-
-// Rejects members not in `allowed` (catches misspelt field names).
-Expected<void> only_members(const json& obj, const Loc& loc, std::initializer_list<std::string_view> allowed) {
-  for (auto it = obj.begin(); it != obj.end(); ++it) {
-    bool known = false;
-    for (std::string_view a : allowed) known = known || (it.key() == a);
-    if (!known) {
-      return error_at(ErrorCode::InvalidArgument,
-                      "unknown member \"" + io_detail::truncated(it.key()) + "\" (expected one of: " + name_list(allowed) + ")",
-                      at(loc, it.key()));
-    }
-  }
-  return {};
-}
-
-// A number (finite: the bounded JSON reader refuses numbers beyond double's range; whether a value
-// must be finite is build_scene()'s check).
-Expected<double> get_number(const json& j, const Loc& loc) {
-  if (!j.is_number()) return error_at(ErrorCode::InvalidArgument, "expected a number, found " + type_name(j), loc);
-  return j.get<double>();
-}
-
-// An optional true/false member; `fallback` when absent.
-Expected<bool> bool_member(const json& obj, const Loc& loc, std::string_view name, bool fallback) {
-  auto it = obj.find(std::string(name));
-  if (it == obj.end()) return fallback;
-  if (!it->is_boolean()) return error_at(ErrorCode::InvalidArgument, "expected true or false", at(loc, std::string(name)));
-  return it->get<bool>();
-}
-
-// A number member; JSON has no NaN, but the strings "nan"/"inf" are reported as non-finite numbers
-// so that a scene written by a careless exporter gets a clear message.
-Expected<double> number_member(const json& obj, const Loc& loc, std::string_view name, std::optional<double> fallback) {
-  const Loc p = at(loc, std::string(name));
-  auto it = obj.find(std::string(name));
-  if (it == obj.end()) {
-    if (fallback) return *fallback;
-    return error_at(ErrorCode::InvalidArgument, "missing required member \"" + std::string(name) + "\"", p);
-  }
-  if (it->is_string()) {
-    const std::string& s = it->get_ref<const std::string&>();
-    if (s == "nan" || s == "NaN" || s == "inf" || s == "-inf" || s == "Infinity" || s == "-Infinity") {
-      return error_at(ErrorCode::NotFinite, "number is not finite (\"" + s + "\")", p);
-    }
-  }
-  return get_number(*it, p);
-}
-
-// An enumeration named by a string: the F-curve vocabulary (enum_from_string) …
-template <class Enum>
-Expected<Enum> enum_member(const json& obj, const Loc& loc, std::string_view name, Enum fallback,
-                           std::span<const std::string_view> names) {
-  const Loc p = at(loc, std::string(name));
-  auto it = obj.find(std::string(name));
-  if (it == obj.end()) return fallback;
-  if (!it->is_string()) return error_at(ErrorCode::InvalidArgument, "expected a string, found " + type_name(*it), p);
-  const std::string& s = it->get_ref<const std::string&>();
-  if (auto v = enum_from_string<Enum>(s)) return *v;
-  return error_at(ErrorCode::InvalidArgument,
-                  "unknown " + std::string(name) + " \"" + io_detail::truncated(s) + "\" (expected one of: " + name_list(names) + ")", p);
-}
-
-// … or by position in `names` (the other enumerations of the format).
-template <class Enum>
-Expected<Enum> name_member(const json& obj, const Loc& loc, std::string_view name, Enum fallback,
-                           std::span<const std::string_view> names) {
-  const Loc p = at(loc, std::string(name));
-  auto it = obj.find(std::string(name));
-  if (it == obj.end()) return fallback;
-  if (!it->is_string()) return error_at(ErrorCode::InvalidArgument, "expected a string, found " + type_name(*it), p);
-  const std::string& s = it->get_ref<const std::string&>();
-  std::size_t i = 0;
-  for (std::string_view n : names) {
-    if (n == s) return static_cast<Enum>(i);
-    ++i;
-  }
-  return error_at(ErrorCode::InvalidArgument,
-                  "unknown " + std::string(name) + " \"" + io_detail::truncated(s) + "\" (expected one of: " + name_list(names) + ")", p);
-}
-
-// An F-curve handle [frame, value]: absent → nullopt (the error when `required`).
-Expected<std::optional<Vec2d>> point_member(const json& obj, const Loc& loc, std::string_view name, bool required) {
-  const Loc p = at(loc, std::string(name));
-  auto it = obj.find(std::string(name));
-  if (it == obj.end()) {
-    if (!required) return std::optional<Vec2d>{};
-    return error_at(ErrorCode::InvalidArgument,
-                    "missing \"" + std::string(name) + "\" (required for free and aligned handles)", p);
-  }
-  if (!it->is_array()) return error_at(ErrorCode::WrongArity, "expected [frame, value], found " + type_name(*it), p);
-  if (it->size() != 2) {
-    return error_at(ErrorCode::WrongArity, "expected 2 numbers [frame, value], found " + std::to_string(it->size()), p);
-  }
-  auto x = get_number((*it)[0], at(p, std::size_t{0}));
-  if (!x) return x.error();
-  auto y = get_number((*it)[1], at(p, std::size_t{1}));
-  if (!y) return y.error();
-  return std::optional<Vec2d>{Vec2d{*x, *y}};
-}
-
-// An array of `dim` numbers (2 to 4) as a Vec4d, unused components zero; zero when absent and not `required`.
-Expected<Vec4d> vector_member(const json& obj, const Loc& loc, std::string_view name, int dim, bool required) {
-  const Loc p = at(loc, std::string(name));
-  auto it = obj.find(std::string(name));
-  if (it == obj.end()) {
-    if (!required) return Vec4d{};
-    return error_at(ErrorCode::InvalidArgument, "missing required member \"" + std::string(name) + "\"", p);
-  }
-  if (!it->is_array() || int(it->size()) != dim) {
-    return error_at(ErrorCode::WrongArity,
-                    "expected an array of " + std::to_string(dim) + " numbers, found " +
-                        (it->is_array() ? std::to_string(it->size()) + " elements" : type_name(*it)),
-                    p);
-  }
-  Vec4d v{};
-  for (int i = 0; i < dim; ++i) {
-    auto x = get_number((*it)[std::size_t(i)], at(p, std::size_t(i)));
-    if (!x) return x.error();
-    v[i] = *x;
-  }
-  return v;
-}
-
-Vec3d xyz(const Vec4d& v) { return {v.x, v.y, v.z}; }
-Quatd quat_from(const Vec4d& v) { return Quatd::from_wxyz(v.x, v.y, v.z, v.w); }
-
-// A track's or object's "name": present and a string (non-empty is build_scene()'s check).
-Expected<std::string> name_of(const json& j, const Loc& loc) {
-  auto it = j.find("name");
-  if (it == j.end() || !it->is_string()) {
-    return error_at(ErrorCode::InvalidArgument, "a track needs a non-empty string \"name\"", at(loc, "name"));
-  }
-  return it->get<std::string>();
-}
-
-// The "keys" array of a track object, each key checked to be an object with only `allowed` members.
-Expected<const json*> key_array(const json& j, const Loc& loc, std::initializer_list<std::string_view> allowed) {
-  const Loc kp = at(loc, "keys");
-  auto keys = j.find("keys");
-  if (keys == j.end()) return error_at(ErrorCode::InvalidArgument, "missing required member \"keys\"", kp);
-  if (!keys->is_array()) return error_at(ErrorCode::InvalidArgument, "\"keys\" must be an array", kp);
-  for (std::size_t i = 0; i < keys->size(); ++i) {
-    const json& kj = (*keys)[i];
-    const Loc p = at(kp, i);
-    if (!kj.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(kj), p);
-    if (auto ok = only_members(kj, p, allowed); !ok) return ok.error();
-  }
-  return &*keys;
-}
+using namespace io_detail;
 
 // ------------------------------------------------------------------ scalar tracks (F-curves)
 constexpr std::string_view kInterp[] = {"constant", "linear", "bezier", "back",  "bounce",
@@ -369,7 +201,7 @@ Expected<RawVectorTrack> read_vector_track(const json& j, const Loc& loc, Vector
 }
 
 // Keys and options of a quaternion track object (values and tangents as [w, x, y, z]).
-Expected<RawQuatKeys> read_quat_keys(const json& j, const Loc& loc) {
+Expected<RawQuatKeys> read_quat_keys_impl(const json& j, const Loc& loc) {
   RawQuatKeys out;
   auto k = number_member(j, loc, "distance_factor", 1.0 / 3.0);
   if (!k) return k.error();
@@ -413,7 +245,7 @@ Expected<RawQuatTrack> read_quat_track(const json& j, const Loc& loc) {
   auto name = name_of(j, loc);
   if (!name) return name.error();
   track.name = *name;
-  auto keys = read_quat_keys(j, loc);
+  auto keys = read_quat_keys_impl(j, loc);
   if (!keys) return keys.error();
   track.keys = std::move(keys->keys);
   track.distance_factor = keys->distance_factor;
@@ -513,9 +345,11 @@ Expected<void> read_vec3_channel(const json& obj, const Loc& loc, std::string_vi
   return {};
 }
 
-Expected<RawObject> read_object(const json& oj, const Loc& p) {
+Expected<RawObject> read_object(const json& oj, const Loc& p, const Context& cx) {
   if (!oj.is_object()) return error_at(ErrorCode::InvalidArgument, "an object must be a JSON object", p);
-  if (auto ok = only_members(oj, p, {"name", "parent", "translation", "rotation", "scale"}); !ok) return ok.error();
+  if (auto ok = only_members(oj, p, {"name", "parent", "translation", "rotation", "scale", "path", "camera"}); !ok) {
+    return ok.error();
+  }
   RawObject object;
   auto name = name_of(oj, p);
   if (!name) return name.error();
@@ -524,7 +358,11 @@ Expected<RawObject> read_object(const json& oj, const Loc& p) {
     if (!pj->is_string()) return error_at(ErrorCode::InvalidArgument, "\"parent\" must be an object name", at(p, "parent"));
     object.parent = pj->get<std::string>();
   }
-  if (auto ok = read_vec3_channel(oj, p, "translation", object.translation); !ok) return ok.error();
+  if (oj.contains("translation")) {
+    std::variant<Vec3d, RawVec3Channel> translation = Vec3d{};
+    if (auto ok = read_vec3_channel(oj, p, "translation", translation); !ok) return ok.error();
+    object.translation = std::move(translation);
+  }
   if (auto ok = read_vec3_channel(oj, p, "scale", object.scale); !ok) return ok.error();
   if (auto rj = oj.find("rotation"); rj != oj.end()) {
     const Loc rp = at(p, "rotation");
@@ -534,21 +372,22 @@ Expected<RawObject> read_object(const json& oj, const Loc& p) {
       object.rotation = quat_from(*v);
     } else if (rj->is_object()) {
       if (auto ok = only_members(*rj, rp, {"keys", "distance_factor", "time_aware"}); !ok) return ok.error();
-      auto q = read_quat_keys(*rj, rp);
+      auto q = read_quat_keys_impl(*rj, rp);
       if (!q) return q.error();
       object.rotation = std::move(*q);
     } else {
       return error_at(ErrorCode::InvalidArgument, "expected [w, x, y, z] or a track object", rp);
     }
   }
+  if (auto ok = read_path_and_camera(oj, p, cx, object); !ok) return ok.error();
   return object;
 }
 
 // ------------------------------------------------------------------ the document
-Expected<RawScene> read_scene(const json& root) {
+Expected<RawScene> read_scene(const json& root, Context cx) {
   const Loc doc;
   if (!root.is_object()) return error_at(ErrorCode::InvalidArgument, "a scene must be a JSON object", doc);
-  if (auto ok = only_members(root, doc, {"inbetween", "fps", "range", "tracks", "objects"}); !ok) return ok.error();
+  if (auto ok = only_members(root, doc, {"inbetween", "fps", "range", "tracks", "paths", "objects"}); !ok) return ok.error();
   RawScene scene;
   auto version = root.find("inbetween");
   if (version == root.end()) {
@@ -560,6 +399,8 @@ Expected<RawScene> read_scene(const json& root) {
                     "unsupported format version " + io_detail::short_dump(*version) + " (this reader knows 1 and 2)",
                     {"inbetween"});
   }
+  cx.version = int(version->get<long long>());
+  if (auto ok = needs_version_2(root, doc, cx, "paths"); !ok) return ok.error();
   auto fps = number_member(root, doc, "fps", 24.0);
   if (!fps) return fps.error();
   scene.fps = *fps;
@@ -581,10 +422,11 @@ Expected<RawScene> read_scene(const json& root) {
       scene.tracks.push_back(std::move(*track));
     }
   }
+  if (auto ok = read_paths(root, cx, scene); !ok) return ok.error();
   if (auto o = root.find("objects"); o != root.end()) {
     if (!o->is_array()) return error_at(ErrorCode::InvalidArgument, "\"objects\" must be an array", {"objects"});
     for (std::size_t i = 0; i < o->size(); ++i) {
-      auto object = read_object((*o)[i], {"objects", i});
+      auto object = read_object((*o)[i], {"objects", i}, cx);
       if (!object) return object.error();
       scene.objects.push_back(std::move(*object));
     }
@@ -594,12 +436,16 @@ Expected<RawScene> read_scene(const json& root) {
 
 }  // namespace
 
-Expected<RawScene> read_scene_json(std::string_view json_text) {
+Expected<RawQuatKeys> io_detail::read_quat_keys(const json& j, const Loc& loc) { return read_quat_keys_impl(j, loc); }
+
+Expected<RawScene> read_scene_json(std::string_view json_text, std::string_view source_path) {
   io_detail::JsonText parsed = io_detail::parse_json_text(json_text);
   const std::string place = "line " + std::to_string(parsed.line) + ", column " + std::to_string(parsed.column);
   switch (parsed.failure) {
     case io_detail::JsonFailure::none:
-      return read_scene(parsed.value);
+      return read_scene(parsed.value, Context{1, source_path.empty() || source_path == "-"
+                                                    ? std::filesystem::path()
+                                                    : std::filesystem::path(source_path).parent_path()});
     case io_detail::JsonFailure::syntax:
       return Error{ErrorCode::Parse, "not valid JSON", place};
     case io_detail::JsonFailure::number_out_of_range:
@@ -610,8 +456,8 @@ Expected<RawScene> read_scene_json(std::string_view json_text) {
   return Error{ErrorCode::Parse, "not valid JSON", place};
 }
 
-Expected<Scene> parse_scene(std::string_view json_text) {
-  auto raw = read_scene_json(json_text);
+Expected<Scene> parse_scene(std::string_view json_text, std::string_view source_path) {
+  auto raw = read_scene_json(json_text, source_path);
   Expected<Scene> scene = raw ? build_scene(*raw) : Expected<Scene>(raw.error());
   if (scene) return scene;
   Error e = scene.error();

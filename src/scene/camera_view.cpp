@@ -13,12 +13,17 @@ namespace inbetween {
 
 namespace {
 
-Error error_at(ErrorCode code, std::string message, std::string where) {
-  return Error{code, std::move(message), std::move(where)};
+using Loc = std::vector<LocationStep>;
+
+Error error_at(ErrorCode code, std::string message, Loc location) {
+  return Error{code, std::move(message), "", std::move(location)};
 }
 
-std::string member(const std::string& parent, const std::string& name) { return parent + "/" + name; }
-std::string member(const std::string& parent, std::size_t index) { return parent + "/" + std::to_string(index); }
+// `parent` one member or index further in.
+Loc member(Loc parent, LocationStep step) {
+  parent.push_back(std::move(step));
+  return parent;
+}
 
 }  // namespace
 
@@ -30,23 +35,23 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
     return error_at(ErrorCode::InvalidArgument,
                        "the vertical field of view must lie strictly between 0 and 180 degrees, got " +
                            shortest_text(raw.yfov_deg),
-                       "yfov_deg");
+                       Loc{"yfov_deg"});
   }
   view.yfov_rad_ = deg_to_rad(raw.yfov_deg);
   if (!std::isfinite(raw.tilt_deg)) {
-    return error_at(ErrorCode::NotFinite, "the tilt must be a finite angle in degrees", "tilt_deg");
+    return error_at(ErrorCode::NotFinite, "the tilt must be a finite angle in degrees", Loc{"tilt_deg"});
   }
   view.tilt_rad_ = deg_to_rad(raw.tilt_deg);
-  if (!is_finite(raw.up)) return error_at(ErrorCode::NotFinite, "the up vector must be finite", "up");
+  if (!is_finite(raw.up)) return error_at(ErrorCode::NotFinite, "the up vector must be finite", Loc{"up"});
   if (!(norm(raw.up) > T(0))) {
-    return error_at(ErrorCode::InvalidArgument, "the up vector must not be zero", "up");
+    return error_at(ErrorCode::InvalidArgument, "the up vector must not be zero", Loc{"up"});
   }
   view.up_ = raw.up;
   view.up_path_name_ = raw.up_path;
   view.tilt_track_name_ = raw.tilt_track;
 
   // A target: a finite point, or an object name given one slot in target_names_ (once per name).
-  auto make_target = [&view](const RawTarget<T>& raw_target, const std::string& where)
+  auto make_target = [&view](const RawTarget<T>& raw_target, const Loc& where)
       -> Expected<typename CameraView<T>::Target> {
     typename CameraView<T>::Target t;
     if (const auto* p = std::get_if<Vec3<T>>(&raw_target)) {
@@ -64,7 +69,7 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
   };
 
   if (const auto* look = std::get_if<RawLookAt<T>>(&raw.coi)) {
-    auto t = make_target(look->target, "look_at");
+    auto t = make_target(look->target, Loc{"look_at"});
     if (!t) return t.error();
     view.look_ = *t;
     view.mode_ = t->slot < 0 ? CoiMode::Point : CoiMode::Object;
@@ -72,35 +77,35 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
     if (!std::isfinite(ahead->distance) || ahead->distance < T(0)) {
       return error_at(ErrorCode::InvalidArgument,
                          "the look-ahead distance must be finite and >= 0, got " + shortest_text(ahead->distance),
-                         "ahead/distance");
+                         Loc{"ahead", "distance"});
     }
     if (ahead->count < 1) {
       return error_at(ErrorCode::InvalidArgument,
                          "the number of points averaged must be >= 1, got " + std::to_string(ahead->count),
-                         "ahead/count");
+                         Loc{"ahead", "count"});
     }
     if (!std::isfinite(ahead->spread) || ahead->spread < T(0)) {
       return error_at(ErrorCode::InvalidArgument,
-                         "the spread must be finite and >= 0, got " + shortest_text(ahead->spread), "ahead/spread");
+                         "the spread must be finite and >= 0, got " + shortest_text(ahead->spread), Loc{"ahead", "spread"});
     }
     view.mode_ = CoiMode::Ahead;
     view.ahead_distance_ = ahead->distance;
     view.ahead_count_ = ahead->count;
     view.ahead_spread_ = ahead->spread;
   } else if (const auto* path = std::get_if<RawCoiPath>(&raw.coi)) {
-    if (path->path.empty()) return error_at(ErrorCode::InvalidArgument, "the COI path name is empty", "coi_path");
+    if (path->path.empty()) return error_at(ErrorCode::InvalidArgument, "the COI path name is empty", Loc{"coi_path"});
     view.mode_ = CoiMode::Path;
     view.coi_path_name_ = path->path;
   } else {
     const auto& hold = std::get<RawHoldThenMove<T>>(raw.coi);
     if (hold.segments.empty()) {
-      return error_at(ErrorCode::TooFewPoints, "hold-then-move needs at least one segment", "hold");
+      return error_at(ErrorCode::TooFewPoints, "hold-then-move needs at least one segment", Loc{"hold"});
     }
     view.mode_ = CoiMode::HoldThenMove;
     view.segments_.reserve(hold.segments.size());
     for (std::size_t i = 0; i < hold.segments.size(); ++i) {
       const RawHoldSegment<T>& seg = hold.segments[i];
-      const std::string at = member("hold", i);
+      const Loc at = member(Loc{"hold"}, i);
       auto t = make_target(seg.target, member(at, "target"));
       if (!t) return t.error();
       if (!std::isfinite(seg.hold_until)) {

@@ -19,19 +19,27 @@ namespace {
 
 std::string num(double v) { return shortest_text<double>(v); }
 
-Error fail(ErrorCode code, std::string where, std::string message) {
-  return Error{code, std::move(message), std::move(where)};
+using Loc = std::vector<LocationStep>;
+
+Error fail(ErrorCode code, Loc location, std::string message) {
+  return Error{code, std::move(message), "", std::move(location)};
 }
 
-// An error of a timing builder ("key 3", "k1", …) placed under `prefix` ("speed/keys/3", "speed/ease/k1").
-Error place(Error e, const std::string& prefix) {
-  if (e.where.starts_with("key ")) {
-    e.where = prefix + "/" + e.where.substr(4);
-  } else if (e.where.empty()) {
-    e.where = prefix;
-  } else {
-    e.where = prefix + "/" + e.where;
+// `loc` one member or index further in.
+Loc sub(Loc loc, LocationStep step) {
+  loc.push_back(std::move(step));
+  return loc;
+}
+
+// An error of a nested builder (its location names its own inputs: {3} for the fourth key, {"k1"})
+// placed under `prefix` ({"speed", "keys"}).  A free-text `where` of a builder ("segment 1") is not
+// a member of the data; it is kept in the message.
+Error place(Error e, const Loc& prefix) {
+  if (!e.where.empty()) {
+    e.message = e.where + ": " + e.message;
+    e.where.clear();
   }
+  e.location.insert(e.location.begin(), prefix.begin(), prefix.end());
   return e;
 }
 
@@ -48,31 +56,31 @@ constexpr int kEaseCheckSamples = 4096;
 constexpr int kTrackCheckSamples = 64;
 
 Expected<PathMotion::UnitEase> make_unit_ease(const RawEase& e, double span) {
-  const std::string at = "speed/ease";
+  const Loc at = {"speed", "ease"};
   switch (e.kind) {
     case EaseKind::linear: return PathMotion::UnitEase{LinearEase<double>{}};
     case EaseKind::sine: return PathMotion::UnitEase{SineEase<double>{}};
     case EaseKind::cubic: return PathMotion::UnitEase{CubicEase<double>{}};
     case EaseKind::sine_pieces: {
-      if (!e.k1) return fail(ErrorCode::InvalidArgument, at + "/k1", "sine_pieces needs k1 (end of the acceleration)");
-      if (!e.k2) return fail(ErrorCode::InvalidArgument, at + "/k2", "sine_pieces needs k2 (start of the deceleration)");
+      if (!e.k1) return fail(ErrorCode::InvalidArgument, sub(at, "k1"), "sine_pieces needs k1 (end of the acceleration)");
+      if (!e.k2) return fail(ErrorCode::InvalidArgument, sub(at, "k2"), "sine_pieces needs k2 (start of the deceleration)");
       auto made = SineAccelDecelEase<double>::make(*e.k1, *e.k2);
       if (!made) return place(made.error(), at);
       return PathMotion::UnitEase{*made};
     }
     case EaseKind::constant_acceleration: {
-      if (e.t1 && e.accel_frames) return fail(ErrorCode::InvalidArgument, at + "/accel_frames", "give t1 or accel_frames, not both");
-      if (e.t2 && e.decel_frames) return fail(ErrorCode::InvalidArgument, at + "/decel_frames", "give t2 or decel_frames, not both");
+      if (e.t1 && e.accel_frames) return fail(ErrorCode::InvalidArgument, sub(at, "accel_frames"), "give t1 or accel_frames, not both");
+      if (e.t2 && e.decel_frames) return fail(ErrorCode::InvalidArgument, sub(at, "decel_frames"), "give t2 or decel_frames, not both");
       std::optional<double> t1 = e.t1, t2 = e.t2;
       if (e.accel_frames) {
         if (!std::isfinite(*e.accel_frames) || *e.accel_frames < 0 || *e.accel_frames > span)
-          return fail(ErrorCode::InvalidArgument, at + "/accel_frames",
+          return fail(ErrorCode::InvalidArgument, sub(at, "accel_frames"),
                       "accel_frames = " + num(*e.accel_frames) + " must lie in [0, " + num(span) + "] (the frame span)");
         t1 = *e.accel_frames / span;
       }
       if (e.decel_frames) {
         if (!std::isfinite(*e.decel_frames) || *e.decel_frames < 0 || *e.decel_frames > span)
-          return fail(ErrorCode::InvalidArgument, at + "/decel_frames",
+          return fail(ErrorCode::InvalidArgument, sub(at, "decel_frames"),
                       "decel_frames = " + num(*e.decel_frames) + " must lie in [0, " + num(span) + "] (the frame span)");
         t2 = 1.0 - *e.decel_frames / span;
       }
@@ -85,7 +93,7 @@ Expected<PathMotion::UnitEase> make_unit_ease(const RawEase& e, double span) {
         // Eq. 3.21: 1 = v0·(t2 − t1 + 1)/2, so t2 − t1 = 2/v0 − 1 ∈ [0, 1] needs v0 ∈ [1, 2].
         const double v0 = *e.v0;
         if (!std::isfinite(v0) || v0 < 1 || v0 > 2)
-          return fail(ErrorCode::InvalidArgument, at + "/v0",
+          return fail(ErrorCode::InvalidArgument, sub(at, "v0"),
                       "v0 = " + num(v0) + " must lie in [1, 2] (the cruise covers 2/v0 − 1 of the time)");
         if (t1) t2 = *t1 + 2.0 / v0 - 1.0;
         else t1 = *t2 - (2.0 / v0 - 1.0);
@@ -102,11 +110,11 @@ Expected<PathMotion::UnitEase> make_unit_ease(const RawEase& e, double span) {
     case EaseKind::penner: {
       const auto& p = e.params;
       if (!std::isfinite(p.back) || !std::isfinite(p.amplitude) || !std::isfinite(p.period) || p.period < 0)
-        return fail(ErrorCode::InvalidArgument, at + "/params", "back, amplitude and period must be finite, period ≥ 0");
+        return fail(ErrorCode::InvalidArgument, sub(at, "params"), "back, amplitude and period must be finite, period ≥ 0");
       return PathMotion::UnitEase{PathMotion::PennerUnitEase{e.curve, e.direction, p}};
     }
   }
-  return fail(ErrorCode::Unsupported, at + "/kind", "unknown ease kind");
+  return fail(ErrorCode::Unsupported, sub(at, "kind"), "unknown ease kind");
 }
 
 // The first run of normalised times where the ease's velocity is negative, as frames.
@@ -130,7 +138,7 @@ std::string frames_text(double a, double b) {
   return a == b ? "at frame " + num(a) : "between frames " + num(a) + " and " + num(b);
 }
 
-Expected<void> check_distance(double d, double length, const std::string& where, const std::string& what) {
+Expected<void> check_distance(double d, double length, const Loc& where, const std::string& what) {
   if (!std::isfinite(d)) return fail(ErrorCode::NotFinite, where, what + " is not finite");
   if (d < 0) return fail(ErrorCode::InvalidArgument, where, what + " = " + num(d) + " is negative");
   if (d > length * (1 + kLengthSlack))
@@ -147,9 +155,9 @@ EaseSample<double> PathMotion::PennerUnitEase::sample(double t) const noexcept {
 }
 
 Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
-  if (!std::isfinite(fps) || !(fps > 0)) return fail(ErrorCode::InvalidArgument, "fps", "fps = " + num(fps) + " must be > 0");
+  if (!std::isfinite(fps) || !(fps > 0)) return fail(ErrorCode::InvalidArgument, {"fps"}, "fps = " + num(fps) + " must be > 0");
   auto arc = ArcLength<AnyCurve>::build(raw.path);
-  if (!arc) return place(arc.error(), "path");
+  if (!arc) return place(arc.error(), {"path"});
   const double L = arc->length();
   const RawSpeed& sp = raw.speed;
   const double scale = sp.fraction ? L : 1.0;
@@ -159,26 +167,26 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
   Interval<double> range{0, 1};
   switch (sp.kind) {
     case SpeedKind::ease: {
-      if (!std::isfinite(sp.start_frame)) return fail(ErrorCode::NotFinite, "speed/start_frame", "start_frame is not finite");
-      if (!std::isfinite(sp.end_frame)) return fail(ErrorCode::NotFinite, "speed/end_frame", "end_frame is not finite");
+      if (!std::isfinite(sp.start_frame)) return fail(ErrorCode::NotFinite, {"speed", "start_frame"}, "start_frame is not finite");
+      if (!std::isfinite(sp.end_frame)) return fail(ErrorCode::NotFinite, {"speed", "end_frame"}, "end_frame is not finite");
       if (!(sp.end_frame > sp.start_frame))
-        return fail(ErrorCode::InvalidArgument, "speed/end_frame",
+        return fail(ErrorCode::InvalidArgument, {"speed", "end_frame"},
                     std::string(sp.end_frame == sp.start_frame ? "the ease's frame span is empty" : "the ease's frame span is reversed") +
                         ": end_frame " + num(sp.end_frame) + " must be after start_frame " + num(sp.start_frame));
       const double span = sp.end_frame - sp.start_frame;
       const double from = sp.from.value_or(0.0) * scale;
       const double to = sp.to.value_or(full) * scale;
-      if (auto ok = check_distance(from, L, "speed/from", "from"); !ok) return ok.error();
-      if (auto ok = check_distance(to, L, "speed/to", "to"); !ok) return ok.error();
+      if (auto ok = check_distance(from, L, Loc{"speed", "from"}, "from"); !ok) return ok.error();
+      if (auto ok = check_distance(to, L, Loc{"speed", "to"}, "to"); !ok) return ok.error();
       if (to < from)
-        return fail(ErrorCode::NotMonotone, "speed/to",
+        return fail(ErrorCode::NotMonotone, {"speed", "to"},
                     "the distance runs backwards from " + num(from) + " to " + num(to) + " " +
                         frames_text(sp.start_frame, sp.end_frame) + " (reverse the path instead)");
       auto ease = make_unit_ease(sp.ease, span);
       if (!ease) return ease.error();
       if (to > from) {
         if (const auto back = ease_backwards(*ease, sp.start_frame, span))
-          return fail(ErrorCode::NotMonotone, "speed/ease",
+          return fail(ErrorCode::NotMonotone, {"speed", "ease"},
                       "the distance runs backwards " + frames_text(back->first, back->second) +
                           " (the ease's velocity is negative there; repair applies to keys only)");
       }
@@ -189,7 +197,7 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
     case SpeedKind::distance_keys:
     case SpeedKind::velocity_keys: {
       const bool by_distance = sp.kind == SpeedKind::distance_keys;
-      const std::string at = by_distance ? "speed/keys" : "speed/velocities";
+      const Loc at = by_distance ? Loc{"speed", "keys"} : Loc{"speed", "velocities"};
       Expected<DistanceTimeCurve<double>> curve = Error{};
       double offset = 0;
       if (by_distance) {
@@ -198,13 +206,13 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
           return fail(ErrorCode::TooFewPoints, at, "needs at least 2 distance keys, got " + std::to_string(keys.size()));
         const bool with_speed = keys.front().speed.has_value();
         for (std::size_t i = 0; i < keys.size(); ++i) {
-          const std::string where = at + "/" + std::to_string(i);
-          if (!std::isfinite(keys[i].frame)) return fail(ErrorCode::NotFinite, where + "/frame", "frame is not finite");
-          if (auto ok = check_distance(keys[i].distance * scale, L, where + "/distance", "key " + std::to_string(i) + "'s distance"); !ok)
+          const Loc where = sub(at, i);
+          if (!std::isfinite(keys[i].frame)) return fail(ErrorCode::NotFinite, sub(where, "frame"), "frame is not finite");
+          if (auto ok = check_distance(keys[i].distance * scale, L, sub(where, "distance"), "key " + std::to_string(i) + "'s distance"); !ok)
             return ok.error();
           if (keys[i].speed.has_value() != with_speed)
-            return fail(ErrorCode::InvalidArgument, where + "/speed", "give a speed on every key or on none");
-          if (with_speed && !std::isfinite(*keys[i].speed)) return fail(ErrorCode::NotFinite, where + "/speed", "speed is not finite");
+            return fail(ErrorCode::InvalidArgument, sub(where, "speed"), "give a speed on every key or on none");
+          if (with_speed && !std::isfinite(*keys[i].speed)) return fail(ErrorCode::NotFinite, sub(where, "speed"), "speed is not finite");
         }
         if (with_speed) {
           std::vector<TimeDistanceVelocityKey<double>> k;
@@ -221,10 +229,10 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
           return fail(ErrorCode::TooFewPoints, at, "needs at least 2 velocity keys, got " + std::to_string(keys.size()));
         const double from = sp.from.value_or(0.0) * scale;
         const double to = sp.to.value_or(full) * scale;
-        if (auto ok = check_distance(from, L, "speed/from", "from"); !ok) return ok.error();
-        if (auto ok = check_distance(to, L, "speed/to", "to"); !ok) return ok.error();
+        if (auto ok = check_distance(from, L, Loc{"speed", "from"}, "from"); !ok) return ok.error();
+        if (auto ok = check_distance(to, L, Loc{"speed", "to"}, "to"); !ok) return ok.error();
         if (to < from)
-          return fail(ErrorCode::NotMonotone, "speed/to", "the distance runs backwards from " + num(from) + " to " + num(to));
+          return fail(ErrorCode::NotMonotone, {"speed", "to"}, "the distance runs backwards from " + num(from) + " to " + num(to));
         std::vector<TimeVelocityKey<double>> k;
         for (const auto& key : keys) k.push_back({key.frame, key.speed * scale / fps});
         curve = DistanceTimeCurve<double>::from_velocity_curve(k, sp.fit, std::min(to, L) - std::min(from, L));
@@ -246,11 +254,11 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
       break;
     }
     case SpeedKind::track: {
-      if (!sp.track) return fail(ErrorCode::InvalidArgument, "speed/track", "the track speed needs a track");
+      if (!sp.track) return fail(ErrorCode::InvalidArgument, {"speed", "track"}, "the track speed needs a track");
       const FCurve& track = *sp.track;
       const auto keys = track.keys();
       for (std::size_t i = 0; i < keys.size(); ++i) {
-        if (auto ok = check_distance(double(keys[i].y) * scale, L, "speed/track/keys/" + std::to_string(i),
+        if (auto ok = check_distance(double(keys[i].y) * scale, L, Loc{"speed", "track", "keys", i},
                                      "key " + std::to_string(i) + "'s distance");
             !ok)
           return ok.error();
@@ -273,7 +281,7 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
         }
       }
       if (first >= 0)
-        return fail(ErrorCode::NotMonotone, "speed/track",
+        return fail(ErrorCode::NotMonotone, {"speed", "track"},
                     "the distance runs backwards " + frames_text(fa, fb) + " (the track's slope is negative there)");
       speed = PathMotion::TrackSpeed{track, scale};
       break;
@@ -283,20 +291,20 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
   // Orientation.
   const RawOrientation& o = raw.orientation;
   if (!is_finite(o.up) || !(squared_norm(o.up) > 0))
-    return fail(ErrorCode::InvalidArgument, "orientation/up", "the up vector must be finite and non-zero");
-  if (!is_finite(o.look_at)) return fail(ErrorCode::NotFinite, "orientation/look_at", "the look_at point is not finite");
+    return fail(ErrorCode::InvalidArgument, {"orientation", "up"}, "the up vector must be finite and non-zero");
+  if (!is_finite(o.look_at)) return fail(ErrorCode::NotFinite, {"orientation", "look_at"}, "the look_at point is not finite");
   if (o.banking) {
     if (!std::isfinite(o.banking->gain) || o.banking->gain < 0)
-      return fail(ErrorCode::InvalidArgument, "orientation/banking/gain",
+      return fail(ErrorCode::InvalidArgument, {"orientation", "banking", "gain"},
                   "gain = " + num(o.banking->gain) + " must be finite and ≥ 0 (lean_out rolls the other way)");
     if (!(o.banking->max_bank_rad >= 0 && o.banking->max_bank_rad <= pi_v<double> / 2))
-      return fail(ErrorCode::InvalidArgument, "orientation/banking/max_bank_rad",
+      return fail(ErrorCode::InvalidArgument, {"orientation", "banking", "max_bank_rad"},
                   "max_bank_rad = " + num(o.banking->max_bank_rad) + " must lie in [0, π/2]");
   }
   const Quatd& lq = o.local_rotation;
   const double lq_norm = std::sqrt(lq.w * lq.w + lq.x * lq.x + lq.y * lq.y + lq.z * lq.z);
   if (!std::isfinite(lq_norm) || !(lq_norm > 0))
-    return fail(ErrorCode::InvalidArgument, "orientation/local_rotation", "the local rotation must be a finite, non-zero quaternion");
+    return fail(ErrorCode::InvalidArgument, {"orientation", "local_rotation"}, "the local rotation must be a finite, non-zero quaternion");
 
   PathMotion motion(std::move(*arc), std::move(speed), fps);
   motion.range_ = range;
@@ -308,11 +316,11 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
   motion.local_track_ = o.local_track;
   if (o.mode == OrientationMode::rotation_minimizing) {
     auto rmf = RotationMinimizingFrames<AnyCurve>::build(raw.path, RmfOptions<double>{.initial_normal = motion.up_});
-    if (!rmf) return place(rmf.error(), "orientation");
+    if (!rmf) return place(Error{rmf.error().code, rmf.error().message, ""}, {"orientation", "up"});
     motion.rmf_.emplace(std::move(*rmf));
   } else if (o.mode == OrientationMode::frenet) {
     auto frenet = FrenetFrames<AnyCurve>::build(raw.path);
-    if (!frenet) return place(frenet.error(), "orientation");
+    if (!frenet) return place(Error{frenet.error().code, frenet.error().message, ""}, {"orientation"});
     motion.frenet_.emplace(std::move(*frenet));
   }
   return motion;

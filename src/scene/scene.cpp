@@ -8,11 +8,14 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <tuple>
+#include <array>
 #include <type_traits>
 #include <utility>
 
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/euler.hpp"
+#include "inbetween/math/format.hpp"
 #include "inbetween/math/scalar.hpp"
 
 namespace inbetween {
@@ -116,11 +119,15 @@ Expected<SceneTrack> build_one(const RawEulerTrack& raw) {
 // The object's channels → an animated local transform; errors relative to the object.
 Expected<TransformTrack<double>> build_local(const RawObject& raw) {
   TransformTrack<double> local;
-  if (const auto* c = std::get_if<Vec3d>(&raw.translation)) {
+  static const std::variant<Vec3d, RawVec3Channel> kNoTranslation = Vec3d{};
+  static const std::variant<Quatd, RawQuatKeys> kNoRotation = Quatd{};
+  const auto& translation = raw.translation ? *raw.translation : kNoTranslation;
+  const auto& rotation = raw.rotation ? *raw.rotation : kNoRotation;
+  if (const auto* c = std::get_if<Vec3d>(&translation)) {
     if (!is_finite(*c)) return error_at(ErrorCode::NotFinite, "number is not finite", {"translation"});
     local.rest.translation = *c;
   } else {
-    auto t = build_vec3_channel(std::get<RawVec3Channel>(raw.translation));
+    auto t = build_vec3_channel(std::get<RawVec3Channel>(translation));
     if (!t) return prepended(t.error(), {"translation"});
     local.translation = std::move(*t);
   }
@@ -132,12 +139,12 @@ Expected<TransformTrack<double>> build_local(const RawObject& raw) {
     if (!s) return prepended(s.error(), {"scale"});
     local.scale = std::move(*s);
   }
-  if (const auto* c = std::get_if<Quatd>(&raw.rotation)) {
+  if (const auto* c = std::get_if<Quatd>(&rotation)) {
     if (!is_finite(*c)) return error_at(ErrorCode::NotFinite, "number is not finite", {"rotation"});
     if (!(norm(*c) > 0)) return error_at(ErrorCode::InvalidArgument, "zero quaternion is not a rotation", {"rotation"});
     local.rest.rotation = normalized(*c);
   } else {
-    const auto& keyed = std::get<RawQuatKeys>(raw.rotation);
+    const auto& keyed = std::get<RawQuatKeys>(rotation);
     auto r = build_quat_keys(keyed.keys, keyed.distance_factor, keyed.time_aware);
     if (!r) return prepended(r.error(), {"rotation"});
     local.rotation = std::move(*r);
@@ -167,16 +174,6 @@ Transform<double> get_trs(const double* in) noexcept {
 }
 
 }  // namespace
-
-Scene::Scene(double fps, double range_start, double range_end, std::vector<SceneTrack> tracks,
-             std::optional<TransformHierarchy<double>> objects, std::vector<SceneColumn> columns)
-    : fps_(fps),
-      range_start_(range_start),
-      range_end_(range_end),
-      tracks_(std::move(tracks)),
-      objects_(std::move(objects)),
-      columns_(std::move(columns)),
-      object_column_(columns_.size() - (objects_ ? objects_->nodes().size() * kObjectColumns : 0)) {}
 
 Expected<Scene> build_scene(const RawScene& raw) {
   if (!(raw.fps > 0)) return error_at(ErrorCode::InvalidArgument, "fps must be positive", {"fps"});
@@ -233,44 +230,309 @@ Expected<Scene> build_scene(const RawScene& raw) {
     tracks.push_back(std::move(*track));
   }
 
-  std::optional<TransformHierarchy<double>> objects;
-  if (!raw.objects.empty()) {
+  Scene scene(raw.fps, raw.range[0], raw.range[1]);
+
+  // Named paths (version 2): measured once here for cameras' coi_path and up_path.
+  std::map<std::string, std::size_t> path_index;
+  for (std::size_t p = 0; p < raw.paths.size(); ++p) {
+    const RawScenePath& path = raw.paths[p];
+    if (path.name.empty()) {
+      return error_at(ErrorCode::InvalidArgument, "a path needs a non-empty string \"name\"", {"paths", p, "name"});
+    }
+    if (!path_index.emplace(path.name, p).second) {
+      return error_at(ErrorCode::InvalidArgument, "duplicate path name \"" + path.name + "\"", {"paths", p, "name"});
+    }
+    auto arc = ArcLength<AnyCurve>::build(path.curve);
+    if (!arc) return prepended(arc.error(), {"paths", p});
+    scene.paths_.push_back(std::move(*arc));
+  }
+
+  // Scalar tracks by name: index into `tracks` and output column (speed.track, tilt_track).
+  std::map<std::string, std::pair<std::size_t, std::size_t>> scalar_tracks;
+  {
+    std::size_t column = 0;
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+      std::visit(Overloaded{[&](const SceneScalarTrack& x) { scalar_tracks.emplace(x.name, std::pair{t, column++}); },
+                            [&](const SceneVectorTrack& x) { column += x.components.size(); },
+                            [&](const SceneQuatTrack&) { column += 4; }, [&](const SceneEulerTrack&) { column += 4; }},
+                 tracks[t]);
+    }
+  }
+
+  const std::size_t n = raw.objects.size();
+  if (n > 0) {
     std::vector<HierarchyNode<double>> nodes;
-    nodes.reserve(raw.objects.size());
-    for (std::size_t i = 0; i < raw.objects.size(); ++i) {
+    nodes.reserve(n);
+    std::map<std::string, std::size_t> object_index;
+    for (std::size_t i = 0; i < n; ++i) {
       const RawObject& o = raw.objects[i];
       if (auto ok = check_name(o.name, {"objects", i, "name"}); !ok) return ok.error();
-      for (const auto& other : nodes) {
-        if (other.name == o.name) {
-          return error_at(ErrorCode::InvalidArgument, "duplicate object name \"" + o.name + "\"", {"objects", i, "name"});
-        }
+      if (!object_index.emplace(o.name, i).second) {
+        return error_at(ErrorCode::InvalidArgument, "duplicate object name \"" + o.name + "\"", {"objects", i, "name"});
+      }
+      if (!o.path.empty() && o.translation) {
+        return error_at(ErrorCode::InvalidArgument,
+                        "an object on a path takes its translation from the path: remove \"translation\"",
+                        {"objects", i, "translation"});
+      }
+      if (!o.path.empty() && o.rotation) {
+        return error_at(ErrorCode::InvalidArgument,
+                        "an object on a path takes its rotation from the path: remove \"rotation\" (a rotation on "
+                        "top of the path frame is path.orientation.local_rotation)",
+                        {"objects", i, "rotation"});
+      }
+      if (o.camera && o.rotation) {
+        return error_at(ErrorCode::InvalidArgument, "a camera's rotation comes from its view: remove \"rotation\"",
+                        {"objects", i, "rotation"});
       }
       auto local = build_local(o);
       if (!local) return prepended(local.error(), {"objects", i});
       nodes.push_back(HierarchyNode<double>{o.name, std::nullopt, std::move(*local)});
     }
-    for (std::size_t i = 0; i < raw.objects.size(); ++i) {
+    // What each object's evaluation reads: its parent, the objects it looks at.  (object, member)
+    std::vector<std::vector<std::pair<std::size_t, std::vector<LocationStep>>>> reads(n);
+    auto find_object = [&](const std::string& name, std::size_t self,
+                           std::vector<LocationStep> member) -> Expected<std::size_t> {
+      const auto it = object_index.find(name);
+      if (it == object_index.end()) {
+        return Error{ErrorCode::InvalidArgument, "no object named \"" + name + "\"", "", std::move(member)};
+      }
+      if (it->second == self) {
+        return Error{ErrorCode::InvalidArgument, "\"" + name + "\" cannot look at itself", "", std::move(member)};
+      }
+      reads[self].emplace_back(it->second, std::move(member));
+      return it->second;
+    };
+    for (std::size_t i = 0; i < n; ++i) {
       if (!raw.objects[i].parent) continue;
       const std::string& parent = *raw.objects[i].parent;
-      const auto it = std::find_if(nodes.begin(), nodes.end(), [&](const auto& n) { return n.name == parent; });
-      if (it == nodes.end()) {
+      const auto it = object_index.find(parent);
+      if (it == object_index.end()) {
         return error_at(ErrorCode::InvalidArgument, "no object named \"" + parent + "\"", {"objects", i, "parent"});
       }
-      nodes[i].parent = std::size_t(it - nodes.begin());
+      nodes[i].parent = it->second;
+      reads[i].emplace_back(it->second, std::vector<LocationStep>{"objects", i, "parent"});
     }
     auto hierarchy = build_hierarchy(std::move(nodes));
     if (!hierarchy) return prepended(hierarchy.error(), {"objects"});
-    objects.emplace(std::move(*hierarchy));
-    for (std::size_t i = 0; i < objects->nodes().size(); ++i) {
+    scene.objects_.emplace(std::move(*hierarchy));
+
+    // Path legs and cameras.
+    scene.extras_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const RawObject& o = raw.objects[i];
+      Scene::ObjectExtra& extra = scene.extras_[i];
+      double distance_before = 0;
+      for (std::size_t k = 0; k < o.path.size(); ++k) {
+        const RawPathLeg& leg = o.path[k];
+        std::vector<LocationStep> at{"objects", i, "path"};
+        if (o.path_is_array) at.emplace_back(k);
+        auto at_member = [&at](std::initializer_list<LocationStep> steps) {
+          std::vector<LocationStep> out = at;
+          out.insert(out.end(), steps.begin(), steps.end());
+          return out;
+        };
+        RawPathMotion motion{.speed = leg.speed, .orientation = leg.orientation};
+        if (const auto* name = std::get_if<std::string>(&leg.curve)) {
+          const auto it = path_index.find(*name);
+          if (it == path_index.end()) {
+            return Error{ErrorCode::InvalidArgument, "no path named \"" + *name + "\" in \"paths\"", "", at_member({"curve"})};
+          }
+          motion.path = raw.paths[it->second].curve;
+        } else {
+          motion.path = std::get<AnyCurve>(leg.curve);
+        }
+        if (leg.speed.kind == SpeedKind::track) {
+          if (o.path.size() > 1) {
+            return Error{ErrorCode::InvalidArgument, "a track speed drives a single-leg path only", "",
+                         at_member({"speed", "kind"})};
+          }
+          const auto it = scalar_tracks.find(leg.speed_track);
+          if (it == scalar_tracks.end()) {
+            return Error{ErrorCode::InvalidArgument, "no scalar track named \"" + leg.speed_track + "\"", "",
+                         at_member({"speed", "track"})};
+          }
+          motion.speed.track = std::get<SceneScalarTrack>(tracks[it->second.first]).curve;
+        }
+        if (leg.local_rotation_keys) {
+          auto r = build_quat_keys(leg.local_rotation_keys->keys, leg.local_rotation_keys->distance_factor,
+                                   leg.local_rotation_keys->time_aware);
+          if (!r) {
+            Error e = r.error();
+            const auto prefix = at_member({"orientation", "local_rotation"});
+            e.location.insert(e.location.begin(), prefix.begin(), prefix.end());
+            return e;
+          }
+          motion.orientation.local_track = std::move(*r);
+        }
+        std::optional<std::size_t> look_at_object;
+        if (!leg.look_at_object.empty()) {
+          if (leg.orientation.mode != OrientationMode::look_at) {
+            return Error{ErrorCode::InvalidArgument, "an object to look at needs orientation.mode \"look_at\"", "",
+                         at_member({"orientation", "look_at"})};
+          }
+          auto target = find_object(leg.look_at_object, i, at_member({"orientation", "look_at"}));
+          if (!target) return target.error();
+          look_at_object = *target;
+        }
+        auto built = build_path_motion(motion, raw.fps);
+        if (!built) {
+          Error e = built.error();
+          const std::vector<LocationStep> track_keys{"speed", "track", "keys"};
+          if (leg.speed.kind == SpeedKind::track && e.location.size() > 3 &&
+              std::equal(track_keys.begin(), track_keys.end(), e.location.begin())) {
+            // A key of the named distance track: its place is the track's own key in /tracks.
+            e.location.erase(e.location.begin(), e.location.begin() + 2);
+            e.location.insert(e.location.begin(), {LocationStep{"tracks"}, LocationStep{scalar_tracks.at(leg.speed_track).first}});
+            e.message += " (the distance track of " + json_pointer(at) + ")";
+            return e;
+          }
+          e.location.insert(e.location.begin(), at.begin(), at.end());
+          return e;
+        }
+        if (!extra.legs.empty()) {
+          const double previous_end = extra.legs.back().motion.frame_range().hi;
+          if (built->frame_range().lo < previous_end) {
+            return Error{ErrorCode::KeysNotIncreasing,
+                         "this leg starts at frame " + shortest_text(built->frame_range().lo) +
+                             ", before the previous leg ends (frame " + shortest_text(previous_end) +
+                             "): legs follow each other in time",
+                         "", at_member({"speed"})};
+          }
+        }
+        const double length = built->length();
+        extra.legs.push_back(ScenePathLeg{std::move(*built), distance_before, look_at_object});
+        distance_before += length;
+      }
+      if (o.camera) {
+        const RawCameraViewd& rc = *o.camera;
+        auto view = build_camera_view(rc);
+        if (!view) return prepended(view.error(), {"objects", i, "camera"});
+        if (view->needs_camera_path() && o.path.empty()) {
+          const char* member = view->coi_mode() == CoiMode::Ahead ? "ahead"
+                               : view->coi_mode() == CoiMode::Path ? "coi_path"
+                                                                    : "up_path";
+          return error_at(ErrorCode::InvalidArgument,
+                          std::string("\"") + member + "\" needs the camera on a path (give the camera a \"path\")",
+                          {"objects", i, "camera", member});
+        }
+        // Where each target name is first written in the camera object.
+        auto target_member = [&](const std::string& name) -> std::vector<LocationStep> {
+          if (std::holds_alternative<RawLookAt<double>>(rc.coi)) return {"objects", i, "camera", "look_at"};
+          if (const auto* hold = std::get_if<RawHoldThenMove<double>>(&rc.coi)) {
+            for (std::size_t h = 0; h < hold->segments.size(); ++h) {
+              const auto* t = std::get_if<std::string>(&hold->segments[h].target);
+              if (t && *t == name) return {"objects", i, "camera", "hold", h, "target"};
+            }
+          }
+          return {"objects", i, "camera"};
+        };
+        if (view->target_names().size() > kMaxCameraTargets) {
+          return error_at(ErrorCode::Unsupported,
+                          "a camera may name at most " + std::to_string(kMaxCameraTargets) + " target objects, got " +
+                              std::to_string(view->target_names().size()),
+                          {"objects", i, "camera"});
+        }
+        for (const std::string& name : view->target_names()) {
+          auto target = find_object(name, i, target_member(name));
+          if (!target) return target.error();
+          extra.camera_targets.push_back(*target);
+        }
+        for (auto [name, member, slot] :
+             {std::tuple{&view->coi_path_name(), "coi_path", &extra.coi_path},
+              std::tuple{&view->up_path_name(), "up_path", &extra.up_path}}) {
+          if (name->empty()) continue;
+          const auto it = path_index.find(*name);
+          if (it == path_index.end()) {
+            return error_at(ErrorCode::InvalidArgument, "no path named \"" + *name + "\" in \"paths\"",
+                            {"objects", i, "camera", member});
+          }
+          *slot = it->second;
+        }
+        if (!view->tilt_track_name().empty()) {
+          const auto it = scalar_tracks.find(view->tilt_track_name());
+          if (it == scalar_tracks.end()) {
+            return error_at(ErrorCode::InvalidArgument, "no scalar track named \"" + view->tilt_track_name() + "\"",
+                            {"objects", i, "camera", "tilt_track"});
+          }
+          extra.tilt_column = it->second.second;
+        }
+        extra.camera.emplace(std::move(*view));
+      }
+    }
+
+    // Evaluation order: everything an object reads (parent, objects looked at) before it.  An
+    // iterative depth-first search (a chain of 10^5 parents must not overflow the stack); a read of
+    // an object still on the search path closes a cycle, reported at that read's member.
+    std::vector<int> state(n, 0);  // 0 unvisited, 1 on the path, 2 done
+    std::vector<std::pair<std::size_t, std::size_t>> stack;  // (object, next read)
+    scene.order_.reserve(n);
+    for (std::size_t start = 0; start < n; ++start) {
+      if (state[start] != 0) continue;
+      stack.emplace_back(start, 0);
+      state[start] = 1;
+      while (!stack.empty()) {
+        auto& [u, next] = stack.back();
+        if (next < reads[u].size()) {
+          const auto& [v, member] = reads[u][next++];
+          if (state[v] == 1) {
+            return Error{ErrorCode::InvalidArgument,
+                         "\"" + raw.objects[u].name + "\" depends on \"" + raw.objects[v].name +
+                             "\", which depends on it (a cycle of parents, look-at and camera targets)",
+                         "", member};
+          }
+          if (state[v] == 0) {
+            state[v] = 1;
+            stack.emplace_back(v, 0);
+          }
+          continue;
+        }
+        state[u] = 2;
+        scene.order_.push_back(u);
+        stack.pop_back();
+      }
+    }
+    // Sign continuity (SceneCursor) for path objects, cameras and their descendants.
+    for (std::size_t i : scene.order_) {
+      const auto& parent = scene.objects_->nodes()[i].parent;
+      scene.extras_[i].continuous = !scene.extras_[i].legs.empty() || scene.extras_[i].camera.has_value() ||
+                                    (parent && scene.extras_[*parent].continuous);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      scene.extras_[i].column = columns.size();
+      const std::string& name = raw.objects[i].name;
       for (std::string_view channel : kObjectChannels) {
-        if (auto ok = claim(objects->nodes()[i].name + "." + std::string(channel), false, {"objects", i, "name"}); !ok) {
-          return ok.error();
+        if (auto ok = claim(name + "." + std::string(channel), false, {"objects", i, "name"}); !ok) return ok.error();
+      }
+      if (!scene.extras_[i].legs.empty()) {
+        for (const char* channel : {".distance", ".speed"}) {
+          if (auto ok = claim(name + channel, false, {"objects", i, "name"}); !ok) return ok.error();
+        }
+      }
+      if (scene.extras_[i].camera) {
+        for (const char* channel : {".target.x", ".target.y", ".target.z"}) {
+          if (auto ok = claim(name + channel, false, {"objects", i, "name"}); !ok) return ok.error();
         }
       }
     }
   }
-  return Scene(raw.fps, raw.range[0], raw.range[1], std::move(tracks), std::move(objects), std::move(columns));
+  scene.tracks_ = std::move(tracks);
+  scene.columns_ = std::move(columns);
+  return scene;
 }
+
+namespace {
+
+// A world point in the space of `world_T_parent` (its inverse; a zero scale component maps to 0).
+Vec3d to_parent_space(const Transform<double>& world_T_parent, const Vec3d& p) noexcept {
+  const Vec3d r = rotate(conjugate(normalized(world_T_parent.rotation)), p - world_T_parent.translation);
+  const Vec3d& s = world_T_parent.scale;
+  return {s.x != 0 ? r.x / s.x : 0.0, s.y != 0 ? r.y / s.y : 0.0, s.z != 0 ? r.z / s.z : 0.0};
+}
+
+Vec3d get_point(const double* in) noexcept { return {in[0], in[1], in[2]}; }
+
+}  // namespace
 
 void Scene::sample(double frame, std::span<double> out) const noexcept {
   INBETWEEN_ASSERT(out.size() == columns_.size());
@@ -297,18 +559,90 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
                           [&](const SceneEulerTrack& t) { put_quat(t.track.sample(frame)); }},
                track);
   }
-  if (objects_) {
-    // Parents are evaluated before their children; a parent's world transform is read back from
-    // the columns it has just written.
-    const auto nodes = objects_->nodes();
-    double* base = out.data() + object_column_;
-    for (std::size_t i : objects_->evaluation_order()) {
-      const Transform<double> local = nodes[i].local.sample(frame);
-      const std::optional<std::size_t>& parent = nodes[i].parent;
-      const Transform<double> world = parent ? compose(get_trs(base + *parent * kObjectColumns), local) : local;
-      put_trs(base + i * kObjectColumns, world);
+  if (!objects_) return;
+  // Everything an object reads (its parent, the objects it looks at) is evaluated before it and
+  // read back from the columns it has just written.
+  const auto nodes = objects_->nodes();
+  double* base = out.data();
+  for (std::size_t i : order_) {
+    const ObjectExtra& x = extras_[i];
+    const std::optional<std::size_t>& parent = nodes[i].parent;
+    const Transform<double> world_T_parent = parent ? get_trs(base + extras_[*parent].column) : Transform<double>{};
+    Transform<double> local = nodes[i].local.sample(frame);
+    const ScenePathLeg* leg = nullptr;
+    PathSample on_path{};
+    if (!x.legs.empty()) {
+      // The current leg: the last one that has started, else the first (held at its start).
+      leg = &x.legs.front();
+      for (const ScenePathLeg& l : x.legs) {
+        if (l.motion.frame_range().lo <= frame) leg = &l;
+      }
+      Vec3d target{};
+      const Vec3d* look_at = nullptr;
+      if (leg->look_at_object) {
+        target = get_point(base + extras_[*leg->look_at_object].column);
+        if (parent) target = to_parent_space(world_T_parent, target);
+        look_at = &target;
+      }
+      on_path = leg->motion.sample(frame, look_at);
+      local.translation = on_path.position;
+      local.rotation = on_path.rotation;
+    }
+    Transform<double> world = parent ? compose(world_T_parent, local) : local;
+    Vec3d coi{};
+    if (x.camera) {
+      std::array<Vec3d, kMaxCameraTargets> targets;
+      for (std::size_t t = 0; t < x.camera_targets.size(); ++t) targets[t] = get_point(base + extras_[x.camera_targets[t]].column);
+      CameraInputs<double> in;
+      in.frame = frame;
+      in.eye = world.translation;
+      if (leg) {
+        in.camera_path = PathView<double>::of(leg->motion.arc_length());
+        in.s = on_path.distance;
+      }
+      if (x.coi_path) in.coi_path = PathView<double>::of(paths_[*x.coi_path]);
+      if (x.up_path) in.up_path = PathView<double>::of(paths_[*x.up_path]);
+      in.world_from_path = world_T_parent;
+      in.targets = std::span<const Vec3d>(targets.data(), x.camera_targets.size());
+      in.tilt_track_deg = x.tilt_column ? base[*x.tilt_column] : 0.0;
+      const CameraViewSample<double> view = x.camera->evaluate(in);
+      world.rotation = view.pose.rotation();
+      coi = view.target;
+    }
+    double* c = base + x.column;
+    put_trs(c, world);
+    c += kObjectColumns;
+    if (leg) {
+      *c++ = leg->distance_before + on_path.distance;
+      *c++ = on_path.speed;
+    }
+    if (x.camera) {
+      *c++ = coi.x;
+      *c++ = coi.y;
+      *c++ = coi.z;
     }
   }
+}
+
+void Scene::sample(double frame, std::span<double> out, SceneCursor& cursor) const noexcept {
+  INBETWEEN_ASSERT(cursor.column_count_ == columns_.size());
+  sample(frame, out);
+  for (std::size_t k = 0; k < cursor.rotation_columns_.size(); ++k) {
+    double* q = out.data() + cursor.rotation_columns_[k];
+    double* prev = cursor.previous_.data() + 4 * k;
+    if (cursor.has_previous_ && q[0] * prev[0] + q[1] * prev[1] + q[2] * prev[2] + q[3] * prev[3] < 0) {
+      for (int c = 0; c < 4; ++c) q[c] = -q[c];
+    }
+    for (int c = 0; c < 4; ++c) prev[c] = q[c];
+  }
+  cursor.has_previous_ = true;
+}
+
+SceneCursor::SceneCursor(const Scene& scene) : column_count_(scene.columns().size()) {
+  for (const Scene::ObjectExtra& x : scene.extras_) {
+    if (x.continuous) rotation_columns_.push_back(x.column + 3);  // rotation.w follows translation.x y z
+  }
+  previous_.assign(4 * rotation_columns_.size(), 0.0);
 }
 
 }  // namespace inbetween

@@ -20,14 +20,13 @@ Expected<void> check_keys(std::size_t n, Get&& get) {
   if (n < 2) return Error{ErrorCode::TooFewPoints, "needs at least 2 keys, got " + std::to_string(n), ""};
   for (std::size_t i = 0; i < n; ++i) {
     const auto [t, a, b] = get(i);
-    const std::string where = "key " + std::to_string(i);
-    if (!std::isfinite(t) || !std::isfinite(a) || !std::isfinite(b)) {
-      return Error{ErrorCode::NotFinite, "a value is not finite", where};
+        if (!std::isfinite(t) || !std::isfinite(a) || !std::isfinite(b)) {
+      return Error{ErrorCode::NotFinite, "a value is not finite", "", {i}};
     }
     if (i > 0) {
       const T prev = std::get<0>(get(i - 1));
       if (!(prev < t)) {
-        return Error{ErrorCode::KeysNotIncreasing, "time " + shortest_text(t) + " is not after " + shortest_text(prev), where};
+        return Error{ErrorCode::KeysNotIncreasing, "time " + shortest_text(t) + " is not after " + shortest_text(prev), "", {i}};
       }
     }
   }
@@ -126,7 +125,7 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::from_velocity_curve(std::sp
                                                                          VelocityFit fit, T total_distance) {
   const auto ok = check_keys<T>(keys.size(), [&](std::size_t i) { return std::tuple{keys[i].t, keys[i].v, T(0)}; });
   if (!ok) return ok.error();
-  if (!std::isfinite(total_distance)) return Error{ErrorCode::NotFinite, "total distance is not finite", "total_distance"};
+  if (!std::isfinite(total_distance)) return Error{ErrorCode::NotFinite, "total distance is not finite", "", {std::string("total_distance")}};
   const std::size_t n = keys.size();
   const T duration = keys[n - 1].t - keys[0].t;
   T area{};
@@ -231,7 +230,7 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::monotone_repair() const {
       return Error{ErrorCode::NotMonotone,
                    "distance " + shortest_text(s_[i]) + " at t = " + shortest_text(t_[i]) + " is less than " + shortest_text(s_[i - 1]) +
                        " at the key before: no monotone curve passes through the keys",
-                   "key " + std::to_string(i)};
+                   "", {i}};
     }
   }
   std::vector<T> m(n);

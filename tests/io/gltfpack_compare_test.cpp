@@ -111,7 +111,7 @@ TEST(Gltfpack, ReductionAgainstGltfpackResampling) {
       double range = 1;
       if (std::string(path) == "translation") {
         double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-        for (const auto& k : std::get<RawVec3Channel>(raw.objects[0].translation).keys) {
+        for (const auto& k : std::get<RawVec3Channel>(*raw.objects[0].translation).keys) {
           for (int i = 0; i < 3; ++i) {
             const double v = i == 0 ? k.value.x : i == 1 ? k.value.y : k.value.z;
             lo[i] = std::min(lo[i], v);
@@ -135,7 +135,7 @@ TEST(Gltfpack, ReductionAgainstGltfpackResampling) {
       ASSERT_TRUE(at_frames);
       const Row a = measure(*scene, test::read_channels(test::write_test_file("frames.glb", at_frames->bytes)), "body", path);
       std::printf("| %s | %s | %zu | %zu | %.3g | %zu | %.3g | %zu | %.3g | %zu | %.3g |\n", c.name, path,
-                  std::get<RawVec3Channel>(raw.objects[0].translation).keys.size(), g.keys, g.error, o.keys, o.error, d.keys,
+                  std::get<RawVec3Channel>(*raw.objects[0].translation).keys.size(), g.keys, g.error, o.keys, o.error, d.keys,
                   d.error, a.keys, a.error);
       EXPECT_LE(o.error, g.error) << c.name << " " << path;
       // Never more keys at gltfpack's error; strictly fewer wherever gltfpack is lossy beyond float

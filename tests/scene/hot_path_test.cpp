@@ -48,6 +48,86 @@ TEST(SceneHotPath, CounterSeesAnAllocation) {
   EXPECT_EQ(allocations_in([] { std::vector<int> v(1); (void)v; }), 1);
 }
 
+// Version 2: path objects (two legs, a look_at object, banking, a keyed local rotation), a camera
+// on a path looking ahead, a camera with hold-then-move targets and a keyed tilt, a COI-path camera
+// parented to a path object: sample() and sample() through a SceneCursor never allocate.
+RawScene scene_with_paths_and_cameras(std::size_t copies) {
+  RawScene raw;
+  RawScalarTrack tilt;
+  tilt.name = "tilt";
+  tilt.curve.keys = {FCurveKey{.frame = 0, .value = 0}, FCurveKey{.frame = 10, .value = 30}};
+  raw.tracks.push_back(tilt);
+  const auto curve = [](std::vector<Vec3d> pts) {
+    return AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{build_catmull_rom(pts).value()}};
+  };
+  raw.paths.push_back({"p", curve({{-5, 0, 0}, {0, 3, 1}, {5, 0, 0}, {6, 4, -2}})});
+  for (std::size_t c = 0; c < copies; ++c) {
+    const std::string k = std::to_string(c);
+    RawObject target;
+    target.name = "target" + k;
+    target.translation = Vec3d{0, 1, 2};
+    raw.objects.push_back(target);
+    RawObject mover;
+    mover.name = "mover" + k;
+    RawPathLeg first;
+    first.curve = std::string("p");
+    first.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 5};
+    first.orientation.mode = OrientationMode::look_at;
+    first.look_at_object = "target" + k;
+    RawPathLeg second;
+    second.curve = curve({{6, 4, -2}, {8, 5, 0}, {9, 2, 3}});
+    second.speed = RawSpeed{.kind = SpeedKind::distance_keys, .keys = {{5, 0}, {12, 1}}};
+    second.orientation.banking = RawBanking{};
+    second.local_rotation_keys = RawQuatKeys{.keys = {QuatKey<double>{.frame = 0},
+                                                     QuatKey<double>{.frame = 10, .value = Quatd::from_wxyz(0, 0, 1, 0)}}};
+    mover.path = {first, second};
+    mover.path_is_array = true;
+    raw.objects.push_back(mover);
+    RawObject ahead;
+    ahead.name = "ahead" + k;
+    RawPathLeg leg = first;
+    leg.orientation = RawOrientation{};
+    leg.look_at_object.clear();
+    ahead.path = {leg};
+    ahead.camera = RawCameraViewd{.coi = RawLookAhead<double>{.distance = 1, .count = 3, .spread = 2}, .up_path = "p"};
+    raw.objects.push_back(ahead);
+    RawObject hold;
+    hold.name = "hold" + k;
+    hold.camera = RawCameraViewd{.coi = RawHoldThenMove<double>{{{.target = std::string("mover" + k), .hold_until = 3,
+                                                                  .move_frames = 4},
+                                                                 {.target = std::string("target" + k), .hold_until = 9}}},
+                                 .tilt_track = "tilt"};
+    raw.objects.push_back(hold);
+    RawObject rider;
+    rider.name = "rider" + k;
+    rider.parent = "mover" + k;
+    rider.path = {leg};
+    rider.camera = RawCameraViewd{.coi = RawCoiPath{"p"}};
+    raw.objects.push_back(rider);
+  }
+  return raw;
+}
+
+TEST(SceneHotPath, PathAndCameraScenesNeverAllocate) {
+  for (std::size_t copies : {std::size_t{1}, std::size_t{20}}) {
+    SCOPED_TRACE(copies);
+    auto scene = build_scene(scene_with_paths_and_cameras(copies));
+    ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+    std::vector<double> out(scene->columns().size());
+    SceneCursor cursor(*scene);
+    double checksum = 0;
+    const long n = allocations_in([&] {
+      for (double frame = -2; frame <= 14; frame += 0.25) {
+        scene->sample(frame, out);
+        scene->sample(frame, out, cursor);
+        checksum += out.back();
+      }
+    });
+    EXPECT_EQ(n, 0);
+    EXPECT_TRUE(std::isfinite(checksum));
+  }
+}
+
 template <class T>
 class SceneHotPathTyped : public ::testing::Test {};
 using Scalars = ::testing::Types<float, double>;

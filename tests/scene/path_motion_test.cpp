@@ -560,28 +560,28 @@ TEST(PathMotion, BadSpecsAreErrorsThatSayWhere) {
   };
   // Zero and reversed ease spans.
   Error e = err(RawSpeed{.kind = SpeedKind::ease, .start_frame = 5, .end_frame = 5});
-  EXPECT_EQ(e.where, "speed/end_frame");
+  EXPECT_EQ(json_pointer(e.location), "/speed/end_frame");
   EXPECT_NE(e.message.find("empty"), std::string::npos) << e.message;
   e = err(RawSpeed{.kind = SpeedKind::ease, .start_frame = 5, .end_frame = 2});
-  EXPECT_EQ(e.where, "speed/end_frame");
+  EXPECT_EQ(json_pointer(e.location), "/speed/end_frame");
   EXPECT_NE(e.message.find("reversed"), std::string::npos) << e.message;
   // A distance key beyond the length names the key.
   e = err(RawSpeed{.kind = SpeedKind::distance_keys, .keys = {{0, 0}, {10, 1}, {20, 1e3}}});
-  EXPECT_EQ(e.where, "speed/keys/2/distance");
+  EXPECT_EQ(json_pointer(e.location), "/speed/keys/2/distance");
   EXPECT_NE(e.message.find("beyond the path's length"), std::string::npos) << e.message;
   e = err(RawSpeed{.kind = SpeedKind::distance_keys, .fraction = true, .keys = {{0, 0}, {10, 1.5}}});
-  EXPECT_EQ(e.where, "speed/keys/1/distance");
+  EXPECT_EQ(json_pointer(e.location), "/speed/keys/1/distance");
   // Distances that run backwards name the frames; repair is explicit.
   RawSpeed back{.kind = SpeedKind::distance_keys, .keys = {{0, 0}, {10, 4}, {20, 2}, {30, 6}},
                 .interpolation = PositionInterpolation::CatmullRom};
   e = err(back);
   EXPECT_EQ(e.code, ErrorCode::NotMonotone);
-  EXPECT_EQ(e.where, "speed/keys");
+  EXPECT_EQ(json_pointer(e.location), "/speed/keys");
   EXPECT_NE(e.message.find("between frames 1"), std::string::npos) << e.message;  // inside [10, 20]
   // Key distances that decrease cannot be repaired (no monotone curve passes through them).
   back.repair = true;
   e = err(back);
-  EXPECT_EQ(e.where, "speed/keys/2");
+  EXPECT_EQ(json_pointer(e.location), "/speed/keys/2");
   // Speeds that make the Hermite back up between non-decreasing keys can.
   RawSpeed overshoot{.kind = SpeedKind::distance_keys, .keys = {{0, 0, 0.0}, {10, 4, 200.0}, {20, 5, 0.0}}};
   e = err(overshoot);
@@ -599,39 +599,39 @@ TEST(PathMotion, BadSpecsAreErrorsThatSayWhere) {
   // An ease that runs backwards (Penner back in pulls back first) names the frames.
   e = err(RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 10,
                    .ease = RawEase{.kind = EaseKind::penner, .curve = EasingCurve::back, .direction = EasingDirection::in}});
-  EXPECT_EQ(e.where, "speed/ease");
+  EXPECT_EQ(json_pointer(e.location), "/speed/ease");
   EXPECT_NE(e.message.find("between frames 0"), std::string::npos) << e.message;
   // from > to runs backwards.
   e = err(RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 10, .from = 3.0, .to = 1.0});
-  EXPECT_EQ(e.where, "speed/to");
+  EXPECT_EQ(json_pointer(e.location), "/speed/to");
   // Constant acceleration needs exactly two of t1, t2, v0.
   e = err(RawSpeed{.kind = SpeedKind::ease, .end_frame = 10,
                    .ease = RawEase{.kind = EaseKind::constant_acceleration, .t1 = 0.2, .t2 = 0.8, .v0 = 1.5}});
-  EXPECT_EQ(e.where, "speed/ease");
+  EXPECT_EQ(json_pointer(e.location), "/speed/ease");
   e = err(RawSpeed{.kind = SpeedKind::ease, .end_frame = 10, .ease = RawEase{.kind = EaseKind::constant_acceleration, .t1 = 0.2}});
-  EXPECT_EQ(e.where, "speed/ease");
+  EXPECT_EQ(json_pointer(e.location), "/speed/ease");
   e = err(RawSpeed{.kind = SpeedKind::ease, .end_frame = 10,
                    .ease = RawEase{.kind = EaseKind::constant_acceleration, .t1 = 0.9, .v0 = 1.2}});
-  EXPECT_EQ(e.where, "speed/ease/t2");  // t2 = 0.9 + 2/1.2 − 1 > 1
+  EXPECT_EQ(json_pointer(e.location), "/speed/ease/t2");  // t2 = 0.9 + 2/1.2 − 1 > 1
   e = err(RawSpeed{.kind = SpeedKind::ease, .end_frame = 10, .ease = RawEase{.kind = EaseKind::sine_pieces, .k1 = 0.5}});
-  EXPECT_EQ(e.where, "speed/ease/k2");
+  EXPECT_EQ(json_pointer(e.location), "/speed/ease/k2");
   // A track that leaves the path.
   RawFCurve rf;
   rf.keys = {FCurveKey{.frame = 0, .value = 0}, FCurveKey{.frame = 10, .value = 2}};
   e = err(RawSpeed{.kind = SpeedKind::track, .fraction = true, .track = *build_fcurve(rf)});
-  EXPECT_EQ(e.where, "speed/track/keys/1");
+  EXPECT_EQ(json_pointer(e.location), "/speed/track/keys/1");
   e = err(RawSpeed{.kind = SpeedKind::track});
-  EXPECT_EQ(e.where, "speed/track");
+  EXPECT_EQ(json_pointer(e.location), "/speed/track");
   // Orientation options.
   auto o = build_path_motion(RawPathMotion{.path = path, .orientation = RawOrientation{.up = Vec3d{0, 0, 0}}}, kFps);
   ASSERT_FALSE(o.has_value());
-  EXPECT_EQ(o.error().where, "orientation/up");
+  EXPECT_EQ(json_pointer(o.error().location), "/orientation/up");
   o = build_path_motion(RawPathMotion{.path = path, .orientation = RawOrientation{.banking = RawBanking{.max_bank_rad = 2}}}, kFps);
   ASSERT_FALSE(o.has_value());
-  EXPECT_EQ(o.error().where, "orientation/banking/max_bank_rad");
+  EXPECT_EQ(json_pointer(o.error().location), "/orientation/banking/max_bank_rad");
   o = build_path_motion(RawPathMotion{.path = path}, 0.0);
   ASSERT_FALSE(o.has_value());
-  EXPECT_EQ(o.error().where, "fps");
+  EXPECT_EQ(json_pointer(o.error().location), "/fps");
 }
 
 // ---- museum

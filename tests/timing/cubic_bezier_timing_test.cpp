@@ -111,8 +111,8 @@ TEST(CubicBezierTiming, ControlPointsOutsideTheUnitSquareOvershoot) {
 TEST(CubicBezierTiming, ValidatesXAndFiniteness) {
   auto bad = CubicBezierTiming<double>::make(1.2, 0, 0.5, 1);
   ASSERT_FALSE(bad);
-  EXPECT_EQ(bad.error().where, "x1");
-  EXPECT_EQ(CubicBezierTiming<double>::make(0.2, 0, -0.1, 1).error().where, "x2");
+  EXPECT_EQ(json_pointer(bad.error().location), "/x1");
+  EXPECT_EQ(json_pointer(CubicBezierTiming<double>::make(0.2, 0, -0.1, 1).error().location), "/x2");
   EXPECT_EQ(CubicBezierTiming<double>::make(0.2, std::nan(""), 0.1, 1).error().code, ErrorCode::NotFinite);
   EXPECT_TRUE(CubicBezierTiming<double>::make(0, -3, 1, 4));  // y anywhere, x at the bounds
 }

@@ -49,11 +49,11 @@ TEST(DistanceTime, ValidationNamesTheKey) {
   auto c = Curve::from_positions(back);
   ASSERT_FALSE(c);
   EXPECT_EQ(c.error().code, ErrorCode::KeysNotIncreasing);
-  EXPECT_EQ(c.error().where, "key 2");
+  EXPECT_EQ(json_pointer(c.error().location), "/2");
   const std::vector<TimeDistanceKey<double>> one = {{0, 0}};
   EXPECT_EQ(Curve::from_positions(one).error().code, ErrorCode::TooFewPoints);
   const std::vector<TimeDistanceVelocityKey<double>> nan = {{0, 0, 0}, {1, 1, std::nan("")}};
-  EXPECT_EQ(Curve::from_constraints(nan).error().where, "key 1");
+  EXPECT_EQ(json_pointer(Curve::from_constraints(nan).error().location), "/1");
 }
 
 TEST(DistanceTime, BackingUpIsReportedWithWhere) {
@@ -96,7 +96,7 @@ TEST(DistanceTime, MonotoneRepairKeepsTheKeysAndNeverBacksUp) {
   auto lin = Curve::from_positions(down);
   ASSERT_TRUE(lin);
   EXPECT_EQ(lin->check_monotone().error().where, "segment 1");
-  EXPECT_EQ(lin->monotone_repair().error().where, "key 2");
+  EXPECT_EQ(json_pointer(lin->monotone_repair().error().location), "/2");
 }
 
 TEST(DistanceTime, CatmullRomMayOvershootMonotoneCubicDoesNot) {

@@ -99,7 +99,7 @@ TEST(Ease, SineAccelDecelEdgeParameters) {
   ASSERT_TRUE(full);
   expect_endpoints(*full, 0.0, 0.0);
   EXPECT_FALSE(SineAccelDecelEase<double>::make(-0.1, 0.5));
-  EXPECT_EQ(SineAccelDecelEase<double>::make(0.6, 0.5).error().where, "k2");
+  EXPECT_EQ(SineAccelDecelEase<double>::make(0.6, 0.5).error().location, (std::vector<LocationStep>{std::string("k2")}));
   EXPECT_EQ(SineAccelDecelEase<double>::make(std::nan(""), 0.5).error().code, ErrorCode::NotFinite);
 }
 
@@ -123,7 +123,7 @@ TEST(Ease, ConstantAccelerationVelocityAndAccelerationCurves) {
   for (int i = 0; i < n; ++i) area += (e->velocity(double(i) / n) + e->velocity(double(i + 1) / n)) / (2 * n);
   EXPECT_NEAR(area, 1.0, 1e-12);  // t1 and t2 are grid points, so the rule is exact up to rounding
   for (double t : {0.1, 0.4, 0.85}) expect_derivatives_consistent(*e, t);
-  EXPECT_EQ(ConstantAccelerationEase<double>::make(0.5, 0.4).error().where, "t2");
+  EXPECT_EQ(ConstantAccelerationEase<double>::make(0.5, 0.4).error().location, (std::vector<LocationStep>{std::string("t2")}));
 }
 
 TEST(Ease, FloatInstantiationsWork) {

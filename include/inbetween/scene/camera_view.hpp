@@ -148,8 +148,8 @@ template <Real T>
 using RawCoi = std::variant<RawLookAt<T>, RawLookAhead<T>, RawCoiPath, RawHoldThenMove<T>>;
 
 /// A camera's view as authored: plain data, checked by build_camera_view().  Member names are the
-/// JSON members; errors name them in `where` relative to this object ("ahead/count",
-/// "hold/2/move_frames").
+/// JSON members; errors name them as structured location steps relative to this object
+/// ({"ahead", "count"}, {"hold", 2, "move_frames"}).
 template <Real T>
 struct RawCameraView {
   T yfov_deg = T(50);             ///< vertical field of view in degrees, 0 < yfov < 180 (default: three.js's 50)
@@ -199,7 +199,7 @@ enum class CoiMode {
 template <Real T>
 class CameraView;
 
-/// Checks a raw view and builds it.  Errors (where = member path relative to the view):
+/// Checks a raw view and builds it.  Errors (location = member steps relative to the view):
 /// yfov_deg not in (0, 180) or not finite; tilt_deg or up not finite; up zero; ahead with
 /// distance or spread negative or not finite, or count < 1; an empty object or path name; a
 /// non-finite point; hold with no segment, a non-finite frame, move_frames < 0, a last segment

@@ -18,8 +18,11 @@
 #include <variant>
 #include <vector>
 
+#include "inbetween/curves/any_curve.hpp"
 #include "inbetween/math/quat.hpp"
 #include "inbetween/math/vec.hpp"
+#include "inbetween/scene/camera_view.hpp"
+#include "inbetween/scene/path_motion.hpp"
 #include "inbetween/tracks/euler_track.hpp"
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
@@ -104,23 +107,65 @@ struct RawVec3Channel {
   TrackExtend after = TrackExtend::constant;   ///< after the last key
 };
 
-/// A named transform: each channel a constant or a track; a parent by name.
+/// A named curve of the scene (file: "paths"[i], version 2): objects' path legs and cameras'
+/// coi_path and up_path refer to it by name.  The reader has read the curve (inline or from its
+/// file) already.
+struct RawScenePath {
+  std::string name;  ///< path name (non-empty, unique among paths)
+  AnyCurve curve;    ///< the curve, any family (docs/curve-format.md)
+};
+
+/// One leg of an object's path (file: an object's "path", or one element of it when it is an
+/// array; version 2).  The members mirror RawPathMotion; the names the scene resolves are kept
+/// apart so that RawPathMotion's built members (an FCurve, a QuatTrack) need not exist yet.
+struct RawPathLeg {
+  /// The curve: the name of one of RawScene::paths, or the curve itself (inline or read from a
+  /// file by the reader).  In the file: "curve": "name" | {curve object}, or "file": "x.json".
+  std::variant<std::string, AnyCurve> curve = std::string();
+  /// Distance over frames.  For speed.kind track, `speed.track` is unused: see speed_track.
+  RawSpeed speed;
+  /// speed.kind track: the name of a scalar track of the scene giving the distance (file:
+  /// speed.track).
+  std::string speed_track;
+  /// The orientation along the path.  orientation.local_track is unused: see local_rotation_keys.
+  RawOrientation orientation;
+  /// orientation.look_at given as an object name (the file's "look_at": "name"); the object's world
+  /// position is looked at, and the mode must be look_at.  Empty: orientation.look_at is the point.
+  std::string look_at_object;
+  /// orientation.local_rotation given as a quaternion track object (keys, distance_factor,
+  /// time_aware); when present it replaces orientation.local_rotation.
+  std::optional<RawQuatKeys> local_rotation_keys;
+};
+
+/// A named transform: each channel a constant or a track; a parent by name.  Version 2 adds a
+/// path (translation and rotation from a PathMotion per leg) and a camera (rotation from the view).
 struct RawObject {
   std::string name;                   ///< object name (non-empty, unique among objects)
   std::optional<std::string> parent;  ///< name of the parent object; none (or null in the file) for a root
-  /// Constant [x, y, z] or a keyed track (default: 0).
-  std::variant<Vec3d, RawVec3Channel> translation = Vec3d{};
-  /// Constant quaternion of any non-zero length (normalised when built) or a keyed track (default: identity).
-  std::variant<Quatd, RawQuatKeys> rotation = Quatd{};
+  /// Constant [x, y, z] or a keyed track; none (absent in the file) means 0.  Must be absent with a path.
+  std::optional<std::variant<Vec3d, RawVec3Channel>> translation;
+  /// Constant quaternion of any non-zero length (normalised when built) or a keyed track; none
+  /// (absent) means identity.  Must be absent with a path or a camera.
+  std::optional<std::variant<Quatd, RawQuatKeys>> rotation;
   /// Constant [x, y, z] or a keyed track (default: 1).
   std::variant<Vec3d, RawVec3Channel> scale = Vec3d{1, 1, 1};
+  /// The path legs, in increasing and non-overlapping frame ranges; empty: no path.  The path is
+  /// in the parent's space.
+  std::vector<RawPathLeg> path;
+  /// True when the file gave "path" as an array of legs (error places are then path/k/…), false
+  /// for a single leg object (path/…).
+  bool path_is_array = false;
+  /// The camera's view when the object is a camera (file: "camera"); its target, path and track
+  /// names are resolved by build_scene().
+  std::optional<RawCameraViewd> camera;
 };
 
-/// A whole scene as authored.  Later scene concepts ("paths", "cameras") are further vectors.
+/// A whole scene as authored.
 struct RawScene {
   double fps = 24;                      ///< frames per second (> 0); time = frame / fps
   std::array<double, 2> range = {1, 1};  ///< [first, last] frame baked by default (first ≤ last)
   std::vector<RawTrack> tracks;         ///< named tracks, in file order (output columns in this order)
+  std::vector<RawScenePath> paths;      ///< named curves (version 2), in file order; no columns of their own
   std::vector<RawObject> objects;       ///< objects, in file order (columns after all tracks)
 };
 

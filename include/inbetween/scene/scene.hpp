@@ -11,7 +11,11 @@
 #include <variant>
 #include <vector>
 
+#include "inbetween/arclength/arc_length.hpp"
+#include "inbetween/curves/any_curve.hpp"
 #include "inbetween/math/expected.hpp"
+#include "inbetween/scene/camera_view.hpp"
+#include "inbetween/scene/path_motion.hpp"
 #include "inbetween/scene/raw_scene.hpp"
 #include "inbetween/tracks/euler_track.hpp"
 #include "inbetween/tracks/fcurve.hpp"
@@ -56,6 +60,41 @@ struct SceneEulerTrack {
 /// One built track of a scene: exactly one kind.
 using SceneTrack = std::variant<SceneScalarTrack, SceneVectorTrack, SceneQuatTrack, SceneEulerTrack>;
 
+/// One built leg of a path object: the motion along one curve and the arc length of the legs
+/// before it (so the object's distance column is distance_before + the leg's distance).
+struct ScenePathLeg {
+  PathMotion motion;                           ///< the built leg (its frame_range() orders the legs)
+  double distance_before = 0;                  ///< sum of the lengths of the earlier legs
+  std::optional<std::size_t> look_at_object;   ///< object index looked at (orientation look_at an object)
+};
+
+/// Most objects one camera may name as targets (look_at or hold targets): their world positions
+/// are gathered on the stack when the camera is sampled, so that sampling never allocates.
+inline constexpr std::size_t kMaxCameraTargets = 64;
+
+class Scene;
+
+/// A sampling context for a sequence of frames (bake, a preview): it remembers the rotation each
+/// path object, camera and descendant of one wrote at the previous sample and flips the sign of
+/// the new quaternion (q and −q are the same rotation) when the dot product with it is negative,
+/// so rotation columns are sign-continuous from frame to frame.  Objects whose rotation is keyed
+/// only (every version-1 object) are left as Scene::sample() writes them.  Make one per scene and
+/// sequence (it allocates once, here); Scene::sample(frame, out, cursor) then never allocates.
+class SceneCursor {
+ public:
+  /// A cursor for `scene` with no previous frame.
+  explicit SceneCursor(const Scene& scene);
+  /// Forgets the previous frame (the next sample starts a new sequence).
+  void reset() noexcept { has_previous_ = false; }
+
+ private:
+  friend class Scene;
+  std::vector<std::size_t> rotation_columns_;  // column of rotation.w of each tracked object
+  std::vector<double> previous_;               // 4 per tracked object: the last written w, x, y, z
+  std::size_t column_count_ = 0;               // the scene's column count (checked by sample)
+  bool has_previous_ = false;
+};
+
 /// A validated, ready-to-sample scene.  Only build_scene() makes one.
 class Scene {
  public:
@@ -68,12 +107,26 @@ class Scene {
   /// The tracks, in the RawScene's order.
   [[nodiscard]] std::span<const SceneTrack> tracks() const noexcept { return tracks_; }
   /// The objects with their parent links and local animation; empty when the scene has none.
+  /// For a path object the node's local animation holds its scale only (path_legs() has the
+  /// rest); for a camera, its translation and scale (camera() has the view).
   [[nodiscard]] std::span<const HierarchyNode<double>> objects() const noexcept {
     return objects_ ? objects_->nodes() : std::span<const HierarchyNode<double>>{};
   }
 
+  /// The path legs of object `i` (index into objects()); empty for an object not on a path.
+  [[nodiscard]] std::span<const ScenePathLeg> path_legs(std::size_t i) const noexcept { return extras_[i].legs; }
+  /// The camera view of object `i`, or nullptr when it is not a camera.
+  [[nodiscard]] const CameraView<double>* camera(std::size_t i) const noexcept {
+    return extras_[i].camera ? &*extras_[i].camera : nullptr;
+  }
+  /// Object indices in evaluation order: parents before children, and every object looked at
+  /// (a path's look_at object, a camera's targets) before the object that looks at it.
+  [[nodiscard]] std::span<const std::size_t> evaluation_order() const noexcept { return order_; }
+
   /// The output columns, in order: each track's columns in track order, then for each object
-  /// <object>.translation.x y z, <object>.rotation.w x y z, <object>.scale.x y z (world TRS).
+  /// <object>.translation.x y z, <object>.rotation.w x y z, <object>.scale.x y z (world TRS),
+  /// followed for a path object by <object>.distance and <object>.speed and for a camera by
+  /// <object>.target.x y z (the centre of interest, world).
   [[nodiscard]] std::span<const SceneColumn> columns() const noexcept { return columns_; }
 
   /// Evaluates every column at `frame` into `out` (precondition, asserted: out.size() ==
@@ -83,25 +136,58 @@ class Scene {
   /// object count, and keeps no scratch state: a parent's world transform is read back from its
   /// own columns of `out` (exact: they hold the doubles written), so one Scene may be sampled from
   /// several threads at once, each with its own `out`.
+  ///
+  /// Path objects: local position and rotation from the current leg (the last leg whose frame
+  /// range starts at or before `frame`, else the first), world = parent ∘ local; the distance
+  /// column is the leg's distance_before + its distance, the speed column its analytic speed (0
+  /// while held).  Cameras: the eye is the world translation (keyed or from the path, through the
+  /// parent), the world rotation is the view's world_from_camera (looking down −Z), the target
+  /// columns the COI.  Objects looked at are read back from their columns like parents.
+  /// Quaternions are canonical (w ≥ 0) for path objects and cameras; see SceneCursor.
   void sample(double frame, std::span<double> out) const noexcept;
 
+  /// sample(frame, out), then the rotation columns of path objects, cameras and their descendants
+  /// made sign-continuous with the cursor's previous frame (and remembered).  `cursor` must have
+  /// been made for this scene (asserted).  Never allocates.
+  void sample(double frame, std::span<double> out, SceneCursor& cursor) const noexcept;
+
  private:
+  friend class SceneCursor;
+  struct ObjectExtra {
+    std::size_t column = 0;                      // first output column of the object
+    std::vector<ScenePathLeg> legs;              // empty: not on a path
+    std::optional<CameraView<double>> camera;    // a camera's view
+    std::vector<std::size_t> camera_targets;     // object index per CameraView::target_names() slot
+    std::optional<std::size_t> coi_path;         // index into paths_
+    std::optional<std::size_t> up_path;          // index into paths_
+    std::optional<std::size_t> tilt_column;      // output column of the tilt track
+    bool continuous = false;                     // rotation made sign-continuous by a cursor
+  };
+
   friend Expected<Scene> build_scene(const RawScene& raw);
-  Scene(double fps, double range_start, double range_end, std::vector<SceneTrack> tracks,
-        std::optional<TransformHierarchy<double>> objects, std::vector<SceneColumn> columns);
+  Scene(double fps, double range_start, double range_end) : fps_(fps), range_start_(range_start), range_end_(range_end) {}
 
   double fps_, range_start_, range_end_;
   std::vector<SceneTrack> tracks_;
   std::optional<TransformHierarchy<double>> objects_;  // none when the scene has no objects
   std::vector<SceneColumn> columns_;
-  std::size_t object_column_ = 0;  // index of the first object column
+  std::vector<ArcLength<AnyCurve>> paths_;  // the named paths (coi_path, up_path)
+  std::vector<ObjectExtra> extras_;         // one per object
+  std::vector<std::size_t> order_;          // evaluation order of the objects
 };
 
-/// Checks everything and builds the scene: fps finite and > 0; range first ≤ last; track and
-/// object names non-empty and unique among tracks and among objects; no two tracks or objects
-/// writing the same output column; every track's keys (through build_fcurve, build_track,
-/// build_quat_track, build_euler_track); Euler conventions; object rest rotations non-zero;
-/// parents that exist and form no cycle.  The Error's structured `location` names the offending
+/// Checks everything and builds the scene: fps finite and > 0; range first ≤ last; track, path
+/// and object names non-empty and unique among tracks, among paths and among objects; no two
+/// tracks or objects writing the same output column; every track's keys (through build_fcurve,
+/// build_track, build_quat_track, build_euler_track); Euler conventions; object rest rotations
+/// non-zero; parents that exist and form no cycle.  Version 2: every path leg (build_path_motion,
+/// its errors under objects/i/path[/k]/…) and camera (build_camera_view, under objects/i/camera/…);
+/// names resolved (paths for a leg's curve and a camera's coi_path/up_path, scalar tracks for
+/// speed.track and tilt_track, objects for look_at and hold targets); legs in increasing,
+/// non-overlapping frame ranges (a track speed only on a single leg); no translation or rotation
+/// with a path, no rotation on a camera; ahead/coi_path/up_path only on a camera on a path; at
+/// most kMaxCameraTargets target objects per camera; no cycle through parents, look-ats and
+/// camera targets (the error names the member that closes it).  The Error's structured `location` names the offending
 /// member of `raw` ({"tracks", 2, "keys", 3, "frame"}), which, since RawScene mirrors the file, is
 /// the JSON pointer of the value in a scene file.
 [[nodiscard]] Expected<Scene> build_scene(const RawScene& raw);
