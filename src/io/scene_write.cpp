@@ -212,11 +212,12 @@ class Writer {
     json j = json::object();
     j["name"] = o.name;
     if (o.parent) j["parent"] = *o.parent;
-    j["translation"] = vec3_channel(o.translation, at(loc, "translation"));
-    if (const auto* q = std::get_if<Quatd>(&o.rotation)) {
+    if (o.translation) j["translation"] = vec3_channel(*o.translation, at(loc, "translation"));
+    if (!o.rotation) {
+    } else if (const auto* q = std::get_if<Quatd>(&*o.rotation)) {
       j["rotation"] = quat(*q, at(loc, "rotation"));
     } else {
-      const auto& keyed = std::get<RawQuatKeys>(o.rotation);
+      const auto& keyed = std::get<RawQuatKeys>(*o.rotation);
       json rj = json::object();
       quat_keys(rj, keyed.keys, keyed.distance_factor, keyed.time_aware, at(loc, "rotation"));
       j["rotation"] = std::move(rj);
@@ -276,6 +277,16 @@ void pretty(const json& j, int indent, int depth, std::string& out) {
 }  // namespace
 
 Expected<std::string> write_scene_json(const RawScene& scene, const SceneWriteOptions& options) {
+  // Version 2's paths, path objects and cameras are not written yet: refuse rather than drop them.
+  if (!scene.paths.empty()) {
+    return Error{ErrorCode::Unsupported, "the scene writer does not write paths yet", "", {"paths"}};
+  }
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    if (!scene.objects[i].path.empty() || scene.objects[i].camera) {
+      return Error{ErrorCode::Unsupported, "the scene writer does not write path objects or cameras yet", "",
+                   {"objects", i}};
+    }
+  }
   Writer w;
   json root = json::object();
   root["inbetween"] = 2;

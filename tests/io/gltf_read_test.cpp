@@ -240,11 +240,11 @@ TEST(GltfRead, ChannelsMapOntoTheMatchingTrackKinds) {
   ASSERT_TRUE(raw.has_value()) << raw.error().describe();
   ASSERT_EQ(raw->objects.size(), 1u);
   const RawObject& o = raw->objects[0];
-  const auto& t = std::get<RawVec3Channel>(o.translation);
+  const auto& t = std::get<RawVec3Channel>(*o.translation);
   EXPECT_EQ(t.keys[0].tangent, TangentKind::stepped);
   EXPECT_EQ(t.keys[1].frame, 30.0);  // time 1 s × 30 fps
   EXPECT_EQ(std::get<RawVec3Channel>(o.scale).keys[0].tangent, TangentKind::linear);
-  const auto& r = std::get<RawQuatKeys>(o.rotation);
+  const auto& r = std::get<RawQuatKeys>(*o.rotation);
   EXPECT_EQ(r.keys[0].interpolation, QuatInterpolation::gltf_cubic);
   ASSERT_EQ(raw->tracks.size(), 1u);
   const auto& w = std::get<RawVectorTrack>(raw->tracks[0]);
