@@ -74,8 +74,8 @@ void run_convert(const ConvertOptions& opt) {
   }
   if (!glb && !gltf) {
     throw CommandError{"convert: " + opt.input + " → " + opt.output +
-                       " is not a supported conversion (supported: MODEL.gltf|MODEL.glb → SCENE.json, "
-                       "SCENE.json|MODEL.gltf|MODEL.glb → OUT.gltf|OUT.glb)"};
+                       " is not a supported conversion: the output must end in .gltf or .glb (export of a scene or glTF "
+                       "file) or in .json (a scene file from glTF input)"};
   }
   const RawScene raw = read_raw(opt);
   auto scene = build_scene(raw);

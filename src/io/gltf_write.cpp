@@ -182,6 +182,17 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
   if (options.substeps < 1 || options.substeps > 64) {
     return Error{ErrorCode::InvalidArgument, "substeps must be in 1..64", "", {"substeps"}};
   }
+  // Version 2's path objects and cameras are not exported yet (they would need their sampled local
+  // transforms refitted and glTF cameras): refuse rather than export them standing still.
+  for (std::size_t i = 0; i < raw.objects.size(); ++i) {
+    if (!raw.objects[i].path.empty()) {
+      return Error{ErrorCode::Unsupported, "glTF export of objects on paths is not implemented yet", "",
+                   {"objects", i, "path"}};
+    }
+    if (raw.objects[i].camera) {
+      return Error{ErrorCode::Unsupported, "glTF export of cameras is not implemented yet", "", {"objects", i, "camera"}};
+    }
+  }
   const auto nodes = scene.objects();
   if (nodes.empty()) return Error{ErrorCode::Unsupported, "the scene has no objects to export as glTF nodes", "", {"objects"}};
   INBETWEEN_ASSERT(nodes.size() == raw.objects.size());

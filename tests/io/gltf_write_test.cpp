@@ -46,10 +46,16 @@ Loaded load(const fs::path& p) {
   return {*raw, *scene};
 }
 
+// The example scenes the exporter takes: all but those with path objects or cameras (version 2),
+// whose export is not implemented yet (GltfWrite.PathObjectsAndCamerasAreRefused).
 std::vector<fs::path> export_scenes() {
   std::vector<fs::path> out;
-  for (const auto& e : fs::directory_iterator(kSource / "examples/scenes"))
-    if (e.path().extension() == ".json") out.push_back(e.path());
+  for (const auto& e : fs::directory_iterator(kSource / "examples/scenes")) {
+    if (e.path().extension() != ".json") continue;
+    const std::string text = test::slurp(e.path());
+    if (text.find("\"path\"") != std::string::npos || text.find("\"camera\"") != std::string::npos) continue;
+    out.push_back(e.path());
+  }
   out.push_back(kSource / "tests/data/scenes/gltf_export_zoo.json");
   return out;
 }
@@ -366,6 +372,15 @@ TEST(GltfWrite, GltfKeysGoBackByteForByte) {
       for (std::size_t i = 0; i < v.size(); ++i) EXPECT_EQ(v[i], expect[i]) << c.target_path << " float " << i << ", round " << round;
     }
   }
+}
+
+// Not exported yet: an object on a path or a camera is an error naming it, never a node standing still.
+TEST(GltfWrite, PathObjectsAndCamerasAreRefused) {
+  const Loaded s = load(kSource / "examples/scenes/frame22.json");
+  auto out = export_gltf(s.raw, s.scene, {});
+  ASSERT_FALSE(out);
+  EXPECT_EQ(out.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(json_pointer(out.error().location), "/objects/0/path") << out.error().describe();
 }
 
 }  // namespace
