@@ -9,6 +9,7 @@
 /// playback costs O(1) per sample whatever the number of keys; without a cursor a sample is a
 /// binary search.
 
+#include <array>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -18,6 +19,7 @@
 #include <initializer_list>
 #include <utility>
 #include <span>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,7 @@
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/vec.hpp"
+#include "inbetween/tracks/enum_names.hpp"
 
 namespace inbetween {
 
@@ -40,6 +43,15 @@ enum class TangentKind : std::uint8_t {
   stepped,           ///< the segment after this key holds the key's value (in tangent: chord)
 };
 
+/// File and command-line names of the TangentKind enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 8> tangent_kind_names = {
+    "hermite", "catmull_rom", "kochanek_bartels", "flat", "linear", "clamped", "plateau", "stepped"};
+/// The name table of TangentKind (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<TangentKind>() noexcept {
+  return tangent_kind_names;
+}
+
 /// Behaviour before the first or after the last key (Maya's pre/post infinity).
 enum class TrackExtend : std::uint8_t {
   constant,      ///< the end key's value
@@ -48,6 +60,14 @@ enum class TrackExtend : std::uint8_t {
   cycle_offset,  ///< repeat, shifted by (last − first value) per cycle
   oscillate,     ///< repeat alternately forwards and backwards
 };
+
+/// File and command-line names of the TrackExtend enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 5> track_extend_names = {"constant", "linear", "cycle", "cycle_offset", "oscillate"};
+/// The name table of TrackExtend (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<TrackExtend>() noexcept {
+  return track_extend_names;
+}
 
 /// One authored key of a Track<V>.
 template <class V>
