@@ -47,7 +47,11 @@ FCurve::CycleMap FCurve::map_cycles(float frame) const noexcept {
       const float cyct = float(std::fmod(double(rel), double(cycdx)));
       if (count == 0 || !(cycle > float(count))) {
         if (mode == CycleMode::repeat_offset) {
-          const float k = side < 0 ? float(std::floor(rel / cycdx)) : float(std::ceil(rel / cycdx));
+          // Cycle number.  Keys very close together and a far frame overflow it (1e9 / 1.4e-45):
+          // it then acts as ±max (as Track's cycle_offset does), so a zero per-cycle change stays
+          // 0 (not 0·inf = NaN) and a non-zero one saturates.
+          float k = side < 0 ? float(std::floor(rel / cycdx)) : float(std::ceil(rel / cycdx));
+          if (std::isinf(k)) k = std::copysign(std::numeric_limits<float>::max(), k);
           offset = k * cycdy;
         }
         // |cycle| is bounded by float range; the int conversion below needs it to fit.

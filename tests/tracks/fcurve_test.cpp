@@ -123,6 +123,27 @@ TEST(FCurve, CyclesMirrorBeforeRepeatOffsetAfter) {
   for (auto [frame, value] : expected) EXPECT_FLOAT_EQ(c.evaluate(frame), value) << "frame " << frame;
 }
 
+// Issue 9, defect 7a for F-curves: with repeat_offset, keys a denormal apart and a far frame made
+// the cycle count 1e9 / 1.4e-45 overflow to inf, and a zero per-cycle change 0·inf = NaN.  (The
+// issue's 1e-300 apart rounds to one float frame, which build_fcurve rejects; FLT_TRUE_MIN is the
+// smallest gap a built curve can have.)  Expected values: a curve whose keys share one value is that
+// value everywhere (no change per cycle, so no offset); otherwise the offset saturates, finite.
+TEST(FCurve, RepeatOffsetWithAnOverflowingCycleCountStaysANumber) {
+  for (const double last_value : {3.0, 4.0}) {
+    RawFCurve raw{.cycles = FCurveCycles{.before = CycleMode::repeat_offset, .after = CycleMode::repeat_offset}};
+    FCurveKey a = inserted(0, 3), b = inserted(double(std::numeric_limits<float>::denorm_min()), last_value);
+    a.interpolation = b.interpolation = Interpolation::linear;
+    raw.keys = {a, b};
+    const FCurve c = build(raw);
+    for (const float frame : {1e9f, -1e9f, std::numeric_limits<float>::max()}) {
+      const float v = c.evaluate(frame);
+      EXPECT_TRUE(std::isfinite(v)) << "frame " << frame << " last value " << last_value << ": " << v;
+      if (last_value == 3.0) EXPECT_EQ(v, 3.0f) << "frame " << frame;
+      EXPECT_TRUE(std::isfinite(c.derivative(frame)));
+    }
+  }
+}
+
 TEST(FCurve, CycleCountLimitsRepetition) {
   // With one cycle after, the second copy is not played: plain (constant) extrapolation takes over.
   RawFCurve raw{.cycles = FCurveCycles{.before = CycleMode::none, .after = CycleMode::repeat, .count_after = 1}};
