@@ -141,7 +141,7 @@ bool near_frame(float a, float b) noexcept {
 }
 
 
-// Handles of a Bézier segment after evaluate()'s correction of handles longer than the segment.
+// Handles of a Bézier segment after sample()'s correction of handles longer than the segment.
 std::pair<Vec2f, Vec2f> corrected_handles(const Key& ka, const Key& kb) noexcept {
   const Vec2f v1{ka.x, ka.y}, v4{kb.x, kb.y};
   Vec2f v2 = ka.right, v3 = kb.left;
@@ -169,7 +169,7 @@ std::pair<Vec2f, Vec2f> corrected_handles(const Key& ka, const Key& kb) noexcept
 double bezier_segment_slope(const Key& ka, const Key& kb, double t) noexcept {
   if (std::abs(ka.y - kb.y) < FLT_EPSILON && std::abs(ka.right.y - kb.left.y) < FLT_EPSILON &&
       std::abs(kb.left.y - kb.y) < FLT_EPSILON) {
-    return 0.0;  // evaluate() returns the constant value here
+    return 0.0;  // sample() returns the constant value here
   }
   const auto [v2, v3] = corrected_handles(ka, kb);
   const double x0 = ka.x, x1 = v2.x, x2 = v3.x, x3 = kb.x;
@@ -310,9 +310,9 @@ float FCurve::evaluate_keys(float t, std::size_t* cursor) const noexcept {
   return interpolate(t, cursor);
 }
 
-float FCurve::evaluate(float frame) const noexcept { return evaluate_impl(frame, nullptr); }
+float FCurve::sample(float frame) const noexcept { return evaluate_impl(frame, nullptr); }
 
-float FCurve::evaluate(float frame, TrackCursor& cursor) const noexcept {
+float FCurve::sample(float frame, TrackCursor& cursor) const noexcept {
   return evaluate_impl(frame, &cursor.segment);
 }
 
@@ -383,7 +383,7 @@ double FCurve::derivative(float frame) const noexcept {
   return std::isfinite(out) ? out : 0.0;
 }
 
-void FCurve::evaluate(std::span<const float> frames, std::span<float> out, TrackCursor& cursor) const noexcept {
+void FCurve::sample(std::span<const float> frames, std::span<float> out, TrackCursor& cursor) const noexcept {
   INBETWEEN_ASSERT(frames.size() == out.size());
   for (std::size_t i = 0; i < frames.size(); ++i) out[i] = evaluate_impl(frames[i], &cursor.segment);
 }

@@ -40,7 +40,7 @@ TEST(EnumNames, EveryEnumeratorHasOneDistinctName) {
   expect_one_name_each(AutoSmoothing::cont_accel);
   expect_one_name_each(CycleMode::mirror);
   expect_one_name_each(TangentKind::stepped);
-  expect_one_name_each(TrackExtend::oscillate);
+  expect_one_name_each(TrackExtend::mirror);
   expect_one_name_each(QuatInterpolation::gltf_cubic);
   expect_one_name_each(EulerTrackMode::quaternion);
 }
@@ -51,7 +51,7 @@ TEST(EnumNames, FileSpellingsAreStable) {
   EXPECT_EQ(to_string(HandleType::automatic), "auto");
   EXPECT_EQ(to_string(CycleMode::repeat_offset), "repeat_offset");
   EXPECT_EQ(enum_name(TangentKind::explicit_hermite), "hermite");
-  EXPECT_EQ(enum_name(TrackExtend::cycle_offset), "cycle_offset");
+  EXPECT_EQ(enum_name(TrackExtend::repeat_offset), "cycle_offset");
   EXPECT_EQ(enum_name(QuatInterpolation::gltf_cubic), "gltf_cubic");
   EXPECT_EQ(enum_from_string<EulerTrackMode>("quaternion"), EulerTrackMode::quaternion);
 }

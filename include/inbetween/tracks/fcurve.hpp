@@ -166,27 +166,41 @@ class FCurve {
     bool locked = false;   ///< Blender's LOCKED auto-handle state (flat end or extreme)
   };
 
-  /// The value at `frame` (frames are single precision, as Blender's evaluate() takes them).
+  /// The value at `frame` (frames are single precision, as Blender's fcurve.evaluate() takes them).
   /// Any frame is valid; NaN gives the first key's value, ±inf acts as the largest finite float.
-  [[nodiscard]] float evaluate(float frame) const noexcept;
+  [[nodiscard]] float sample(float frame) const noexcept;
 
-  /// The same value as evaluate(frame), found from the segment remembered in `cursor` (updated):
+  /// The same value as sample(frame), found from the segment remembered in `cursor` (updated):
   /// O(1) per sample for sequential playback instead of Blender's binary search.  Near a key (within
   /// Blender's 1e-4 snap distance) the full search runs, so results are identical.
-  [[nodiscard]] float evaluate(float frame, TrackCursor& cursor) const noexcept;
+  [[nodiscard]] float sample(float frame, TrackCursor& cursor) const noexcept;
 
-  /// Fills out[i] = evaluate(frames[i], cursor); the spans must have equal sizes; no allocation.
-  void evaluate(std::span<const float> frames, std::span<float> out, TrackCursor& cursor) const noexcept;
+  /// Fills out[i] = sample(frames[i], cursor); the spans must have equal sizes; no allocation.
+  void sample(std::span<const float> frames, std::span<float> out, TrackCursor& cursor) const noexcept;
+
+  /// Deprecated spelling of sample() (every track type samples, docs/conventions.md); kept for one release.
+  [[deprecated("use FCurve::sample")]] [[nodiscard]] float evaluate(float frame) const noexcept {
+    return sample(frame);
+  }
+  /// Deprecated spelling of sample(frame, cursor); kept for one release.
+  [[deprecated("use FCurve::sample")]] [[nodiscard]] float evaluate(float frame, TrackCursor& cursor) const noexcept {
+    return sample(frame, cursor);
+  }
+  /// Deprecated spelling of sample(frames, out, cursor); kept for one release.
+  [[deprecated("use FCurve::sample")]] void evaluate(std::span<const float> frames, std::span<float> out,
+                                                     TrackCursor& cursor) const noexcept {
+    sample(frames, out, cursor);
+  }
 
   /// d value / d frame at `frame`, analytic (ours: Blender exposes no derivative).  Computed in
   /// double from the stored single-precision keys: a Bézier segment solves x(u) = frame for the
-  /// Bézier parameter (after the same handle correction as evaluate) and returns y′(u)/x′(u) (the
+  /// Bézier parameter (after the same handle correction as sample) and returns y′(u)/x′(u) (the
   /// ratio of second derivatives where x′ vanishes, 0 when both do); linear is the chord slope,
   /// constant 0, the Penner easings their closed-form derivatives (penner_ease_velocity).  At an
   /// interior key the segment to the right counts, at the last key the segment to the left (the
   /// one-sided derivatives of the keyed range); outside the keys the extrapolation's slope (0 for
   /// constant), and with the Cycles modifier the slope of the cycled copy (negated on the
-  /// backward copies of `mirror`).  Blender's 1e-4 snap of evaluate() to a key's value is ignored.
+  /// backward copies of `mirror`).  Blender's 1e-4 snap of sample() to a key's value is ignored.
   /// NaN gives 0; never NaN for a built curve.
   [[nodiscard]] double derivative(float frame) const noexcept;
 
