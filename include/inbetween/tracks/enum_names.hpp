@@ -25,14 +25,20 @@ template <class Enum>
   return i < names.size() ? names[i] : std::string_view{};
 }
 
-/// Parses a name of enum_names<Enum>(); nullopt for an unknown name.
+/// The enumerator of `Enum` whose name in `names` is `name`; nullopt for an unknown name.
 template <class Enum>
-[[nodiscard]] constexpr std::optional<Enum> enum_from_string(std::string_view name) noexcept {
-  const std::span<const std::string_view> names = enum_names<Enum>();
+[[nodiscard]] constexpr std::optional<Enum> find_enum_name(std::span<const std::string_view> names,
+                                                           std::string_view name) noexcept {
   for (std::size_t i = 0; i < names.size(); ++i) {
     if (names[i] == name) return static_cast<Enum>(i);
   }
   return std::nullopt;
 }
+
+/// Parses a name written by to_string() / enum_name(); nullopt for an unknown name.  Declared here,
+/// defined out of line for each enum (the tracks enums in src/tracks/enum_names.cpp, from their
+/// enum_names<Enum>() table; other modules define it for theirs).
+template <class Enum>
+[[nodiscard]] std::optional<Enum> enum_from_string(std::string_view name) noexcept;
 
 }  // namespace inbetween

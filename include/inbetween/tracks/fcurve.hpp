@@ -252,6 +252,6 @@ class FCurve {
 [[nodiscard]] std::string_view to_string(AutoSmoothing v) noexcept;  ///< "none", "cont_accel"
 [[nodiscard]] std::string_view to_string(CycleMode v) noexcept;      ///< "none", "repeat", …
 
-// enum_from_string<Enum>(name), the inverse of to_string(), is in enum_names.hpp.
+// enum_from_string<Enum>(name), the inverse of to_string(), is declared in enum_names.hpp.
 
 }  // namespace inbetween
