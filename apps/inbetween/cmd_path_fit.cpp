@@ -1,25 +1,24 @@
 // `inbetween path fit FILE.csv --degree K --control-points M [-o FILE]`: fits a B-spline of degree
 // K with M control points to rows `t,x[,y[,z]]` (texts 004 §3.2.5) and writes a bspline curve file
 // (docs/timing.md).  Parsing and formatting only; the fit is inbetween::fit_bspline.
-#include <charconv>
 #include <memory>
-#include <cmath>
-#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "command.hpp"
 #include "csv.hpp"
+#include "inbetween/curves/any_curve.hpp"
+#include "inbetween/io/curve_file.hpp"
 #include "inbetween/timing/bspline_fit.hpp"
 
 namespace inbetween::cli {
 namespace {
 
 
+// Fits and returns the curve file text, written by io's write_curve_json (the one curve-file writer).
 template <class P>
-nlohmann::json fit_to_json(const CsvTable& csv, const std::string& path, int degree, int control_points) {
+std::string fit_to_curve_file(const CsvTable& csv, const std::string& path, int degree, int control_points) {
   constexpr int dim = PointTraits<P>::dim;
   std::vector<TimedPoint<P>> data;
   for (const auto& r : csv.rows) {
@@ -34,19 +33,17 @@ nlohmann::json fit_to_json(const CsvTable& csv, const std::string& path, int deg
     if (e.where.empty()) e.where = path;  // too few data: the file is the place
     throw CommandError{e.describe()};
   }
-  nlohmann::json points = nlohmann::json::array();
+  // Curve files hold Vec3d points padded with zeros; the dimension says how many are written.
+  std::vector<Vec3d> points;
+  points.reserve(fit->curve.control_points.size());
   for (const P& p : fit->curve.control_points) {
-    nlohmann::json xyz = nlohmann::json::array();
-    for (int k = 0; k < dim; ++k) xyz.push_back(PointTraits<P>::get(p, k));
-    points.push_back(xyz);
+    Vec3d q{};
+    for (int k = 0; k < dim; ++k) q[k] = PointTraits<P>::get(p, k);
+    points.push_back(q);
   }
-  nlohmann::json j;
-  j["version"] = 1;
-  j["type"] = "bspline";
-  j["degree"] = fit->curve.degree;
-  j["points"] = points;
-  j["knots"] = fit->curve.knots;
-  return j;
+  auto curve = BSpline<Vec3d>::build(points, fit->curve.degree, fit->curve.knots);
+  if (!curve) throw CommandError{curve.error().describe()};  // a fit's knots are valid: not expected
+  return write_curve_json(AnyCurve{CurveKind::BSpline, dim, AnyCurveVariant{std::move(*curve)}});
 }
 
 void setup(CLI::App& root) {
@@ -72,11 +69,11 @@ void setup(CLI::App& root) {
   fit->callback([args] {
     const CsvTable csv = read_csv_table(read_input(args->input), args->input, 2, 4, "t,x[,y[,z]]");
     const std::size_t dim = csv.rows.front().size() - 1;
-    nlohmann::json j;
-    if (dim == 1) j = fit_to_json<double>(csv, args->input, args->degree, args->control_points);
-    else if (dim == 2) j = fit_to_json<Vec2d>(csv, args->input, args->degree, args->control_points);
-    else j = fit_to_json<Vec3d>(csv, args->input, args->degree, args->control_points);
-    write_output(args->output, j.dump(2) + "\n");
+    std::string text;
+    if (dim == 1) text = fit_to_curve_file<double>(csv, args->input, args->degree, args->control_points);
+    else if (dim == 2) text = fit_to_curve_file<Vec2d>(csv, args->input, args->degree, args->control_points);
+    else text = fit_to_curve_file<Vec3d>(csv, args->input, args->degree, args->control_points);
+    write_output(args->output, text);
   });
 }
 

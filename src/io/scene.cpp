@@ -27,14 +27,12 @@ namespace {
 using namespace io_detail;
 
 // ------------------------------------------------------------------ scalar tracks (F-curves)
-constexpr std::string_view kInterp[] = {"constant", "linear", "bezier", "back",  "bounce",
-                                                             "circ",     "cubic",  "elastic", "expo", "quad",
-                                                             "quart",    "quint",  "sine"};
-constexpr std::string_view kEasing[] = {"auto", "ease_in", "ease_out", "ease_in_out"};
-constexpr std::string_view kHandles[] = {"free", "aligned", "vector", "auto", "auto_clamped"};
-constexpr std::string_view kExtrap[] = {"constant", "linear"};
-constexpr std::string_view kSmooth[] = {"none", "cont_accel"};
-constexpr std::string_view kCycle[] = {"none", "repeat", "repeat_offset", "mirror"};
+constexpr std::span<const std::string_view> kInterp = enum_names<Interpolation>();
+constexpr std::span<const std::string_view> kEasing = enum_names<KeyEasing>();
+constexpr std::span<const std::string_view> kHandles = enum_names<HandleType>();
+constexpr std::span<const std::string_view> kExtrap = enum_names<Extrapolation>();
+constexpr std::span<const std::string_view> kSmooth = enum_names<AutoSmoothing>();
+constexpr std::span<const std::string_view> kCycle = enum_names<CycleMode>();
 
 Expected<FCurveKey> read_fcurve_key(const json& j, const Loc& loc) {
   FCurveKey k;
@@ -131,12 +129,11 @@ Expected<RawScalarTrack> read_scalar_track(const json& j, const Loc& loc) {
 }
 
 // ------------------------------------------------------------------ vector, quaternion, Euler tracks
-constexpr std::string_view kTangents[] = {"hermite", "catmull_rom", "kochanek_bartels", "flat",
-                                                               "linear",  "clamped",     "plateau",          "stepped"};
-constexpr std::string_view kExtend[] = {"constant", "linear", "cycle", "cycle_offset", "oscillate"};
-constexpr std::string_view kQuatInterp[] = {"step", "slerp", "bezier", "squad", "gltf_cubic"};
+constexpr std::span<const std::string_view> kTangents = enum_names<TangentKind>();
+constexpr std::span<const std::string_view> kExtend = enum_names<TrackExtend>();
+constexpr std::span<const std::string_view> kQuatInterp = enum_names<QuatInterpolation>();
 constexpr std::string_view kUnits[] = {"rad", "deg"};
-constexpr std::string_view kEulerModes[] = {"angles", "quaternion"};
+constexpr std::span<const std::string_view> kEulerModes = enum_names<EulerTrackMode>();
 
 template <class V>
 V shrink(const Vec4d& v) {

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "inbetween/io/curve_file.hpp"
 #include "support/cli.hpp"
 
 namespace {
@@ -92,6 +93,27 @@ TEST(PathFitCli, FittedFileIsAcceptedByCurveSample) {
   EXPECT_EQ(r.out.substr(0, 8), "u,s,x,y\n");
 }
 
+// `path fit` writes through io's write_curve_json, so its output is a fixed point of the curve-file
+// reader and writer: parsed and written again it is the same bytes.  1-D points are then plain
+// numbers, as write_curve_json writes them (before, path fit wrote its own [x] one-element arrays).
+TEST(PathFitCli, OutputIsWhatTheCurveFileWriterWrites) {
+  for (const char* rows : {"0,1.6\n1,1.65\n2,1.6\n3,1.8\n4,2.1\n", "t,x,y\n0,0,0\n1,1,2\n2,3,1\n3,4,4\n",
+                           "0,0,0,1\n1,1,2,0.5\n2,3,1,0.25\n3,4,4,0\n"}) {
+    const auto csv = inbetween::test::write_test_file("writer.csv", rows);
+    const CliRun r = run_cli("path fit " + csv.string() + " --degree 2");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto parsed = inbetween::parse_curve_json(r.out, "fit.json");
+    ASSERT_TRUE(parsed.has_value()) << parsed.error().describe();
+    EXPECT_EQ(inbetween::write_curve_json(*parsed), r.out);
+    const auto j = nlohmann::json::parse(r.out);
+    if (j["points"][0].is_array()) {
+      EXPECT_GE(j["points"][0].size(), 2u) << r.out;
+    } else {
+      EXPECT_TRUE(j["points"][0].is_number()) << r.out;  // the 1-D rows
+    }
+  }
+}
+
 TEST(PathFitCli, BadRowsAndOptionsExitTwoNamingThePlace) {
   const auto bad = inbetween::test::write_test_file("bad.csv", "t,x\n0,1\n1,oops\n");
   CliRun r = run_cli("path fit " + bad.string());
@@ -125,8 +147,9 @@ TEST(PathFitCli, LargeRepresentableFitSucceedsAndTooFewRowsAreUserErrors) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto fitted = nlohmann::json::parse(r.out);
   const double want[3] = {0.35e308, -0.625e308, 0.65e308};
+  // 1-D points are plain numbers, as write_curve_json writes them (they were [x] arrays).
   for (int c = 0; c < 3; ++c)
-    EXPECT_NEAR(fitted["points"][c][0].template get<double>(), want[c], 1e-13 * 1e308) << c;
+    EXPECT_NEAR(fitted["points"][c].template get<double>(), want[c], 1e-13 * 1e308) << c;
 
   const auto one = inbetween::test::write_test_file("one_row.csv", "0,0\n");
   r = run_cli("path fit " + one.string());

@@ -72,8 +72,8 @@ void compare(const std::vector<const inbetween::SceneScalarTrack*>& tracks, cons
     for (std::size_t i = 0; i < frames.size(); ++i) {
       const float frame = frames[i].get<float>();
       const double expected = values[i].get<double>();
-      const double got = track.curve.evaluate(frame);
-      EXPECT_EQ(track.curve.evaluate(frame, cursor), float(got)) << track.name << " frame " << frame;
+      const double got = track.curve.sample(frame);
+      EXPECT_EQ(track.curve.sample(frame, cursor), float(got)) << track.name << " frame " << frame;
       const double err = std::abs(got - expected);
       ++g.samples;
       if (err != 0) ++g.not_identical;

@@ -155,8 +155,8 @@ TEST_F(BlenderReference, EveryCurveMatchesBlenderEvaluate) {
       // Numbers are float32 written as the shortest text that reads back (through double) to them.
       const float frame = float(frames[s].get<double>());
       const float expected = float(values[s].get<double>());
-      const float got = curve.evaluate(frame);
-      EXPECT_EQ(curve.evaluate(frame, cursor), got) << track_json.at("name") << " frame " << frame;
+      const float got = curve.sample(frame);
+      EXPECT_EQ(curve.sample(frame, cursor), got) << track_json.at("name") << " frame " << frame;
       const double err = std::abs(double(got) - double(expected));
       ++g.samples;
       if (got != expected) ++g.not_identical;

@@ -43,10 +43,10 @@ TEST(FCurve, InsertedKeysDefaultHandles) {
   EXPECT_NEAR(c.keys()[0].right.x, 4, kBlenderPrinted);
   EXPECT_NEAR(c.keys()[1].left.x, 7, kBlenderPrinted);
   EXPECT_NEAR(c.keys()[1].right.x, 13, kBlenderPrinted);
-  EXPECT_FLOAT_EQ(c.evaluate(3.25f), 0.78125f);
-  EXPECT_NEAR(c.evaluate(8.f), 4.3689981f, kBlenderPrinted);
-  EXPECT_EQ(c.evaluate(-100.f), 0.f);  // constant extrapolation
-  EXPECT_EQ(c.evaluate(100.f), 5.f);
+  EXPECT_FLOAT_EQ(c.sample(3.25f), 0.78125f);
+  EXPECT_NEAR(c.sample(8.f), 4.3689981f, kBlenderPrinted);
+  EXPECT_EQ(c.sample(-100.f), 0.f);  // constant extrapolation
+  EXPECT_EQ(c.sample(100.f), 5.f);
 }
 
 TEST(FCurve, InsertedKeysLinearExtrapolation) {
@@ -56,8 +56,8 @@ TEST(FCurve, InsertedKeysLinearExtrapolation) {
                           .auto_smoothing = AutoSmoothing::cont_accel});
   EXPECT_NEAR(c.keys()[0].left.y, -1.6666667f, kBlenderPrinted);
   EXPECT_NEAR(c.keys()[0].right.y, 1.6666667f, kBlenderPrinted);
-  EXPECT_NEAR(c.evaluate(0.f), -0.5555556f, kBlenderPrinted);
-  EXPECT_NEAR(c.evaluate(11.f), 5.5555558f, kBlenderPrinted);
+  EXPECT_NEAR(c.sample(0.f), -0.5555556f, kBlenderPrinted);
+  EXPECT_NEAR(c.sample(11.f), 5.5555558f, kBlenderPrinted);
 }
 
 RawFCurve four_auto_keys(AutoSmoothing smoothing) {
@@ -77,8 +77,8 @@ TEST(FCurve, AutoHandlesWithoutSmoothing) {
   EXPECT_NEAR(c.keys()[2].left.y, 0.9760287f, kBlenderPrinted);
   EXPECT_NEAR(c.keys()[2].right.x, 23.9041157f, 2e-6f);
   EXPECT_NEAR(c.keys()[2].right.y, -0.9760287f, kBlenderPrinted);
-  EXPECT_NEAR(c.evaluate(15.f), 5.3660097f, kBlenderPrinted);
-  EXPECT_NEAR(c.evaluate(25.f), 2.1339891f, kBlenderPrinted);
+  EXPECT_NEAR(c.sample(15.f), 5.3660097f, kBlenderPrinted);
+  EXPECT_NEAR(c.sample(25.f), 2.1339891f, kBlenderPrinted);
 }
 
 TEST(FCurve, AutoHandlesWithContinuousAcceleration) {
@@ -87,9 +87,9 @@ TEST(FCurve, AutoHandlesWithContinuousAcceleration) {
   EXPECT_NEAR(c.keys()[2].left.x, 16.666666f, 2e-6f);
   EXPECT_NEAR(c.keys()[2].left.y, 1.3333334f, kBlenderPrinted);
   EXPECT_NEAR(c.keys()[2].right.y, -1.3333334f, kBlenderPrinted);
-  EXPECT_NEAR(c.evaluate(5.f), 4.8749995f, kBlenderPrinted);
-  EXPECT_NEAR(c.evaluate(15.f), 5.624999f, kBlenderPrinted);
-  EXPECT_NEAR(c.evaluate(25.f), 2.0f, kBlenderPrinted);
+  EXPECT_NEAR(c.sample(5.f), 4.8749995f, kBlenderPrinted);
+  EXPECT_NEAR(c.sample(15.f), 5.624999f, kBlenderPrinted);
+  EXPECT_NEAR(c.sample(25.f), 2.0f, kBlenderPrinted);
 }
 
 TEST(FCurve, ElasticAndBackDefaults) {
@@ -99,12 +99,12 @@ TEST(FCurve, ElasticAndBackDefaults) {
     a.interpolation = ip;
     const FCurve c = build({.keys = {a, inserted(10, 1)}, .auto_smoothing = AutoSmoothing::cont_accel});
     if (ip == Interpolation::elastic) {
-      EXPECT_NEAR(c.evaluate(1.f), 0.9845857f, kBlenderPrinted);
-      EXPECT_NEAR(c.evaluate(2.5f), 1.109105f, kBlenderPrinted);
-      EXPECT_NEAR(c.evaluate(5.f), 0.9952402f, kBlenderPrinted);
+      EXPECT_NEAR(c.sample(1.f), 0.9845857f, kBlenderPrinted);
+      EXPECT_NEAR(c.sample(2.5f), 1.109105f, kBlenderPrinted);
+      EXPECT_NEAR(c.sample(5.f), 0.9952402f, kBlenderPrinted);
     } else {
-      EXPECT_NEAR(c.evaluate(1.f), 0.4088281f, kBlenderPrinted);
-      EXPECT_NEAR(c.evaluate(5.f), 1.0876975f, kBlenderPrinted);
+      EXPECT_NEAR(c.sample(1.f), 0.4088281f, kBlenderPrinted);
+      EXPECT_NEAR(c.sample(5.f), 1.0876975f, kBlenderPrinted);
     }
   }
 }
@@ -120,7 +120,28 @@ TEST(FCurve, CyclesMirrorBeforeRepeatOffsetAfter) {
   const FCurve c = build(raw);
   const std::pair<float, float> expected[] = {{-25.f, 7.f}, {-15.f, 7.f}, {-5.f, 5.f}, {20.f, 4.f},
                                               {25.f, 9.f},  {30.f, 14.f}, {40.f, 8.f}, {45.f, 13.f}};
-  for (auto [frame, value] : expected) EXPECT_FLOAT_EQ(c.evaluate(frame), value) << "frame " << frame;
+  for (auto [frame, value] : expected) EXPECT_FLOAT_EQ(c.sample(frame), value) << "frame " << frame;
+}
+
+// Issue 9, defect 7a for F-curves: with repeat_offset, keys a denormal apart and a far frame made
+// the cycle count 1e9 / 1.4e-45 overflow to inf, and a zero per-cycle change 0·inf = NaN.  (The
+// issue's 1e-300 apart rounds to one float frame, which build_fcurve rejects; FLT_TRUE_MIN is the
+// smallest gap a built curve can have.)  Expected values: a curve whose keys share one value is that
+// value everywhere (no change per cycle, so no offset); otherwise the offset saturates, finite.
+TEST(FCurve, RepeatOffsetWithAnOverflowingCycleCountStaysANumber) {
+  for (const double last_value : {3.0, 4.0}) {
+    RawFCurve raw{.cycles = FCurveCycles{.before = CycleMode::repeat_offset, .after = CycleMode::repeat_offset}};
+    FCurveKey a = inserted(0, 3), b = inserted(double(std::numeric_limits<float>::denorm_min()), last_value);
+    a.interpolation = b.interpolation = Interpolation::linear;
+    raw.keys = {a, b};
+    const FCurve c = build(raw);
+    for (const float frame : {1e9f, -1e9f, std::numeric_limits<float>::max()}) {
+      const float v = c.sample(frame);
+      EXPECT_TRUE(std::isfinite(v)) << "frame " << frame << " last value " << last_value << ": " << v;
+      if (last_value == 3.0) EXPECT_EQ(v, 3.0f) << "frame " << frame;
+      EXPECT_TRUE(std::isfinite(c.derivative(frame)));
+    }
+  }
 }
 
 TEST(FCurve, CycleCountLimitsRepetition) {
@@ -130,9 +151,9 @@ TEST(FCurve, CycleCountLimitsRepetition) {
   a.interpolation = b.interpolation = Interpolation::linear;
   raw.keys = {a, b};
   const FCurve c = build(raw);
-  EXPECT_FLOAT_EQ(c.evaluate(15.f), 5.f);   // first repeat: value at frame 5
-  EXPECT_FLOAT_EQ(c.evaluate(25.f), 10.f);  // cycle 1.5 > 1: the last key's value
-  EXPECT_FLOAT_EQ(c.evaluate(-5.f), 0.f);   // no cycling before
+  EXPECT_FLOAT_EQ(c.sample(15.f), 5.f);   // first repeat: value at frame 5
+  EXPECT_FLOAT_EQ(c.sample(25.f), 10.f);  // cycle 1.5 > 1: the last key's value
+  EXPECT_FLOAT_EQ(c.sample(-5.f), 0.f);   // no cycling before
 }
 
 TEST(FCurve, InteriorKeySnapsWithinBlendersThreshold) {
@@ -144,9 +165,9 @@ TEST(FCurve, InteriorKeySnapsWithinBlendersThreshold) {
     raw.keys.push_back(k);
   }
   const FCurve c = build(raw);
-  EXPECT_EQ(c.evaluate(10.00005f), 10.f);
-  EXPECT_NE(c.evaluate(10.0001f), 10.f);  // float(10.0001) − 10 exceeds float(1e-4)
-  EXPECT_EQ(c.evaluate(9.99995f), 10.f);
+  EXPECT_EQ(c.sample(10.00005f), 10.f);
+  EXPECT_NE(c.sample(10.0001f), 10.f);  // float(10.0001) − 10 exceeds float(1e-4)
+  EXPECT_EQ(c.sample(9.99995f), 10.f);
 }
 
 TEST(FCurve, LinearAndConstantClosedForms) {
@@ -154,9 +175,9 @@ TEST(FCurve, LinearAndConstantClosedForms) {
   a.interpolation = Interpolation::linear;
   b.interpolation = Interpolation::constant;
   const FCurve c = build({.keys = {a, b, d}});
-  EXPECT_FLOAT_EQ(c.evaluate(3.f), 3.f);  // 1 + (9 − 1)·(1/4)
-  EXPECT_FLOAT_EQ(c.evaluate(7.5f), 9.f); // held
-  EXPECT_FLOAT_EQ(c.evaluate(8.f), -1.f);
+  EXPECT_FLOAT_EQ(c.sample(3.f), 3.f);  // 1 + (9 − 1)·(1/4)
+  EXPECT_FLOAT_EQ(c.sample(7.5f), 9.f); // held
+  EXPECT_FLOAT_EQ(c.sample(8.f), -1.f);
 }
 
 TEST(FCurve, OvershootingHandleIsShortenedAlongItsLine) {
@@ -173,7 +194,7 @@ TEST(FCurve, OvershootingHandleIsShortenedAlongItsLine) {
   };
   const FCurve longer = build(make({40, 8}));
   const FCurve shorter = build(make({10, 2}));
-  for (float t = 0.25f; t < 10.f; t += 0.5f) EXPECT_EQ(longer.evaluate(t), shorter.evaluate(t)) << t;
+  for (float t = 0.25f; t < 10.f; t += 0.5f) EXPECT_EQ(longer.sample(t), shorter.sample(t)) << t;
 }
 
 TEST(FCurve, AlignedHandleIsRealignedUnlessOnlyRoundingAway) {
@@ -283,21 +304,21 @@ TEST(FCurve, PassesThroughKeysAndStaysFiniteOnMuseum) {
     for (std::size_t i = 0; i < c.keys().size(); ++i) {
       const auto& k = c.keys()[i];
       if (i > 0 && k.x - c.keys()[i - 1].x <= 1e-4f) continue;
-      EXPECT_EQ(c.evaluate(k.x), k.y);
+      EXPECT_EQ(c.sample(k.x), k.y);
     }
     const float lo = c.keys().front().x, hi = c.keys().back().x;
     const float w = std::max(hi - lo, 1.f);
     for (int i = -200; i <= 400; ++i) {
       const float t = lo + w * float(i) / 200.f;
-      EXPECT_TRUE(std::isfinite(c.evaluate(t))) << "frame " << t;
+      EXPECT_TRUE(std::isfinite(c.sample(t))) << "frame " << t;
     }
     // The far ends: ±inf acts as ±FLT_MAX (it was NaN from 0·inf in linear extrapolation and from
     // fmod(inf, ·) in the Cycles modifier); the exhibits' slopes keep the value finite there.
     constexpr float kMax = std::numeric_limits<float>::max();
     constexpr float kInf = std::numeric_limits<float>::infinity();
-    for (float t : {kInf, -kInf, kMax, -kMax}) EXPECT_TRUE(std::isfinite(c.evaluate(t))) << "frame " << t;
-    EXPECT_EQ(c.evaluate(kInf), c.evaluate(kMax));
-    EXPECT_EQ(c.evaluate(-kInf), c.evaluate(-kMax));
+    for (float t : {kInf, -kInf, kMax, -kMax}) EXPECT_TRUE(std::isfinite(c.sample(t))) << "frame " << t;
+    EXPECT_EQ(c.sample(kInf), c.sample(kMax));
+    EXPECT_EQ(c.sample(-kInf), c.sample(-kMax));
   }
 }
 
@@ -319,14 +340,14 @@ TEST(FCurve, RandomCurvesPassThroughKeysAndAreContinuous) {
     for (std::size_t i = 0; i + 1 < c.keys().size(); ++i) {
       const auto& a = c.keys()[i];
       const auto& b = c.keys()[i + 1];
-      EXPECT_EQ(c.evaluate(a.x), a.y);
+      EXPECT_EQ(c.sample(a.x), a.y);
       // Continuity at the right end of each segment: approaching b from inside stays near b.y.
       // The handle polygon bounds the slope, so |Δy| ≤ slope·Δt with slope from the control points.
       const float dt = (b.x - a.x) * 1e-3f;
       const float slope = 3.f * std::max(std::abs(b.y - b.left.y) / std::max(b.x - b.left.x, 1e-6f),
                                          std::abs(a.right.y - a.y) / std::max(a.right.x - a.x, 1e-6f)) +
                           3.f * std::abs(b.y - a.y) / (b.x - a.x);
-      EXPECT_NEAR(c.evaluate(b.x - dt), b.y, slope * dt + 1e-5f);
+      EXPECT_NEAR(c.sample(b.x - dt), b.y, slope * dt + 1e-5f);
     }
   }
 }
@@ -348,8 +369,8 @@ TEST(FCurve, CyclesRepeatIsPeriodic) {
       const float t = float(rng.integer(0, 4 * int(period)));
       // At a cycle boundary Blender returns the last key's value, not the first's: skip those.
       if (std::fmod(t, period) == 0.f) continue;
-      EXPECT_NEAR(c.evaluate(t + period), c.evaluate(t), 1e-4f) << t;
-      EXPECT_NEAR(c.evaluate(t - period), c.evaluate(t), 1e-4f) << t;
+      EXPECT_NEAR(c.sample(t + period), c.sample(t), 1e-4f) << t;
+      EXPECT_NEAR(c.sample(t - period), c.sample(t), 1e-4f) << t;
     }
   }
 }
@@ -384,10 +405,10 @@ TEST(FCurve, CursorGivesExactlyTheSearchedValue) {
     TrackCursor cursor;
     std::vector<float> batch(frames.size());
     TrackCursor batch_cursor;
-    c.evaluate(frames, batch, batch_cursor);
+    c.sample(frames, batch, batch_cursor);
     for (std::size_t i = 0; i < frames.size(); ++i) {
-      const float plain = c.evaluate(frames[i]);
-      EXPECT_EQ(c.evaluate(frames[i], cursor), plain) << frames[i];
+      const float plain = c.sample(frames[i]);
+      EXPECT_EQ(c.sample(frames[i], cursor), plain) << frames[i];
       EXPECT_EQ(batch[i], plain) << frames[i];
     }
   }
@@ -543,15 +564,15 @@ TEST(FCurveDerivative, CyclesMirrorNegatesAndRepeatOffsetKeepsTheSlope) {
   EXPECT_DOUBLE_EQ(c.derivative(-15.f), 0.6);
   EXPECT_DOUBLE_EQ(c.derivative(25.f), 1.0);
   EXPECT_DOUBLE_EQ(c.derivative(36.f), -0.6);
-  // Each against a central difference of evaluate() at a safe step (linear pieces: exact slope,
+  // Each against a central difference of sample() at a safe step (linear pieces: exact slope,
   // float rounding of values ~10 over 2h = 0.2 frames gives ≤ 1e-5).
   for (float x : {-15.f, -5.f, 25.f, 36.f}) {
-    EXPECT_NEAR(c.derivative(x), (double(c.evaluate(x + 0.1f)) - c.evaluate(x - 0.1f)) / (double(x + 0.1f) - double(x - 0.1f)), 1e-5) << x;
+    EXPECT_NEAR(c.derivative(x), (double(c.sample(x + 0.1f)) - c.sample(x - 0.1f)) / (double(x + 0.1f) - double(x - 0.1f)), 1e-5) << x;
   }
 }
 
 TEST(FCurveDerivative, MatchesCentralDifferenceOnMuseumAndRandomCurves) {
-  // evaluate() is single precision: a central difference with step h has rounding error
+  // sample() is single precision: a central difference with step h has rounding error
   // ≈ ulp(|y|)/h and truncation h²·|y‴|/6.  With h = 1/64 frame (exact in float, so x ± h are
   // exact too) the tolerance is the rounding bound below plus 2e-3·max(1, |y′|) for truncation,
   // while a wrong formula (a missing dx/du, a wrong sign) is off by O(|y′|).  Points within 2h of a key are
@@ -595,13 +616,13 @@ TEST(FCurveDerivative, MatchesCentralDifferenceOnMuseumAndRandomCurves) {
       const auto& ka = c.keys()[seg];
       const auto& kb = c.keys()[seg + 1];
       if (t > ka.x && t < kb.x && near_easing_break(ka, kb, t, 2 * h)) continue;
-      const double y0 = c.evaluate(t);
-      const double fd = (double(c.evaluate(t + h)) - double(c.evaluate(t - h))) / (2.0 * h);
+      const double y0 = c.sample(t);
+      const double fd = (double(c.sample(t + h)) - double(c.sample(t - h))) / (2.0 * h);
       const double d = c.derivative(t);
       ASSERT_TRUE(std::isfinite(d));
       // Where the slope bends sharply (circ near its vertical end, vertical Bézier handles) the
       // truncation error h²·|y‴|/6 dominates; the one-sided differences disagree there: skip.
-      const double left = (y0 - c.evaluate(t - h)) / h, right = (double(c.evaluate(t + h)) - y0) / h;
+      const double left = (y0 - c.sample(t - h)) / h, right = (double(c.sample(t + h)) - y0) / h;
       if (std::abs(left - right) > 0.05 * std::max(1.0, std::abs(fd))) continue;
       // Rounding: Blender evaluates in single precision.  A Bézier value is a sum of terms as large
       // as the control values, so it is within a few ulp (4 allowed) of the largest of |y| and the

@@ -121,7 +121,7 @@ TYPED_TEST(HotPathTyped, TrackQuatAndEulerSamplingNeverAllocate) {
     e.angles_rad = {T(0.3) * T(i), T(0.1), T(-0.2) * T(i)};
     ekeys.push_back(e);
   }
-  auto tr = build_track(vkeys, TrackExtend::oscillate, TrackExtend::cycle_offset);
+  auto tr = build_track(vkeys, TrackExtend::mirror, TrackExtend::repeat_offset);
   auto qt = build_quat_track(qkeys);
   auto et = build_euler_track(ekeys);
   ASSERT_TRUE(tr && qt && et);
@@ -160,12 +160,12 @@ TEST(HotPath, FCurveAndHierarchySamplingNeverAllocate) {
   for (int i = -500; i < 3000; ++i) frames.push_back(float(i) * 0.01f);
   std::vector<float> out(frames.size());
   TrackCursor c0;
-  static_assert(noexcept(std::declval<const FCurve&>().evaluate(1.0f, c0)));
+  static_assert(noexcept(std::declval<const FCurve&>().sample(1.0f, c0)));
   EXPECT_EQ(allocations_in([&] {
               for (const FCurve& c : curves) {
                 TrackCursor cursor;
-                for (float f : frames) (void)c.evaluate(f, cursor);
-                c.evaluate(std::span<const float>(frames), std::span<float>(out), cursor);
+                for (float f : frames) (void)c.sample(f, cursor);
+                c.sample(std::span<const float>(frames), std::span<float>(out), cursor);
               }
             }),
             0);
@@ -177,7 +177,7 @@ TEST(HotPath, FCurveAndHierarchySamplingNeverAllocate) {
   keys[1].frame = 10;
   keys[1].value = Vec3d{1, 2, 3};
   nodes[1].local.translation = *build_track(keys);
-  auto h = build_hierarchy(std::move(nodes));
+  auto h = build_transform_hierarchy(std::move(nodes));
   ASSERT_TRUE(h);
   std::vector<Transform<double>> world(3);
   std::vector<Mat4d> matrices(3);

@@ -152,9 +152,9 @@ TYPED_TEST(TrackTest, ClampedIsFlatNextToAnEqualNeighbour) {
 TYPED_TEST(TrackTest, ExtendModes) {
   using T = TypeParam;
   const std::vector<TrackKey<T>> keys = {key<T>(0, 1, TangentKind::linear), key<T>(4, 3, TangentKind::linear)};
-  auto cyc = build_track(keys, TrackExtend::cycle, TrackExtend::cycle);
-  auto off = build_track(keys, TrackExtend::cycle_offset, TrackExtend::cycle_offset);
-  auto osc = build_track(keys, TrackExtend::oscillate, TrackExtend::oscillate);
+  auto cyc = build_track(keys, TrackExtend::repeat, TrackExtend::repeat);
+  auto off = build_track(keys, TrackExtend::repeat_offset, TrackExtend::repeat_offset);
+  auto osc = build_track(keys, TrackExtend::mirror, TrackExtend::mirror);
   auto lin = build_track(keys, TrackExtend::linear, TrackExtend::linear);
   auto con = build_track(keys);
   ASSERT_TRUE(cyc && off && osc && lin && con);
@@ -183,7 +183,7 @@ TYPED_TEST(TrackTest, CursorAndBatchAgreeWithPlainSampling) {
     keys.push_back(k);
     f += rng.uniform<T>(T(0.1), T(3));
   }
-  auto tr = build_track(keys, TrackExtend::oscillate, TrackExtend::cycle_offset);
+  auto tr = build_track(keys, TrackExtend::mirror, TrackExtend::repeat_offset);
   ASSERT_TRUE(tr.has_value());
   std::vector<T> frames;
   for (T t = -20; t < f + 20; t += T(0.37)) frames.push_back(t);            // forwards
@@ -209,7 +209,7 @@ TYPED_TEST(TrackTest, CycleOffsetWithAnOverflowingCycleCountStaysANumber) {
   const T gap = sizeof(T) == 4 ? std::numeric_limits<T>::min() : T(1e-300);  // keys this far apart
   const std::vector<TrackKey<Vec3<T>>> keys{key<Vec3<T>>(T(0), Vec3<T>{1, 2, 3}),
                                             key<Vec3<T>>(gap, Vec3<T>{1, 5, 3})};
-  auto tr = build_track(keys, TrackExtend::cycle_offset, TrackExtend::cycle_offset);
+  auto tr = build_track(keys, TrackExtend::repeat_offset, TrackExtend::repeat_offset);
   ASSERT_TRUE(tr.has_value()) << tr.error().describe();
   for (const T frame : {T(1e9), T(-1e9), std::numeric_limits<T>::max(), -std::numeric_limits<T>::max()}) {
     const Vec3<T> v = tr->sample(frame);
@@ -219,7 +219,7 @@ TYPED_TEST(TrackTest, CycleOffsetWithAnOverflowingCycleCountStaysANumber) {
   }
   // A scalar track with equal end values: the offset is 0 and the value stays 7.
   auto flat = build_track(std::vector<TrackKey<T>>{key<T>(T(0), T(7)), key<T>(gap, T(7))},
-                          TrackExtend::cycle_offset, TrackExtend::cycle_offset);
+                          TrackExtend::repeat_offset, TrackExtend::repeat_offset);
   ASSERT_TRUE(flat.has_value());
   EXPECT_EQ(flat->sample(T(1e9)), T(7));
   EXPECT_EQ(flat->sample(T(-1e9)), T(7));
@@ -228,8 +228,8 @@ TYPED_TEST(TrackTest, CycleOffsetWithAnOverflowingCycleCountStaysANumber) {
 TEST(TrackMuseum, EveryExhibitBuildsPassesThroughItsKeysAndStaysFinite) {
   for (const auto& ex : test::museum_track_keys()) {
     SCOPED_TRACE(ex.name);
-    for (auto extend : {TrackExtend::constant, TrackExtend::linear, TrackExtend::cycle, TrackExtend::cycle_offset,
-                        TrackExtend::oscillate}) {
+    for (auto extend : {TrackExtend::constant, TrackExtend::linear, TrackExtend::repeat, TrackExtend::repeat_offset,
+                        TrackExtend::mirror}) {
       auto tr = build_track(ex.keys, extend, extend);
       ASSERT_TRUE(tr.has_value()) << tr.error().describe();
       for (const auto& k : ex.keys) EXPECT_EQ(tr->sample(k.frame), k.value);  // exact at keys (u = 0 or 1)
@@ -287,7 +287,7 @@ TEST(TrackBuild, RejectsBadKeysNamingTheKey) {
 
 TEST(TrackBuild, SingleKeyIsConstantEverywhere) {
   auto tr = build_track(std::vector<TrackKey<Vec4f>>{key<Vec4f>(3, Vec4f{0.1f, 0.2f, 0.3f, 1})}, TrackExtend::linear,
-                        TrackExtend::oscillate);
+                        TrackExtend::mirror);
   ASSERT_TRUE(tr.has_value());
   for (float f : {-1e6f, 0.f, 3.f, 7.5f, 1e6f}) EXPECT_EQ(tr->sample(f), (Vec4f{0.1f, 0.2f, 0.3f, 1}));
 }

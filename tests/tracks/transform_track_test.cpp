@@ -52,7 +52,7 @@ TEST(TransformHierarchy, ChildFollowsRotatingParent) {
   nodes[1].name = "hand";
   nodes[1].parent = 0;
   nodes[1].local.rest.translation = {2, 0, 0};
-  auto h = build_hierarchy(nodes);
+  auto h = build_transform_hierarchy(nodes);
   ASSERT_TRUE(h.has_value());
   std::vector<Transform<double>> world(2);
   std::vector<Mat4d> mats(2);
@@ -73,7 +73,7 @@ TEST(TransformHierarchy, ChildrenBeforeParentsInTheListAreFine) {
   nodes[2].local.rest.translation = {1, 0, 0};
   nodes[1].local.rest.translation = {0, 1, 0};
   nodes[0].local.rest.translation = {0, 0, 1};
-  auto h = build_hierarchy(nodes);
+  auto h = build_transform_hierarchy(nodes);
   ASSERT_TRUE(h.has_value());
   std::vector<Transform<double>> world(3);
   h->sample_world(0.0, std::span<Transform<double>>(world));
@@ -86,11 +86,11 @@ TEST(TransformHierarchy, RejectsCyclesAndBadParents) {
   nodes[1].name = "b";
   nodes[0].parent = 1;
   nodes[1].parent = 0;
-  auto h = build_hierarchy(nodes);
+  auto h = build_transform_hierarchy(nodes);
   ASSERT_FALSE(h.has_value());
   EXPECT_NE(h.error().message.find("own ancestor"), std::string::npos);
   nodes[1].parent = 7;
-  h = build_hierarchy(nodes);
+  h = build_transform_hierarchy(nodes);
   ASSERT_FALSE(h.has_value());
   EXPECT_EQ(json_pointer(h.error().location), "/1/parent");
 }

@@ -5,15 +5,18 @@
 /// The two disagree between keys — most visibly near gimbal lock — which is the texts' point;
 /// both pass through the keys.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <utility>
 #include <span>
+#include <string_view>
 #include <string>
 #include <vector>
 
 #include "inbetween/math/euler.hpp"
 #include "inbetween/math/expected.hpp"
+#include "inbetween/tracks/enum_names.hpp"
 #include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
 
@@ -24,6 +27,14 @@ enum class EulerTrackMode : std::uint8_t {
   angles,      ///< interpolate the three angles (Track<Vec3> with the keys' tangent kinds)
   quaternion,  ///< convert the keys to quaternions and interpolate those (QuatTrack)
 };
+
+/// File and command-line names of the EulerTrackMode enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 2> euler_track_mode_names = {"angles", "quaternion"};
+/// The name table of EulerTrackMode (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<EulerTrackMode>() noexcept {
+  return euler_track_mode_names;
+}
 
 /// One key of an Euler track: angles in radians, in the order of the convention's letters.
 template <Real T>

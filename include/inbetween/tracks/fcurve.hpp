@@ -9,6 +9,7 @@
 /// keeps its keys in float and evaluates in float in Blender's order of operations; docs/tracks.md
 /// lists what is reproduced and the measured agreement.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -18,6 +19,7 @@
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/vec.hpp"
 #include "inbetween/timing/penner.hpp"
+#include "inbetween/tracks/enum_names.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace inbetween {
@@ -30,8 +32,25 @@ enum class Interpolation : std::uint8_t {
   back, bounce, circ, cubic, elastic, expo, quad, quart, quint, sine,  ///< Penner easings (penner.hpp)
 };
 
+/// File and command-line names of the Interpolation enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 13> interpolation_names = {
+    "constant", "linear", "bezier", "back", "bounce", "circ", "cubic", "elastic", "expo", "quad", "quart", "quint", "sine"};
+/// The name table of Interpolation (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<Interpolation>() noexcept {
+  return interpolation_names;
+}
+
 /// Easing direction stored on a key; `automatic` is Blender's "AUTO" (see automatic_direction()).
 enum class KeyEasing : std::uint8_t { automatic, ease_in, ease_out, ease_in_out };
+
+/// File and command-line names of the KeyEasing enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 4> key_easing_names = {"auto", "ease_in", "ease_out", "ease_in_out"};
+/// The name table of KeyEasing (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<KeyEasing>() noexcept {
+  return key_easing_names;
+}
 
 /// Bézier handle types (Blender's vocabulary).
 enum class HandleType : std::uint8_t {
@@ -42,17 +61,41 @@ enum class HandleType : std::uint8_t {
   auto_clamped,  ///< automatic, but flat at extremes and never past the neighbours' values
 };
 
+/// File and command-line names of the HandleType enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 5> handle_type_names = {"free", "aligned", "vector", "auto", "auto_clamped"};
+/// The name table of HandleType (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<HandleType>() noexcept {
+  return handle_type_names;
+}
+
 /// Value outside the keyed range (Blender's F-curve "extrapolation").
 enum class Extrapolation : std::uint8_t {
   constant,  ///< the end key's value
   linear,    ///< continue along the end key's handle (Bézier/easing) or end segment (linear)
 };
 
+/// File and command-line names of the Extrapolation enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 2> extrapolation_names = {"constant", "linear"};
+/// The name table of Extrapolation (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<Extrapolation>() noexcept {
+  return extrapolation_names;
+}
+
 /// Curve-level smoothing of automatic handles (Blender's "auto_smoothing").
 enum class AutoSmoothing : std::uint8_t {
   none,        ///< each automatic key on its own (Blender's classic handles)
   cont_accel,  ///< solve for continuous acceleration across runs of automatic keys
 };
+
+/// File and command-line names of the AutoSmoothing enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 2> auto_smoothing_names = {"none", "cont_accel"};
+/// The name table of AutoSmoothing (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<AutoSmoothing>() noexcept {
+  return auto_smoothing_names;
+}
 
 /// Repetition mode on one side of a Cycles modifier.
 enum class CycleMode : std::uint8_t {
@@ -61,6 +104,14 @@ enum class CycleMode : std::uint8_t {
   repeat_offset,  ///< repeat, shifted by (last value − first value) per cycle
   mirror,         ///< alternate forwards and backwards copies
 };
+
+/// File and command-line names of the CycleMode enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 4> cycle_mode_names = {"none", "repeat", "repeat_offset", "mirror"};
+/// The name table of CycleMode (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<CycleMode>() noexcept {
+  return cycle_mode_names;
+}
 
 /// Blender's Cycles modifier (as the first and only modifier, full influence, no frame range).
 struct FCurveCycles {
@@ -115,27 +166,41 @@ class FCurve {
     bool locked = false;   ///< Blender's LOCKED auto-handle state (flat end or extreme)
   };
 
-  /// The value at `frame` (frames are single precision, as Blender's evaluate() takes them).
+  /// The value at `frame` (frames are single precision, as Blender's fcurve.evaluate() takes them).
   /// Any frame is valid; NaN gives the first key's value, ±inf acts as the largest finite float.
-  [[nodiscard]] float evaluate(float frame) const noexcept;
+  [[nodiscard]] float sample(float frame) const noexcept;
 
-  /// The same value as evaluate(frame), found from the segment remembered in `cursor` (updated):
+  /// The same value as sample(frame), found from the segment remembered in `cursor` (updated):
   /// O(1) per sample for sequential playback instead of Blender's binary search.  Near a key (within
   /// Blender's 1e-4 snap distance) the full search runs, so results are identical.
-  [[nodiscard]] float evaluate(float frame, TrackCursor& cursor) const noexcept;
+  [[nodiscard]] float sample(float frame, TrackCursor& cursor) const noexcept;
 
-  /// Fills out[i] = evaluate(frames[i], cursor); the spans must have equal sizes; no allocation.
-  void evaluate(std::span<const float> frames, std::span<float> out, TrackCursor& cursor) const noexcept;
+  /// Fills out[i] = sample(frames[i], cursor); the spans must have equal sizes; no allocation.
+  void sample(std::span<const float> frames, std::span<float> out, TrackCursor& cursor) const noexcept;
+
+  /// Deprecated spelling of sample() (every track type samples, docs/conventions.md); kept for one release.
+  [[deprecated("use FCurve::sample")]] [[nodiscard]] float evaluate(float frame) const noexcept {
+    return sample(frame);
+  }
+  /// Deprecated spelling of sample(frame, cursor); kept for one release.
+  [[deprecated("use FCurve::sample")]] [[nodiscard]] float evaluate(float frame, TrackCursor& cursor) const noexcept {
+    return sample(frame, cursor);
+  }
+  /// Deprecated spelling of sample(frames, out, cursor); kept for one release.
+  [[deprecated("use FCurve::sample")]] void evaluate(std::span<const float> frames, std::span<float> out,
+                                                     TrackCursor& cursor) const noexcept {
+    sample(frames, out, cursor);
+  }
 
   /// d value / d frame at `frame`, analytic (ours: Blender exposes no derivative).  Computed in
   /// double from the stored single-precision keys: a Bézier segment solves x(u) = frame for the
-  /// Bézier parameter (after the same handle correction as evaluate) and returns y′(u)/x′(u) (the
+  /// Bézier parameter (after the same handle correction as sample) and returns y′(u)/x′(u) (the
   /// ratio of second derivatives where x′ vanishes, 0 when both do); linear is the chord slope,
   /// constant 0, the Penner easings their closed-form derivatives (penner_ease_velocity).  At an
   /// interior key the segment to the right counts, at the last key the segment to the left (the
   /// one-sided derivatives of the keyed range); outside the keys the extrapolation's slope (0 for
   /// constant), and with the Cycles modifier the slope of the cycled copy (negated on the
-  /// backward copies of `mirror`).  Blender's 1e-4 snap of evaluate() to a key's value is ignored.
+  /// backward copies of `mirror`).  Blender's 1e-4 snap of sample() to a key's value is ignored.
   /// NaN gives 0; never NaN for a built curve.
   [[nodiscard]] double derivative(float frame) const noexcept;
 
@@ -187,8 +252,6 @@ class FCurve {
 [[nodiscard]] std::string_view to_string(AutoSmoothing v) noexcept;  ///< "none", "cont_accel"
 [[nodiscard]] std::string_view to_string(CycleMode v) noexcept;      ///< "none", "repeat", …
 
-/// Parses the names written by to_string(); nullopt for an unknown name.
-template <class Enum>
-[[nodiscard]] std::optional<Enum> enum_from_string(std::string_view name) noexcept;
+// enum_from_string<Enum>(name), the inverse of to_string(), is declared in enum_names.hpp.
 
 }  // namespace inbetween

@@ -11,12 +11,14 @@
 /// flipped key would no longer match its tangents).  Sampling is noexcept and returns a unit
 /// quaternion.
 
+#include <array>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <span>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,7 @@
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/orientation_interp.hpp"
 #include "inbetween/math/quat.hpp"
+#include "inbetween/tracks/enum_names.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace inbetween {
@@ -37,6 +40,14 @@ enum class QuatInterpolation : std::uint8_t {
   squad,       ///< Shoemake's spherical quadrangle interpolation
   gltf_cubic,  ///< glTF CUBICSPLINE: 4-D Hermite with the keys' tangents, then normalised
 };
+
+/// File and command-line names of the QuatInterpolation enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 5> quat_interpolation_names = {"step", "slerp", "bezier", "squad", "gltf_cubic"};
+/// The name table of QuatInterpolation (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<QuatInterpolation>() noexcept {
+  return quat_interpolation_names;
+}
 
 /// One authored orientation key.
 template <Real T>

@@ -2,13 +2,14 @@
 /// A keyframed track for any vector-like value (a scalar, Vec2/3/4, or a colour held as Vec4
 /// r, g, b, a): cubic Hermite segments whose tangents come from each key's tangent kind
 /// (explicit Hermite, Catmull-Rom, Kochanek–Bartels, Maya's flat / linear / clamped / plateau /
-/// stepped), and Maya-style behaviour before and after the keys (constant, linear, cycle,
-/// cycle with offset, oscillate).  docs/tracks.md gives each definition with its formula.
+/// stepped), and Maya-style behaviour before and after the keys (constant, linear, repeat,
+/// repeat with offset, mirror; Maya's cycle, cycle with offset, oscillate).  docs/tracks.md gives each definition with its formula.
 ///
 /// Sampling is noexcept and total.  A TrackCursor remembers the last segment, so sequential
 /// playback costs O(1) per sample whatever the number of keys; without a cursor a sample is a
 /// binary search.
 
+#include <array>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -18,6 +19,7 @@
 #include <initializer_list>
 #include <utility>
 #include <span>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,7 @@
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/vec.hpp"
+#include "inbetween/tracks/enum_names.hpp"
 
 namespace inbetween {
 
@@ -40,14 +43,36 @@ enum class TangentKind : std::uint8_t {
   stepped,           ///< the segment after this key holds the key's value (in tangent: chord)
 };
 
+/// File and command-line names of the TangentKind enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 8> tangent_kind_names = {
+    "hermite", "catmull_rom", "kochanek_bartels", "flat", "linear", "clamped", "plateau", "stepped"};
+/// The name table of TangentKind (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<TangentKind>() noexcept {
+  return tangent_kind_names;
+}
+
 /// Behaviour before the first or after the last key (Maya's pre/post infinity).
 enum class TrackExtend : std::uint8_t {
   constant,      ///< the end key's value
   linear,        ///< continue along the end key's outer tangent
-  cycle,         ///< repeat the keyed range
-  cycle_offset,  ///< repeat, shifted by (last − first value) per cycle
-  oscillate,     ///< repeat alternately forwards and backwards
+  repeat,         ///< repeat the keyed range (file name "cycle")
+  repeat_offset,  ///< repeat, shifted by (last − first value) per cycle (file name "cycle_offset")
+  mirror,         ///< repeat alternately forwards and backwards (file name "oscillate")
+  /// Deprecated spellings, kept for one release (docs/conventions.md: one spelling per behaviour,
+  /// shared with CycleMode).
+  cycle [[deprecated("use TrackExtend::repeat")]] = repeat,
+  cycle_offset [[deprecated("use TrackExtend::repeat_offset")]] = repeat_offset,  ///< deprecated
+  oscillate [[deprecated("use TrackExtend::mirror")]] = mirror,                   ///< deprecated
 };
+
+/// File and command-line names of the TrackExtend enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 5> track_extend_names = {"constant", "linear", "cycle", "cycle_offset", "oscillate"};
+/// The name table of TrackExtend (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<TrackExtend>() noexcept {
+  return track_extend_names;
+}
 
 /// One authored key of a Track<V>.
 template <class V>
@@ -317,9 +342,9 @@ V Track<V>::sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept
         // A stepped end key holds its value (a branch, not a factor 0: 0·inf is NaN far out).
         if (is_before) return stepped_[0] ? values_[0] : values_[0] + in_[0] * (frame - first);
         return stepped_[n - 1] ? values_[n - 1] : values_[n - 1] + out_[n - 1] * (frame - last);
-      case TrackExtend::cycle:
-      case TrackExtend::cycle_offset:
-      case TrackExtend::oscillate: {
+      case TrackExtend::repeat:
+      case TrackExtend::repeat_offset:
+      case TrackExtend::mirror: {
         const T rel = frame - first;
         // Cycle number (…, −1 before, 1, 2 … after).  Keys very close together and a far frame
         // overflow it (1e9 / 1e-300): it then acts as ±max, so a zero per-cycle offset stays 0
@@ -328,9 +353,9 @@ V Track<V>::sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept
         if (std::isinf(k)) k = std::copysign(std::numeric_limits<T>::max(), k);
         T local = rel - k * span;            // in [0, span] up to rounding
         local = std::clamp(local, T(0), span);
-        if (mode == TrackExtend::oscillate && std::fmod(std::abs(k), T(2)) == T(1)) local = span - local;
+        if (mode == TrackExtend::mirror && std::fmod(std::abs(k), T(2)) == T(1)) local = span - local;
         const V v = evaluate_inside(first + local, cursor, use_cursor);
-        if (mode == TrackExtend::cycle_offset) return v + (values_[n - 1] - values_[0]) * k;
+        if (mode == TrackExtend::repeat_offset) return v + (values_[n - 1] - values_[0]) * k;
         return v;
       }
     }

@@ -51,7 +51,7 @@ struct HierarchyNode {
 template <Real T>
 class TransformHierarchy {
  public:
-  /// Nodes in the order given to build_hierarchy().
+  /// Nodes in the order given to build_transform_hierarchy().
   [[nodiscard]] std::span<const HierarchyNode<T>> nodes() const noexcept { return nodes_; }
   /// Node indices in evaluation order: every parent before its children (a permutation of
   /// 0 … nodes().size() − 1).
@@ -78,7 +78,7 @@ class TransformHierarchy {
 
  private:
   template <Real U>
-  friend Expected<TransformHierarchy<U>> build_hierarchy(std::vector<HierarchyNode<U>> nodes);
+  friend Expected<TransformHierarchy<U>> build_transform_hierarchy(std::vector<HierarchyNode<U>> nodes);
   TransformHierarchy(std::vector<HierarchyNode<T>> nodes, std::vector<std::size_t> order)
       : nodes_(std::move(nodes)), order_(std::move(order)) {}
   std::vector<HierarchyNode<T>> nodes_;
@@ -88,7 +88,7 @@ class TransformHierarchy {
 /// Validates the parent links (in range, no node its own ancestor) and orders the evaluation.
 /// Error locations are {i, "parent"}: node i's parent link.
 template <Real T>
-[[nodiscard]] Expected<TransformHierarchy<T>> build_hierarchy(std::vector<HierarchyNode<T>> nodes) {
+[[nodiscard]] Expected<TransformHierarchy<T>> build_transform_hierarchy(std::vector<HierarchyNode<T>> nodes) {
   const std::size_t n = nodes.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (nodes[i].parent && *nodes[i].parent >= n) {
@@ -119,6 +119,14 @@ template <Real T>
     }
   }
   return TransformHierarchy<T>(std::move(nodes), std::move(order));
+}
+
+/// Deprecated spelling of build_transform_hierarchy() (builders are build_<type>, docs/conventions.md);
+/// kept for one release.
+template <Real T>
+[[deprecated("use build_transform_hierarchy")]] [[nodiscard]] Expected<TransformHierarchy<T>> build_hierarchy(
+    std::vector<HierarchyNode<T>> nodes) {
+  return build_transform_hierarchy(std::move(nodes));
 }
 
 }  // namespace inbetween
