@@ -185,11 +185,11 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
   static const std::vector<std::pair<std::string, std::vector<std::string>>> fields = {
       {"bezier", {}},
       {"bezier-path", {}},
-      {"hermite", {"tangents"}},
+      {"hermite", {"tangents", "params"}},
       {"catmull-rom", {"alpha", "tension", "closed"}},
-      {"natural", {"start_tangent", "end_tangent"}},
-      {"kochanek-bartels", {"tension", "continuity", "bias"}},
-      {"parabolic", {}},
+      {"natural", {"start_tangent", "end_tangent", "params", "closed"}},
+      {"kochanek-bartels", {"tension", "continuity", "bias", "params"}},
+      {"parabolic", {"params"}},
       {"bspline", {"degree", "knots", "periodic"}},
       {"lagrange", {"params"}},
   };
@@ -209,13 +209,22 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
   if (points->empty()) return r.fail(ptr("points"), "expected at least one point", ErrorCode::TooFewPoints);
   const std::vector<Vec3d>& pts = *points;
 
+  // The optional "params" member (parameters t_i of the points) of the interpolating splines.
+  std::vector<double> params;
+  if (doc.contains("params") && type != "lagrange") {
+    auto k = read_numbers(r, doc, "params");
+    if (!k) return k.error();
+    params = *k;
+    if (params.empty()) return r.fail(ptr("params"), "expected params, got an empty array", ErrorCode::WrongArity);
+  }
+
   if (type == "bezier") return wrap(r, CurveKind::Bezier, dim, build_bezier(pts));
   if (type == "bezier-path") return wrap(r, CurveKind::BezierPath, dim, build_bezier_path(pts));
-  if (type == "parabolic") return wrap(r, CurveKind::Parabolic, dim, build_parabolic_blend(pts));
+  if (type == "parabolic") return wrap(r, CurveKind::Parabolic, dim, build_parabolic_blend(pts, params));
   if (type == "hermite") {
     auto tangents = read_points(r, doc, "tangents", dim);
     if (!tangents) return tangents.error();
-    return wrap(r, CurveKind::Hermite, dim, build_hermite_spline(pts, *tangents));
+    return wrap(r, CurveKind::Hermite, dim, build_hermite_spline(pts, *tangents, params));
   }
   if (type == "catmull-rom") {
     CatmullRomOptions<double> o;
@@ -235,12 +244,21 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
     if (has_start != has_end)
       return r.fail(ptr(has_start ? "end_tangent" : "start_tangent"),
                     "a clamped spline needs both start_tangent and end_tangent");
-    if (!has_start) return wrap(r, CurveKind::Natural, dim, build_natural_spline(pts));
+    bool closed = false;
+    if (doc.contains("closed")) {
+      if (!doc["closed"].is_boolean()) return r.fail(ptr("closed"), "expected true or false");
+      closed = doc["closed"].get<bool>();
+    }
+    if (closed) {
+      if (has_start) return r.fail(ptr("start_tangent"), "a closed spline takes no end tangents");
+      return wrap(r, CurveKind::Natural, dim, build_closed_spline(pts, params));
+    }
+    if (!has_start) return wrap(r, CurveKind::Natural, dim, build_natural_spline(pts, params));
     auto start = read_point(r, doc["start_tangent"], ptr("start_tangent"), dim);
     if (!start) return start.error();
     auto end = read_point(r, doc["end_tangent"], ptr("end_tangent"), dim);
     if (!end) return end.error();
-    return wrap(r, CurveKind::Natural, dim, build_clamped_spline(pts, *start, *end));
+    return wrap(r, CurveKind::Natural, dim, build_clamped_spline(pts, *start, *end, params));
   }
   if (type == "kochanek-bartels") {
     auto tension = read_tcb(r, doc, "tension", pts.size());
@@ -256,7 +274,7 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
       keys[i].continuity = (*continuity)[continuity->size() == 1 ? 0 : i];
       keys[i].bias = (*bias)[bias->size() == 1 ? 0 : i];
     }
-    return wrap(r, CurveKind::KochanekBartels, dim, build_kochanek_bartels(pts, keys));
+    return wrap(r, CurveKind::KochanekBartels, dim, build_kochanek_bartels(pts, keys, params));
   }
   if (type == "bspline") {
     if (!doc.contains("degree") || !doc["degree"].is_number_integer())
@@ -324,6 +342,15 @@ std::string write_curve_json(const AnyCurve& any) {
       [&](const auto& c) {
         using C = std::decay_t<decltype(c)>;
         doc["points"] = points_json(c.control_points(), dim);
+        // Non-default parameters t_i of the interpolating splines (default 0, 1, …).
+        if constexpr (std::is_same_v<C, HermiteSpline<Vec3d>> || std::is_same_v<C, CubicSpline<Vec3d>> ||
+                      std::is_same_v<C, KochanekBartelsSpline<Vec3d>> ||
+                      std::is_same_v<C, ParabolicBlendSpline<Vec3d>>) {
+          const auto t = c.breakpoints();
+          bool uniform = true;
+          for (std::size_t i = 0; i < t.size(); ++i) uniform = uniform && t[i] == double(i);
+          if (!uniform) doc["params"] = std::vector<double>(t.begin(), t.end());
+        }
         if constexpr (std::is_same_v<C, HermiteSpline<Vec3d>>) {
           doc["tangents"] = points_json(c.tangents(), dim);
         } else if constexpr (std::is_same_v<C, CatmullRomSpline<Vec3d>>) {
@@ -331,6 +358,7 @@ std::string write_curve_json(const AnyCurve& any) {
           doc["tension"] = c.options().tension;
           doc["closed"] = c.options().closed;
         } else if constexpr (std::is_same_v<C, CubicSpline<Vec3d>>) {
+          if (c.closed()) doc["closed"] = true;
           if (c.end_condition() == CubicSplineEnd::Clamped) {
             doc["start_tangent"] = point_json(c.tangents().front(), dim);
             doc["end_tangent"] = point_json(c.tangents().back(), dim);

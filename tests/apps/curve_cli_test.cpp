@@ -47,6 +47,40 @@ TEST(CurveCli, InfoShowsC2ForNaturalAndBSpline) {
   }
 }
 
+// The params and closed members reach the CLI: a closed natural spline at uneven params reports its
+// seam as a joint and C² everywhere (periodic C² by construction), and samples over [t_0, t_n] start
+// and end at the first point.
+TEST(CurveCli, ClosedNaturalWithParamsIsC2WithTheSeam) {
+  const std::string f = temp_file("closed_params.json",
+                                  R"({"type": "natural", "points": [[1,0],[0,1],[-1,0],[0,-1]], "closed": true,
+                                      "params": [0, 1, 2.5, 3, 4]})");
+  const CliRun info = run_cli("curve info " + f);
+  ASSERT_EQ(info.exit_code, 0) << info.out << info.err;
+  EXPECT_NE(info.out.find("segments: 4"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("joints: 4"), std::string::npos) << info.out;
+  EXPECT_EQ(info.out.find(" C1\n"), std::string::npos) << info.out;
+  EXPECT_EQ(info.out.find(" C0\n"), std::string::npos) << info.out;
+  const CliRun s = run_cli("curve sample " + f + " --count 3");
+  ASSERT_EQ(s.exit_code, 0) << s.out << s.err;
+  std::istringstream in(s.out);
+  std::string line, first, last;
+  std::getline(in, line);
+  EXPECT_EQ(line, "u,x,y");
+  std::getline(in, first);
+  while (std::getline(in, line)) last = line;
+  EXPECT_EQ(first, "0,1,0");
+  // The curve closes at t_4 = 4 on the first point (1, 0): the Horner sum of the closing segment at
+  // v = 1 rounds, by at most a few ulp of its O(1) coefficients.
+  double u = 0, x = 0, y = 0;
+  ASSERT_EQ(std::sscanf(last.c_str(), "%lf,%lf,%lf", &u, &x, &y), 3) << last;
+  EXPECT_EQ(u, 4.0);
+  EXPECT_NEAR(x, 1.0, 1e-14);
+  EXPECT_NEAR(y, 0.0, 1e-14);
+  const CliRun bad = run_cli("curve info " + temp_file("bad_params.json", R"({"type": "hermite", "points": [0, 1], "tangents": [1, 1], "params": [1, 0]})"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("/params/1"), std::string::npos) << bad.err;
+}
+
 TEST(CurveCli, SampleWritesHeaderAndEquallySpacedParameters) {
   const CliRun r = run_cli("curve sample " + example("bezier-path.json") + " --count 5");
   ASSERT_EQ(r.exit_code, 0) << r.out;

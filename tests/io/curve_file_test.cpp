@@ -30,7 +30,40 @@ const char* kFiles[] = {
     R"({"type": "bspline", "degree": 2, "points": [[0,0],[1,2],[3,3],[4,1]], "knots": [0, 1, 2, 3, 4, 5, 6]})",
     R"({"type": "bspline", "degree": 3, "points": [[0,0],[1,2],[3,3],[4,1]], "periodic": true})",
     R"({"version": 1, "type": "lagrange", "points": [[0,0],[1,2],[3,3]], "params": [0, 0.5, 2]})",
+    R"({"type": "hermite", "points": [0, 1, 3], "tangents": [1, 0, -1], "params": [0, 0.25, 2]})",
+    R"({"type": "natural", "points": [[0,0],[1,2],[3,3],[4,1]], "params": [1, 1.5, 4, 4.25]})",
+    R"({"type": "natural", "points": [[0,0],[1,2],[3,3]], "start_tangent": [1, 0], "end_tangent": [0, -1], "params": [0, 3, 3.5]})",
+    R"({"type": "natural", "points": [[0,0],[1,2],[3,3],[4,1]], "closed": true})",
+    R"({"type": "natural", "points": [[0,0],[1,2],[3,3],[4,1]], "closed": true, "params": [0, 0.5, 2, 2.2, 3]})",
+    R"({"type": "kochanek-bartels", "points": [[0,0],[1,2],[3,3],[4,1]], "tension": 0.2, "params": [0, 0.1, 0.7, 1]})",
+    R"({"type": "parabolic", "points": [[0,0],[1,2],[3,3],[4,1]], "params": [-1, 0, 2, 5]})",
 };
+
+// The params member builds exactly the library curve at those params (same inputs, same code).
+TEST(CurveFile, ParamsAndClosedBuildTheLibraryCurves) {
+  const std::vector<Vec3d> pts{{0, 0, 0}, {1, 2, 0}, {3, 3, 0}, {4, 1, 0}};
+  const auto nat = parse_curve_json(R"({"type": "natural", "points": [[0,0],[1,2],[3,3],[4,1]], "params": [1, 1.5, 4, 4.25]})", "x");
+  ASSERT_TRUE(nat.has_value()) << nat.error().describe();
+  const auto nat_lib = build_natural_spline(pts, std::vector<double>{1, 1.5, 4, 4.25}).value();
+  EXPECT_EQ(nat->domain(), nat_lib.domain());
+  for (double u : {1.0, 1.2, 2.7, 4.1, 4.25}) EXPECT_EQ(nat->point(u), nat_lib.point(u)) << u;
+  const auto closed = parse_curve_json(R"({"type": "natural", "points": [[0,0],[1,2],[3,3],[4,1]], "closed": true, "params": [0, 0.5, 2, 2.2, 3]})", "x");
+  ASSERT_TRUE(closed.has_value()) << closed.error().describe();
+  EXPECT_TRUE(closed->closed());
+  EXPECT_EQ(closed->segment_count(), 4);
+  // The closing segment's Horner sum at v = 1 rounds by a few ulp of its O(10) coefficients.
+  EXPECT_LT(norm(closed->point(3.0) - closed->point(0.0)), 1e-14);
+  EXPECT_EQ(measure_continuity(*closed).size(), 4u);  // three joints and the seam
+  for (const auto& j : measure_continuity(*closed)) EXPECT_GE(j.c_order(), 2) << j.u;
+  const auto pb = parse_curve_json(R"({"type": "parabolic", "points": [[0,0],[1,2],[3,3],[4,1]], "params": [-1, 0, 2, 5]})", "x");
+  ASSERT_TRUE(pb.has_value());
+  const auto pb_lib = build_parabolic_blend(pts, std::vector<double>{-1, 0, 2, 5}).value();
+  for (double u : {-1.0, -0.5, 1.0, 3.3, 5.0}) EXPECT_EQ(pb->point(u), pb_lib.point(u)) << u;
+  // Default params are not written; non-default ones are.
+  EXPECT_EQ(write_curve_json(*parse_curve_json(R"({"type": "parabolic", "points": [0, 1, 3]})", "x")).find("params"),
+            std::string::npos);
+  EXPECT_NE(write_curve_json(*pb).find("\"params\""), std::string::npos);
+}
 
 TEST(CurveFile, EveryKindRoundTripsThroughTheWriter) {
   for (const char* text : kFiles) {
@@ -95,6 +128,16 @@ TEST(CurveFile, ErrorsNameTheJsonPointer) {
       {R"({"version": 2, "type": "bezier", "points": [0, 1]})", "f.json:/version"},
       {R"({"type": "catmull-rom", "points": [0, 1], "tensoin": 0.3})", "f.json:/tensoin"},
       {R"({"type": "bezier", "points": [0, 1e999]})", "f.json"},  // overflow is a JSON parse error
+      {R"({"type": "natural", "points": [0, 1, 2], "params": [0, 2, 1]})", "f.json:/params/2"},
+      {R"({"type": "natural", "points": [0, 1, 2], "params": [0, 2]})", "f.json:/params"},
+      {R"({"type": "natural", "points": [0, 1, 2], "closed": true, "params": [0, 1, 2]})", "f.json:/params"},
+      {R"({"type": "natural", "points": [0, 1, 2], "closed": "yes"})", "f.json:/closed"},
+      {R"({"type": "natural", "points": [0, 1, 2], "closed": true, "start_tangent": 1, "end_tangent": 1})", "f.json:/start_tangent"},
+      {R"({"type": "natural", "points": [0, 1], "closed": true})", "f.json:/points"},
+      {R"({"type": "hermite", "points": [0, 1], "tangents": [1, 1], "params": [0, "a"]})", "f.json:/params/1"},
+      {R"({"type": "kochanek-bartels", "points": [0, 1, 2], "params": []})", "f.json:/params"},
+      {R"({"type": "parabolic", "points": [0, 1, 2], "params": [0, 1, 1]})", "f.json:/params/2"},
+      {R"({"type": "bezier", "points": [0, 1], "params": [0, 1]})", "f.json:/params"},
   };
   for (const auto& c : cases) {
     const auto r = parse_curve_json(c.text, "f.json");

@@ -1,6 +1,7 @@
 #pragma once
 /// Hermite splines: a cubic segment between each pair of consecutive points, given the positions
-/// and the tangents dP/du at every point (texts 000 §2.3.1).  Segment i runs over u ∈ [i, i + 1]
+/// and the tangents dP/dt at every point (texts 000 §2.3.1).  Segment i runs over t ∈ [t_i, t_{i+1}]
+/// (default t_i = i)
 /// and shares its end point and end tangent with segment i + 1, so the curve is C¹ by construction.
 
 #include <span>
@@ -20,9 +21,13 @@ class HermiteSpline : public PiecewiseCubic<P> {
   /// An empty curve (no segments); build with the factory below.
   HermiteSpline() = default;
 
-  /// Builds from positions and tangents (same count, ≥ 2, finite).  Error locations: {"points", i} or
-  /// {"tangents", i}; a tangent count that differs from the point count is WrongArity at {"tangents"}.
-  static Expected<HermiteSpline> build(std::span<const P> points, std::span<const P> tangents) {
+  /// Builds from positions and tangents dP/dt (same count, ≥ 2, finite) at parameters `params`
+  /// (strictly increasing, one per point; empty: 0, 1, …); segment i is the Hermite cubic over
+  /// [t_i, t_{i+1}] with local tangents h_i T_i, h_i T_{i+1} (h_i = t_{i+1} − t_i).  Error locations:
+  /// {"points", i}, {"tangents", i} or {"params", i}; a tangent count that differs from the point
+  /// count is WrongArity at {"tangents"}.
+  static Expected<HermiteSpline> build(std::span<const P> points, std::span<const P> tangents,
+                                       std::span<const T> params = {}) {
     if (auto ok = detail::check_points(points, 2, "hermite"); !ok) return ok.error();
     if (tangents.size() != points.size()) {
       return Error{ErrorCode::WrongArity,
@@ -31,13 +36,16 @@ class HermiteSpline : public PiecewiseCubic<P> {
                    "", {"tangents"}};
     }
     if (auto ok = detail::check_points(tangents, 2, "hermite", "tangent"); !ok) return ok.error();
+    auto tp = detail::check_params(params, points.size(), "hermite");
+    if (!tp) return tp.error();
     HermiteSpline s;
     const int n = int(points.size());
-    s.breaks_.clear();
+    s.breaks_ = *tp;
     s.segments_.clear();
-    for (int i = 0; i < n; ++i) s.breaks_.push_back(T(i));
-    for (int i = 0; i + 1 < n; ++i)
-      s.segments_.push_back(hermite_power_form(points[i], points[i + 1], tangents[i], tangents[i + 1]));
+    for (int i = 0; i + 1 < n; ++i) {
+      const T h = s.breaks_[i + 1] - s.breaks_[i];
+      s.segments_.push_back(hermite_power_form(points[i], points[i + 1], tangents[i] * h, tangents[i + 1] * h));
+    }
     s.controls_.assign(points.begin(), points.end());
     s.tangents_.assign(tangents.begin(), tangents.end());
     s.influence_.clear();
@@ -47,7 +55,7 @@ class HermiteSpline : public PiecewiseCubic<P> {
     return s;
   }
 
-  /// The tangents dP/du at the points.
+  /// The tangents dP/dt at the points.
   std::span<const P> tangents() const noexcept { return tangents_; }
 
  private:
@@ -56,13 +64,15 @@ class HermiteSpline : public PiecewiseCubic<P> {
 
 /// Builds a Hermite spline; see HermiteSpline::build.
 template <Point P>
-Expected<HermiteSpline<P>> build_hermite_spline(std::span<const P> points, std::span<const P> tangents) {
-  return HermiteSpline<P>::build(points, tangents);
+Expected<HermiteSpline<P>> build_hermite_spline(std::span<const P> points, std::span<const P> tangents,
+                                                std::span<const scalar_of<P>> params = {}) {
+  return HermiteSpline<P>::build(points, tangents, params);
 }
 /// Overload for vectors.
 template <Point P>
-Expected<HermiteSpline<P>> build_hermite_spline(const std::vector<P>& points, const std::vector<P>& tangents) {
-  return HermiteSpline<P>::build(points, tangents);
+Expected<HermiteSpline<P>> build_hermite_spline(const std::vector<P>& points, const std::vector<P>& tangents,
+                                                const std::vector<scalar_of<P>>& params = {}) {
+  return HermiteSpline<P>::build(points, tangents, params);
 }
 
 }  // namespace inbetween

@@ -6,7 +6,12 @@
 ///   incoming (ends segment i−1):  E_i = (1−t)(1−c)(1+b)/2 · D⁻ + (1−t)(1+c)(1−b)/2 · D⁺
 /// t = c = b = 0 is the Catmull-Rom spline with s = 1/2.  c ≠ 0 makes S_i ≠ E_i: the curve is then
 /// only C⁰ at that key (a deliberate corner).  Ends use the same phantom points as Catmull-Rom
-/// (P_{−1} = 2P_0 − P_1, P_n = 2P_{n−1} − P_{n−2}).  Segment i runs over u ∈ [i, i + 1].
+/// (P_{−1} = 2P_0 − P_1, P_n = 2P_{n−1} − P_{n−2}).  Segment i runs over u ∈ [t_i, t_{i+1}], t_i = i
+/// by default.  With non-uniform parameters (h_i = t_{i+1} − t_i) the tangents are rescaled as in
+/// Kochanek & Bartels' timing adjustment: segment i starts with 2 h_i/(h_{i−1} + h_i) · S_i and ends
+/// with 2 h_i/(h_i + h_{i+1}) · E_{i+1} (h_{−1} = h_0, h_{n−1} = h_{n−2}), so dP/dt on both sides of key
+/// i is 2 S_i/(h_{i−1} + h_i) and 2 E_i/(h_{i−1} + h_i): C¹ in t where c = 0.  Uniform spacing gives
+/// the factor 1 exactly.
 
 #include <span>
 #include <vector>
@@ -35,9 +40,16 @@ class KochanekBartelsSpline : public PiecewiseCubic<P> {
 
   /// Builds through `points` (≥ 2, finite).  `keys` holds one TcbParams per point, or exactly one
   /// shared by all points; each value must be finite (error locations {"keys", i}, {"keys"}).
-  static Expected<KochanekBartelsSpline> build(std::span<const P> points, std::span<const TcbParams<T>> keys) {
+  /// `params` are the parameters t_i (one per point, strictly increasing; empty: 0, 1, …; error
+  /// location {"params", i}).
+  static Expected<KochanekBartelsSpline> build(std::span<const P> points, std::span<const TcbParams<T>> keys,
+                                               std::span<const T> params = {}) {
     if (auto ok = detail::check_points(points, 2, "kochanek-bartels"); !ok) return ok.error();
     const int n = int(points.size());
+    auto tp = detail::check_params(params, points.size(), "kochanek-bartels");
+    if (!tp) return tp.error();
+    const std::vector<T>& t = *tp;
+    auto h = [&](int i) { return t[std::clamp(i, 0, n - 2) + 1] - t[std::clamp(i, 0, n - 2)]; };
     if (keys.size() != 1 && int(keys.size()) != n) {
       return Error{ErrorCode::WrongArity,
                    "kochanek-bartels needs one tension/continuity/bias per point or a single shared one: " +
@@ -69,9 +81,11 @@ class KochanekBartelsSpline : public PiecewiseCubic<P> {
     s.keys_.assign(keys.begin(), keys.end());
     s.breaks_.clear();
     s.segments_.clear();
-    for (int i = 0; i < n; ++i) s.breaks_.push_back(T(i));
-    for (int i = 0; i + 1 < n; ++i)
-      s.segments_.push_back(hermite_power_form(points[i], points[i + 1], out[i], in[i + 1]));
+    s.breaks_ = t;
+    for (int i = 0; i + 1 < n; ++i) {
+      const T f0 = T(2) * h(i) / (h(i - 1) + h(i)), f1 = T(2) * h(i) / (h(i) + h(i + 1));
+      s.segments_.push_back(hermite_power_form(points[i], points[i + 1], out[i] * f0, in[i + 1] * f1));
+    }
     s.controls_.assign(points.begin(), points.end());
     s.influence_.clear();
     for (int i = 0; i < n; ++i) s.influence_.push_back(s.segments_range(i - 2, i + 1));
@@ -90,14 +104,16 @@ class KochanekBartelsSpline : public PiecewiseCubic<P> {
 /// Builds a Kochanek–Bartels spline; see KochanekBartelsSpline::build.
 template <Point P>
 Expected<KochanekBartelsSpline<P>> build_kochanek_bartels(std::span<const P> points,
-                                                          std::span<const TcbParams<scalar_of<P>>> keys) {
-  return KochanekBartelsSpline<P>::build(points, keys);
+                                                          std::span<const TcbParams<scalar_of<P>>> keys,
+                                                          std::span<const scalar_of<P>> params = {}) {
+  return KochanekBartelsSpline<P>::build(points, keys, params);
 }
 /// Overload for vectors.
 template <Point P>
 Expected<KochanekBartelsSpline<P>> build_kochanek_bartels(const std::vector<P>& points,
-                                                          const std::vector<TcbParams<scalar_of<P>>>& keys) {
-  return KochanekBartelsSpline<P>::build(points, keys);
+                                                          const std::vector<TcbParams<scalar_of<P>>>& keys,
+                                                          const std::vector<scalar_of<P>>& params = {}) {
+  return KochanekBartelsSpline<P>::build(points, keys, params);
 }
 
 }  // namespace inbetween

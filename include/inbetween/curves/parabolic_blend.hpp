@@ -5,7 +5,10 @@
 /// at v = −1, 0, 1 and v = 0, 1, 2 (uniform spacing).  The first segment has no P_{−1} and is R
 /// alone; the last has no P_{n} and is Q alone; two points give the straight segment.  Interior
 /// segments coincide with Catmull-Rom (s = 1/2); the ends differ (a parabola instead of a phantom
-/// point).  C¹ at every joint; segment i runs over u ∈ [i, i + 1].
+/// point).  C¹ at every joint; segment i runs over u ∈ [t_i, t_{i+1}] (default t_i = i).  With
+/// non-uniform parameters the parabolas pass through the points at their parameters: in the local
+/// v = (t − t_i)/h_i, Q's nodes are v = −h_{i−1}/h_i, 0, 1 and R's are v = 0, 1, 1 + h_{i+1}/h_i; the
+/// blend is still C¹ in t (at t_i both sides have the slope of the parabola through P_{i−1}, P_i, P_{i+1}).
 
 #include <span>
 #include <vector>
@@ -23,14 +26,17 @@ class ParabolicBlendSpline : public PiecewiseCubic<P> {
   /// An empty curve (no segments); build with the factory below.
   ParabolicBlendSpline() = default;
 
-  /// Builds through `points` (≥ 2, finite).
-  static Expected<ParabolicBlendSpline> build(std::span<const P> points) {
+  /// Builds through `points` (≥ 2, finite) at `params` (one per point, strictly increasing; empty:
+  /// 0, 1, …; error location {"params", i}).
+  static Expected<ParabolicBlendSpline> build(std::span<const P> points, std::span<const T> params = {}) {
     if (auto ok = detail::check_points(points, 2, "parabolic"); !ok) return ok.error();
     const int n = int(points.size());
+    auto tp = detail::check_params(params, points.size(), "parabolic");
+    if (!tp) return tp.error();
+    const std::vector<T>& t = *tp;
     ParabolicBlendSpline s;
-    s.breaks_.clear();
+    s.breaks_ = t;
     s.segments_.clear();
-    for (int i = 0; i < n; ++i) s.breaks_.push_back(T(i));
     const T h = T(0.5);
     for (int i = 0; i + 1 < n; ++i) {
       const P& p0 = points[i];
@@ -38,15 +44,28 @@ class ParabolicBlendSpline : public PiecewiseCubic<P> {
       const bool has_prev = i > 0, has_next = i + 2 < n;
       // Power coefficients (constant, linear, square) of Q and R in v.
       P q1{}, q2{}, r1{}, r2{};
+      const T hi = t[i + 1] - t[i];
       if (has_prev) {
         const P& pm = points[i - 1];
-        q1 = (p1 - pm) * h;
-        q2 = (pm - p0 * T(2) + p1) * h;
+        const T r = (t[i] - t[i - 1]) / hi;  // Q's first node is at v = −r
+        if (r == T(1)) {
+          q1 = (p1 - pm) * h;
+          q2 = (pm - p0 * T(2) + p1) * h;
+        } else {  // q(v) = p0 + q1 v + q2 v² with q(1) = p1, q(−r) = pm
+          q2 = (pm - p0 + (p1 - p0) * r) / (r * (r + T(1)));
+          q1 = (p1 - p0) - q2;
+        }
       }
       if (has_next) {
         const P& p2 = points[i + 2];
-        r1 = (p1 * T(4) - p0 * T(3) - p2) * h;
-        r2 = (p0 - p1 * T(2) + p2) * h;
+        const T r = (t[i + 2] - t[i + 1]) / hi;  // R's last node is at v = 1 + r
+        if (r == T(1)) {
+          r1 = (p1 * T(4) - p0 * T(3) - p2) * h;
+          r2 = (p0 - p1 * T(2) + p2) * h;
+        } else {  // r(v) = p0 + r1 v + r2 v² with r(1) = p1, r(1 + r) = p2
+          r2 = (p2 - p0 - (p1 - p0) * (T(1) + r)) / (r * (T(1) + r));
+          r1 = (p1 - p0) - r2;
+        }
       }
       PowerCubic<P> seg;
       seg.d = p0;
@@ -76,13 +95,15 @@ class ParabolicBlendSpline : public PiecewiseCubic<P> {
 
 /// Builds a parabolic-blend spline; see ParabolicBlendSpline::build.
 template <Point P>
-Expected<ParabolicBlendSpline<P>> build_parabolic_blend(std::span<const P> points) {
-  return ParabolicBlendSpline<P>::build(points);
+Expected<ParabolicBlendSpline<P>> build_parabolic_blend(std::span<const P> points,
+                                                        std::span<const scalar_of<P>> params = {}) {
+  return ParabolicBlendSpline<P>::build(points, params);
 }
 /// Overload for vectors.
 template <Point P>
-Expected<ParabolicBlendSpline<P>> build_parabolic_blend(const std::vector<P>& points) {
-  return ParabolicBlendSpline<P>::build(points);
+Expected<ParabolicBlendSpline<P>> build_parabolic_blend(const std::vector<P>& points,
+                                                        const std::vector<scalar_of<P>>& params = {}) {
+  return ParabolicBlendSpline<P>::build(points, params);
 }
 
 }  // namespace inbetween

@@ -13,6 +13,7 @@
 
 #include "inbetween/curves/curve.hpp"
 #include "inbetween/math/expected.hpp"
+#include "inbetween/math/format.hpp"
 #include "inbetween/math/vec.hpp"
 
 namespace inbetween {
@@ -190,6 +191,38 @@ Expected<void> check_points(std::span<const P> points, int min_count, const char
     }
   }
   return {};
+}
+
+/// The parameters t_i of an interpolating spline: `params` when given (exactly `count` values,
+/// finite, strictly increasing), else 0, 1, …, count − 1.  Error locations {"params"} (count) and
+/// {"params", i}; messages name the family.
+template <Real T>
+Expected<std::vector<T>> check_params(std::span<const T> params, std::size_t count, const char* family) {
+  std::vector<T> t;
+  if (params.empty()) {
+    for (std::size_t i = 0; i < count; ++i) t.push_back(T(i));
+    return t;
+  }
+  if (params.size() != count)
+    return Error{ErrorCode::WrongArity,
+                 std::string(family) + " needs " + std::to_string(count) + " params, got " + std::to_string(params.size()),
+                 "", {"params"}};
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    if (!std::isfinite(params[i]))
+      return Error{ErrorCode::NotFinite, "param " + std::to_string(i) + " is not finite", "", {"params", i}};
+    if (i > 0 && !(params[i] > params[i - 1]))
+      return Error{ErrorCode::KeysNotIncreasing,
+                   "param " + std::to_string(i) + " (" + shortest_text<double>(double(params[i])) +
+                       ") is not greater than param " + std::to_string(i - 1) + " (" +
+                       shortest_text<double>(double(params[i - 1])) + ")",
+                   "", {"params", i}};
+    // The spacing itself must be a finite positive number (1e308 − (−1e308) overflows).
+    if (i > 0 && !std::isfinite(params[i] - params[i - 1]))
+      return Error{ErrorCode::NotFinite, "the spacing between params " + std::to_string(i - 1) + " and " +
+                                             std::to_string(i) + " overflows", "", {"params", i}};
+  }
+  t.assign(params.begin(), params.end());
+  return t;
 }
 
 /// Checks that a scalar option is finite; `where` is its name (the location {where}).
