@@ -126,7 +126,7 @@ void BM_FCurveSequentialCursor(benchmark::State& state) {
   float t = 0.125f;
   TrackCursor cursor;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(c.evaluate(t, cursor));
+    benchmark::DoNotOptimize(c.sample(t, cursor));
     t += 0.25f;
     if (t > float(keys - 1)) t = 0.125f;
   }
@@ -149,7 +149,7 @@ void BM_FCurveSequential(benchmark::State& state) {
   const FCurve c = std::move(build_fcurve(raw)).value();
   float t = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(c.evaluate(t));
+    benchmark::DoNotOptimize(c.sample(t));
     t += 0.25f;
     if (t > float(keys - 1)) t = 0;
   }

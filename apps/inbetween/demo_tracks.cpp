@@ -30,8 +30,8 @@ void demo_tracks(std::ostream& out) {
       raw.keys.push_back(k);
     }
     const FCurve curve = std::move(build_fcurve(raw)).value();
-    out << "  auto_smoothing " << to_string(smoothing) << ": f(15) = " << shortest_text<float>(curve.evaluate(15.f))
-        << ", f(25) = " << shortest_text<float>(curve.evaluate(25.f))
+    out << "  auto_smoothing " << to_string(smoothing) << ": f(15) = " << shortest_text<float>(curve.sample(15.f))
+        << ", f(25) = " << shortest_text<float>(curve.sample(25.f))
         << (smoothing == AutoSmoothing::none ? "   (Blender: 5.3660097, 2.1339891)\n"
                                              : "   (Blender: 5.624999, 2.0)\n");
   }
@@ -46,7 +46,7 @@ void demo_tracks(std::ostream& out) {
   }
   const FCurve cycles = std::move(build_fcurve(cyc)).value();
   out << "Cycles (mirror before, repeat with offset after) on linear keys (0,0) (10,10) (20,4):\n  ";
-  for (float f : {-25.f, -5.f, 25.f, 30.f, 45.f}) out << "f(" << format_number(f) << ") = " << shortest_text<float>(cycles.evaluate(f)) << "  ";
+  for (float f : {-25.f, -5.f, 25.f, 30.f, 45.f}) out << "f(" << format_number(f) << ") = " << shortest_text<float>(cycles.sample(f)) << "  ";
   out << "\n  (Blender: 7, 5, 9, 14, 13)\n";
 
   std::vector<TrackKey<Vec3d>> keys;

@@ -313,7 +313,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
       nodes[i].parent = it->second;
       reads[i].emplace_back(it->second, std::vector<LocationStep>{"objects", i, "parent"});
     }
-    auto hierarchy = build_hierarchy(std::move(nodes));
+    auto hierarchy = build_transform_hierarchy(std::move(nodes));
     if (!hierarchy) return prepended(hierarchy.error(), {"objects"});
     scene.objects_.emplace(std::move(*hierarchy));
 
@@ -549,7 +549,7 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
     col += 4;
   };
   for (const SceneTrack& track : tracks_) {
-    std::visit(Overloaded{[&](const SceneScalarTrack& t) { *col++ = t.curve.evaluate(single_precision_frame); },
+    std::visit(Overloaded{[&](const SceneScalarTrack& t) { *col++ = t.curve.sample(single_precision_frame); },
                           [&](const SceneVectorTrack& t) {
                             const Vec4d v = t.track.sample(frame);
                             if (t.components.empty()) *col++ = v[0];  // vec1

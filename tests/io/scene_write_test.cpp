@@ -44,8 +44,8 @@ RawScene every_member() {
     RawVectorTrack v;
     v.name = "v" + std::to_string(int(kind));
     v.kind = kind;
-    v.before = TrackExtend::oscillate;
-    v.after = TrackExtend::cycle_offset;
+    v.before = TrackExtend::mirror;
+    v.after = TrackExtend::repeat_offset;
     const int dim = kind == VectorKind::vec1 ? 1 : kind == VectorKind::vec2 ? 2 : kind == VectorKind::vec3 ? 3 : 4;
     auto vec = [&](double a) { return Vec4d{a, dim > 1 ? a + 1 : 0, dim > 2 ? a + 2 : 0, dim > 3 ? a + 3 : 0}; };
     TrackKey<Vec4d> a;
@@ -104,7 +104,7 @@ RawScene every_member() {
   child.parent = "p";
   RawVec3Channel t;
   t.before = TrackExtend::linear;
-  t.after = TrackExtend::cycle;
+  t.after = TrackExtend::repeat;
   TrackKey<Vec3d> t0;
   t0.frame = 0;
   t0.value = Vec3d{0.1, 0.2, 0.3};

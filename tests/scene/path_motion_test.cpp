@@ -543,7 +543,7 @@ TEST(PathMotion, TrackGivesTheDistanceAndItsDerivative) {
   const double L = m.length();
   for (int f = 22; f <= 67; ++f) {
     // The distance is the track's (single-precision) value times L; the slope 0.75/45 per frame.
-    EXPECT_EQ(m.sample(f).distance, double(track->evaluate(float(f))) * L);
+    EXPECT_EQ(m.sample(f).distance, double(track->sample(float(f))) * L);
     EXPECT_NEAR(m.sample(f).speed, 0.75 / 45 * L * kFps, 1e-12 * L * kFps);
   }
   EXPECT_EQ(m.sample(80).speed, 0.0);  // constant extrapolation after the last key

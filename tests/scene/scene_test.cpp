@@ -242,7 +242,7 @@ TEST(SceneSample, ObjectsEqualTheHierarchySampledDirectly) {
   ASSERT_TRUE(scene.has_value()) << scene.error().describe();
   // The reference hierarchy from the built nodes.
   std::vector<HierarchyNode<double>> nodes(scene->objects().begin(), scene->objects().end());
-  auto reference = build_hierarchy(std::move(nodes));
+  auto reference = build_transform_hierarchy(std::move(nodes));
   ASSERT_TRUE(reference.has_value());
   std::vector<double> out(scene->columns().size());
   std::vector<Transform<double>> world(kObjects);

@@ -123,7 +123,7 @@ TEST(RigClip, RefusesWhatItCannotSampleWithThePlace) {
   std::vector<QuatKey<double>> rk(2);
   rk[1].frame = 1;
   const std::vector<Track<Vec3d>> ok{*build_track(tk)};
-  const std::vector<Track<Vec3d>> cycling{*build_track(tk, TrackExtend::cycle, TrackExtend::constant)};
+  const std::vector<Track<Vec3d>> cycling{*build_track(tk, TrackExtend::repeat, TrackExtend::constant)};
   const std::vector<QuatTrack<double>> slerp{*build_quat_track(rk)};
   rk[0].interpolation = QuatInterpolation::squad;
   const std::vector<QuatTrack<double>> squad{*build_quat_track(rk)};
