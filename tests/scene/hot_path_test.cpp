@@ -17,31 +17,12 @@
 #include "inbetween/scene/camera_view.hpp"
 #include "inbetween/scene/scene.hpp"
 
-namespace {
-long g_allocations = 0;
-bool g_counting = false;
-}  // namespace
-
-void* operator new(std::size_t size) {
-  if (g_counting) ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
-  throw std::bad_alloc{};
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#include "support/counting_new.hpp"  // this program's counting operator new (one per test program)
 
 namespace inbetween {
 namespace {
 
-// Runs `f` with the allocation counter on and returns the number of allocations it made.
-template <class F>
-long allocations_in(F&& f) {
-  g_allocations = 0;
-  g_counting = true;
-  f();
-  g_counting = false;
-  return g_allocations;
-}
+using test::allocations_in;
 
 TEST(SceneHotPath, CounterSeesAnAllocation) {
   // The counter itself can fail: a vector of one element allocates once.
