@@ -82,30 +82,36 @@ std::optional<float> first_cubic_root(double c0, double c1, double c2, double c3
   return std::nullopt;
 }
 
-float bezier_segment(const Key& ka, const Key& kb, float t) noexcept {
-  Vec2f v1{ka.x, ka.y}, v2 = ka.right, v3 = kb.left, v4{kb.x, kb.y};
-  if (std::abs(v1.y - v4.y) < FLT_EPSILON && std::abs(v2.y - v3.y) < FLT_EPSILON &&
-      std::abs(v3.y - v4.y) < FLT_EPSILON) {
-    return v1.y;
-  }
-  // Handles longer than the segment would make time run backwards: shorten them along their line.
-  {
-    const Vec2f h1{v1.x - v2.x, v1.y - v2.y};
-    const Vec2f h2{v4.x - v3.x, v4.y - v3.y};
-    const float len = v4.x - v1.x;
-    const float len1 = std::abs(h1.x);
-    const float len2 = std::abs(h2.x);
-    if (len1 + len2 != 0.0f) {
-      if (len1 > len) {
-        const float fac = len / len1;
-        v2 = Vec2f{v1.x - fac * h1.x, v1.y - fac * h1.y};
-      }
-      if (len2 > len) {
-        const float fac = len / len2;
-        v3 = Vec2f{v4.x - fac * h2.x, v4.y - fac * h2.y};
-      }
+// Handles of a Bézier segment after sample()'s correction of handles longer than the segment.
+std::pair<Vec2f, Vec2f> corrected_handles(const Key& ka, const Key& kb) noexcept {
+  const Vec2f v1{ka.x, ka.y}, v4{kb.x, kb.y};
+  Vec2f v2 = ka.right, v3 = kb.left;
+  const Vec2f h1{v1.x - v2.x, v1.y - v2.y};
+  const Vec2f h2{v4.x - v3.x, v4.y - v3.y};
+  const float len = v4.x - v1.x;
+  const float len1 = std::abs(h1.x);
+  const float len2 = std::abs(h2.x);
+  if (len1 + len2 != 0.0f) {
+    if (len1 > len) {
+      const float fac = len / len1;
+      v2 = Vec2f{v1.x - fac * h1.x, v1.y - fac * h1.y};
+    }
+    if (len2 > len) {
+      const float fac = len / len2;
+      v3 = Vec2f{v4.x - fac * h2.x, v4.y - fac * h2.y};
     }
   }
+  return {v2, v3};
+}
+
+float bezier_segment(const Key& ka, const Key& kb, float t) noexcept {
+  const Vec2f v1{ka.x, ka.y}, v4{kb.x, kb.y};
+  if (std::abs(v1.y - v4.y) < FLT_EPSILON && std::abs(ka.right.y - kb.left.y) < FLT_EPSILON &&
+      std::abs(kb.left.y - v4.y) < FLT_EPSILON) {
+    return v1.y;
+  }
+  // Handles longer than the segment would make time run backwards: shortened along their line.
+  const auto [v2, v3] = corrected_handles(ka, kb);
   const double c0 = v1.x - t;
   const double c1 = 3.0f * (v2.x - v1.x);
   const double c2 = 3.0f * (v1.x - 2.0f * v2.x + v3.x);
@@ -141,27 +147,6 @@ bool near_frame(float a, float b) noexcept {
 }
 
 
-// Handles of a Bézier segment after sample()'s correction of handles longer than the segment.
-std::pair<Vec2f, Vec2f> corrected_handles(const Key& ka, const Key& kb) noexcept {
-  const Vec2f v1{ka.x, ka.y}, v4{kb.x, kb.y};
-  Vec2f v2 = ka.right, v3 = kb.left;
-  const Vec2f h1{v1.x - v2.x, v1.y - v2.y};
-  const Vec2f h2{v4.x - v3.x, v4.y - v3.y};
-  const float len = v4.x - v1.x;
-  const float len1 = std::abs(h1.x);
-  const float len2 = std::abs(h2.x);
-  if (len1 + len2 != 0.0f) {
-    if (len1 > len) {
-      const float fac = len / len1;
-      v2 = Vec2f{v1.x - fac * h1.x, v1.y - fac * h1.y};
-    }
-    if (len2 > len) {
-      const float fac = len / len2;
-      v3 = Vec2f{v4.x - fac * h2.x, v4.y - fac * h2.y};
-    }
-  }
-  return {v2, v3};
-}
 
 // dy/dx of the Bézier segment at frame t (in double): x(u) = t is solved on [0, 1] by Newton steps
 // kept inside a bisection bracket (x is monotone after the handle correction), then y′(u)/x′(u);
