@@ -241,9 +241,12 @@ TEST(GltfWrite, ThreeJsPlaysExportsAsBakeDoes) {
   // world positions over the range) for positions, and we hold rotations to 1e-5 rad.  The scenes
   // have no non-uniform scale above a rotated child: there the true world transform has shear,
   // which bake's world TRS columns do not hold (docs/conventions.md), while three.js decomposes
-  // the sheared matrix.
+  // the sheared matrix.  Cameras (frame22.json): three.js's PerspectiveCamera made by GLTFLoader
+  // must have the scene's vertical field of view, and its getWorldDirection (its −Z in world)
+  // must point from bake's eye to bake's <camera>.target, to 1e-5 rad.
   const fs::path tools = kSource / "tools/threejs";
   if (!have_node_package(tools, "three")) GTEST_SKIP() << "node or three.js missing (npm ci --prefix tools/threejs)";
+  bool saw_camera = false;
   for (const fs::path& p : export_scenes()) {
     const Loaded s = load(p);
     auto out = export_gltf(s.raw, s.scene, {.tolerance = 1e-6});
@@ -260,7 +263,8 @@ TEST(GltfWrite, ThreeJsPlaysExportsAsBakeDoes) {
     const std::string cmd = "node '" + (tools / "sample_gltf_scene.mjs").string() + "' '" + file.string() + "' < '" +
                             req.string() + "' > '" + res.string() + "'";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-    const auto three = nlohmann::json::parse(test::slurp(res));
+    const auto result = nlohmann::json::parse(test::slurp(res));
+    const auto& three = result["nodes"];
     const auto cols = scene.columns();
     std::vector<double> row(cols.size());
     auto column = [&](const std::string& name) {
@@ -284,18 +288,41 @@ TEST(GltfWrite, ThreeJsPlaysExportsAsBakeDoes) {
     }
     const double extent = std::max(norm(hi - lo), 1e-9);
     double worst_pos = 0, worst_rot = 0, worst_scale = 0;
-    for (const auto& obj : scene.objects()) {
+    const auto objects = scene.objects();
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      const auto& obj = objects[o];
       const std::size_t c = column(obj.name + ".translation.x");
       ASSERT_TRUE(three.contains(obj.name)) << obj.name;
+      double pos = 0, rot = 0, aim = 0;
       for (std::size_t i = 0; i < frames.size(); ++i) {
         const auto& t = three[obj.name][i];
         const auto& b = bake[i];
-        for (int k = 0; k < 3; ++k) worst_pos = std::max(worst_pos, std::abs(double(t[k]) - b[c + k]));
+        for (std::size_t k = 0; k < 3; ++k) pos = std::max(pos, std::abs(double(t[k]) - b[c + k]));
         const Quatd q3 = Quatd::from_wxyz(t[3], t[4], t[5], t[6]);
         const Quatd qb = Quatd::from_wxyz(b[c + 3], b[c + 4], b[c + 5], b[c + 6]);
-        worst_rot = std::max(worst_rot, rotation_angle_between(normalized(q3), normalized(qb)));
-        for (int k = 0; k < 3; ++k) worst_scale = std::max(worst_scale, std::abs(double(t[7 + k]) - b[c + 7 + k]));
+        rot = std::max(rot, rotation_angle_between(normalized(q3), normalized(qb)));
+        for (std::size_t k = 0; k < 3; ++k) worst_scale = std::max(worst_scale, std::abs(double(t[7 + k]) - b[c + 7 + k]));
+        if (const CameraView<double>* view = scene.camera(o)) {
+          const auto& cam = result["cameras"][obj.name];
+          const auto& d = cam["view"][i];
+          const std::size_t tc = column(obj.name + ".target.x");
+          const Vec3d dir{d[0], d[1], d[2]}, to_target{b[tc] - b[c], b[tc + 1] - b[c + 1], b[tc + 2] - b[c + 2]};
+          aim = std::max(aim, std::atan2(norm(cross(dir, to_target)), dot(dir, to_target)));
+          if (i == 0) {
+            EXPECT_EQ(cam["type"], "PerspectiveCamera") << obj.name;
+            // three.js keeps fov in degrees: yfov (radians, stored as a JSON double) × 180/π.
+            EXPECT_NEAR(cam["fov_deg"].get<double>(), view->yfov_rad() * 180 / std::acos(-1.0), 1e-9) << obj.name;
+          }
+        }
       }
+      if (scene.camera(o)) {
+        saw_camera = true;
+        std::printf("[ three.js ] %s camera %s: world rotation %.3g rad, view direction vs bake's target %.3g rad\n",
+                    p.filename().c_str(), obj.name.c_str(), rot, aim);
+        EXPECT_LE(aim, 1e-5) << obj.name;
+      }
+      worst_pos = std::max(worst_pos, pos);
+      worst_rot = std::max(worst_rot, rot);
     }
     std::printf("[ three.js ] %s: %zu frames, extent %.4g: position %.3g (%.3g of extent), rotation %.3g rad, scale %.3g\n",
                 p.filename().c_str(), frames.size(), extent, worst_pos, worst_pos / extent, worst_rot, worst_scale);
@@ -303,6 +330,7 @@ TEST(GltfWrite, ThreeJsPlaysExportsAsBakeDoes) {
     EXPECT_LE(worst_rot, 1e-5) << p;
     EXPECT_LE(worst_scale, 1e-5) << p;
   }
+  EXPECT_TRUE(saw_camera) << "no example scene with a camera (examples/scenes/frame22.json)";
 }
 
 }  // namespace
