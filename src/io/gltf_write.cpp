@@ -259,9 +259,28 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
   const std::vector<std::vector<Transform<double>>> sampled = sample_locals(scene, grid);
 
   GltfExport result;
+  // Named tracks are no node property.  Morph-target weights read from glTF (vec1 tracks
+  // "<node>.weights.<i>", docs/gltf.md) would be one, but a weights channel needs the node's mesh
+  // with its morph targets, and the scene keeps no meshes: one note per node says so.
+  std::vector<std::string> weights_noted;
   for (const SceneTrack& t : scene.tracks()) {
     const std::string name = std::visit([](const auto& tr) { return tr.name; }, t);
-    result.notes.push_back("track '" + name + "': not exported (glTF animates node transforms; a named track is no node property)");
+    const auto* vec = std::get_if<SceneVectorTrack>(&t);
+    const std::size_t at = name.rfind(".weights.");
+    std::string node_name;
+    if (vec && vec->components.empty() && at != std::string::npos && at + 9 < name.size() &&
+        name.find_first_not_of("0123456789", at + 9) == std::string::npos) {
+      node_name = name.substr(0, at);
+      if (std::none_of(nodes.begin(), nodes.end(), [&](const HierarchyNode<double>& n) { return n.name == node_name; })) node_name.clear();
+    }
+    if (node_name.empty()) {
+      result.notes.push_back("track '" + name + "': not exported (glTF animates node transforms; a named track is no node property)");
+    } else if (std::find(weights_noted.begin(), weights_noted.end(), node_name) == weights_noted.end()) {
+      weights_noted.push_back(node_name);
+      result.notes.push_back("morph-target weights of node '" + node_name + "' (tracks " + node_name +
+                             ".weights.*): not exported (a glTF weights channel needs the node's mesh with its morph "
+                             "targets, and inbetween keeps no meshes)");
+    }
   }
 
   Builder b;

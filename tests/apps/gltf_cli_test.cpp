@@ -214,4 +214,19 @@ TEST(GltfCli, ReduceGlbInput) {
   EXPECT_LE(worst_r, 0.5e-4 + 1e-6);
 }
 
+
+// Morph-target weights read from glTF are not exported (no meshes are kept): convert glb → glb says
+// so on a note line naming the node, once, instead of dropping them silently.
+TEST(GltfCli, WeightsAreNotedWhenExportingGltf) {
+  const fs::path glb = inbetween::test::write_test_file("model.glb", model().glb());
+  const fs::path out = inbetween::test::test_dir() / "out.glb";
+  const auto r = run_cli("convert '" + glb.string() + "' '" + out.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out));
+  const std::string note = "note: morph-target weights of node 'face' (tracks face.weights.*): not exported";
+  const auto at = r.err.find(note);
+  EXPECT_NE(at, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(note, at + 1), std::string::npos) << "one note per node:\n" << r.err;
+}
+
 }  // namespace
