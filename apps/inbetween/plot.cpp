@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 
 constexpr double kPadFraction = 0.1;           // frame axis beyond the keys and range, each side
 constexpr int kAutoSteps = 480;                // automatic grid: at most this many steps
-constexpr std::uint64_t kMaxSamples = 1000000; // grid samples at most (memory: samples × columns)
+constexpr std::uint64_t kMaxSamples = 200000;  // grid samples at most (memory: samples × columns × 8 bytes)
 constexpr std::size_t kMaxDots = 150;          // position dots per path view at most
 constexpr int kOrientationFrames = 12;         // orientation markers per path view
 constexpr int kPathSamples = 240;              // points per path leg drawn

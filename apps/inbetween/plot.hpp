@@ -53,7 +53,7 @@ struct PlotReport {
 /// renamed onto `dir` at the end; an existing `dir` is replaced only when it is empty or holds an
 /// earlier plot (its index.html names inbetween plot as generator).  Errors (exit code 2 in the
 /// tool; `where` names the folder or the option): a scene with no tracks and no objects, a bad
-/// frame range or step, too many samples (more than 10^6), a folder that cannot be written.
+/// frame range or step, too many samples (more than 200000), a folder that cannot be written.
 [[nodiscard]] Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const std::filesystem::path& dir,
                                                const PlotOptions& options = {});
 
