@@ -326,7 +326,8 @@ class Plotter {
   }
 
   SvgDocument page(std::size_t panes, const std::string& title, double extra_height = 0) const {
-    SvgDocument doc(kWidth, kTop + double(panes) * (kPanelHeight + kPanelGap) + extra_height, title);
+    // Panes at kTop + 20 + p·(height + gap); below the last, room for its tick labels and axis label.
+    SvgDocument doc(kWidth, kTop + 20 + double(panes) * (kPanelHeight + kPanelGap) - kPanelGap + 60 + extra_height, title);
     doc.text("text", {{"class", "title"}, {"x", "16"}, {"y", "28"}, {"font-size", "17"}, {"font-weight", "bold"}}, title);
     doc.text("text", {{"x", "16"}, {"y", "48"}, {"fill", "#555555"}},
              options_.title + " · " + short_text(scene_.fps()) + " frames per second · frames " + short_text(grid_.start) +
