@@ -325,9 +325,9 @@ class Plotter {
     files.push_back({PlotFile{candidate, title, group}, doc.str()});
   }
 
-  SvgDocument page(std::size_t panes, const std::string& title, double extra_height = 0) const {
+  SvgDocument page(std::size_t panes, const std::string& title) const {
     // Panes at kTop + 20 + p·(height + gap); below the last, room for its tick labels and axis label.
-    SvgDocument doc(kWidth, kTop + 20 + double(panes) * (kPanelHeight + kPanelGap) - kPanelGap + 60 + extra_height, title);
+    SvgDocument doc(kWidth, kTop + 20 + double(panes) * (kPanelHeight + kPanelGap) - kPanelGap + 60, title);
     doc.text("text", {{"class", "title"}, {"x", "16"}, {"y", "28"}, {"font-size", "17"}, {"font-weight", "bold"}}, title);
     doc.text("text", {{"x", "16"}, {"y", "48"}, {"fill", "#555555"}},
              options_.title + " · " + short_text(scene_.fps()) + " frames per second · frames " + short_text(grid_.start) +
@@ -372,7 +372,7 @@ class Plotter {
         }
       }
       plot_rotation("tracks", te->name, "Euler track " + te->name + " (" + (r ? r->convention : std::string()) + ", as a quaternion)",
-                    te->name, pieces, keys, /*keys_are_samples=*/true);
+                    te->name, pieces, keys);
     }
   }
 
@@ -433,7 +433,7 @@ class Plotter {
 
   // Components w x y z and the angle about the axis of quaternion columns `prefix`.
   void plot_rotation(const std::string& group, const std::string& name, const std::string& title, const std::string& prefix,
-                     const Pieces& pieces, const std::vector<std::pair<double, Quatd>>& keys, bool = false) {
+                     const Pieces& pieces, const std::vector<std::pair<double, Quatd>>& keys) {
     Pane comps{title + ": components", "quaternion component (unitless)", {}, {}, pieces, {}};
     const char letters[] = {'w', 'x', 'y', 'z'};
     for (int c = 0; c < 4; ++c) {
@@ -685,7 +685,11 @@ class Plotter {
           Vec3d e{};
           e[a] = 1;
           const Vec3d tip = p + axis_len * rotate(q, e);
+          // Checkable like the data: the line runs from the position (data-x, data-y columns) along
+          // data-length · rotate(q, e_axis) with q the columns data-rotation.w x y z.
           doc.leaf("line", {{"class", "frame-axis"}, {"data-frame", num(grid_.frame(g))}, {"data-axis", axis_name[a]},
+                            {"data-x", dx}, {"data-y", dy}, {"data-rotation", name + ".rotation"},
+                            {"data-length", num(axis_len)},
                             {"x1", num(panel.px(p[view.h]))}, {"y1", num(panel.py(p[view.v]))},
                             {"x2", num(panel.px(tip[view.h]))}, {"y2", num(panel.py(tip[view.v]))},
                             {"stroke", component_colour(axis_name[a][0], std::size_t(a))}, {"stroke-width", "1.5"}});

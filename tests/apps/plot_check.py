@@ -14,7 +14,9 @@ so also the sign-continuous rotations agree), and parses every SVG with xml.etre
   compared with the baked values at its frames (data-frames / data-frame): x is the frame (or a
   column, path views), y a column, angle_deg(PREFIX) (2·atan2(|xyz|, w) of the quaternion columns,
   in degrees) or derivative(COLUMN) (d/dt of the column, checked against the central difference of
-  the baked column on the grid, where both neighbours are in the same piece).
+  the baked column on the grid, where both neighbours are in the same piece).  Orientation markers of
+  path views (<line class="frame-axis">) must start at the baked position and end data-length along the
+  baked rotation of their axis.
 
 Frames that are not grid frames (key frames, ease phase boundaries) are baked alone with
 --frames F:F (only track, distance and speed columns are drawn there; they do not depend on the
@@ -163,6 +165,10 @@ def check_svg(path, baker):
         y_span = abs((panel_height(panel)) / ky)
         for el in panel.iter():
             cls = (el.get("class") or "").split()
+            if "frame-axis" in cls:
+                checked += 1
+                failures += check_frame_axis(el, where, baker, (x0, kx), (y0, ky))
+                continue
             if "data" not in cls:
                 continue
             dx, dy = el.get("data-x"), el.get("data-y")
@@ -201,6 +207,40 @@ def check_svg(path, baker):
                     failures.append(f"{where}: {dy} point {j} (frame {f!r}): y reads {vy!r}, baked value {want_y!r} "
                                     f"(off by {abs(vy - want_y):.3g}, tolerance {tol:.3g})")
     return checked, failures
+
+
+def rotate(q, v):
+    """v rotated by the unit quaternion q = (w, x, y, z): v + 2w(u × v) + 2u × (u × v)."""
+    w, ux, uy, uz = q
+    cx, cy, cz = uy * v[2] - uz * v[1], uz * v[0] - ux * v[2], ux * v[1] - uy * v[0]
+    dx, dy, dz = uy * cz - uz * cy, uz * cx - ux * cz, ux * cy - uy * cx
+    return (v[0] + 2 * (w * cx + dx), v[1] + 2 * (w * cy + dy), v[2] + 2 * (w * cz + dz))
+
+
+def check_frame_axis(el, where, baker, xmap, ymap):
+    """An orientation marker of a path view: from the baked position along data-length times the
+    baked rotation of the object's axis (x, y or z), projected on the view's two axes."""
+    f = float(el.get("data-frame"))
+    row = baker.row(f)
+    dx, dy = el.get("data-x"), el.get("data-y")
+    q = [baker.value(f"{el.get('data-rotation')}.{c}", f, row) for c in "wxyz"]
+    n = math.sqrt(sum(c * c for c in q))
+    axis = {"x": (1, 0, 0), "y": (0, 1, 0), "z": (0, 0, 1)}[el.get("data-axis")]
+    tip = rotate([c / n for c in q], axis)
+    length = float(el.get("data-length"))
+    comp = {"x": 0, "y": 1, "z": 2}
+    want = [(baker.value(dx, f, row), baker.value(dy, f, row))]
+    want.append((want[0][0] + length * tip[comp[dx[-1]]], want[0][1] + length * tip[comp[dy[-1]]]))
+    got = [(float(el.get("x1")), float(el.get("y1"))), (float(el.get("x2")), float(el.get("y2")))]
+    out = []
+    for (wx, wy), (px, py), end in zip(want, got, ("start", "tip")):
+        ex, ey = xmap[0] + xmap[1] * wx, ymap[0] + ymap[1] * wy
+        # The tip goes through one more rotation and addition than the position: a few more
+        # roundings of the same size, still far inside PIXEL_TOL.
+        if abs(ex - px) > PIXEL_TOL or abs(ey - py) > PIXEL_TOL:
+            out.append(f"{where}: frame axis {el.get('data-axis')} at frame {f!r}: {end} drawn at ({px!r}, {py!r}), "
+                       f"baked rotation puts it at ({ex!r}, {ey!r})")
+    return out
 
 
 def panel_height(panel):
@@ -244,16 +284,25 @@ def self_test(svg, baker, work):
     """Each perturbation of a good plot must be caught."""
     text = open(svg, encoding="utf-8").read()
     cases = []
-    # 1. One point of the first data polyline moved by 0.01 px in y.
+    # 1. One point of the first data polyline (or the first data dot) moved by 0.01 px in y.
     m = re.search(r'(<polyline class="data"[^>]*points=")([^ "]+),([^ "]+)', text)
-    cases.append(("a point moved 0.01 px", text[:m.start(3)] + repr(float(m.group(3)) + 0.01) + text[m.end(3):]))
+    if m:
+        cases.append(("a point moved 0.01 px", text[:m.start(3)] + repr(float(m.group(3)) + 0.01) + text[m.end(3):]))
+    m = re.search(r'<circle class="data[^>]* cy="([^"]+)"', text)
+    if m:
+        cases.append(("a dot moved 0.01 px", text[:m.start(1)] + repr(float(m.group(1)) + 0.01) + text[m.end(1):]))
     # 2. One y tick label changed (the line stays): the axis transform no longer fits the labels.
-    m = re.search(r'<g class="tick-y">\s*<line[^>]*/>\s*<text[^>]*>([^<]+)</text>', text)
-    wrong = repr(float(m.group(1)) + 1)
-    cases.append(("a y tick label changed", text[:m.start(1)] + wrong + text[m.end(1):]))
+    # A middle tick of the first panel, so the fit (first and last ticks) stays possible.
+    m = list(re.finditer(r'<g class="tick-y">\s*<line[^>]*/>\s*<text[^>]*>([^<]+)</text>', text))[1]
+    cases.append(("a y tick label changed", text[:m.start(1)] + repr(float(m.group(1)) + 1) + text[m.end(1):]))
     # 3. One frame of a polyline changed (the point now claims another frame's value).
     m = re.search(r'<polyline class="data"[^>]*data-frames="([^ "]+) ([^ "]+)', text)
-    cases.append(("a data frame swapped", text[:m.start(2)] + m.group(1) + text[m.end(2):]))
+    if m:
+        cases.append(("a data frame swapped", text[:m.start(2)] + m.group(1) + text[m.end(2):]))
+    # 4. An orientation marker claims another axis of the object (path views only).
+    m = re.search(r'class="frame-axis"[^>]*data-axis="(x)"', text)
+    if m:
+        cases.append(("an orientation axis swapped", text[:m.start(1)] + "y" + text[m.end(1):]))
     ok = True
     for name, bad in cases:
         path = os.path.join(work, "perturbed.svg")
@@ -287,6 +336,9 @@ def main():
         if args.self_test and svgs:
             target = next((s for s in svgs if "/tracks/" in s), svgs[0])
             all_ok &= self_test(target, baker, args.work)
+            views = next((s for s in svgs if s.endswith("-views.svg")), None)
+            if views:
+                all_ok &= self_test(views, baker, args.work)
     print("plot test " + ("passed" if all_ok else "FAILED"))
     return 0 if all_ok else 1
 
