@@ -864,7 +864,15 @@ std::string index_html(const PlotOptions& options, const std::vector<PlotFile>& 
        " frames per second. Solid lines are the keyed range, dashed lines extrapolated, cycled or held "
        "parts; dots are keys (graph editor) or positions at equal time steps (path views). See docs/plots.md.</p>\n";
   const std::pair<const char*, const char*> groups[] = {
-      {"tracks", "Tracks (graph editor)"}, {"objects", "Objects: world transform channels"}, {"paths", "Paths and speed control"}};
+      {"tracks", "Tracks (graph editor)"}, {"paths", "Paths and speed control"}, {"objects", "Objects: world transform channels"}};
+  // Contents: one link per plot, grouped as below.
+  h += "<nav><ul>\n";
+  for (const auto& [group, heading] : groups) {
+    for (const auto& f : files) {
+      if (f.group == group) h += "<li><a href=\"#" + xml_escape(f.name) + "\">" + xml_escape(f.title) + "</a></li>\n";
+    }
+  }
+  h += "</ul></nav>\n";
   for (const auto& [group, heading] : groups) {
     bool any = false;
     for (const auto& f : files) any |= f.group == group;
@@ -872,7 +880,7 @@ std::string index_html(const PlotOptions& options, const std::vector<PlotFile>& 
     h += "<h2>" + std::string(heading) + "</h2>\n";
     for (const auto& f : files) {
       if (f.group != group) continue;
-      h += "<figure><a href=\"" + xml_escape(f.name) + "\"><img src=\"" + xml_escape(f.name) + "\" alt=\"" + xml_escape(f.title) +
+      h += "<figure id=\"" + xml_escape(f.name) + "\"><a href=\"" + xml_escape(f.name) + "\"><img src=\"" + xml_escape(f.name) + "\" alt=\"" + xml_escape(f.title) +
            "\" loading=\"lazy\"></a><figcaption>" + xml_escape(f.title) + " (<code>" + xml_escape(f.name) +
            "</code>)</figcaption></figure>\n";
     }
