@@ -573,6 +573,21 @@ class Plotter {
       for (int k = 0; k < c.control_point_count(); ++k) cps.push_back(to_world(node.parent, f0, c.control_point(k)));
       controls.push_back(std::move(cps));
     }
+    // A path lives in its parent's space and is drawn with the parent's transform at the leg's
+    // first frame; when the parent moves, the legend says so (the positions then leave the line).
+    std::string parent_note;
+    if (node.parent) {
+      const std::string& pn = scene_.objects()[*node.parent].name;
+      const std::size_t first = column(pn + ".translation.x");
+      bool moves = false;
+      for (std::uint64_t g = 1; g < grid_.count && !moves; ++g) {
+        for (std::size_t c = first; c < first + 10; ++c) {  // translation 3, rotation 4, scale 3
+          // The rotation's sign may flip between frames (q and −q): compare |component|.
+          if (std::abs(grid_row(g)[c]) != std::abs(grid_row(0)[c])) moves = true;
+        }
+      }
+      if (moves) parent_note = "drawn with parent " + pn + " as at the leg's first frame (" + pn + " moves)";
+    }
     // Position dots: grid frames one frame apart (or more, at most kMaxDots) over the legs' frames.
     const double m0 = legs.front().motion.frame_range().lo, m1 = legs.back().motion.frame_range().hi;
     std::uint64_t every = std::max<std::uint64_t>(1, std::uint64_t(std::llround(1 / grid_.step)));
@@ -705,6 +720,7 @@ class Plotter {
                   {"object +x (left)", component_colour('x', 0), "", false},
                   {"object +y (up)", component_colour('y', 1), "", false},
                   {"object +z (front)", component_colour('z', 2), "", false}};
+        if (!parent_note.empty()) legend.push_back({"path " + parent_note, "#555555", "", false});
       }
       panel.end(doc, legend);
     }
@@ -713,8 +729,22 @@ class Plotter {
 
   // The normalised phase boundaries of an ease (t1, t2 of constant acceleration; k1, k2 of sine
   // pieces) as (frame, label) markers.
-  static void ease_markers(const RawPathLeg& leg, std::vector<std::pair<double, std::string>>& out) {
+  void ease_markers(const RawPathLeg& leg, std::vector<std::pair<double, std::string>>& out) const {
     const RawSpeed& s = leg.speed;
+    // Keyed forms: their keys are where the speed form changes piece (the acceleration may jump).
+    if (s.kind == SpeedKind::distance_keys) {
+      for (std::size_t k = 0; k < s.keys.size(); ++k) out.emplace_back(s.keys[k].frame, "key " + std::to_string(k));
+    } else if (s.kind == SpeedKind::velocity_keys) {
+      for (std::size_t k = 0; k < s.velocities.size(); ++k) out.emplace_back(s.velocities[k].frame, "v key " + std::to_string(k));
+    } else if (s.kind == SpeedKind::track) {
+      for (const auto& t : raw_.tracks) {
+        const auto* scalar = std::get_if<RawScalarTrack>(&t);
+        if (!scalar || scalar->name != leg.speed_track) continue;
+        for (std::size_t k = 0; k < scalar->curve.keys.size(); ++k) {
+          out.emplace_back(scalar->curve.keys[k].frame, leg.speed_track + " key " + std::to_string(k));
+        }
+      }
+    }
     if (s.kind != SpeedKind::ease) return;
     const double span = s.end_frame - s.start_frame;
     auto at = [&](double t, const std::string& label) {
@@ -765,12 +795,28 @@ class Plotter {
     breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
     // Distance and speed are columns (exact at the breaks); acceleration is the speed form's
     // second derivative (PathMotion::distance_at), per second², from the leg that is current.
-    auto leg_at = [legs](double f) -> const ScenePathLeg& {
+    auto leg_index = [legs](double f) {
       std::size_t cur = 0;
       for (std::size_t k = 0; k < legs.size(); ++k) {
         if (legs[k].motion.frame_range().lo <= f) cur = k;
       }
-      return legs[cur];
+      return cur;
+    };
+    // PathMotion gives d²s/dframe² of every form but a track (0 there): a track leg's acceleration
+    // is the central difference of its analytic speed over ±kTrackDiffFrames about the frame
+    // rounded to single precision (the F-curve's frames are floats; f ± 1/64 is then exact for
+    // |f| < 2^17, so the difference is not quantised), said in the legend.
+    constexpr double kTrackDiffFrames = 1.0 / 64;
+    bool any_track = false;
+    auto acceleration = [&](double f) {
+      const std::size_t k = leg_index(f);
+      const PathMotion& m = legs[k].motion;
+      const double fps = m.fps();
+      const bool track = raw && k < raw->path.size() && raw->path[k].speed.kind == SpeedKind::track;
+      if (!track) return m.distance_at(f).acceleration * fps * fps;
+      any_track = true;
+      const double h = kTrackDiffFrames, fr = double(float(f));
+      return (m.distance_at(fr + h).velocity - m.distance_at(fr - h).velocity) / (2 * h) * fps * fps;
     };
     Pieces pieces{breaks, true, {}, "held (path start)", "held (path end)"};
     pieces.labels.assign(breaks.size() > 0 ? breaks.size() - 1 : 0, "");
@@ -797,11 +843,7 @@ class Plotter {
       }
       fs.push_back(b[j + 1] - eps);
       std::vector<double> vs;
-      for (double f : fs) {
-        const auto& leg = leg_at(f);
-        const double fps = leg.motion.fps();
-        vs.push_back(leg.motion.distance_at(f).acceleration * fps * fps);
-      }
+      for (double f : fs) vs.push_back(acceleration(f));
       all.insert(all.end(), vs.begin(), vs.end());
       af.push_back(std::move(fs));
       av.push_back(std::move(vs));
@@ -829,7 +871,10 @@ class Plotter {
                               {"points", panel.points(af[j], av[j])}});
       }
       panel.end_data(doc);
-      panel.end(doc, {{"acceleration d²s/dt²", "#d62728", "", false}, {"phase boundary", "#999999", "2 3", false}});
+      std::vector<LegendEntry> legend{{"acceleration d²s/dt²", "#d62728", "", false},
+                                      {"phase boundary", "#999999", "2 3", false}};
+      if (any_track) legend.push_back({"(track legs: central difference of the speed, ±1/64 frame)", "#ffffff", "", false});
+      panel.end(doc, legend);
     }
     add_file("paths", name + "-speed", title, doc);
   }

@@ -26,9 +26,11 @@ Tolerance (named, from the digits written): coordinates are written with the sho
 reads back to the same double (std::to_chars), so the written pixel is the computed one; computing
 it (left + (x − x0)/(x1 − x0)·width, values ≤ 2000 px) and inverting it here costs a few roundings of
 2000·2⁻⁵³ ≈ 4.4e-13 px each.  PIXEL_TOL = 1e-9 px is 2000 times that and far below anything visible.
-Derivatives: DERIVATIVE_REL_TOL = 1e-6 of the panel's value span; the example scenes' eases are
-piecewise constant acceleration and cubic, whose speed is at most quadratic in the frame within a
-piece, where the central difference is exact up to rounding (measured < 1e-10).
+Derivatives: the central difference of the baked speed, D = v' + h^2/6 v''' + O(h^4), with v'''
+estimated by the third difference of the baked speed on the grid: the tolerance is twice that
+truncation estimate plus DERIVATIVE_REL_TOL = 1e-6 of the panel's value span for rounding
+(constant-acceleration and cubic eases have speeds at most quadratic within a piece, where the
+difference is exact up to rounding).
 
 --self-test also perturbs a plot (one point by 0.01 px, one tick label, one data frame) and checks
 that each perturbation is caught.
@@ -188,14 +190,20 @@ def check_svg(path, baker):
                 m = re.fullmatch(r"derivative\((.+)\)", dy)
                 if m:
                     i = baker.grid_index(f)
-                    if i is None or j == 0 or j + 1 == len(frames) or i == 0 or i + 1 == baker.count:
+                    if i is None or j < 2 or j + 2 >= len(frames):
                         continue
-                    if baker.grid_index(frames[j - 1]) != i - 1 or baker.grid_index(frames[j + 1]) != i + 1:
-                        continue
+                    if any(baker.grid_index(frames[j + d]) != i + d for d in (-2, -1, 1, 2)):
+                        continue  # the central differences need i ± 2 inside the same piece
                     col = m.group(1)
-                    want_y = (baker.value(col, 0, baker.grid_rows[i + 1]) - baker.value(col, 0, baker.grid_rows[i - 1])) / (
-                        2 * baker.step / baker.fps)
-                    tol = DERIVATIVE_REL_TOL * y_span
+                    v = [baker.value(col, 0, baker.grid_rows[i + d]) for d in (-2, -1, 0, 1, 2)]
+                    h = baker.step / baker.fps  # seconds
+                    want_y = (v[3] - v[1]) / (2 * h)
+                    # Central difference: D = v' + h^2/6 v''' + O(h^4); v''' from the third difference
+                    # (v[i+2] - 2 v[i+1] + 2 v[i-1] - v[i-2]) / (2 h^3), so the error is about
+                    # |third difference| / (12 h).  Twice that, plus DERIVATIVE_REL_TOL of the span for
+                    # rounding (for speeds at most quadratic the third difference is rounding only).
+                    truncation = abs(v[4] - 2 * v[3] + 2 * v[1] - v[0]) / (12 * h)
+                    tol = 2 * truncation + DERIVATIVE_REL_TOL * y_span
                 else:
                     want_y = baker.value(dy, f)
                     tol = tol_y
