@@ -40,6 +40,8 @@ double parse_real(const std::string& text, const std::string& what) {
 void run_plot(const PlotCommandOptions& opt) {
   const bool gltf = is_gltf_input(opt.input);
   if (!gltf && !opt.animation.empty()) throw CommandError{"--animation: only for glTF input (.gltf, .glb)"};
+  // A scene file's fps is part of the scene (speeds per second, the seconds axis).
+  if (!gltf && opt.fps > 0) throw CommandError{"--fps: only for glTF input (.gltf, .glb); a scene file has its own fps"};
   RawScene raw;
   if (gltf) {
     raw = load_gltf_raw(opt.input, opt.animation, opt.fps);
@@ -47,7 +49,6 @@ void run_plot(const PlotCommandOptions& opt) {
     auto parsed = read_scene_json(read_input(opt.input), opt.input);
     if (!parsed) throw CommandError{opt.input + ": " + parsed.error().describe()};
     raw = std::move(*parsed);
-    if (opt.fps > 0) raw.fps = opt.fps;
   }
   auto scene = build_scene(raw);
   if (!scene) throw CommandError{opt.input + ": " + scene.error().describe()};
@@ -95,7 +96,7 @@ const RegisterCommand kPlot{{"plot", 45, [](CLI::App& root) {
   cmd->add_option("--animation", opt->animation, "glTF input: the animation's NAME or INDEX (default: the first)");
   cmd->add_option("--frames", opt->frames,
                   "A:B[:STEP] frame axis and sample step (default: the range and keys padded by 10 %, at most 480 steps)");
-  cmd->add_option("--fps", opt->fps, "Frames per second (default: the scene's; glTF input: frame = time · fps, default 24)")
+  cmd->add_option("--fps", opt->fps, "glTF input: frame = time · fps (default 24); a scene file has its own")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--progress", opt->progress, "Progress bar on standard error: auto (when it is a terminal), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}));
