@@ -66,6 +66,8 @@ double nice_step_at_least(double raw) {
   return 10 * mag;
 }
 
+bool write_text(const fs::path& path, const std::string& text);
+
 /// Frames start + i·step, i < count (the same expression as bake's --frames A:B:STEP).
 struct Grid {
   double start = 0, step = 1;
@@ -120,7 +122,7 @@ class Plotter {
   void sample_grid() {
     table_.assign(std::size_t(grid_.count) * ncols_, 0.0);
     SceneCursor cursor(scene_);
-    ProgressBar progress("plot", grid_.count, "frames", options_.progress);
+    ProgressBar progress("plot: sampling", grid_.count, "frames", options_.progress);
     for (std::uint64_t i = 0; i < grid_.count; ++i) {
       scene_.sample(grid_.frame(i), std::span<double>(table_.data() + i * ncols_, ncols_), cursor);
       progress.update(i + 1);
@@ -128,20 +130,30 @@ class Plotter {
     progress.finish();
   }
 
-  void plot_all() {
+  /// Draws every plot and writes each into `dir` as soon as it is drawn (one document in memory
+  /// at a time); a file that cannot be written stops with write_error set.
+  void plot_all(const fs::path& dir) {
+    dir_ = dir;
     const auto tracks = scene_.tracks();
-    for (std::size_t k = 0; k < tracks.size(); ++k) plot_track(k);
     const auto objects = scene_.objects();
-    for (std::size_t i = 0; i < objects.size(); ++i) plot_object(i);
-    for (std::size_t i = 0; i < objects.size(); ++i) {
+    std::uint64_t total = tracks.size() + objects.size();
+    for (std::size_t i = 0; i < objects.size(); ++i) total += scene_.path_legs(i).empty() ? 0 : 2;
+    ProgressBar progress("plot: drawing", total, "plots", options_.progress);
+    progress_ = &progress;
+    for (std::size_t k = 0; k < tracks.size() && !write_error; ++k) plot_track(k);
+    for (std::size_t i = 0; i < objects.size() && !write_error; ++i) plot_object(i);
+    for (std::size_t i = 0; i < objects.size() && !write_error; ++i) {
       if (!scene_.path_legs(i).empty()) {
         plot_path_views(i);
-        plot_speed(i);
+        if (!write_error) plot_speed(i);
       }
     }
+    progress_ = nullptr;
+    if (!write_error) progress.finish();
   }
 
-  std::vector<std::pair<PlotFile, std::string>> files;
+  std::vector<PlotFile> files;       ///< written so far, in order
+  std::optional<Error> write_error;  ///< the first file that could not be written
 
  private:
   std::span<const double> grid_row(std::uint64_t i) const {
@@ -323,7 +335,13 @@ class Plotter {
     std::string candidate = file + ".svg";
     for (int n = 2; used_.count(candidate); ++n) candidate = file + "-" + std::to_string(n) + ".svg";
     used_.insert(candidate);
-    files.push_back({PlotFile{candidate, title, group}, doc.str()});
+    if (write_error) return;
+    if (!write_text(dir_ / candidate, doc.str())) {
+      write_error = Error{ErrorCode::Io, std::string("cannot write file: ") + std::strerror(errno), (dir_ / candidate).string(), {}};
+      return;
+    }
+    files.push_back(PlotFile{candidate, title, group});
+    if (progress_) progress_->update(files.size());
   }
 
   SvgDocument page(std::size_t panes, const std::string& title) const {
@@ -889,6 +907,8 @@ class Plotter {
   std::vector<double> table_;                     // grid rows, row-major
   std::map<double, std::vector<double>> extra_;   // single samples off the grid
   std::set<std::string> used_;
+  fs::path dir_;                     // where add_file writes
+  ProgressBar* progress_ = nullptr;  // the drawing bar, while plot_all runs
 };
 
 Error io_error(const fs::path& where, const std::string& what, int err = 0) {
@@ -1032,10 +1052,6 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
     return io_error(target, "exists and is neither empty nor an earlier plot (no index.html from inbetween plot); not replacing it");
   }
 
-  Plotter plotter(scene, raw, options, grid);
-  plotter.sample_grid();
-  plotter.plot_all();
-
   std::string tmpl = (parent / ("." + abs.filename().string() + ".tmp-XXXXXX")).string();
   if (!::mkdtemp(tmpl.data())) return io_error(parent, "cannot create a folder here", errno);
   const fs::path tmp = tmpl;
@@ -1052,10 +1068,11 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
     fs::create_directories(tmp / sub, ec);
     if (ec) return fail(io_error(tmp / sub, "cannot create folder: " + ec.message()));
   }
-  for (const auto& [file, text] : plotter.files) {
-    if (!write_text(tmp / file.name, text)) return fail(io_error(tmp / file.name, "cannot write file", errno));
-    report.files.push_back(file);
-  }
+  Plotter plotter(scene, raw, options, grid);
+  plotter.sample_grid();
+  plotter.plot_all(tmp);
+  if (plotter.write_error) return fail(*plotter.write_error);
+  report.files = plotter.files;
   for (const char* sub : {"tracks", "objects", "paths"}) fs::remove(tmp / sub, ec);  // empty ones go
   if (!write_text(tmp / "index.html", index_html(options, report.files, grid, scene.fps()))) {
     return fail(io_error(tmp / "index.html", "cannot write file", errno));

@@ -165,7 +165,9 @@ TEST(PlotCli, ProgressBarOnlyOnATerminalOrWhenAsked) {
   EXPECT_EQ(quiet.err, "");
   const CliRun bar = run_cli("plot " + qp(kFrame22) + " -o " + qp(b) + " --progress always");
   ASSERT_EQ(bar.exit_code, 0) << bar.err;
-  EXPECT_NE(bar.err.find("\rplot [##############################] 100%  421/421 frames"), std::string::npos) << bar.err;
+  EXPECT_NE(bar.err.find("\rplot: sampling [##############################] 100%  421/421 frames"), std::string::npos)
+      << bar.err;
+  EXPECT_NE(bar.err.find("\rplot: drawing [##############################] 100%  8/8 plots"), std::string::npos) << bar.err;
   EXPECT_EQ(slurp(a / "paths/ball-speed.svg").size(), slurp(b / "paths/ball-speed.svg").size());
 }
 
