@@ -22,3 +22,16 @@ def ease(spec, t):
 
 
 __all__.append("ease")
+
+
+def bake(scene, frames=None, step=1.0, animation="", fps=24.0):
+    """Bakes a scene: `scene` is an inbetween.Scene, or a scene or glTF file path, a dictionary or
+    JSON text (read with Scene(scene, animation, fps)).  Returns (values, columns): an
+    (n, len(columns)) array, one row per frame (`frames`, or the scene's range at `step`), and the
+    column names -- frame, time, then the scene's columns, as the CSV of `inbetween bake`."""
+    if not isinstance(scene, _inbetween.Scene):
+        scene = _inbetween.Scene(scene, animation=animation, fps=fps)
+    return scene.bake(frames, step)
+
+
+__all__.append("bake")
