@@ -97,10 +97,10 @@ class ArcLength:
     @property
     def domain(self) -> tuple[float, float]:
         """(u_lo, u_hi): the curve's parameter domain."""
-    def s(self, u: ArrayLike) -> NDArray:
+    def s(self, u: ArrayLike, out: NDArray | None = None) -> NDArray:
         """s(u): arc length from the start (u clamped)."""
-    def u(self, s: ArrayLike) -> NDArray:
-        """u(s) by the piecewise Chebyshev inverse (s clamped into [0, L])."""
+    def u(self, s: ArrayLike, out: NDArray | None = None) -> NDArray:
+        """u(s) by the piecewise Chebyshev inverse (s clamped into [0, L]); into `out` when given."""
     def u_newton(self, s: ArrayLike) -> NDArray:
         """u(s) by Newton-Raphson on the Gauss table (the reference)."""
     def point_at_length(self, s: ArrayLike) -> NDArray:

@@ -53,10 +53,20 @@ Array map_points(const Array& u, int dim, F f) {
   return out;
 }
 
-/// Applies f(x) → double to every item of `x` (same shape out).
+/// Applies f(x) → double to every item of `x` (same shape out); into `out_opt` when given (a
+/// float64 C-contiguous array of x's size: no allocation, as the C++ span forms).
 template <class F>
-Array map_scalars(const Array& x, F f) {
-  Array out(std::vector<py::ssize_t>(x.shape(), x.shape() + x.ndim()));
+Array map_scalars(const Array& x, F f, const std::optional<py::array>& out_opt = std::nullopt) {
+  Array out;
+  if (out_opt) {
+    if (!py::isinstance<Array>(*out_opt) || !(out_opt->flags() & py::array::c_style) ||
+        out_opt->dtype().not_equal(py::dtype::of<double>()) || out_opt->size() != x.size() || !out_opt->writeable()) {
+      throw py::value_error("out: expected a writeable C-contiguous float64 array of " + std::to_string(x.size()) + " items");
+    }
+    out = py::reinterpret_borrow<Array>(*out_opt);
+  } else {
+    out = Array(std::vector<py::ssize_t>(x.shape(), x.shape() + x.ndim()));
+  }
   const double* in = x.data();
   double* o = out.mutable_data();
   const std::size_t n = std::size_t(x.size());
@@ -174,11 +184,18 @@ void bind_curves(py::module_& m) {
              const auto d = a.arc->domain();
              return py::make_tuple(d.lo, d.hi);
            }, "(u_lo, u_hi): the curve's parameter domain.")
-      .def("s", [](const PyArcLength& a, const Array& u) { return map_scalars(u, [&](double x) { return a.arc->s_at(x); }); },
-           py::arg("u"), "s(u): arc length from the start to each parameter (u clamped into the domain).")
-      .def("u", [](const PyArcLength& a, const Array& s) { return map_scalars(s, [&](double x) { return a.inverse->u_at(x); }); },
-           py::arg("s"), "u(s): the parameter at each arc length s from the start (s clamped into [0, L]), by the "
-                         "piecewise Chebyshev inverse (|s(u(s)) - s| <= 1e-10 * L).")
+      .def("s", [](const PyArcLength& a, const Array& u, const std::optional<py::array>& out) {
+             return map_scalars(u, [&](double x) { return a.arc->s_at(x); }, out);
+           },
+           py::arg("u"), py::arg("out") = py::none(),
+           "s(u): arc length from the start to each parameter (u clamped into the domain).  out: as for u().")
+      .def("u", [](const PyArcLength& a, const Array& s, const std::optional<py::array>& out) {
+             return map_scalars(s, [&](double x) { return a.inverse->u_at(x); }, out);
+           },
+           py::arg("s"), py::arg("out") = py::none(),
+           "u(s): the parameter at each arc length s from the start (s clamped into [0, L]), by the "
+           "piecewise Chebyshev inverse (|s(u(s)) - s| <= 1e-10 * L).  out: a float64 array of s's size to write "
+           "into (no allocation); returned.")
       .def("u_newton", [](const PyArcLength& a, const Array& s) { return map_scalars(s, [&](double x) { return a.arc->u_at(x); }); },
            py::arg("s"), "u(s) by Newton-Raphson on the Gauss table (the reference the inverse is checked against).")
       .def("point_at_length", [](const PyArcLength& a, const Array& s) {

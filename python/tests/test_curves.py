@@ -130,3 +130,16 @@ def test_fcurve_track_matches_a_baked_scene(source_dir):
             got = got[:, None]
         idx = [columns.index(c) for c in track.columns]
         np.testing.assert_array_equal(got, values[:, idx], err_msg=spec["name"])
+
+
+def test_arc_length_out_argument():
+    c = inbetween.Curve({"type": "natural", "points": [[0, 0], [1, 2], [3, 3], [4, 0]]})
+    arc = inbetween.ArcLength(c)
+    s = np.linspace(0, arc.length, 50)
+    out = np.empty(50)
+    assert arc.u(s, out=out) is out or np.shares_memory(arc.u(s, out=out), out)
+    np.testing.assert_array_equal(out, arc.u(s))
+    with pytest.raises(ValueError, match="out"):
+        arc.u(s, out=np.empty(49))
+    with pytest.raises(ValueError, match="out"):
+        arc.u(s, out=np.empty(50, dtype=np.float32))
