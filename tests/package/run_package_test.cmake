@@ -26,6 +26,6 @@ message(STATUS "installed package consumed: ${step_output}")
 set(python_package "${WORK_DIR}/prefix/lib/python3/dist-packages")
 if(EXISTS "${python_package}/inbetween/__init__.py" AND EXISTS /usr/bin/python3)
   run_step(${CMAKE_COMMAND} -E env "PYTHONPATH=${python_package}" /usr/bin/python3 -c
-           "import inbetween; assert len(inbetween.euler_sequences()) == 24; print('python ok')")
+           "import inbetween\nassert len(inbetween.euler_sequences()) == 24\nprint('python ok')")
   message(STATUS "installed Python module imported: ${step_output}")
 endif()
