@@ -113,6 +113,10 @@ py::tuple bake(const PyScene& s, const std::optional<Array>& frames_in, double s
   const Scene& scene = *s.scene;
   std::vector<double> frames;
   if (frames_in) {
+    if (frames_in->ndim() > 1) {
+      throw py::value_error("frames: expected a 1-D array of frames (one row each), got " + std::to_string(frames_in->ndim()) +
+                            " dimensions");
+    }
     frames.assign(frames_in->data(), frames_in->data() + frames_in->size());
   } else {
     frames = frame_range(scene.range_start(), scene.range_end(), step);

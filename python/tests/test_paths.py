@@ -65,3 +65,36 @@ def test_smoothing_closed_forms():
     np.testing.assert_allclose(inbetween.smooth(p, method="linear"), [0, 2, 2, 2, 0])
     with pytest.raises(ValueError):
         inbetween.smooth(line, method="spline")
+
+
+def test_find_path_equals_the_tools_path_find(source_dir, cli, tmp_path):
+    env = source_dir / "examples" / "environments" / "hole_and_mover.json"
+    curve, timing = inbetween.find_path(env)
+    out = tmp_path / "path.json"
+    theirs = json.loads(cli("path", "find", env, "-o", out).stdout)
+    assert json.loads(curve.to_json()) == json.loads(out.read_text())
+    assert timing["duration"] == theirs["duration"] and timing["wait"] == theirs["wait"]
+    assert [list(k) for k in timing["keys"]] == theirs["keys"]
+    # The same from a dictionary.
+    curve2, _ = inbetween.find_path(json.loads(env.read_text()))
+    assert curve2.to_json() == curve.to_json()
+
+
+@pytest.mark.parametrize("method", ["plane", "greedy", "edges"])
+def test_surface_path_equals_the_tools_path_surface(method, source_dir, cli):
+    mesh = source_dir / "tests" / "data" / "obj" / "blender_torus.obj"
+    pts = inbetween.surface_path(str(mesh), 0, 40, method=method)
+    rows = cli("path", "surface", mesh, "--from", 0, "--to", 40, "--method", method).stdout.split()
+    assert rows[0] == "x,y,z"
+    theirs = np.array([[float(x) for x in r.split(",")] for r in rows[1:]])
+    np.testing.assert_array_equal(pts, theirs)  # shortest round-trip text: the same doubles
+    with pytest.raises(inbetween.Error):
+        inbetween.surface_path(str(mesh), 0, 10**6, method=method)
+
+
+def test_downhill_path_equals_the_tools(source_dir, cli):
+    mesh = source_dir / "tests" / "data" / "obj" / "blender_icosphere.obj"
+    pts = inbetween.downhill_path(str(mesh), 3, up=[0, 0, 1])
+    rows = cli("path", "surface", mesh, "--downhill", 3, "--up", 0, 0, 1).stdout.split()
+    theirs = np.array([[float(x) for x in r.split(",")] for r in rows[1:]])
+    np.testing.assert_array_equal(pts, theirs)

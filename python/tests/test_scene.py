@@ -89,3 +89,10 @@ def test_scene_properties(source_dir):
     cube = inbetween.Scene(source_dir / "examples" / "scenes" / "bouncing_cube.json")
     again = inbetween.Scene(cube.to_json())
     np.testing.assert_array_equal(again.bake()[0], cube.bake()[0])
+
+
+def test_bake_frames_must_be_one_dimensional(source_dir):
+    s = inbetween.Scene(source_dir / "examples" / "scenes" / "bouncing_cube.json")
+    with pytest.raises(ValueError, match="1-D"):
+        s.bake(np.zeros((2, 3)))
+    assert s.bake(5.0)[0].shape == (1, len(s.columns))  # one frame as a scalar
