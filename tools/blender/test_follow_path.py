@@ -179,7 +179,38 @@ def blender_curve_case(blender, cli, module_dir, tmp):
     ok = worst <= POSITION_ULPS and ends <= 1e-5 * 9  # float32 ulps of coordinates up to 9
     print(f"{'ok  ' if ok else 'FAIL'} blender-curve: {len(keyed)} frames, position {worst:.2f} float32 ulp, "
           f"end points off by {ends:.1e}")
-    return 0 if ok else 1
+    # The add-on's operator on the same selection (curve object selected, Mover active) keys the
+    # same values as the script: the same doubles rounded to the same float32 keys.
+    dump_op = tmp / "operator.dump.json"
+    env = dict(env, FOLLOW_DUMP=str(dump_op))
+    r = subprocess.run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python-expr", MAKE_CURVE,
+                        "--python-expr", OPERATOR, "--python-expr", DUMP],
+                       capture_output=True, text=True, env=dict(env, INBETWEEN_PYTHON_PATH=module_dir,
+                                                                 FOLLOW_SCRIPT=str(HERE / "inbetween_follow_path.py")))
+    if r.returncode != 0 or not dump_op.exists():
+        print(f"FAIL add-on operator: blender exited {r.returncode}\n{r.stdout[-2000:]}\n{r.stderr[-2000:]}")
+        return 1
+    same = json.loads(dump_op.read_text()) == keyed
+    print(f"{'ok  ' if same else 'FAIL'} add-on operator: keys {'equal' if same else 'differ from'} the script's")
+    return 0 if ok and same else 1
+
+
+OPERATOR = """
+import bpy, importlib.util, os
+spec = importlib.util.spec_from_file_location("inbetween_follow_path", os.environ["FOLLOW_SCRIPT"])
+addon = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(addon)
+addon.register()
+mover = bpy.data.objects.new("Mover", None)
+bpy.context.scene.collection.objects.link(mover)
+for o in bpy.context.view_layer.objects:
+    o.select_set(o.name in ("Mover", "TrackCurve"))
+bpy.context.view_layer.objects.active = mover
+bpy.context.scene.render.fps, bpy.context.scene.render.fps_base = 24, 1.0
+result = bpy.ops.object.inbetween_follow_path(ease="cubic", start_frame=1, end_frame=30,
+                                              orientation="rotation_minimizing")
+assert result == {"FINISHED"}, result
+"""
 
 
 if __name__ == "__main__":
