@@ -10,7 +10,8 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 # (libFuzzer, the sanitizer runtimes) build the asan preset that `make test` also runs.
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
         nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev gltfpack libeigen3-dev libglm-dev libboost-dev \
-        python3 python3-scipy python3-jsonschema clang libclang-rt-dev
+        python3 python3-scipy python3-jsonschema clang libclang-rt-dev \
+        pybind11-dev python3-dev python3-pytest python3-numpy
 
 .PHONY: all deps configure build test demo bench asan fuzz clean
 

@@ -22,3 +22,10 @@ if(NOT step_output MATCHES "consumer ok")
   message(FATAL_ERROR "consumer printed: ${step_output}")
 endif()
 message(STATUS "installed package consumed: ${step_output}")
+# The Python module, when it was built and installed: importable from the installed folder alone.
+set(python_package "${WORK_DIR}/prefix/lib/python3/dist-packages")
+if(EXISTS "${python_package}/inbetween/__init__.py" AND EXISTS /usr/bin/python3)
+  run_step(${CMAKE_COMMAND} -E env "PYTHONPATH=${python_package}" /usr/bin/python3 -c
+           "import inbetween\nassert len(inbetween.euler_sequences()) == 24\nprint('python ok')")
+  message(STATUS "installed Python module imported: ${step_output}")
+endif()

@@ -1,0 +1,16 @@
+"""Named tolerances of the Python suite, each with its source."""
+# Rotation conversions in double: both sides are a few ulp accurate (docs/conventions.md; SciPy
+# uses the same quaternion-method Euler extraction of Bernardes & Viollet): 1e-12 rad leaves room
+# for ~4500 ulp of pi, far above either side's error, far below any real convention mix-up (~0.1).
+ROTATION_RAD = 1e-12
+# Matrix and quaternion components agree to 1e-14 (a few ulp of 1 over 3-term sums).
+COMPONENT = 1e-14
+# Euler angles close to gimbal lock are ill-conditioned: compared through the rebuilt rotation.
+# Slerp: both formulas are ulp-accurate (ours: docs/orientation.md; SciPy's: rotvec composition).
+SLERP_RAD = 1e-12
+# Arc length: ArcLength guarantees 1e-9 * L on s(u) and u(s) (include/inbetween/arclength/arc_length.hpp);
+# the inverse checks 1e-10 * L.  scipy.integrate.quad at epsabs 1e-13 is the independent reference.
+ARC_LENGTH_REL = 1e-9
+# B-spline least squares vs scipy.interpolate.make_lsq_spline on the same knots: both solve the
+# same well-conditioned system (QR in SciPy, Eigen here); 1e-10 relative to the data's scale.
+LSQ_REL = 1e-10
