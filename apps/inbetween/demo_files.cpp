@@ -16,6 +16,12 @@
 #include "preview.hpp"
 #include "progress.hpp"
 
+// The plots come from `inbetween plot` (apps/inbetween/plot.hpp, branch plot): used once merged.
+#if __has_include("plot.hpp")
+#include "plot.hpp"
+#define INBETWEEN_DEMO_PLOTS 1
+#endif
+
 namespace inbetween::cli {
 namespace {
 
@@ -119,9 +125,25 @@ std::string write_demo_files(const std::string& dir) {
   written.push_back("frames.csv     its bake, " + std::to_string(count) + " frames × " +
                     std::to_string(columns.size() + 2) + " columns (= inbetween bake frame22.json)");
 
-  // PLOTS CALL SITE (issue 11, the `plot` helper's write_plots(scene, raw, dir, options)): the
-  // graph-editor and speed plots into out/plots/; wired when branch `plot` is merged.
-  written.push_back("plots/         not written yet (inbetween plot comes with branch plot)");
+  // PLOTS CALL SITE (issue 11): the graph-editor, path and speed plots of `inbetween plot`
+  // (write_plots, apps/inbetween/plot.hpp) into DIR/plots/.
+#ifdef INBETWEEN_DEMO_PLOTS
+  {
+    auto raw = read_scene_json(kFrame22SceneJson);
+    if (!raw) throw CommandError{"the built-in scene does not read: " + raw.error().describe(), kInternal};
+    PlotOptions options;
+    options.title = "frame22.json";
+    auto report = write_plots(scene, *raw, out / "plots", options);
+    if (!report) {
+      const Error& e = report.error();
+      throw CommandError{(e.where.empty() ? (out / "plots").string() : e.where) + ": " + e.message};
+    }
+    written.push_back("plots/         " + std::to_string(report->files.size()) +
+                      " SVG plots (graph editor, path views, speed curves) and index.html");
+  }
+#else
+  written.push_back("plots/         not written: this build has no `inbetween plot` yet");
+#endif
 
   if (preview_available()) {
     const PreviewFrames frames{scene.range_start(), 1, count};
