@@ -90,6 +90,7 @@ data.objects.forEach((object, i) => {
     const frustum = new PerspectiveCamera(object.yfov_deg, 16 / 9, shapeSize * 0.5, shapeSize * 4);
     group.add(frustum);
     const helper = new CameraHelper(frustum);
+    helper.setColors(colour, colour, new Color(0x66ccff), new Color(0xffffff), new Color(0x777777));  // frustum, cone, up, target, cross
     scene.add(helper);
     entry.helper = helper;
     entry.lens = new PerspectiveCamera(object.yfov_deg, 16 / 9, extent * 0.002, extent * 20);
@@ -117,6 +118,15 @@ data.objects.forEach((object, i) => {
     entry.pathSpace = space;
   }
   shown.set(object.name, entry);
+
+  // Legend entry: the colour of the shape and path line, the name, what it is.
+  const item = document.createElement('div');
+  const swatch = document.createElement('span');
+  swatch.className = 'swatch';
+  swatch.style.background = '#' + colour.getHexString();
+  const kind = object.kind === 'camera' ? 'camera' : object.kind === 'path' ? 'on a path' : 'object';
+  item.append(swatch, `${object.name} (${kind}${object.path_points ? ', line: its path' : ''})`);
+  document.getElementById('legend').appendChild(item);
 });
 
 // Free camera looking at the whole scene.
