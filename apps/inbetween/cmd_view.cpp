@@ -1,6 +1,8 @@
 // `inbetween view SCENE|MODEL.gltf|MODEL.glb -o preview.html`: one self-contained HTML page that
 // plays the baked scene with three.js (docs/preview.md).  Reading and baking are the library's
 // (the same as `bake`); preview.cpp assembles the page; this file handles the arguments.
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -47,7 +49,19 @@ const RegisterCommand kView{{"view", 45, [](CLI::App& root) {
   cmd->add_option("--frames", opt->frames,
                   "A:B[:STEP] frames to bake into the page (default: the scene's range, step 1; at most 20000 frames)");
   cmd->add_option("--animation", opt->animation, "glTF input: the animation's NAME or INDEX (default: the first)");
-  cmd->add_option("--fps", opt->fps, "glTF input: frame = time · fps (default 24)")->check(CLI::PositiveNumber);
+  cmd->add_option("--fps", opt->fps, "glTF input: frame = time · fps (default 24)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            // As bake's --fps: CLI::PositiveNumber would let "nan" through.
+            const char* begin = text.c_str();
+            char* end = nullptr;
+            const double v = std::strtod(begin, &end);
+            if (text.empty() || end != begin + text.size() || !std::isfinite(v) || !(v > 0)) {
+              return "\"" + text + "\" is not a finite positive number";
+            }
+            return {};
+          },
+          "POSITIVE"));
   cmd->callback([opt] { run_view(*opt); });
 }}};
 

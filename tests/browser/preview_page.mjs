@@ -8,8 +8,8 @@
 //
 // --overview saves a screenshot in the free view at the second of the frames (the README's image,
 // docs/images/preview.png); --screenshot one through the camera NAME, after the frames.
-// Prints one JSON object on standard output: {ready, variance, frames: [{asked, shown, positions:
-// {A: [x, y, z], …}}], cameras, camera, cameraVariance, errors}.  Exit 77 (with the reason on
+// Prints one JSON object on standard output: {ready, variance, played: {from, to}, frames: [{asked,
+// shown, positions: {A: [x, y, z], …}}], cameras, camera, cameraVariance, errors}.  Exit 77 (with the reason on
 // standard error) when playwright-core or chromium is missing or chromium cannot start; 1 on any
 // other failure.
 import { existsSync } from 'node:fs';
@@ -78,6 +78,12 @@ try {
   });
 
   const result = { ready: true, variance: await variance(), frames: [], cameras: await page.evaluate(() => window.inbetween.cameras) };
+  // The timeline plays: from the first frame, half a second of playing moves the frame on.
+  const start = await page.evaluate(() => window.inbetween.setFrame(window.inbetween.frames[0]));
+  await page.evaluate(() => window.inbetween.play());
+  await page.waitForTimeout(500);
+  const end = await page.evaluate(() => { window.inbetween.pause(); return window.inbetween.frame(); });
+  result.played = { from: start, to: end };
   for (const f of frames) {
     const shown = await page.evaluate((frame) => window.inbetween.setFrame(frame), f);
     const positions = {};
