@@ -200,8 +200,12 @@ TEST(PreviewBrowser, GltfFileShowsTheBakedNodes) {
   const auto first = bake.rows.begin()->first, last = bake.rows.rbegin()->first;
   auto middle = bake.rows.begin();
   std::advance(middle, bake.rows.size() / 2);
-  const Page page = check_page(glb, "bouncing_cube_glb", {first, middle->first, last}, nodes, "");
+  const fs::path shot = kOut / "bouncing_cube_glb.png";
+  const Page page = check_page(glb, "bouncing_cube_glb", {first, middle->first, last}, nodes, "",
+                               "--overview '" + shot.string() + "'");
   if (page.skipped) GTEST_SKIP() << page.skip_reason;
+  EXPECT_TRUE(page.data["cameras"].empty()) << "the converted scene has no camera";
+  EXPECT_EQ(slurp(shot).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << "no screenshot";
 }
 
 }  // namespace
