@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "progress.hpp"
 
 namespace inbetween::cli {
 namespace {
@@ -180,7 +181,9 @@ std::string preview_html(const Scene& scene, const PreviewFrames& frames, const 
   data += "],\n\"rows\": [";
   std::vector<double> row(columns.size());
   SceneCursor cursor(scene);  // sign-continuous rotations, as bake writes them
+  ProgressBar progress("bake", frames.count, "frames", ProgressMode::automatic);  // on a terminal, for long bakes only
   for (std::uint64_t i = 0; i < frames.count; ++i) {
+    progress.update(i);
     const double f = frames.start + double(i) * frames.step;
     if (!std::isfinite(f / fps)) {
       throw CommandError{"frame " + format_number(f) + ": time = frame / fps " + format_number(fps) + " overflows"};
@@ -202,6 +205,7 @@ std::string preview_html(const Scene& scene, const PreviewFrames& frames, const 
     }
     data += "]";
   }
+  progress.finish();
   data += "]}";
 
   // Markers in the order they appear in page.html.

@@ -49,6 +49,7 @@ void require_preview();
 /// exactly bake's text), the path legs as polylines of kPathLinePoints points in the parent's
 /// space, the cameras' fields of view, the bundled script.  Throws CommandError when the scene has
 /// no objects, a value is not finite (naming the frame and column) or the preview is unavailable.
+/// A long bake shows a progress bar on standard error when it is a terminal (ProgressMode::automatic).
 [[nodiscard]] std::string preview_html(const Scene& scene, const PreviewFrames& frames, const PreviewOptions& options);
 
 /// The bundled page script (three.js and preview.js); empty when not available.
