@@ -135,7 +135,7 @@ Page check_page(const fs::path& input, const std::string& name, const std::vecto
   }
   EXPECT_TRUE(result["errors"].empty()) << result["errors"].dump();
   EXPECT_GT(result["variance"].get<double>(), kMinCanvasVariance) << "the 3-D canvas is blank";
-  // Half a second of playing from the first frame shows a later frame (at 1× and 24 fps, about 12).
+  // Playing from the first frame shows a later frame (within 10 s).
   EXPECT_GT(result["played"]["to"].get<double>(), result["played"]["from"].get<double>()) << result["played"].dump();
   EXPECT_EQ(result["frames"].size(), frames.size());
   for (std::size_t k = 0; k < result["frames"].size(); ++k) {

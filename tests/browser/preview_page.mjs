@@ -78,10 +78,11 @@ try {
   });
 
   const result = { ready: true, variance: await variance(), frames: [], cameras: await page.evaluate(() => window.inbetween.cameras) };
-  // The timeline plays: from the first frame, half a second of playing moves the frame on.
+  // The timeline plays: from the first frame, playing moves the frame on (waited for up to 10 s:
+  // software WebGL in a headless browser may draw only a few frames a second).
   const start = await page.evaluate(() => window.inbetween.setFrame(window.inbetween.frames[0]));
   await page.evaluate(() => window.inbetween.play());
-  await page.waitForTimeout(500);
+  await page.waitForFunction((f) => window.inbetween.frame() !== f, start, { timeout: 10000 }).catch(() => {});
   const end = await page.evaluate(() => { window.inbetween.pause(); return window.inbetween.frame(); });
   result.played = { from: start, to: end };
   for (const f of frames) {

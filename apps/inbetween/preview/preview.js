@@ -206,44 +206,56 @@ if (plotRows.length === 0) {
   plots.innerHTML = '<p class="note">No path objects: the speed curves show the distance and speed columns of objects on paths.</p>';
 }
 
-function drawPlot({ canvas, c }) {
-  const g = canvas.getContext('2d');
+// The curve of a plot is drawn once into an off-screen canvas; each frame copies it and marks the
+// current frame (long bakes have tens of thousands of rows).
+function drawPlot(plot) {
+  const { canvas, c } = plot;
   const w = canvas.width, h = canvas.height, left = 46, right = 8, top = 8, bottom = 22;
-  let vmin = Infinity, vmax = -Infinity;
-  for (const row of data.rows) { vmin = Math.min(vmin, row[c]); vmax = Math.max(vmax, row[c]); }
-  if (!(vmax > vmin)) { vmax = vmin + 1; }
-  const f0 = data.frames[0], f1 = data.frames[frameCount - 1] > f0 ? data.frames[frameCount - 1] : f0 + 1;
-  const x = (f) => left + (f - f0) / (f1 - f0) * (w - left - right);
-  const y = (v) => h - bottom - (v - vmin) / (vmax - vmin) * (h - top - bottom);
+  if (!plot.background) {
+    let vmin = Infinity, vmax = -Infinity;
+    for (const row of data.rows) { vmin = Math.min(vmin, row[c]); vmax = Math.max(vmax, row[c]); }
+    if (!(vmax > vmin)) { vmax = vmin + 1; }
+    const f0 = data.frames[0], f1 = data.frames[frameCount - 1] > f0 ? data.frames[frameCount - 1] : f0 + 1;
+    plot.x = (f) => left + (f - f0) / (f1 - f0) * (w - left - right);
+    plot.y = (v) => h - bottom - (v - vmin) / (vmax - vmin) * (h - top - bottom);
+    const background = document.createElement('canvas');
+    background.width = w;
+    background.height = h;
+    const g = background.getContext('2d');
+    g.fillStyle = '#26292e';
+    g.fillRect(0, 0, w, h);
+    g.strokeStyle = '#555a60';
+    g.lineWidth = 1;
+    g.strokeRect(left, top, w - left - right, h - top - bottom);
+    g.fillStyle = '#aab';
+    g.font = '10px sans-serif';
+    g.textAlign = 'right';
+    g.fillText(vmax.toPrecision(3), left - 4, top + 8);
+    g.fillText(vmin.toPrecision(3), left - 4, h - bottom);
+    g.textAlign = 'center';
+    g.fillText(String(f0), left, h - 6);
+    g.fillText(String(f1), w - right, h - 6);
+    g.fillText('frame', (left + w - right) / 2, h - 6);
+    g.strokeStyle = '#17bebb';
+    g.lineWidth = 1.5;
+    g.beginPath();
+    data.rows.forEach((row, i) => (i ? g.lineTo : g.moveTo).call(g, plot.x(data.frames[i]), plot.y(row[c])));
+    g.stroke();
+    plot.background = background;
+  }
+  const g = canvas.getContext('2d');
   g.clearRect(0, 0, w, h);
-  g.fillStyle = '#26292e';
-  g.fillRect(0, 0, w, h);
-  g.strokeStyle = '#555a60';
-  g.lineWidth = 1;
-  g.strokeRect(left, top, w - left - right, h - top - bottom);
-  g.fillStyle = '#aab';
-  g.font = '10px sans-serif';
-  g.textAlign = 'right';
-  g.fillText(vmax.toPrecision(3), left - 4, top + 8);
-  g.fillText(vmin.toPrecision(3), left - 4, h - bottom);
-  g.textAlign = 'center';
-  g.fillText(String(f0), left, h - 6);
-  g.fillText(String(f1), w - right, h - 6);
-  g.fillText('frame', (left + w - right) / 2, h - 6);
-  g.strokeStyle = '#17bebb';
-  g.lineWidth = 1.5;
-  g.beginPath();
-  data.rows.forEach((row, i) => (i ? g.lineTo : g.moveTo).call(g, x(data.frames[i]), y(row[c])));
-  g.stroke();
-  const fx = x(data.frames[current]);
+  g.drawImage(plot.background, 0, 0);
+  const fx = plot.x(data.frames[current]);
   g.strokeStyle = '#ffc914';
+  g.lineWidth = 1;
   g.beginPath();
   g.moveTo(fx, top);
   g.lineTo(fx, h - bottom);
   g.stroke();
   g.fillStyle = '#ffc914';
   g.beginPath();
-  g.arc(fx, y(data.rows[current][c]), 3.5, 0, 2 * Math.PI);
+  g.arc(fx, plot.y(data.rows[current][c]), 3.5, 0, 2 * Math.PI);
   g.fill();
 }
 
