@@ -16,10 +16,11 @@
 #include "preview.hpp"
 #include "progress.hpp"
 
-// The plots come from `inbetween plot` (apps/inbetween/plot.hpp, branch plot): used once merged.
-#if __has_include("plot.hpp")
+// The plots come from `inbetween plot` (apps/inbetween/plot.hpp, branch plot): CMakeLists.txt
+// defines INBETWEEN_DEMO_PLOTS for this file when that header exists (and makes the file depend on
+// it, so the build and ccache see the change; __has_include would leave ccache's direct mode stale).
+#ifdef INBETWEEN_DEMO_PLOTS
 #include "plot.hpp"
-#define INBETWEEN_DEMO_PLOTS 1
 #endif
 
 namespace inbetween::cli {

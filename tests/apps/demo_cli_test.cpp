@@ -77,6 +77,9 @@ TEST(DemoCli, WritesTheSceneItsBakeAndThePreviewAndEndsWithTheSummary) {
   EXPECT_NE(summary.find("peak speed " + fixed3(peak) + " units/s"), std::string::npos) << summary;
   EXPECT_NE(summary.find("at rest on frames 16–22, 67, 80–86"), std::string::npos) << summary;
 
+  // The plots, once the tool has `inbetween plot` (branch plot), with their index page.
+  if (summary.find("SVG plots") != std::string::npos) EXPECT_TRUE(fs::exists(dir / "plots" / "index.html"));
+
   // The preview page, when the tool has it, embeds the scene.
   const std::string page = slurp(dir / "preview.html");
   if (!page.empty()) EXPECT_NE(page.find("window.INBETWEEN_DATA = "), std::string::npos);
