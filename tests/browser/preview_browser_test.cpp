@@ -1,6 +1,6 @@
 // The page of `inbetween view` in Debian's chromium (issue 11, "Preview"): it opens from file://
 // with nothing fetched, draws a 3-D canvas that is not blank, shows at three scrubbed frames the
-// object positions that `inbetween bake` writes (to 1e-9), looks through a scene camera and saves
+// object positions and rotations that `inbetween bake` writes (to 1e-9), looks through a scene camera and saves
 // screenshots.  tests/browser/preview_page.mjs drives the page (playwright-core from npm,
 // tools/browser) and prints what it read; the checks are here.  Skips, with the reason, only
 // where node, playwright-core or chromium is missing or chromium cannot start (exit 77 of the script).
@@ -28,8 +28,9 @@ namespace fs = std::filesystem;
 using inbetween::test::run_cli;
 using inbetween::test::slurp;
 
-// The issue's tolerance for the position read back from the page against `bake` (the page plays
-// the embedded round-trip text of the same doubles, so the difference is expected to be 0).
+// The issue's tolerance for the position (and rotation) read back from the page against `bake`
+// (the page plays the embedded round-trip text of the same doubles, so the difference is expected
+// to be 0).
 constexpr double kPositionTolerance = 1e-9;
 // Luminance variance (grey levels², 0–255) above which the canvas shows something: a canvas
 // cleared to one colour has exactly 0; the frame-22 page measured 127 in the free view.
@@ -153,6 +154,13 @@ Page check_page(const fs::path& input, const std::string& name, const std::vecto
       EXPECT_EQ(p.size(), 3u) << object;
       for (std::size_t i = 0; i < 3 && i < p.size(); ++i)
         EXPECT_NEAR(p[i].get<double>(), row[c + i], kPositionTolerance) << object << " at frame " << f << ", axis " << i;
+      // The rotation shown, w x y z, is bake's rotation columns (sign included: the page plays the
+      // sign-continuous quaternions of the cursor, as bake writes them).
+      const std::size_t r = bake.column(object + ".rotation.w");
+      const auto& q = shown["rotations"][object];
+      EXPECT_EQ(q.size(), 4u) << object;
+      for (std::size_t i = 0; i < 4 && i < q.size(); ++i)
+        EXPECT_NEAR(q[i].get<double>(), row[r + i], kPositionTolerance) << object << " rotation at frame " << f << ", component " << i;
     }
   }
   if (!camera.empty()) {

@@ -9,7 +9,7 @@
 // --overview saves a screenshot in the free view at the second of the frames (the README's image,
 // docs/images/preview.png); --screenshot one through the camera NAME, after the frames.
 // Prints one JSON object on standard output: {ready, variance, played: {from, to}, frames: [{asked,
-// shown, positions: {A: [x, y, z], …}}], cameras, camera, cameraVariance, errors}.  Exit 77 (with the reason on
+// shown, positions: {A: [x, y, z], …}, rotations: {A: [w, x, y, z], …}}], cameras, camera, cameraVariance, errors}.  Exit 77 (with the reason on
 // standard error) when playwright-core or chromium is missing or chromium cannot start; 1 on any
 // other failure.
 import { existsSync } from 'node:fs';
@@ -87,9 +87,12 @@ try {
   result.played = { from: start, to: end };
   for (const f of frames) {
     const shown = await page.evaluate((frame) => window.inbetween.setFrame(frame), f);
-    const positions = {};
-    for (const name of objects) positions[name] = await page.evaluate((n) => window.inbetween.objectPosition(n), name);
-    result.frames.push({ asked: f, shown, positions });
+    const positions = {}, rotations = {};
+    for (const name of objects) {
+      positions[name] = await page.evaluate((n) => window.inbetween.objectPosition(n), name);
+      rotations[name] = await page.evaluate((n) => window.inbetween.objectRotation(n), name);
+    }
+    result.frames.push({ asked: f, shown, positions, rotations });
   }
   if (overview && frames.length > 0) {
     await page.evaluate((frame) => window.inbetween.setFrame(frame), frames[Math.min(1, frames.length - 1)]);
