@@ -5,20 +5,28 @@
 // (gcc and clang): a 0.5 MB script as a C++ array initialiser would compile for a long time.
 #include "preview.hpp"
 
+#include <cstdint>
+
 #if defined(INBETWEEN_PREVIEW_BUNDLE) && defined(INBETWEEN_PREVIEW_PAGE)
+// Defines name_data (the file's bytes and a terminating zero) and name_size (its byte count, an
+// 8-byte integer computed by the assembler, so no pointers to two objects are subtracted).
 #define INBETWEEN_ASSET(name, path)                     \
-  __asm__(".pushsection .rodata\n"                      \
-          ".global " #name "_begin\n"                   \
-          ".hidden " #name "_begin\n"                   \
-          ".global " #name "_end\n"                     \
-          ".hidden " #name "_end\n"                     \
-          #name "_begin:\n"                             \
-          ".incbin \"" path "\"\n"                      \
-          #name "_end:\n"                               \
-          ".byte 0\n"                                   \
-          ".popsection\n");                             \
-  extern "C" const char name##_begin[];                 \
-  extern "C" const char name##_end[];
+  __asm__(".pushsection .rodata\n"                     \
+          ".global " #name "_data\n"                   \
+          ".hidden " #name "_data\n"                   \
+          ".global " #name "_size\n"                   \
+          ".hidden " #name "_size\n"                   \
+          ".balign 8\n"                                \
+          #name "_size:\n"                             \
+          ".quad 2f - 1f\n"                            \
+          #name "_data:\n"                             \
+          "1:\n"                                       \
+          ".incbin \"" path "\"\n"                     \
+          "2:\n"                                       \
+          ".byte 0\n"                                  \
+          ".popsection\n");                            \
+  extern "C" const char name##_data[];                  \
+  extern "C" const std::uint64_t name##_size;
 
 INBETWEEN_ASSET(inbetween_preview_bundle, INBETWEEN_PREVIEW_BUNDLE)
 INBETWEEN_ASSET(inbetween_preview_page, INBETWEEN_PREVIEW_PAGE)
@@ -30,7 +38,7 @@ bool preview_available() noexcept { return !preview_script().empty() && !preview
 
 std::string_view preview_script() noexcept {
 #if defined(INBETWEEN_PREVIEW_BUNDLE) && defined(INBETWEEN_PREVIEW_PAGE)
-  return {inbetween_preview_bundle_begin, std::size_t(inbetween_preview_bundle_end - inbetween_preview_bundle_begin)};
+  return {inbetween_preview_bundle_data, std::size_t(inbetween_preview_bundle_size)};
 #else
   return {};
 #endif
@@ -38,7 +46,7 @@ std::string_view preview_script() noexcept {
 
 std::string_view preview_template() noexcept {
 #if defined(INBETWEEN_PREVIEW_BUNDLE) && defined(INBETWEEN_PREVIEW_PAGE)
-  return {inbetween_preview_page_begin, std::size_t(inbetween_preview_page_end - inbetween_preview_page_begin)};
+  return {inbetween_preview_page_data, std::size_t(inbetween_preview_page_size)};
 #else
   return {};
 #endif
