@@ -1,6 +1,8 @@
 // `inbetween convert IN OUT`: between file formats, told apart by extension.
 //   - glTF (.gltf, .glb) → scene file (.json): the same animation as keyframes (inbetween/io/gltf.hpp
 //     reads, inbetween/io/scene_write.hpp writes), so that `bake OUT.json` equals `bake IN.glb`;
+//   - scene file → scene file (.json): read, checked by building, written back (version 2, paths
+//     and cameras included), so that `bake OUT.json` equals `bake IN.json`;
 //   - scene file or glTF → glTF (.gltf, .glb): exported by io/gltf_write.hpp, keys kept where glTF
 //     holds them exactly and refitted otherwise (or every channel with --reduce), with a report of
 //     each channel (why, keys before/after, measured max error) on standard error.
@@ -38,7 +40,8 @@ bool ends_with(const std::string& s, const std::string& tail) {
 // The input as a raw scene: a glTF animation or a scene file.
 RawScene read_raw(const ConvertOptions& opt) {
   if (is_gltf_input(opt.input)) return load_gltf_raw(opt.input, opt.animation, opt.fps);
-  auto raw = read_scene_json(read_input(opt.input));
+  // The path too: curve files named by "file" members are relative to the scene's folder.
+  auto raw = read_scene_json(read_input(opt.input), opt.input);
   if (!raw) throw CommandError{opt.input + ": " + raw.error().describe()};
   return std::move(*raw);
 }
@@ -64,8 +67,10 @@ void run_convert(const ConvertOptions& opt) {
   if (!std::isfinite(opt.fps)) throw CommandError{"--fps: not a finite positive number"};
   const bool to_json = ends_with(opt.output, ".json");
   const bool glb = ends_with(opt.output, ".glb"), gltf = ends_with(opt.output, ".gltf");
-  if (to_json && is_gltf_input(opt.input)) {
-    const RawScene raw = load_gltf_raw(opt.input, opt.animation, opt.fps);
+  if (to_json) {
+    // glTF → scene file, or scene file → scene file (the writer's form: version 2, defaults left
+    // out, curve files inlined).
+    const RawScene raw = read_raw(opt);
     if (auto scene = build_scene(raw); !scene) throw CommandError{opt.input + ": " + scene.error().describe()};
     auto text = write_scene_json(raw);
     if (!text) throw CommandError{opt.input + ": " + text.error().describe()};
@@ -75,7 +80,7 @@ void run_convert(const ConvertOptions& opt) {
   if (!glb && !gltf) {
     throw CommandError{"convert: " + opt.input + " → " + opt.output +
                        " is not a supported conversion: the output must end in .gltf or .glb (export of a scene or glTF "
-                       "file) or in .json (a scene file from glTF input)"};
+                       "file) or in .json (a scene file, from glTF or scene input)"};
   }
   const RawScene raw = read_raw(opt);
   auto scene = build_scene(raw);
@@ -97,7 +102,7 @@ const RegisterCommand kConvert{{"convert", 45, [](CLI::App& root) {
   auto* cmd = root.add_subcommand("convert", "Convert between glTF 2.0 and scene files (by extension), refitting what glTF cannot hold");
   cmd->add_option("input", opt->input, "Scene file (docs/scene-format.md; - for standard input) or glTF 2.0 (.gltf, .glb)")
       ->required();
-  cmd->add_option("output", opt->output, "Output: .gltf or .glb (export), or .json (scene file, from glTF input)")->required();
+  cmd->add_option("output", opt->output, "Output: .gltf or .glb (export), or .json (scene file, from glTF or scene input)")->required();
   cmd->add_option("--animation", opt->animation, "glTF input: the animation's NAME or INDEX (default: the first)");
   cmd->add_option("--fps", opt->fps, "glTF input: frames per second, frame = time · fps (default 24)")
       ->check(CLI::PositiveNumber);

@@ -173,6 +173,61 @@ struct Builder {
   }
 };
 
+
+// Whether object i's translation / rotation comes from the built scene rather than a keyed channel.
+bool translation_sampled(const Scene& scene, std::size_t i) { return !scene.path_legs(i).empty(); }
+bool rotation_sampled(const Scene& scene, std::size_t i) { return translation_sampled(scene, i) || scene.camera(i) != nullptr; }
+
+// The local transform that glTF's node must hold so that parent ∘ local is the scene's world
+// transform `world`: the inverse of compose() (translation R_p⁻¹(t − t_p) / s_p, an axis of zero
+// parent scale reading 0 as the scene's to_parent_space does; rotation R_p⁻¹ R).  Scale: world / parent.
+Transform<double> local_from_world(const Transform<double>& parent, const Transform<double>& world) {
+  const Quatd inv = conjugate(normalized(parent.rotation));
+  const Vec3d r = rotate(inv, world.translation - parent.translation);
+  const Vec3d& s = parent.scale;
+  auto div = [](double a, double b) { return b != 0 ? a / b : 0.0; };
+  return {{div(r.x, s.x), div(r.y, s.y), div(r.z, s.z)},
+          normalized(inv * world.rotation),
+          {div(world.scale.x, s.x), div(world.scale.y, s.y), div(world.scale.z, s.z)}};
+}
+
+Transform<double> trs_at(const double* c) {
+  return {{c[0], c[1], c[2]}, Quatd::from_wxyz(c[3], c[4], c[5], c[6]), {c[7], c[8], c[9]}};
+}
+
+// For every object whose translation or rotation is sampled (path objects, cameras): its local
+// transform at each grid frame, recovered from the scene's world columns (Scene::sample, what
+// bake prints) and its parent's; other objects get an empty vector.
+std::vector<std::vector<Transform<double>>> sample_locals(const Scene& scene, const std::vector<double>& grid) {
+  const auto nodes = scene.objects();
+  std::vector<std::vector<Transform<double>>> out(nodes.size());
+  std::vector<std::size_t> column(nodes.size());
+  bool any = false;
+  const auto cols = scene.columns();
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    any = any || rotation_sampled(scene, i);
+    const std::string name = nodes[i].name + ".translation.x";
+    column[i] = std::size_t(std::find_if(cols.begin(), cols.end(), [&](const SceneColumn& c) { return c.name == name; }) - cols.begin());
+    INBETWEEN_ASSERT(column[i] < cols.size());
+  }
+  if (!any) return out;
+  std::vector<double> row(cols.size());
+  SceneCursor cursor(scene);
+  for (double f : grid) {
+    scene.sample(f, row, cursor);
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      if (!rotation_sampled(scene, i)) continue;
+      const Transform<double> world = trs_at(row.data() + column[i]);
+      const Transform<double> parent = nodes[i].parent ? trs_at(row.data() + column[*nodes[i].parent]) : Transform<double>{};
+      Transform<double> local = local_from_world(parent, world);
+      // Sign-continuous from grid point to grid point (the refit wants it; q and −q are one rotation).
+      if (!out[i].empty() && dot(out[i].back().rotation, local.rotation) < 0) local.rotation = -local.rotation;
+      out[i].push_back(local);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const GltfExportOptions& options) {
@@ -182,16 +237,14 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
   if (options.substeps < 1 || options.substeps > 64) {
     return Error{ErrorCode::InvalidArgument, "substeps must be in 1..64", "", {"substeps"}};
   }
-  // Version 2's path objects and cameras are not exported yet (they would need their sampled local
-  // transforms refitted and glTF cameras): refuse rather than export them standing still.
-  for (std::size_t i = 0; i < raw.objects.size(); ++i) {
-    if (!raw.objects[i].path.empty()) {
-      return Error{ErrorCode::Unsupported, "glTF export of objects on paths is not implemented yet", "",
-                   {"objects", i, "path"}};
-    }
-    if (raw.objects[i].camera) {
-      return Error{ErrorCode::Unsupported, "glTF export of cameras is not implemented yet", "", {"objects", i, "camera"}};
-    }
+  if (!(options.camera_znear > 0) || !std::isfinite(options.camera_znear)) {
+    return Error{ErrorCode::InvalidArgument, "camera_znear must be finite and > 0", "", {"camera_znear"}};
+  }
+  if (!(options.camera_zfar > options.camera_znear) || !std::isfinite(options.camera_zfar)) {
+    return Error{ErrorCode::InvalidArgument, "camera_zfar must be finite and > camera_znear", "", {"camera_zfar"}};
+  }
+  if (!(options.camera_aspect >= 0) || !std::isfinite(options.camera_aspect)) {
+    return Error{ErrorCode::InvalidArgument, "camera_aspect must be finite and ≥ 0 (0: the viewport's)", "", {"camera_aspect"}};
   }
   const auto nodes = scene.objects();
   if (nodes.empty()) return Error{ErrorCode::Unsupported, "the scene has no objects to export as glTF nodes", "", {"objects"}};
@@ -201,10 +254,33 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
   std::vector<double> grid_t(grid.size());
   for (std::size_t j = 0; j < grid.size(); ++j) grid_t[j] = (grid[j] - first) / fps;
 
+  // Path objects and cameras: their translation (on a path) and rotation (on a path, or a camera's
+  // view) are no keyed channel; they are sampled from the built scene on the grid and refitted.
+  const std::vector<std::vector<Transform<double>>> sampled = sample_locals(scene, grid);
+
   GltfExport result;
+  // Named tracks are no node property.  Morph-target weights read from glTF (vec1 tracks
+  // "<node>.weights.<i>", docs/gltf.md) would be one, but a weights channel needs the node's mesh
+  // with its morph targets, and the scene keeps no meshes: one note per node says so.
+  std::vector<std::string> weights_noted;
   for (const SceneTrack& t : scene.tracks()) {
     const std::string name = std::visit([](const auto& tr) { return tr.name; }, t);
-    result.notes.push_back("track '" + name + "': not exported (glTF animates node transforms; a named track is no node property)");
+    const auto* vec = std::get_if<SceneVectorTrack>(&t);
+    const std::size_t at = name.rfind(".weights.");
+    std::string node_name;
+    if (vec && vec->components.empty() && at != std::string::npos && at + 9 < name.size() &&
+        name.find_first_not_of("0123456789", at + 9) == std::string::npos) {
+      node_name = name.substr(0, at);
+      if (std::none_of(nodes.begin(), nodes.end(), [&](const HierarchyNode<double>& n) { return n.name == node_name; })) node_name.clear();
+    }
+    if (node_name.empty()) {
+      result.notes.push_back("track '" + name + "': not exported (glTF animates node transforms; a named track is no node property)");
+    } else if (std::find(weights_noted.begin(), weights_noted.end(), node_name) == weights_noted.end()) {
+      weights_noted.push_back(node_name);
+      result.notes.push_back("morph-target weights of node '" + node_name + "' (tracks " + node_name +
+                             ".weights.*): not exported (a glTF weights channel needs the node's mesh with its morph "
+                             "targets, and inbetween keeps no meshes)");
+    }
   }
 
   Builder b;
@@ -216,22 +292,88 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
   tinygltf::Scene gscene;
   gscene.name = "scene";
 
+  // The vector channel of one object refitted from its grid samples (3 per grid point): the
+  // tolerance relative to the channel's range.
+  auto refit_vec3 = [&](std::size_t i, const char* path, const std::vector<double>& samples, GltfChannelReport& rep) -> Expected<RefitKeys> {
+    double range = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      double lo = samples[c], hi = lo;
+      for (std::size_t j = 0; j < grid.size(); ++j) {
+        lo = std::min(lo, samples[3 * j + c]);
+        hi = std::max(hi, samples[3 * j + c]);
+      }
+      range = std::max(range, hi - lo);
+    }
+    rep.tolerance = options.tolerance * (range > 0 ? range : 1.0);
+    auto fit = refit_vector(grid, samples, 3, {.tolerance = rep.tolerance, .allow_cubic = options.cubic});
+    if (!fit) return prepended(fit.error(), {"objects", i, std::string(path)});
+    rep.refitted = true;
+    return fit;
+  };
+  auto refit_rot = [&](std::size_t i, const std::vector<Quatd>& samples, GltfChannelReport& rep) -> Expected<RefitKeys> {
+    rep.tolerance = options.tolerance;
+    auto fit = refit_rotation(grid, samples, {.tolerance = rep.tolerance, .allow_cubic = options.cubic,
+                                              .linear_rotation_also_nlerp = !options.cubic});
+    if (!fit) return prepended(fit.error(), {"objects", i, "rotation"});
+    rep.refitted = true;
+    return fit;
+  };
+  // Writes a channel and completes its report with the error of what is written (float keys
+  // played with glTF's formulas) against the grid samples.
+  auto write_vec3 = [&](std::size_t i, const RefitKeys& keys, const std::vector<double>& samples, GltfChannelReport rep) {
+    const RefitKeys written = as_written(keys, first, fps);
+    double worst = 0, v[3];
+    for (std::size_t j = 0; j < grid.size(); ++j) {
+      evaluate_refit(written, grid_t[j], v);
+      for (std::size_t c = 0; c < 3; ++c) worst = std::max(worst, std::abs(v[c] - samples[3 * j + c]));
+    }
+    rep.max_error = worst;
+    rep.keys_after = written.size();
+    rep.interpolation = sampler_name(written.interpolation);
+    b.add_channel(written, int(i), rep.path, false);
+    result.channels.push_back(rep);
+  };
+  auto write_rot = [&](std::size_t i, const RefitKeys& keys, const std::vector<Quatd>& samples, GltfChannelReport rep) {
+    const RefitKeys written = as_written(keys, first, fps);
+    double worst = 0;
+    for (std::size_t j = 0; j < grid.size(); ++j) {
+      worst = std::max(worst, rotation_angle_between(evaluate_refit_rotation(written, grid_t[j]), samples[j]));
+    }
+    rep.max_error = worst;
+    rep.keys_after = written.size();
+    rep.interpolation = sampler_name(written.interpolation);
+    b.add_channel(written, int(i), "rotation", true);
+    result.channels.push_back(rep);
+  };
+
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const HierarchyNode<double>& node = nodes[i];
     const RawObject& ro = raw.objects[i];
+    const std::vector<Transform<double>>& locals = sampled[i];
     tinygltf::Node gn;
     gn.name = node.name;
-    const Transform<double> at_first = node.local.sample(first);
+    Transform<double> at_first = node.local.sample(first);
+    if (translation_sampled(scene, i)) at_first.translation = locals.front().translation;
+    if (rotation_sampled(scene, i)) at_first.rotation = locals.front().rotation;
     const Quatd r = normalized(at_first.rotation);
     gn.translation = {at_first.translation.x, at_first.translation.y, at_first.translation.z};
     gn.rotation = {r.x, r.y, r.z, r.w};
     gn.scale = {at_first.scale.x, at_first.scale.y, at_first.scale.z};
-    b.model.nodes.push_back(gn);
-    if (node.parent) {
-      // children are filled below, after every node exists
-    } else {
-      gscene.nodes.push_back(int(i));
+    if (const CameraView<double>* view = scene.camera(i)) {
+      // glTF's camera looks down its local −Z with +Y up: the view's world_from_camera already is
+      // that frame (docs/scene-cameras.md), so the node's rotation needs no axis change.
+      tinygltf::Camera cam;
+      cam.type = "perspective";
+      cam.name = node.name;
+      cam.perspective.yfov = view->yfov_rad();
+      cam.perspective.znear = options.camera_znear;
+      cam.perspective.zfar = options.camera_zfar;
+      cam.perspective.aspectRatio = options.camera_aspect;  // 0: not written (the viewport's)
+      b.model.cameras.push_back(cam);
+      gn.camera = int(b.model.cameras.size() - 1);
     }
+    b.model.nodes.push_back(gn);
+    if (!node.parent) gscene.nodes.push_back(int(i));  // children are filled below, after every node exists
 
     auto vec3_channel = [&](const char* path, const std::optional<Track<Vec3d>>& track,
                             const std::variant<Vec3d, RawVec3Channel>& raw_channel) -> Expected<void> {
@@ -261,38 +403,39 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
           }
         }
       } else {
-        double range = 0;
-        for (int c = 0; c < 3; ++c) {
-          double lo = samples[std::size_t(c)], hi = lo;
-          for (std::size_t j = 0; j < grid.size(); ++j) {
-            lo = std::min(lo, samples[3 * j + std::size_t(c)]);
-            hi = std::max(hi, samples[3 * j + std::size_t(c)]);
-          }
-          range = std::max(range, hi - lo);
-        }
-        rep.tolerance = options.tolerance * (range > 0 ? range : 1.0);
-        auto fit = refit_vector(grid, samples, 3, {.tolerance = rep.tolerance, .allow_cubic = options.cubic});
-        if (!fit) return prepended(fit.error(), {"objects", i, std::string(path)});
-        keys = std::move(*fit);
-        rep.refitted = true;
         rep.reason = why;
+        auto fit = refit_vec3(i, path, samples, rep);
+        if (!fit) return fit.error();
+        keys = std::move(*fit);
       }
-      const RefitKeys written = as_written(keys, first, fps);
-      double worst = 0, v[3];
-      for (std::size_t j = 0; j < grid.size(); ++j) {
-        evaluate_refit(written, grid_t[j], v);
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(v[c] - samples[3 * j + std::size_t(c)]));
-      }
-      rep.max_error = worst;
-      rep.keys_after = written.size();
-      rep.interpolation = sampler_name(written.interpolation);
-      b.add_channel(written, int(i), path, false);
-      result.channels.push_back(rep);
+      write_vec3(i, keys, samples, rep);
       return {};
     };
 
-    if (auto ok = vec3_channel("translation", node.local.translation, ro.translation.value_or(std::variant<Vec3d, RawVec3Channel>{Vec3d{}})); !ok) return ok.error();
-    if (node.local.rotation) {
+    if (translation_sampled(scene, i)) {
+      // On a path: no authored keys; the position the path and its speed control give, refitted.
+      GltfChannelReport rep{node.name, "translation", "", false, "path with speed control", 0, 0, 0, 0};
+      std::vector<double> samples;
+      samples.reserve(grid.size() * 3);
+      for (const Transform<double>& l : locals) samples.insert(samples.end(), {l.translation.x, l.translation.y, l.translation.z});
+      auto fit = refit_vec3(i, "translation", samples, rep);
+      if (!fit) return fit.error();
+      write_vec3(i, *fit, samples, rep);
+    } else if (auto ok = vec3_channel("translation", node.local.translation, ro.translation.value_or(std::variant<Vec3d, RawVec3Channel>{Vec3d{}})); !ok) {
+      return ok.error();
+    }
+    if (rotation_sampled(scene, i)) {
+      // A path's orientation or a camera's view: sampled, refitted.
+      const char* why = scene.camera(i) ? (translation_sampled(scene, i) ? "camera view on a path with speed control" : "camera view")
+                                        : "path with speed control";
+      GltfChannelReport rep{node.name, "rotation", "", false, why, 0, 0, 0, 0};
+      std::vector<Quatd> samples;
+      samples.reserve(grid.size());
+      for (const Transform<double>& l : locals) samples.push_back(l.rotation);
+      auto fit = refit_rot(i, samples, rep);
+      if (!fit) return fit.error();
+      write_rot(i, *fit, samples, rep);
+    } else if (node.local.rotation) {
       const QuatTrack<double>& track = *node.local.rotation;
       const auto& rc = std::get<RawQuatKeys>(*ro.rotation);
       GltfChannelReport rep{node.name, "rotation", "", false, "", rc.keys.size(), 0, 0, 0};
@@ -338,24 +481,12 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
           }
         }
       } else {
-        rep.tolerance = options.tolerance;
-        auto fit = refit_rotation(grid, samples, {.tolerance = rep.tolerance, .allow_cubic = options.cubic,
-                                                  .linear_rotation_also_nlerp = !options.cubic});
-        if (!fit) return prepended(fit.error(), {"objects", i, "rotation"});
-        keys = std::move(*fit);
-        rep.refitted = true;
         rep.reason = why;
+        auto fit = refit_rot(i, samples, rep);
+        if (!fit) return fit.error();
+        keys = std::move(*fit);
       }
-      RefitKeys written = as_written(keys, first, fps);
-      double worst = 0;
-      for (std::size_t j = 0; j < grid.size(); ++j) {
-        worst = std::max(worst, rotation_angle_between(evaluate_refit_rotation(written, grid_t[j]), samples[j]));
-      }
-      rep.max_error = worst;
-      rep.keys_after = written.size();
-      rep.interpolation = sampler_name(written.interpolation);
-      b.add_channel(written, int(i), "rotation", true);
-      result.channels.push_back(rep);
+      write_rot(i, keys, samples, rep);
     }
     if (auto ok = vec3_channel("scale", node.local.scale, ro.scale); !ok) return ok.error();
   }

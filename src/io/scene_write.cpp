@@ -2,12 +2,15 @@
 // of the reader (src/io/scene.cpp), member for member, defaults left out.
 #include "inbetween/io/scene_write.hpp"
 
+#include "inbetween/io/curve_file.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -208,6 +211,160 @@ class Writer {
     return j;
   }
 
+  // ---------------------------------------------------------------- version 2 (src/io/scene_v2.cpp)
+
+  // A curve as its curve-file object (io/curve_file.hpp's writer, the one curve writer).
+  static json curve(const AnyCurve& c) { return json::parse(write_curve_json(c)); }
+
+  json target(const RawTarget<double>& t, const std::vector<LocationStep>& loc) {
+    if (const auto* name = std::get_if<std::string>(&t)) return *name;
+    return vec3(std::get<Vec3d>(t), loc);
+  }
+
+  json ease(const RawEase& e, const std::vector<LocationStep>& loc) {
+    const RawEase d;
+    json j = json::object();
+    j["kind"] = std::string(to_string(e.kind));
+    for (auto [name, v] : {std::pair<const char*, const std::optional<double>*>{"k1", &e.k1}, {"k2", &e.k2}, {"t1", &e.t1},
+                           {"t2", &e.t2}, {"v0", &e.v0}, {"accel_frames", &e.accel_frames}, {"decel_frames", &e.decel_frames}}) {
+      if (*v) j[name] = number(**v, at(loc, name));
+    }
+    for (auto [name, v, dv] : {std::tuple<const char*, double, double>{"x1", e.x1, d.x1}, {"y1", e.y1, d.y1}, {"x2", e.x2, d.x2},
+                               {"y2", e.y2, d.y2}}) {
+      if (v != dv) j[name] = number(v, at(loc, name));
+    }
+    if (e.curve != d.curve) j["curve"] = std::string(to_string(e.curve));
+    if (e.direction != d.direction) j["direction"] = std::string(to_string(e.direction));
+    if (e.params.back != d.params.back || e.params.amplitude != d.params.amplitude || e.params.period != d.params.period) {
+      const auto pl = at(loc, "params");
+      json pj = json::object();
+      pj["back"] = number(e.params.back, at(pl, "back"));
+      pj["amplitude"] = number(e.params.amplitude, at(pl, "amplitude"));
+      pj["period"] = number(e.params.period, at(pl, "period"));
+      j["params"] = std::move(pj);
+    }
+    return j;
+  }
+
+  json speed(const RawPathLeg& leg, const std::vector<LocationStep>& loc) {
+    const RawSpeed& s = leg.speed;
+    const RawSpeed d;
+    json j = json::object();
+    j["kind"] = std::string(to_string(s.kind));
+    if (s.kind == SpeedKind::ease) {
+      j["start_frame"] = number(s.start_frame, at(loc, "start_frame"));
+      j["end_frame"] = number(s.end_frame, at(loc, "end_frame"));
+    }
+    if (s.from) j["from"] = number(*s.from, at(loc, "from"));
+    if (s.to) j["to"] = number(*s.to, at(loc, "to"));
+    if (s.fraction) j["fraction"] = true;
+    if (s.repair) j["repair"] = true;
+    if (s.kind == SpeedKind::ease) j["ease"] = ease(s.ease, at(loc, "ease"));
+    if (s.kind == SpeedKind::distance_keys) {
+      json keys = json::array();
+      for (std::size_t i = 0; i < s.keys.size(); ++i) {
+        const auto kl = at(at(loc, "keys"), i);
+        json kj = json::object();
+        kj["frame"] = number(s.keys[i].frame, at(kl, "frame"));
+        kj["distance"] = number(s.keys[i].distance, at(kl, "distance"));
+        if (s.keys[i].speed) kj["speed"] = number(*s.keys[i].speed, at(kl, "speed"));
+        keys.push_back(std::move(kj));
+      }
+      j["keys"] = std::move(keys);
+    }
+    if (s.interpolation != d.interpolation) j["interpolation"] = std::string(to_string(s.interpolation));
+    if (s.kind == SpeedKind::velocity_keys) {
+      json keys = json::array();
+      for (std::size_t i = 0; i < s.velocities.size(); ++i) {
+        const auto kl = at(at(loc, "velocities"), i);
+        json kj = json::object();
+        kj["frame"] = number(s.velocities[i].frame, at(kl, "frame"));
+        kj["speed"] = number(s.velocities[i].speed, at(kl, "speed"));
+        keys.push_back(std::move(kj));
+      }
+      j["velocities"] = std::move(keys);
+    }
+    if (s.fit != d.fit) j["fit"] = std::string(to_string(s.fit));
+    if (s.kind == SpeedKind::track) j["track"] = leg.speed_track;
+    return j;
+  }
+
+  // The leg's "orientation" object; empty when every member has its default.
+  json orientation(const RawPathLeg& leg, const std::vector<LocationStep>& loc) {
+    const RawOrientation& o = leg.orientation;
+    json j = json::object();
+    if (o.mode != OrientationMode::rotation_minimizing) j["mode"] = std::string(to_string(o.mode));
+    if (o.up != Vec3d{0, 1, 0}) j["up"] = vec3(o.up, at(loc, "up"));
+    if (!leg.look_at_object.empty()) {
+      j["look_at"] = leg.look_at_object;
+    } else if (o.look_at != Vec3d{}) {
+      j["look_at"] = vec3(o.look_at, at(loc, "look_at"));
+    }
+    if (o.banking) {
+      const auto bl = at(loc, "banking");
+      json bj = json::object();
+      bj["gain"] = number(o.banking->gain, at(bl, "gain"));
+      bj["max_bank_rad"] = number(o.banking->max_bank_rad, at(bl, "max_bank_rad"));
+      if (o.banking->lean_out) bj["lean_out"] = true;
+      j["banking"] = std::move(bj);
+    }
+    if (leg.local_rotation_keys) {
+      json rj = json::object();
+      quat_keys(rj, leg.local_rotation_keys->keys, leg.local_rotation_keys->distance_factor, leg.local_rotation_keys->time_aware,
+                at(loc, "local_rotation"));
+      j["local_rotation"] = std::move(rj);
+    } else if (!(o.local_rotation == Quatd{})) {
+      j["local_rotation"] = quat(o.local_rotation, at(loc, "local_rotation"));
+    }
+    return j;
+  }
+
+  json leg(const RawPathLeg& leg, const std::vector<LocationStep>& loc) {
+    json j = json::object();
+    if (const auto* name = std::get_if<std::string>(&leg.curve)) j["curve"] = *name;
+    else j["curve"] = curve(std::get<AnyCurve>(leg.curve));
+    j["speed"] = speed(leg, at(loc, "speed"));
+    json o = orientation(leg, at(loc, "orientation"));
+    if (!o.empty()) j["orientation"] = std::move(o);
+    return j;
+  }
+
+  json camera(const RawCameraViewd& c, const std::vector<LocationStep>& loc) {
+    const RawCameraViewd d;
+    json j = json::object();
+    if (c.yfov_deg != d.yfov_deg) j["yfov_deg"] = number(c.yfov_deg, at(loc, "yfov_deg"));
+    if (const auto* look = std::get_if<RawLookAt<double>>(&c.coi)) {
+      j["look_at"] = target(look->target, at(loc, "look_at"));
+    } else if (const auto* ahead = std::get_if<RawLookAhead<double>>(&c.coi)) {
+      const auto al = at(loc, "ahead");
+      json aj = json::object();
+      aj["distance"] = number(ahead->distance, at(al, "distance"));
+      if (ahead->count != 1) aj["count"] = ahead->count;
+      if (ahead->spread != 0) aj["spread"] = number(ahead->spread, at(al, "spread"));
+      j["ahead"] = std::move(aj);
+    } else if (const auto* coi = std::get_if<RawCoiPath>(&c.coi)) {
+      j["coi_path"] = coi->path;
+    } else {
+      const auto& hold = std::get<RawHoldThenMove<double>>(c.coi);
+      json hj = json::array();
+      for (std::size_t i = 0; i < hold.segments.size(); ++i) {
+        const auto sl = at(at(loc, "hold"), i);
+        const auto& seg = hold.segments[i];
+        json sj = json::object();
+        sj["target"] = target(seg.target, at(sl, "target"));
+        sj["hold_until"] = number(seg.hold_until, at(sl, "hold_until"));
+        if (seg.move_frames != 0) sj["move_frames"] = number(seg.move_frames, at(sl, "move_frames"));
+        hj.push_back(std::move(sj));
+      }
+      j["hold"] = std::move(hj);
+    }
+    if (c.up != d.up) j["up"] = vec3(c.up, at(loc, "up"));
+    if (!c.up_path.empty()) j["up_path"] = c.up_path;
+    if (c.tilt_deg != 0) j["tilt_deg"] = number(c.tilt_deg, at(loc, "tilt_deg"));
+    if (!c.tilt_track.empty()) j["tilt_track"] = c.tilt_track;
+    return j;
+  }
+
   json object(const RawObject& o, const std::vector<LocationStep>& loc) {
     json j = json::object();
     j["name"] = o.name;
@@ -223,6 +380,17 @@ class Writer {
       j["rotation"] = std::move(rj);
     }
     j["scale"] = vec3_channel(o.scale, at(loc, "scale"));
+    if (!o.path.empty()) {
+      const auto pl = at(loc, "path");
+      if (o.path_is_array || o.path.size() > 1) {
+        json legs = json::array();
+        for (std::size_t k = 0; k < o.path.size(); ++k) legs.push_back(leg(o.path[k], at(pl, k)));
+        j["path"] = std::move(legs);
+      } else {
+        j["path"] = leg(o.path[0], pl);
+      }
+    }
+    if (o.camera) j["camera"] = camera(*o.camera, at(loc, "camera"));
     return j;
   }
 };
@@ -277,21 +445,21 @@ void pretty(const json& j, int indent, int depth, std::string& out) {
 }  // namespace
 
 Expected<std::string> write_scene_json(const RawScene& scene, const SceneWriteOptions& options) {
-  // Version 2's paths, path objects and cameras are not written yet: refuse rather than drop them.
-  if (!scene.paths.empty()) {
-    return Error{ErrorCode::Unsupported, "the scene writer does not write paths yet", "", {"paths"}};
-  }
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    if (!scene.objects[i].path.empty() || scene.objects[i].camera) {
-      return Error{ErrorCode::Unsupported, "the scene writer does not write path objects or cameras yet", "",
-                   {"objects", i}};
-    }
-  }
   Writer w;
   json root = json::object();
   root["inbetween"] = 2;
   root["fps"] = w.number(scene.fps, {"fps"});
   root["range"] = w.numbers({scene.range[0], scene.range[1]}, {"range"});
+  if (!scene.paths.empty()) {
+    json paths = json::array();
+    for (const RawScenePath& p : scene.paths) {
+      json pj = json::object();
+      pj["name"] = p.name;
+      pj["curve"] = Writer::curve(p.curve);
+      paths.push_back(std::move(pj));
+    }
+    root["paths"] = std::move(paths);
+  }
   if (!scene.tracks.empty()) {
     json tracks = json::array();
     for (std::size_t i = 0; i < scene.tracks.size(); ++i)

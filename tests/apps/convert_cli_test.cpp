@@ -47,6 +47,11 @@ TEST(ConvertCli, BadInputExitsTwoWithoutOutput) {
   r = run_cli("convert '" + kZoo + "' '" + (dir / "zoo.txt").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find(".gltf or .glb"), std::string::npos) << r.err;
+  // Scene → scene file: a scene that does not build is refused the same way.
+  r = run_cli("convert '" + bad.string() + "' '" + (dir / "bad_out.json").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("/objects/0/translation/keys/1/frame"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "bad_out.json"));
   r = run_cli("convert '" + kZoo + "' '" + (dir / "z.glb").string() + "' --substeps 0");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_FALSE(fs::exists(dir / "z.glb"));
@@ -55,6 +60,24 @@ TEST(ConvertCli, BadInputExitsTwoWithoutOutput) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("no objects"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "e.glb"));
+}
+
+
+// `convert SCENE.json OUT.json` (version 2: paths, path objects, cameras): the written scene bakes
+// exactly as the source (the CSV of both, byte for byte), for frame22 and for the scene with every
+// version-2 member.
+TEST(ConvertCli, SceneToSceneKeepsPathsAndCameras) {
+  for (const char* file : {"examples/scenes/frame22.json", "tests/data/scenes/v2_every_member.json"}) {
+    const std::string in = std::string(INBETWEEN_SOURCE_DIR) + "/" + file;
+    const fs::path out = inbetween::test::test_dir() / "copy.json";
+    const auto c = run_cli("convert '" + in + "' '" + out.string() + "'");
+    ASSERT_EQ(c.exit_code, 0) << file << ": " << c.err;
+    const auto a = run_cli("bake '" + in + "' --frames 0:90:0.5"), b = run_cli("bake '" + out.string() + "' --frames 0:90:0.5");
+    ASSERT_EQ(a.exit_code, 0) << a.err;
+    ASSERT_EQ(b.exit_code, 0) << b.err;
+    EXPECT_EQ(a.out, b.out) << file;
+    EXPECT_GT(a.out.size(), 1000u);
+  }
 }
 
 }  // namespace

@@ -4,7 +4,9 @@
 // Blender 3.4's importer drops CUBICSPLINE tangents (docs/gltf-export.md).  Blender interpolates
 // quaternion F-curves component-wise (nlerp) where glTF LINEAR is slerp: the rotation bound is
 // computed from the file itself — for every object, the largest nlerp-vs-slerp angle of its LINEAR
-// rotation keys plus its refit tolerance, summed along its parent chain.  Skips without blender.
+// rotation keys plus its refit tolerance, summed along its parent chain.  Cameras (frame22.json):
+// Blender's camera looks where bake's does (view and up directions, vertical field of view).
+// Skips without blender.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -46,7 +48,8 @@ double nlerp_deviation(const RefitKeys& k) {
 TEST(BlenderGltfImport, LinearExportPlaysAsBakeInBlender) {
   if (std::system("command -v blender > /dev/null 2>&1") != 0) GTEST_SKIP() << "blender is not installed";
   for (const fs::path src : {fs::path(INBETWEEN_SOURCE_DIR) / "tests/data/scenes/gltf_export_zoo.json",
-                             fs::path(INBETWEEN_SOURCE_DIR) / "examples/scenes/bouncing_cube.json"}) {
+                             fs::path(INBETWEEN_SOURCE_DIR) / "examples/scenes/bouncing_cube.json",
+                             fs::path(INBETWEEN_SOURCE_DIR) / "examples/scenes/frame22.json"}) {
   SCOPED_TRACE(src.string());
   auto raw = read_scene_json(test::slurp(src));
   ASSERT_TRUE(raw);
@@ -54,7 +57,7 @@ TEST(BlenderGltfImport, LinearExportPlaysAsBakeInBlender) {
   ASSERT_TRUE(scene);
   const GltfExportOptions options{.cubic = false};
   auto out = export_gltf(*raw, *scene, options);
-  ASSERT_TRUE(out) << out->bytes.size();
+  ASSERT_TRUE(out) << out.error().describe();
   const fs::path file = test::write_test_file("zoo.glb", out->bytes);
   const fs::path log = test::test_dir() / "blender.log";
   const int frames = int(scene->range_end() - scene->range_start()) + 1;
@@ -106,17 +109,39 @@ TEST(BlenderGltfImport, LinearExportPlaysAsBakeInBlender) {
     const std::string& name = nodes[i].name;
     ASSERT_TRUE(blender["objects"].contains(name)) << name;
     const std::size_t c = column(name + ".translation.x");
-    double pos = 0, rot = 0, scl = 0;
+    const CameraView<double>* camera = scene->camera(i);
+    double pos = 0, rot = 0, scl = 0, aim = 0;
+    auto angle = [](const Vec3d& a, const Vec3d& b) { return std::atan2(norm(cross(a, b)), dot(a, b)); };
     for (int k = 0; k < frames; ++k) {
       const auto& v = blender["objects"][name][k];
       const auto& b = bake[std::size_t(k)];
       for (int d = 0; d < 3; ++d) pos = std::max(pos, std::abs(double(v[d]) - b[c + d]));
-      rot = std::max(rot, rotation_angle_between(normalized(Quatd::from_wxyz(v[3], v[4], v[5], v[6])),
-                                                 Quatd::from_wxyz(b[c + 3], b[c + 4], b[c + 5], b[c + 6])));
-      for (int d = 0; d < 3; ++d) scl = std::max(scl, std::abs(double(v[7 + d]) - b[c + 7 + d]));
+      const Quatd qb = Quatd::from_wxyz(b[c + 3], b[c + 4], b[c + 5], b[c + 6]);
+      if (camera) {
+        // Blender's camera object carries the importer's axis correction, so its rotation is not
+        // the node's; what it must keep is where the camera looks: its −Z and +Y in world
+        // (converted to glTF's axes by the script) against bake's camera rotation, and the view
+        // against bake's target − eye.
+        const auto& cam = blender["cameras"][name];
+        const Vec3d view{cam["view"][k][0], cam["view"][k][1], cam["view"][k][2]};
+        const Vec3d up{cam["up"][k][0], cam["up"][k][1], cam["up"][k][2]};
+        rot = std::max({rot, angle(view, rotate(qb, Vec3d{0, 0, -1})), angle(up, rotate(qb, Vec3d{0, 1, 0}))});
+        const std::size_t tc = column(name + ".target.x");
+        aim = std::max(aim, angle(view, Vec3d{b[tc] - b[c], b[tc + 1] - b[c + 1], b[tc + 2] - b[c + 2]}));
+        if (k == 0) {
+          EXPECT_EQ(cam["sensor_fit"], "VERTICAL") << name;
+          EXPECT_NEAR(cam["yfov"].get<double>(), camera->yfov_rad(), 1e-7) << name;  // Blender keeps it in float
+        }
+      } else {
+        rot = std::max(rot, rotation_angle_between(normalized(Quatd::from_wxyz(v[3], v[4], v[5], v[6])), qb));
+        for (int d = 0; d < 3; ++d) scl = std::max(scl, std::abs(double(v[7 + d]) - b[c + 7 + d]));
+      }
     }
-    std::printf("[ blender ] %s %s: position %.3g (%.3g of extent %.4g), rotation %.3g rad (bound %.3g), scale %.3g\n",
+    std::printf("[ blender ] %s %s: position %.3g (%.3g of extent %.4g), rotation %.3g rad (bound %.3g), scale %.3g",
                 src.filename().c_str(), name.c_str(), pos, pos / extent, extent, rot, chain_bound(i), scl);
+    if (camera) std::printf(", camera view vs bake's target %.3g rad", aim);
+    std::printf("\n");
+    if (camera) EXPECT_LE(aim, chain_bound(i)) << name;
     EXPECT_LE(pos, 1e-5 * extent) << name;
     EXPECT_LE(rot, chain_bound(i)) << name;
     EXPECT_LE(scl, 1e-5) << name;

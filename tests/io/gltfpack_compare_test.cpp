@@ -18,7 +18,9 @@
 #include <string>
 #include <vector>
 
+#include "inbetween/io/gltf.hpp"
 #include "inbetween/io/gltf_write.hpp"
+#include "inbetween/io/scene.hpp"
 #include "inbetween/scene/scene.hpp"
 #include "inbetween/tracks/refit.hpp"
 #include "support/cli.hpp"
@@ -143,6 +145,114 @@ TEST(Gltfpack, ReductionAgainstGltfpackResampling) {
       // linear keys needs them all: each frame is a kink).
       EXPECT_LE(o.keys, g.keys) << c.name << " " << path;
       if (g.error > 1e-5) EXPECT_LT(o.keys, g.keys) << c.name << " " << path;
+    }
+  }
+}
+
+
+// The per-frame ("baked") world motion of frame22.json's ball (path with speed control, two legs,
+// banking on the second): one LINEAR translation and slerp rotation key per frame of the range
+// 16 … 86, from Scene::sample (what bake prints); the ball has no parent, so world = local.
+RawScene baked_frame22() {
+  auto raw = read_scene_json(test::slurp(fs::path(INBETWEEN_SOURCE_DIR) / "examples/scenes/frame22.json"));
+  EXPECT_TRUE(raw);
+  auto scene = build_scene(*raw);
+  EXPECT_TRUE(scene);
+  RawScene out;
+  out.fps = scene->fps();
+  out.range = {scene->range_start(), scene->range_end()};
+  RawObject o;
+  o.name = "ball";
+  RawVec3Channel t;
+  RawQuatKeys r;
+  std::vector<double> row(scene->columns().size());
+  SceneCursor cursor(*scene);
+  for (double f = scene->range_start(); f <= scene->range_end(); f += 1) {
+    scene->sample(f, row, cursor);  // ball is the first object: its columns come first
+    t.keys.push_back({.frame = f, .value = Vec3d{row[0], row[1], row[2]}, .tangent = TangentKind::linear});
+    r.keys.push_back({.frame = f, .value = Quatd::from_wxyz(row[3], row[4], row[5], row[6])});
+  }
+  EXPECT_EQ(scene->columns()[0].name, "ball.translation.x");
+  o.translation = t;
+  o.rotation = r;
+  out.objects.push_back(o);
+  return out;
+}
+
+// Issue 10's `convert IN.glb OUT.glb --reduce TOL` on glTF input: a per-frame glTF file (written by
+// the exporter with its keys kept) is read by the glTF reader, built and exported with `reduce` —
+// the path the CLI takes (apps/inbetween/cmd_convert.cpp; the CLI itself is run by
+// GltfCli.ReduceGlbInput).  Measured against the input file as read (its scene's local channels,
+// 4 points per frame), next to gltfpack on the same file.
+TEST(Gltfpack, ReduceOnGltfInputAgainstGltfpack) {
+  const bool have_gltfpack = std::system("command -v gltfpack > /dev/null 2>&1") == 0;
+  struct Case {
+    const char* name;
+    RawScene raw;
+  };
+  std::printf("| per-frame glTF input | channel | keys in the file | --reduce 1e-5: keys | its max error (report) | its max error (read back) | "
+              "gltfpack keys | gltfpack max error | --reduce at gltfpack's error: keys | its max error | --reduce 1e-5 --substeps 1: keys | its max error |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Case& c : {Case{"frame22 ball, 24 fps, 71 frames", baked_frame22()}, Case{"smooth, 60 fps, 10 s", baked(60, 10, 0, 1401)}}) {
+    auto source = build_scene(c.raw);
+    ASSERT_TRUE(source);
+    auto per_frame = export_gltf(c.raw, *source);
+    ASSERT_TRUE(per_frame) << per_frame.error().describe();
+    for (const auto& ch : per_frame->channels) ASSERT_FALSE(ch.refitted) << ch.path;  // one key per frame, kept
+    const fs::path in = test::write_test_file("per_frame.glb", per_frame->bytes);
+    // What convert does with glTF input.
+    auto raw = read_gltf_file(in, {.fps = c.raw.fps});
+    ASSERT_TRUE(raw) << raw.error().describe();
+    auto scene = build_scene(*raw);
+    ASSERT_TRUE(scene) << scene.error().describe();
+    const std::string object = scene->objects()[0].name;
+    auto reduced = export_gltf(*raw, *scene, {.tolerance = 1e-5, .reduce = true});
+    ASSERT_TRUE(reduced) << reduced.error().describe();
+    const auto mine = test::read_channels(test::write_test_file("reduced.glb", reduced->bytes));
+    // Checked at the frames only (the per-frame data's own points), measured at 4 points per frame.
+    auto at_frames = export_gltf(*raw, *scene, {.tolerance = 1e-5, .substeps = 1, .reduce = true});
+    ASSERT_TRUE(at_frames) << at_frames.error().describe();
+    const auto frames_only = test::read_channels(test::write_test_file("frames.glb", at_frames->bytes));
+    std::map<std::string, RefitKeys> packed;
+    if (have_gltfpack) {
+      const fs::path out = test::test_dir() / "gltfpack.glb";
+      const std::string cmd = "gltfpack -i '" + in.string() + "' -o '" + out.string() + "' > /dev/null 2>&1";
+      ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+      packed = test::read_channels(out);
+    }
+    for (const GltfChannelReport& r : reduced->channels) {
+      ASSERT_TRUE(r.refitted);
+      EXPECT_EQ(r.reason, "reduce");
+      EXPECT_EQ(r.keys_before, c.raw.objects[0].translation ? std::get<RawVec3Channel>(*c.raw.objects[0].translation).keys.size() : 0u);
+      EXPECT_LT(r.keys_after, r.keys_before) << c.name << " " << r.path;
+      const Row m = measure(*scene, mine, object, r.path);
+      // The report's error is the one of the file read back (both: float keys, glTF's formulas,
+      // the same grid); within the tolerance up to float storage (values ≤ ~10: 1e-6).
+      EXPECT_NEAR(m.error, r.max_error, 1e-9) << r.path;
+      EXPECT_LE(m.error, r.tolerance + 1e-6) << r.path;
+      std::string gk = "-", ge = "-", ok = "-", oe = "-";
+      if (have_gltfpack) {
+        const Row g = measure(*scene, packed, object, r.path);
+        ASSERT_GE(g.error, 0) << "gltfpack dropped " << r.path;
+        gk = std::to_string(g.keys);
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.3g", g.error);
+        ge = buf;
+        // At gltfpack's own error (95 %, so float storage stays within it): relative for translation.
+        double range = 1;
+        if (r.path == "translation") range = r.tolerance / 1e-5;
+        auto at = export_gltf(*raw, *scene, {.tolerance = 0.95 * g.error / range, .reduce = true});
+        ASSERT_TRUE(at) << at.error().describe();
+        const Row o = measure(*scene, test::read_channels(test::write_test_file("at_gltfpack.glb", at->bytes)), object, r.path);
+        ok = std::to_string(o.keys);
+        std::snprintf(buf, sizeof buf, "%.3g", o.error);
+        oe = buf;
+        EXPECT_LE(o.error, g.error) << c.name << " " << r.path;
+        EXPECT_LE(o.keys, g.keys) << c.name << " " << r.path;
+      }
+      const Row f = measure(*scene, frames_only, object, r.path);
+      std::printf("| %s | %s | %zu | %zu | %.3g | %.3g | %s | %s | %s | %s | %zu | %.3g |\n", c.name, r.path.c_str(), r.keys_before,
+                  r.keys_after, r.max_error, m.error, gk.c_str(), ge.c_str(), ok.c_str(), oe.c_str(), f.keys, f.error);
     }
   }
 }

@@ -5,7 +5,12 @@
 /// linear tangents and slerp → LINEAR, Hermite-family tangents and glTF cubic rotations →
 /// CUBICSPLINE with tangent = slope × fps); every other channel is refitted (tracks/refit.hpp) on
 /// a grid of `substeps` points per frame over the range, and the report says why, with how many
-/// keys and the measured error.  Written through Debian's tinygltf (it serialises JSON and GLB).
+/// keys and the measured error.  Path objects (their translation and rotation) and cameras (their
+/// rotation, and their translation on a path) have no keys: their local transform is sampled from
+/// the built Scene on the grid and refitted the same way ("path with speed control", "camera
+/// view").  A camera becomes a glTF perspective camera on its node; the node's rotation is the
+/// view's (glTF cameras look down local −Z with +Y up, as scene cameras do).  Written through
+/// Debian's tinygltf (it serialises JSON and GLB).
 
 #include <cstddef>
 #include <string>
@@ -31,6 +36,15 @@ struct GltfExportOptions {
   /// rotation keys are also kept close enough for Blender's component-wise quaternion
   /// interpolation (refitted otherwise).
   bool cubic = true;
+  /// Cameras (glTF "perspective", yfov from the scene): near clip plane, > 0, in scene units.
+  /// Default 0.1, Blender's default clip start (three.js's default near is 0.1 too).
+  double camera_znear = 0.1;
+  /// Cameras: far clip plane, > camera_znear.  Default 1000, Blender's default clip end.
+  double camera_zfar = 1000;
+  /// Cameras: width / height.  0 (the default) leaves aspectRatio out of the file, which glTF
+  /// defines as "the aspect ratio of the rendering viewport": the scene gives only the vertical
+  /// field of view.  Otherwise > 0.
+  double camera_aspect = 0;
 };
 
 /// What happened to one animated channel.
@@ -56,8 +70,9 @@ struct GltfExport {
 };
 
 /// Exports `scene` (built from `raw`, which gives the authored keys and their kinds).  Errors:
-/// InvalidArgument for options ({"tolerance"}, {"substeps"}), Unsupported when the scene has no
-/// objects, and the refitter's errors prefixed with {"objects", i, channel}.
+/// InvalidArgument for options ({"tolerance"}, {"substeps"}, {"camera_znear"}, {"camera_zfar"},
+/// {"camera_aspect"}), Unsupported when the scene has no objects, and the refitter's errors
+/// prefixed with {"objects", i, channel}.
 [[nodiscard]] Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const GltfExportOptions& options = {});
 
 }  // namespace inbetween

@@ -4,7 +4,10 @@
 /// scalar F-curves (handles, handle types, easings and their parameters, extrapolation, auto
 /// smoothing, cycles), vector tracks (vec1 … color; tangent kind, explicit tangents, TCB), quaternion
 /// tracks and object rotations (interpolation, long_way, glTF tangents, distance factor,
-/// time_aware), Euler tracks and objects (constants or keyed channels, parents) — so that
+/// time_aware), Euler tracks and objects (constants or keyed channels, parents), and version 2's
+/// paths (curve objects, io/curve_file.hpp's writer), path legs (curve name or inline curve, every
+/// speed kind with its ease, keys or velocities, orientation with banking and local rotation) and
+/// cameras (every COI mode, up, up_path, tilt) — so that
 /// read_scene_json(write_scene_json(raw)) == raw member for member, with every double written in
 /// its shortest round-trip form (exact).  Members equal to the reader's default are left out.
 
