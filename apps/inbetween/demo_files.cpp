@@ -13,15 +13,10 @@
 #include "frame22_scene.hpp"
 #include "inbetween/io/scene.hpp"
 #include "output.hpp"
+#include "plot.hpp"
 #include "preview.hpp"
 #include "progress.hpp"
 
-// The plots come from `inbetween plot` (apps/inbetween/plot.hpp, branch plot): CMakeLists.txt
-// defines INBETWEEN_DEMO_PLOTS for this file when that header exists (and makes the file depend on
-// it, so the build and ccache see the change; __has_include would leave ccache's direct mode stale).
-#ifdef INBETWEEN_DEMO_PLOTS
-#include "plot.hpp"
-#endif
 
 namespace inbetween::cli {
 namespace {
@@ -126,9 +121,8 @@ std::string write_demo_files(const std::string& dir) {
   written.push_back("frames.csv     its bake, " + std::to_string(count) + " frames × " +
                     std::to_string(columns.size() + 2) + " columns (= inbetween bake frame22.json)");
 
-  // PLOTS CALL SITE (issue 11): the graph-editor, path and speed plots of `inbetween plot`
-  // (write_plots, apps/inbetween/plot.hpp) into DIR/plots/.
-#ifdef INBETWEEN_DEMO_PLOTS
+  // The graph-editor, path and speed plots of `inbetween plot` (write_plots, plot.hpp) into
+  // DIR/plots/ (replaced whole; docs/plots.md).
   {
     auto raw = read_scene_json(kFrame22SceneJson);
     if (!raw) throw CommandError{"the built-in scene does not read: " + raw.error().describe(), kInternal};
@@ -142,9 +136,6 @@ std::string write_demo_files(const std::string& dir) {
     written.push_back("plots/         " + std::to_string(report->files.size()) +
                       " SVG plots (graph editor, path views, speed curves) and index.html");
   }
-#else
-  written.push_back("plots/         not written: this build has no `inbetween plot` yet");
-#endif
 
   if (preview_available()) {
     const PreviewFrames frames{scene.range_start(), 1, count};

@@ -77,8 +77,12 @@ TEST(DemoCli, WritesTheSceneItsBakeAndThePreviewAndEndsWithTheSummary) {
   EXPECT_NE(summary.find("peak speed " + fixed3(peak) + " units/s"), std::string::npos) << summary;
   EXPECT_NE(summary.find("at rest on frames 16–22, 67, 80–86"), std::string::npos) << summary;
 
-  // The plots, once the tool has `inbetween plot` (branch plot), with their index page.
-  if (summary.find("SVG plots") != std::string::npos) EXPECT_TRUE(fs::exists(dir / "plots" / "index.html"));
+  // The plots of `inbetween plot`, as many SVG files as the summary says, and their index page.
+  EXPECT_TRUE(fs::exists(dir / "plots" / "index.html"));
+  std::size_t svgs = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir / "plots")) svgs += e.path().extension() == ".svg";
+  EXPECT_GT(svgs, 0u);
+  EXPECT_NE(summary.find("plots/         " + std::to_string(svgs) + " SVG plots"), std::string::npos) << summary;
 
   // The preview page, when the tool has it, embeds the scene.
   const std::string page = slurp(dir / "preview.html");
