@@ -117,6 +117,18 @@ data.objects.forEach((object, i) => {
     scene.add(space);
     entry.pathSpace = space;
   }
+  // An object that moves but is not on a path (keyed, or a glTF node): its trajectory, the baked
+  // world positions of every frame, as a dim line.
+  let trajectory = false;
+  if (!object.path_points) {
+    const points = data.rows.map((row) => [row[base], row[base + 1], row[base + 2]]);
+    trajectory = points.some((p) => p[0] !== points[0][0] || p[1] !== points[0][1] || p[2] !== points[0][2]);
+    if (trajectory) {
+      const geometry = new BufferGeometry();
+      geometry.setAttribute('position', new Float32BufferAttribute(points.flat(), 3));
+      scene.add(new Line(geometry, new LineBasicMaterial({ color: colour, transparent: true, opacity: 0.45 })));
+    }
+  }
   shown.set(object.name, entry);
 
   // Legend entry: the colour of the shape and path line, the name, what it is.
@@ -125,7 +137,8 @@ data.objects.forEach((object, i) => {
   swatch.className = 'swatch';
   swatch.style.background = '#' + colour.getHexString();
   const kind = object.kind === 'camera' ? 'camera' : object.kind === 'path' ? 'on a path' : 'object';
-  item.append(swatch, `${object.name} (${kind}${object.path_points ? ', line: its path' : ''})`);
+  const line = object.path_points ? ', line: its path' : trajectory ? ', line: its trajectory' : '';
+  item.append(swatch, `${object.name} (${kind}${line})`);
   document.getElementById('legend').appendChild(item);
 });
 
