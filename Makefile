@@ -7,13 +7,15 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 # Build and test dependencies (Debian 12 package names).  python3-scipy and python3-jsonschema are
 # independent references (rotation conventions, least squares, the scene JSON Schema) that tests use
 # through /usr/bin/python3; those tests skip when they are absent.  clang and libclang-rt-dev
-# (libFuzzer, the sanitizer runtimes) build the asan preset that `make test` also runs.
+# (libFuzzer, the sanitizer runtimes) build the asan preset that `make test` also runs.  esbuild
+# bundles three.js into the page of `inbetween view` at build time; chromium runs that page in the
+# browser test (docs/preview.md).
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
         nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev gltfpack libeigen3-dev libglm-dev libboost-dev \
-        python3 python3-scipy python3-jsonschema clang libclang-rt-dev \
+        python3 python3-scipy python3-jsonschema clang libclang-rt-dev esbuild chromium \
         pybind11-dev python3-dev python3-pytest python3-numpy
 
-.PHONY: all deps configure build test demo bench asan fuzz clean
+.PHONY: all deps configure build test demo screenshots bench asan fuzz clean
 
 all: build
 
@@ -36,12 +38,19 @@ deps:
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends npm \
 	    || echo "make: npm could not be installed; the JavaScript cross-checks will skip"; \
 	fi
-	@# three.js, the independent glTF reference of an optional test (skips without it).
+	@# three.js: the page of `inbetween view` (bundled at build time; without it `view` says how to
+	@# get it) and the independent glTF reference of an optional test (skips without it).
 	@if [ -f tools/threejs/node_modules/three/package.json ]; then :; \
 	elif command -v npm >/dev/null 2>&1; then \
 	  npm ci --prefix tools/threejs --no-audit --no-fund --loglevel=error \
 	    || echo "make: npm could not install three.js; the glTF cross-check test will skip"; \
 	else echo "make: npm not found; the three.js glTF cross-check test will skip"; fi
+	@# playwright-core, which drives chromium in the browser test of the preview (skips without it).
+	@if [ -f tools/browser/node_modules/playwright-core/package.json ]; then :; \
+	elif command -v npm >/dev/null 2>&1; then \
+	  npm ci --prefix tools/browser --no-audit --no-fund --loglevel=error \
+	    || echo "make: npm could not install playwright-core; the browser test will skip"; \
+	else echo "make: npm not found; the browser test will skip"; fi
 	@# The Khronos glTF validator, run on exported files by an optional test (skips without it).
 	@if [ -f tools/gltf-validator/node_modules/gltf-validator/package.json ]; then :; \
 	elif command -v npm >/dev/null 2>&1; then \
@@ -66,6 +75,14 @@ test: build
 
 demo: build
 	./$(BUILD)/inbetween demo
+
+# The README's preview image is the screenshot the browser test takes (tests/browser): run that
+# test, then copy its picture to docs/images/preview.png.
+screenshots: build
+	ctest --preset $(PRESET) -L browser
+	@test -f $(BUILD)/preview-test/preview.png || { echo "make: the browser test wrote no screenshot (skipped?)"; exit 1; }
+	cp $(BUILD)/preview-test/preview.png docs/images/preview.png
+	@echo "make: docs/images/preview.png updated from the browser test"
 
 bench: build
 	@set -e; for b in $(BUILD)/bench/inbetween_bench_*; do \

@@ -2,6 +2,7 @@
 // subcommands (apps/inbetween/cmd_*.cpp).
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include <system_error>
 
 #include "command.hpp"
+#include "demo_files.hpp"
 #include "inbetween/math/format.hpp"
 
 namespace inbetween::cli {
@@ -48,8 +50,11 @@ std::string format_number(double v) {
 namespace {
 
 void register_demo_command(CLI::App& root) {
-  auto* demo = root.add_subcommand("demo", "Run the built-in example and print what it shows");
-  demo->callback([] {
+  auto* demo = root.add_subcommand("demo", "Run the built-in example, print what it shows and write its files to out/demo/");
+  auto out_dir = std::make_shared<std::string>("out/demo");
+  demo->add_option("--out", *out_dir, "Folder for the demo's files (scene, bake, plots, preview.html)");
+  demo->callback([out_dir] {
+    const auto start = std::chrono::steady_clock::now();
     auto sections = demo_registry();
     std::stable_sort(sections.begin(), sections.end(),
                      [](const DemoSection& a, const DemoSection& b) { return a.order < b.order; });
@@ -59,6 +64,12 @@ void register_demo_command(CLI::App& root) {
       out << "\n== " << section.title << " ==\n";
       section.run(out);
     }
+    // The files and the summary that ends the output (demo_files.cpp).
+    const std::string summary = write_demo_files(*out_dir);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    char took[64];
+    std::snprintf(took, sizeof took, "%.2f s", seconds);
+    out << "\n== summary ==\n" << summary << "took " << took << "\n";
     write_output("-", out.str());
   });
 }
