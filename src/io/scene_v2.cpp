@@ -199,7 +199,7 @@ Expected<RawEase> read_ease(const json& e, const Loc& loc) {
 
 Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
   RawSpeed& sp = leg.speed;
-  auto kind = name_member(sj, loc, "kind", SpeedKind::ease, names_of<SpeedKind, 4>());
+  auto kind = name_member(sj, loc, "kind", SpeedKind::ease, names_of<SpeedKind, 6>());
   if (!kind) return kind.error();
   sp.kind = *kind;
   if (sp.kind == SpeedKind::ease) {
@@ -231,8 +231,8 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
     if (!e) return e.error();
     sp.ease = *e;
   }
-  if (sp.kind == SpeedKind::distance_keys) {
-    auto keys = object_array(sj, loc, "keys", {"frame", "distance", "speed"});
+  if (sp.kind == SpeedKind::distance_keys || sp.kind == SpeedKind::constraints) {
+    auto keys = object_array(sj, loc, "keys", {"frame", "distance", "speed", "acceleration"});
     if (!keys) return keys.error();
     for (std::size_t i = 0; i < (*keys)->size(); ++i) {
       const json& kj = (**keys)[i];
@@ -247,6 +247,9 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
       k.frame = *frame;
       k.distance = *distance;
       k.speed = *speed;
+      auto acceleration = optional_number(kj, p, "acceleration");
+      if (!acceleration) return acceleration.error();
+      k.acceleration = *acceleration;
       sp.keys.push_back(k);
     }
   }
@@ -270,6 +273,25 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
   auto fit = name_member(sj, loc, "fit", VelocityFit::FixKeysAdjustInterior, names_of<VelocityFit, 2>());
   if (!fit) return fit.error();
   sp.fit = *fit;
+  if (sp.kind == SpeedKind::acceleration_keys) {
+    auto keys = object_array(sj, loc, "accelerations", {"frame", "acceleration"});
+    if (!keys) return keys.error();
+    for (std::size_t i = 0; i < (*keys)->size(); ++i) {
+      const json& kj = (**keys)[i];
+      const Loc p = at(at(loc, "accelerations"), i);
+      auto frame = number_member(kj, p, "frame", std::nullopt);
+      if (!frame) return frame.error();
+      auto acceleration = number_member(kj, p, "acceleration", std::nullopt);
+      if (!acceleration) return acceleration.error();
+      sp.accelerations.push_back(RawAccelerationKey{*frame, *acceleration});
+    }
+    auto shape = name_member(sj, loc, "shape", AccelerationShape::Constant, names_of<AccelerationShape, 2>());
+    if (!shape) return shape.error();
+    sp.shape = *shape;
+    auto start_speed = number_member(sj, loc, "start_speed", 0.0);
+    if (!start_speed) return start_speed.error();
+    sp.start_speed = *start_speed;
+  }
   if (sp.kind == SpeedKind::track) {
     if (!sj.contains("track")) {
       return error_at(ErrorCode::InvalidArgument, "a track speed needs \"track\": the name of a scalar track", at(loc, "track"));
@@ -335,7 +357,7 @@ Expected<RawPathLeg> read_leg(const json& lj, const Loc& loc, const Context& cx)
   leg.curve = std::move(*curve);
   auto speed = object_member(lj, loc, "speed",
                              {"kind", "start_frame", "end_frame", "from", "to", "fraction", "ease", "keys", "interpolation",
-                              "velocities", "fit", "track", "repair"});
+                              "velocities", "fit", "track", "repair", "accelerations", "shape", "start_speed"});
   if (!speed) return speed.error();
   if (!*speed) return error_at(ErrorCode::InvalidArgument, "missing required member \"speed\"", at(loc, "speed"));
   if (auto ok = read_speed(**speed, at(loc, "speed"), leg); !ok) return ok.error();

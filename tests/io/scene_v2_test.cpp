@@ -204,6 +204,50 @@ TEST(SceneV2, InlineCurveErrorsNameTheirPlace) {
 }
 
 
+// Speed forms of §3.2.4 in a scene file: ⟨frame, distance, speed, acceleration⟩ constraints and an
+// acceleration–time curve; their errors carry the JSON pointer of the member.
+TEST(SceneV2, ConstraintAndAccelerationSpeedsRead) {
+  const auto text = [](const std::string& speed) {
+    return R"({"inbetween": 2, "objects": [{"name": "o", "path": {"curve": {"type": "bezier", "points": [[0, 0, 0], [10, 0, 0]]},
+                                         "speed": )" + speed + "}}]}";
+  };
+  // Rest to rest over one second (24 frames, the default fps) covering 5: the quintic with zero
+  // speed and acceleration at both ends, s = 5·(10τ³ − 15τ⁴ + 6τ⁵); at τ = ½ that is 2.5.
+  auto scene = parse(text(R"({"kind": "constraints", "keys": [{"frame": 0, "distance": 0, "speed": 0, "acceleration": 0},
+                                                          {"frame": 24, "distance": 5, "speed": 0, "acceleration": 0}]})"));
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  std::vector<double> row(scene->columns().size());
+  scene->sample(12, row);
+  EXPECT_NEAR(row[0], 2.5, 1e-12);  // x on the straight path = distance
+  scene->sample(6, row);
+  const double tau = 0.25;
+  EXPECT_NEAR(row[0], 5 * (10 * tau * tau * tau - 15 * tau * tau * tau * tau + 6 * tau * tau * tau * tau * tau), 1e-12);
+  // Constant acceleration 2 per second² from rest: s = t² at t = 1 s (frame 24).
+  scene = parse(text(R"({"kind": "acceleration_keys", "accelerations": [{"frame": 0, "acceleration": 2}, {"frame": 48, "acceleration": 2}],
+                        "shape": "constant"})"));
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  scene->sample(24, row);
+  EXPECT_NEAR(row[0], 1.0, 1e-12);
+  // Errors.
+  auto bad = parse(text(R"({"kind": "constraints", "keys": [{"frame": 0, "distance": 0}, {"frame": 10, "distance": 2, "speed": 4.8, "acceleration": 0},
+                                                        {"frame": 20, "distance": 2.2, "speed": 0, "acceleration": -400}]})"));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/keys/1");
+  EXPECT_NE(bad.error().message.find("backwards"), std::string::npos) << bad.error().message;
+  bad = parse(text(R"({"kind": "constraints", "keys": [{"frame": 0, "distance": 0}, {"frame": 0, "distance": 1}]})"));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/keys/1");
+  bad = parse(text(R"({"kind": "acceleration_keys", "accelerations": [{"frame": 0, "acceleration": 1}, {"frame": 4}]})"));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/accelerations/1/acceleration");
+  bad = parse(text(R"({"kind": "acceleration_keys", "shape": "cubic", "accelerations": [{"frame": 0, "acceleration": 1}, {"frame": 4, "acceleration": 1}]})"));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/shape");
+  bad = parse(text(R"({"kind": "acceleration_keys", "accelerations": [{"frame": 0, "acceleration": 0}, {"frame": 4, "acceleration": 0}], "start_speed": -2})"));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/start_speed");
+}
+
 // A scalar track of the scene drives the distance (so a graph editor can); a track key beyond the
 // path's length is reported at the track's own key.
 TEST(SceneV2, TrackSpeedReadsTheNamedScalarTrack) {
