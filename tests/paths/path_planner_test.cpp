@@ -223,11 +223,11 @@ TEST(PathPlanner, ImpossibleProblemsAreReported) {
   ASSERT_TRUE(env);
   auto p = plan_polyline(*env, {{7, 5, 5.5}, {}, {9, 9, 9}});
   ASSERT_FALSE(p);
-  EXPECT_EQ(p.error().where, "/start");
+  EXPECT_EQ(json_pointer(p.error().location), "/start");
   EXPECT_NE(p.error().message.find("obstacle 4"), std::string::npos) << p.error().message;
   p = plan_polyline(*env, {{1, 1, 1}, {}, {11, 9, 9}});
   ASSERT_FALSE(p);
-  EXPECT_EQ(p.error().where, "/goal");
+  EXPECT_EQ(json_pointer(p.error().location), "/goal");
   // A via point sealed in a closed shell of six boxes.
   RawEnvironment raw = wall_with_hole(5);
   const Vec3d c{2, 8, 8};
@@ -242,7 +242,7 @@ TEST(PathPlanner, ImpossibleProblemsAreReported) {
   ASSERT_TRUE(sealed);
   p = plan_polyline(*sealed, {{1, 1, 1}, {c}, {9, 9, 9}}, {.cell_size = 0.5});
   ASSERT_FALSE(p);
-  EXPECT_EQ(p.error().where, "/via/0");
+  EXPECT_EQ(json_pointer(p.error().location), "/via/0");
   EXPECT_NE(p.error().message.find("cannot be reached from the start"), std::string::npos) << p.error().message;
   // The hole is narrower than the object: x-wall everywhere.
   RawEnvironment closed = wall_with_hole(5);
@@ -251,7 +251,7 @@ TEST(PathPlanner, ImpossibleProblemsAreReported) {
   ASSERT_TRUE(env2);
   p = plan_polyline(*env2, {{1.5, 5, 5}, {}, {9, 9, 9}}, {.cell_size = 0.5});
   ASSERT_FALSE(p);
-  EXPECT_EQ(p.error().where, "/goal");
+  EXPECT_EQ(json_pointer(p.error().location), "/goal");
 }
 
 // An S-bend A → B → C → D with equal spans of 4: on B → C the Catmull-Rom span is the Hermite
@@ -349,8 +349,8 @@ TEST(PathTiming, ConstantSpeedWithoutMovingObstaclesAndErrors) {
   ASSERT_TRUE(t);
   EXPECT_EQ(t->avoidance, Avoidance::None);
   EXPECT_NEAR(t->duration, 2.5, kRounding);  // length 5 (a 3-4-5 triangle) at speed 2
-  EXPECT_EQ(time_path(*env, *arc, {.speed = 0}).error().where, "/speed");
-  EXPECT_EQ(time_path(*env, *arc, {.fps = std::nan("")}).error().where, "/fps");
+  EXPECT_EQ(json_pointer(time_path(*env, *arc, {.speed = 0}).error().location), "/speed");
+  EXPECT_EQ(json_pointer(time_path(*env, *arc, {.fps = std::nan("")}).error().location), "/fps");
   // A sphere that sweeps back along the whole path toward the start: waiting cannot help.
   RawEnvironment head_on{0.3, {0, 0, 0}, {10, 10, 10}, {MovingSphereObstacle{{9, 1, 1}, {-0.5, 0, 0}, 1, 0}}};
   const auto env2 = Environment::build(head_on);
@@ -359,7 +359,7 @@ TEST(PathTiming, ConstantSpeedWithoutMovingObstaclesAndErrors) {
   const auto arc2 = ArcLength<CatmullRomSpline<Vec3d>>::build(s2->curve);
   const auto t2 = time_path(*env2, *arc2, {.speed = 2});
   ASSERT_FALSE(t2);
-  EXPECT_EQ(t2.error().where, "/obstacles/0");
+  EXPECT_EQ(json_pointer(t2.error().location), "/obstacles/0");
 }
 
 }  // namespace
@@ -392,7 +392,7 @@ TEST(FindPath, SteersAroundAHeadOnMoverThatTimingCannotAvoid) {
   const double fps = 24;
   auto timing_only = find_path(*env, ends, {.timing = {.speed = 2, .fps = fps}, .steering = false});
   ASSERT_FALSE(timing_only);
-  EXPECT_EQ(timing_only.error().where, "/obstacles/0");
+  EXPECT_EQ(json_pointer(timing_only.error().location), "/obstacles/0");
   auto steered = find_path(*env, ends, {.timing = {.speed = 2, .fps = fps}});
   ASSERT_TRUE(steered) << steered.error().describe();
   EXPECT_EQ(steered->avoidance, Avoidance::Steering);
