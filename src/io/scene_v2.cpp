@@ -404,6 +404,9 @@ Expected<void> read_orientation(const json& oj, const Loc& loc, RawPathLeg& leg)
     if (const auto* name = std::get_if<std::string>(&*target)) leg.look_at_object = *name;
     else o.look_at = std::get<Vec3d>(*target);
   }
+  auto closing = name_member(oj, loc, "closing", RmfClosing::automatic, names_of<RmfClosing, 3>());
+  if (!closing) return closing.error();
+  o.closing = *closing;
   auto banking = object_member(oj, loc, "banking", {"gain", "max_bank_rad", "lean_out"});
   if (!banking) return banking.error();
   if (*banking) {
@@ -448,7 +451,7 @@ Expected<RawPathLeg> read_leg(const json& lj, const Loc& loc, const Context& cx)
   if (!speed) return speed.error();
   if (!*speed) return error_at(ErrorCode::InvalidArgument, "missing required member \"speed\"", at(loc, "speed"));
   if (auto ok = read_speed(**speed, at(loc, "speed"), leg); !ok) return ok.error();
-  auto orientation = object_member(lj, loc, "orientation", {"mode", "up", "look_at", "banking", "local_rotation"});
+  auto orientation = object_member(lj, loc, "orientation", {"mode", "up", "look_at", "banking", "local_rotation", "closing"});
   if (!orientation) return orientation.error();
   if (*orientation) {
     if (auto ok = read_orientation(**orientation, at(loc, "orientation"), leg); !ok) return ok.error();

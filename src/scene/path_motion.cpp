@@ -382,7 +382,10 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
   motion.local_ = normalized(lq);
   motion.local_track_ = o.local_track;
   if (o.mode == OrientationMode::rotation_minimizing) {
-    auto rmf = RotationMinimizingFrames<AnyCurve>::build(raw.path, RmfOptions<double>{.initial_normal = motion.up_});
+    auto rmf = RotationMinimizingFrames<AnyCurve>::build(raw.path, RmfOptions<double>{.initial_normal = motion.up_,
+                                                                                       .closing = raw.orientation.closing});
+    if (!rmf && raw.orientation.closing == RmfClosing::distribute)
+      return fail(rmf.error().code, {"orientation", "closing"}, rmf.error().message);
     if (!rmf) return place(Error{rmf.error().code, rmf.error().message, ""}, {"orientation", "up"});
     motion.rmf_.emplace(std::move(*rmf));
   } else if (o.mode == OrientationMode::frenet) {
@@ -484,6 +487,7 @@ constexpr std::array<std::string_view, 7> kEaseKindNames = {"linear", "sine", "s
 constexpr std::array<std::string_view, 6> kSpeedKindNames = {"ease",  "distance_keys", "velocity_keys",
                                                              "track", "constraints",   "acceleration_keys"};
 constexpr std::array<std::string_view, 2> kAccelerationShapeNames = {"constant", "linear"};
+constexpr std::array<std::string_view, 3> kRmfClosingNames = {"automatic", "distribute", "none"};
 constexpr std::array<std::string_view, 4> kOrientationNames = {"rotation_minimizing", "frenet", "up", "look_at"};
 constexpr std::array<std::string_view, 10> kEasingCurveNames = {"sine", "quad",   "cubic",  "quart",  "quint",
                                                                 "expo", "circ",   "back",   "bounce", "elastic"};
@@ -512,6 +516,7 @@ std::string_view to_string(EasingDirection v) noexcept { return name_of(kEasingD
 std::string_view to_string(PositionInterpolation v) noexcept { return name_of(kInterpolationNames, v); }
 std::string_view to_string(VelocityFit v) noexcept { return name_of(kFitNames, v); }
 std::string_view to_string(AccelerationShape v) noexcept { return name_of(kAccelerationShapeNames, v); }
+std::string_view to_string(RmfClosing v) noexcept { return name_of(kRmfClosingNames, v); }
 
 template <>
 std::optional<EaseKind> enum_from_string<EaseKind>(std::string_view n) noexcept { return find_name<EaseKind>(kEaseKindNames, n); }
@@ -532,6 +537,10 @@ std::optional<EasingDirection> enum_from_string<EasingDirection>(std::string_vie
 template <>
 std::optional<PositionInterpolation> enum_from_string<PositionInterpolation>(std::string_view n) noexcept {
   return find_name<PositionInterpolation>(kInterpolationNames, n);
+}
+template <>
+std::optional<RmfClosing> enum_from_string<RmfClosing>(std::string_view n) noexcept {
+  return find_name<RmfClosing>(kRmfClosingNames, n);
 }
 template <>
 std::optional<AccelerationShape> enum_from_string<AccelerationShape>(std::string_view n) noexcept {

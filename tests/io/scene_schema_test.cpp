@@ -81,6 +81,7 @@ TEST(SceneSchema, EnumerationsMatchTheReader) {
   };
   EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("kind")), names(inbetween::SpeedKind::acceleration_keys));
   EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("shape")), names(inbetween::AccelerationShape::Linear));
+  EXPECT_EQ(enum_of(defs.at("orientation").at("properties").at("closing")), names(inbetween::RmfClosing::none));
   EXPECT_EQ(enum_of(defs.at("ease").at("properties").at("kind")), names(inbetween::EaseKind::penner));
   EXPECT_EQ(enum_of(defs.at("ease").at("properties").at("curve")), names(inbetween::EasingCurve::elastic));
   EXPECT_EQ(enum_of(defs.at("ease").at("properties").at("direction")), names(inbetween::EasingDirection::in_out));

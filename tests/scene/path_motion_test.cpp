@@ -618,6 +618,38 @@ TEST(PathMotion, AccelerationKeysIntegrateInClosedForm) {
   EXPECT_EQ(json_pointer(build_path_motion(raw, kFps).error().location), "/speed/accelerations/1");
 }
 
+TEST(PathMotion, ClosedPathsComeBackToTheirStartFrame) {
+  // A closed Catmull-Rom loop through 8 points on the trefoil knot (non-planar: the plain RMF misses
+  // its start frame by the loop's holonomy).
+  std::vector<Vec3d> pts;
+  for (int i = 0; i < 8; ++i) {
+    const double u = 2 * pi_v<double> * i / 8;
+    pts.push_back({std::sin(u) + 2 * std::sin(2 * u), std::cos(u) - 2 * std::cos(2 * u), -std::sin(3 * u)});
+  }
+  auto loop = build_catmull_rom(pts, CatmullRomOptions<double>{.closed = true});
+  ASSERT_TRUE(loop);
+  RawPathMotion raw{.path = AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{*loop}}};
+  raw.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 48};
+  const auto end_gap = [&](RmfClosing closing) {
+    raw.orientation.closing = closing;
+    const PathMotion m = build(raw);
+    const Quatd a = m.sample(0).rotation, b = m.sample(48).rotation;
+    return 1 - std::abs(dot(a, b));  // 0 when the same rotation (either sign)
+  };
+  // automatic (the default) and distribute: the end frame is the start frame (rounding only:
+  // 1 − |cos(θ/2)| ≈ θ²/8, so 1e-14 means θ ≲ 3e-7 rad; the library's own bound is 64 ulp).
+  EXPECT_LE(end_gap(RmfClosing::automatic), 1e-14);
+  EXPECT_LE(end_gap(RmfClosing::distribute), 1e-14);
+  // none: the plain RMF comes back turned (the trefoil's holonomy is far from 0).
+  EXPECT_GT(end_gap(RmfClosing::none), 1e-3);
+  // distribute on an open path is an error at the member.
+  RawPathMotion open{.path = test_path(), .speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 10}};
+  open.orientation.closing = RmfClosing::distribute;
+  auto e = build_path_motion(open, kFps);
+  ASSERT_FALSE(e);
+  EXPECT_EQ(json_pointer(e.error().location), "/orientation/closing");
+}
+
 TEST(PathMotion, TrackGivesTheDistanceAndItsDerivative) {
   const AnyCurve path = test_path();
   RawFCurve rf;
@@ -858,6 +890,7 @@ TEST(PathMotionNames, RoundTrip) {
   for (int i = 0; i < 3; ++i) EXPECT_EQ(enum_from_string<EasingDirection>(to_string(EasingDirection(i))), EasingDirection(i));
   for (int i = 0; i < 3; ++i)
     EXPECT_EQ(enum_from_string<PositionInterpolation>(to_string(PositionInterpolation(i))), PositionInterpolation(i));
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(enum_from_string<RmfClosing>(to_string(RmfClosing(i))), RmfClosing(i));
   for (int i = 0; i < 2; ++i)
     EXPECT_EQ(enum_from_string<AccelerationShape>(to_string(AccelerationShape(i))), AccelerationShape(i));
   for (int i = 0; i < 2; ++i) EXPECT_EQ(enum_from_string<VelocityFit>(to_string(VelocityFit(i))), VelocityFit(i));

@@ -175,6 +175,11 @@ struct RawOrientation {
   /// look_at: the fixed target point (a caller may pass another point per sample, e.g. an object's).
   Vec3d look_at{};
   std::optional<RawBanking> banking;  ///< roll into (or out of) turns; none by default
+  /// rotation_minimizing on a closed path: `automatic` (default) turns the frame about the tangent
+  /// by the closing angle spread linearly in arc length so that it comes back to its start frame
+  /// (paths/rotation_minimizing_frames.hpp); `distribute` requires a closed path; `none` keeps the
+  /// plain RMF.
+  RmfClosing closing = RmfClosing::automatic;
   /// A constant rotation on top of the path frame (world_from_object = world_from_path · local).
   Quatd local_rotation{};
   /// A keyed rotation on top of the path frame; when present it replaces local_rotation.
@@ -302,7 +307,8 @@ class PathMotion {
 /// - track: missing, a key value outside [0, L] (naming the key) or a curve that runs backwards
 ///   between keys (naming the frames; repair does not apply to tracks);
 /// - orientation: a zero or non-finite up vector, banking options out of range, a non-finite
-///   look_at point or local rotation.
+///   look_at point or local rotation; closing = distribute on a path that is not closed
+///   ({"orientation", "closing"}).
 [[nodiscard]] Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps);
 
 /// The scene-file name of each enumerator ("constant_acceleration", "distance_keys",
@@ -314,6 +320,7 @@ class PathMotion {
 [[nodiscard]] std::string_view to_string(EasingDirection v) noexcept;  ///< "in", "out", "in_out"
 [[nodiscard]] std::string_view to_string(PositionInterpolation v) noexcept;  ///< "linear", "catmull_rom", "monotone_cubic"
 [[nodiscard]] std::string_view to_string(AccelerationShape v) noexcept;  ///< "constant", "linear"
+[[nodiscard]] std::string_view to_string(RmfClosing v) noexcept;  ///< "automatic", "distribute", "none"
 [[nodiscard]] std::string_view to_string(VelocityFit v) noexcept;  ///< "float_to_keep_average", "fix_keys_adjust_interior"
 
 }  // namespace inbetween
