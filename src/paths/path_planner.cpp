@@ -495,6 +495,12 @@ Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, cons
   PathEnds cur_ends = ends;
   std::vector<Detour> detours;
   const Error timing_error = cur.timing->has_value() ? Error{} : cur.timing->error();
+  // An option of the timing out of range (speed, fps, the size of the search) is not something a
+  // detour can fix: report it at once (steering with speed 0 would scan 10⁷ frames per attempt).
+  if (!cur.timing->has_value() && !timing_error.location.empty()) {
+    const auto* first_step = std::get_if<std::string>(&timing_error.location.front());
+    if (first_step && (*first_step == "speed" || *first_step == "fps")) return timing_error;
+  }
   while (!cur.timing->has_value()) {
     if (!options.steering || int(detours.size()) >= options.max_detours) return timing_error;
     const auto& arc = *cur.arc;
