@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <string>
+#include <variant>
 
 #include "command.hpp"
 #include "inbetween/io/curve_file.hpp"
@@ -88,8 +89,13 @@ void setup(CLI::App& root) {
     const auto found = find_path(*env, parsed->ends,
                                  {.planner = parsed->planner, .timing = parsed->timing, .steering = !args->no_steering});
     if (!found) {
-      const std::string& w = found.error().where;
-      fail(found.error(), file, w.rfind("/obstacles/", 0) == 0 ? "no timing: " : w == "/fps" || w == "/speed" ? "" : "no path: ");
+      // The first step of the structured place tells the kind: an obstacle (the timing failed), an
+      // option of the timing (speed, fps), else a point the planner could not reach.
+      const auto& loc = found.error().location;
+      const auto* first = loc.empty() ? nullptr : std::get_if<std::string>(&loc.front());
+      const bool timing = first && *first == "obstacles";
+      const bool option = first && (*first == "fps" || *first == "speed");
+      fail(found.error(), file, timing ? "no timing: " : option ? "" : "no path: ");
     }
     const std::string curve = write_curve_json(AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{found->smooth.curve}});
     const std::string report = timing_json(*found, parsed->timing);

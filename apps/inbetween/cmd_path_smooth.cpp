@@ -1,5 +1,5 @@
 // `inbetween path smooth FILE.csv --method M [--radius R] [--iterations N] [--fix-ends]
-// [--smooth-ends] [--control-points K] [--degree D] [--function] [-o FILE]`: smooths the rows of a
+// [--smooth-ends] [--control-points K] [--degree D] [--function] [--resample N] [-o FILE]`: smooths the rows of a
 // CSV file as an ordered list of 1- to 3-D points (texts 004 §3.4.3) and writes them back as CSV
 // with the same columns.  With --function the first column is the independent variable x of
 // y = f(x) data and is copied unchanged.  Parsing and formatting only; the maths is
@@ -25,6 +25,7 @@ struct Args {
   std::string input, output = "-", method = "linear";
   double radius = 1;
   int iterations = 1, degree = 3, control_points = 0;
+  long long resample = 0;  // 0: keep the rows; else resample to this many rows first
   bool fix_ends = false, smooth_ends = false, function = false;
 };
 
@@ -71,6 +72,25 @@ void smooth_columns(CsvTable& t, const Args& a, std::size_t first) {
     for (int k = 0; k < PointTraits<P>::dim; ++k) t.rows[i][first + std::size_t(k)] = PointTraits<P>::get(out[i], k);
 }
 
+// Replaces the rows by `a.resample` rows equally spaced in arc length along the polyline through
+// them (all columns form the point, x included with --function); the output rows have no input line.
+template <class P>
+void resample_rows(CsvTable& t, const Args& a) {
+  std::vector<P> pts(t.rows.size());
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    for (int k = 0; k < PointTraits<P>::dim; ++k) PointTraits<P>::set(pts[i], k, t.rows[i][std::size_t(k)]);
+  auto r = resample_by_arc_length(pts, std::size_t(a.resample));
+  if (!r) {
+    Error e = r.error();
+    if (!e.location.empty() && e.location.front() == LocationStep{std::string("count")}) e.location = {std::string("resample")};
+    fail(e, t, a);
+  }
+  t.rows.assign(r->size(), std::vector<double>(std::size_t(PointTraits<P>::dim)));
+  for (std::size_t i = 0; i < r->size(); ++i)
+    for (int k = 0; k < PointTraits<P>::dim; ++k) t.rows[i][std::size_t(k)] = PointTraits<P>::get((*r)[i], k);
+  t.lines.assign(r->size(), 0);
+}
+
 void setup(CLI::App& root) {
   // `path` may already exist (path fit); share it.
   CLI::App* path = nullptr;
@@ -91,10 +111,23 @@ void setup(CLI::App& root) {
   smooth->add_option("--degree", args->degree, "bspline: degree")->capture_default_str();
   smooth->add_option("--control-points", args->control_points, "bspline: control points (default: one per row)");
   smooth->add_flag("--function", args->function, "the first column is x of y = f(x) data: copy it, smooth the rest");
+  smooth->add_option("--resample", args->resample,
+                     "first resample to N rows (>= 2, fewer or more) equally spaced in arc length along the polyline");
   smooth->add_option("-o,--output", args->output, "output CSV (default: standard output)");
   smooth->callback([args] {
     CsvTable t = read_csv_table(read_input(args->input), args->input, 1, 4, "x[,y[,z[,w]]]");
     const std::size_t first = args->function ? 1 : 0;
+    // The output has as many rows as the resampling makes; 1e7 rows is far beyond any digitised path.
+    constexpr long long kMaxResampleRows = 10'000'000;
+    if (args->resample != 0) {
+      if (args->resample < 2 || args->resample > kMaxResampleRows)
+        throw CommandError{"--resample: " + std::to_string(args->resample) + " rows is outside [2, 1e7]"};
+      const std::size_t columns = t.rows[0].size();
+      if (columns == 1) resample_rows<double>(t, *args);
+      else if (columns == 2) resample_rows<Vec2d>(t, *args);
+      else if (columns == 3) resample_rows<Vec3d>(t, *args);
+      else resample_rows<Vec4d>(t, *args);
+    }
     // A guard against a typo such as --iterations 2000000000: each pass touches every row, so the
     // work is rows × passes; 1e9 row updates take seconds, more only hangs the tool.
     constexpr double kMaxRowPasses = 1e9;

@@ -47,6 +47,7 @@
 #include "inbetween/timing/ease.hpp"
 #include "inbetween/timing/motion.hpp"
 #include "inbetween/timing/penner.hpp"
+#include "inbetween/timing/piecewise_distance.hpp"
 
 // tracks
 #include "inbetween/tracks/euler_track.hpp"

@@ -14,7 +14,11 @@
 #include <variant>
 
 #include "curve_value.hpp"
+#include "inbetween/curves/catmull_rom.hpp"
 #include "inbetween/io/curve_file.hpp"
+#include "inbetween/io/obj.hpp"
+#include "inbetween/math/format.hpp"
+#include "inbetween/paths/mesh_path.hpp"
 #include "scene_json.hpp"
 
 namespace inbetween::io_detail {
@@ -101,20 +105,103 @@ Expected<AnyCurve> read_curve_file(const std::string& file, const Loc& loc, cons
   return curve;
 }
 
-// A curve given as "curve" (a path name or an inline curve object) or "file" (exactly one).
+// Points of a mesh path closer than this to the previous kept point, relative to the mesh's scale,
+// are dropped before the spline is fitted (a walk passing a vertex within rounding gives such
+// pairs; a centripetal Catmull-Rom through them would be ill-conditioned).
+constexpr double kSurfacePointMerge = 1e-9;
+
+// A path on a triangle mesh (texts 004 §3.4.4) as a curve: {"mesh": OBJ file relative to the scene,
+// "from": I, "to": J, "method": "plane" | "greedy" | "edges"}.  The mesh path's points are fitted
+// with a centripetal Catmull-Rom spline (α = ½: no cusps or self-intersections within a segment)
+// through every point; it is then arc-length parameterised by the scene like any path.
+Expected<AnyCurve> read_surface_curve(const json& sj, const Loc& loc, const Context& cx) {
+  if (!sj.is_object()) return error_at(ErrorCode::InvalidArgument, "expected an object with mesh, from, to", loc);
+  if (auto ok = only_members(sj, loc, {"mesh", "from", "to", "method"}); !ok) return ok.error();
+  const auto m = sj.find("mesh");
+  const Loc mesh_at = at(loc, "mesh");
+  if (m == sj.end()) return error_at(ErrorCode::InvalidArgument, "missing required member \"mesh\" (an OBJ file)", mesh_at);
+  if (!m->is_string()) return error_at(ErrorCode::InvalidArgument, "expected an OBJ file name", mesh_at);
+  const std::string file = m->get<std::string>();
+  const std::filesystem::path resolved = cx.base_dir / std::filesystem::path(file);
+  std::error_code ec;
+  if (std::filesystem::is_directory(resolved, ec))
+    return error_at(ErrorCode::Io, "\"" + resolved.string() + "\" is a directory, not an OBJ file", mesh_at);
+  std::ifstream in(resolved, std::ios::binary);
+  if (!in) {
+    const int err = errno;
+    return error_at(ErrorCode::Io,
+                    "cannot read the mesh \"" + resolved.string() + "\"" + (err ? ": " + std::string(std::strerror(err)) : ""),
+                    mesh_at);
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  auto mesh = parse_obj(text.str(), file);
+  if (!mesh) return error_at(mesh.error().code, mesh.error().describe(), mesh_at);
+  int ends[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const char* name = k == 0 ? "from" : "to";
+    auto v = number_member(sj, loc, name, std::nullopt);
+    if (!v) return v.error();
+    if (!(*v >= 0) || *v != std::floor(*v) || *v >= double(mesh->vertex_count()))
+      return error_at(ErrorCode::InvalidArgument,
+                      std::string(name) + " = " + shortest_text<double>(*v) + " is not a vertex of " + file + " (0 to " +
+                          std::to_string(mesh->vertex_count() - 1) + ", in the order of its v lines)",
+                      at(loc, name));
+    ends[k] = int(*v);
+  }
+  if (ends[0] == ends[1])
+    return error_at(ErrorCode::InvalidArgument, "from and to are the same vertex: a path needs two ends", at(loc, "to"));
+  std::string method = "plane";
+  if (const auto me = sj.find("method"); me != sj.end()) {
+    if (!me->is_string() || (*me != "plane" && *me != "greedy" && *me != "edges"))
+      return error_at(ErrorCode::InvalidArgument, "expected one of: plane, greedy, edges", at(loc, "method"));
+    method = me->get<std::string>();
+  }
+  auto points = method == "plane"    ? plane_mesh_path(*mesh, ends[0], ends[1])
+                : method == "greedy" ? greedy_mesh_path(*mesh, ends[0], ends[1])
+                                     : edge_mesh_path(*mesh, ends[0], ends[1]);
+  if (!points) {
+    const std::string& w = points.error().where;
+    const Loc place = w == "from" || w == "to" ? at(loc, w) : at(loc, "method");
+    return error_at(points.error().code,
+                    "the " + method + " path from vertex " + std::to_string(ends[0]) + " to " + std::to_string(ends[1]) +
+                        " cannot be found: " + points.error().describe(),
+                    place);
+  }
+  std::vector<Vec3d> kept;
+  const double merge = kSurfacePointMerge * std::max(1.0, double(mesh->scale()));
+  for (const Vec3d& p : *points)
+    if (kept.empty() || distance(kept.back(), p) > merge) kept.push_back(p);
+  if (kept.size() > 1 && distance(kept.back(), points->back()) <= merge) kept.back() = points->back();
+  else if (kept.back() != points->back()) kept.push_back(points->back());
+  auto spline = build_catmull_rom(kept, CatmullRomOptions<double>{.alpha = 0.5});
+  if (!spline) return error_at(spline.error().code, spline.error().describe(), loc);
+  return AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{std::move(*spline)}};
+}
+
+// A curve given as "curve" (a path name or an inline curve object), "file" (a curve file) or
+// "surface" (a path on a mesh), exactly one.
 // `allow_name`: false for the entries of "paths" themselves.
 Expected<std::variant<std::string, AnyCurve>> read_curve_ref(const json& obj, const Loc& loc, const Context& cx,
                                                              bool allow_name) {
   const auto c = obj.find("curve");
   const auto f = obj.find("file");
-  if (c != obj.end() && f != obj.end()) {
-    return error_at(ErrorCode::InvalidArgument, "give \"curve\" or \"file\", not both", at(loc, "file"));
+  const auto sf = obj.find("surface");
+  const int given = (c != obj.end()) + (f != obj.end()) + (sf != obj.end());
+  if (given > 1) {
+    return error_at(ErrorCode::InvalidArgument, "give one of \"curve\", \"file\" and \"surface\", not several",
+                    at(loc, sf != obj.end() ? "surface" : "file"));
   }
-  if (c == obj.end() && f == obj.end()) {
+  if (given == 0) {
     return error_at(ErrorCode::InvalidArgument,
-                    allow_name ? "missing \"curve\" (a path name or a curve object) or \"file\" (a curve file)"
-                               : "missing \"curve\" (a curve object) or \"file\" (a curve file)",
+                    allow_name ? "missing \"curve\" (a path name or a curve object), \"file\" (a curve file) or \"surface\" (a path on a mesh)"
+                               : "missing \"curve\" (a curve object), \"file\" (a curve file) or \"surface\" (a path on a mesh)",
                     loc);
+  }
+  if (sf != obj.end()) {
+    auto curve = read_surface_curve(*sf, at(loc, "surface"), cx);
+    if (!curve) return curve.error();
+    return std::variant<std::string, AnyCurve>{std::move(*curve)};
   }
   if (f != obj.end()) {
     if (!f->is_string()) return error_at(ErrorCode::InvalidArgument, "expected a file name", at(loc, "file"));
@@ -199,7 +286,7 @@ Expected<RawEase> read_ease(const json& e, const Loc& loc) {
 
 Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
   RawSpeed& sp = leg.speed;
-  auto kind = name_member(sj, loc, "kind", SpeedKind::ease, names_of<SpeedKind, 4>());
+  auto kind = name_member(sj, loc, "kind", SpeedKind::ease, names_of<SpeedKind, 6>());
   if (!kind) return kind.error();
   sp.kind = *kind;
   if (sp.kind == SpeedKind::ease) {
@@ -231,8 +318,8 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
     if (!e) return e.error();
     sp.ease = *e;
   }
-  if (sp.kind == SpeedKind::distance_keys) {
-    auto keys = object_array(sj, loc, "keys", {"frame", "distance", "speed"});
+  if (sp.kind == SpeedKind::distance_keys || sp.kind == SpeedKind::constraints) {
+    auto keys = object_array(sj, loc, "keys", {"frame", "distance", "speed", "acceleration"});
     if (!keys) return keys.error();
     for (std::size_t i = 0; i < (*keys)->size(); ++i) {
       const json& kj = (**keys)[i];
@@ -247,6 +334,9 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
       k.frame = *frame;
       k.distance = *distance;
       k.speed = *speed;
+      auto acceleration = optional_number(kj, p, "acceleration");
+      if (!acceleration) return acceleration.error();
+      k.acceleration = *acceleration;
       sp.keys.push_back(k);
     }
   }
@@ -270,6 +360,25 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
   auto fit = name_member(sj, loc, "fit", VelocityFit::FixKeysAdjustInterior, names_of<VelocityFit, 2>());
   if (!fit) return fit.error();
   sp.fit = *fit;
+  if (sp.kind == SpeedKind::acceleration_keys) {
+    auto keys = object_array(sj, loc, "accelerations", {"frame", "acceleration"});
+    if (!keys) return keys.error();
+    for (std::size_t i = 0; i < (*keys)->size(); ++i) {
+      const json& kj = (**keys)[i];
+      const Loc p = at(at(loc, "accelerations"), i);
+      auto frame = number_member(kj, p, "frame", std::nullopt);
+      if (!frame) return frame.error();
+      auto acceleration = number_member(kj, p, "acceleration", std::nullopt);
+      if (!acceleration) return acceleration.error();
+      sp.accelerations.push_back(RawAccelerationKey{*frame, *acceleration});
+    }
+    auto shape = name_member(sj, loc, "shape", AccelerationShape::Constant, names_of<AccelerationShape, 2>());
+    if (!shape) return shape.error();
+    sp.shape = *shape;
+    auto start_speed = number_member(sj, loc, "start_speed", 0.0);
+    if (!start_speed) return start_speed.error();
+    sp.start_speed = *start_speed;
+  }
   if (sp.kind == SpeedKind::track) {
     if (!sj.contains("track")) {
       return error_at(ErrorCode::InvalidArgument, "a track speed needs \"track\": the name of a scalar track", at(loc, "track"));
@@ -295,6 +404,9 @@ Expected<void> read_orientation(const json& oj, const Loc& loc, RawPathLeg& leg)
     if (const auto* name = std::get_if<std::string>(&*target)) leg.look_at_object = *name;
     else o.look_at = std::get<Vec3d>(*target);
   }
+  auto closing = name_member(oj, loc, "closing", RmfClosing::automatic, names_of<RmfClosing, 3>());
+  if (!closing) return closing.error();
+  o.closing = *closing;
   auto banking = object_member(oj, loc, "banking", {"gain", "max_bank_rad", "lean_out"});
   if (!banking) return banking.error();
   if (*banking) {
@@ -328,18 +440,18 @@ Expected<void> read_orientation(const json& oj, const Loc& loc, RawPathLeg& leg)
 
 Expected<RawPathLeg> read_leg(const json& lj, const Loc& loc, const Context& cx) {
   if (!lj.is_object()) return error_at(ErrorCode::InvalidArgument, "a path leg must be an object, found " + type_name(lj), loc);
-  if (auto ok = only_members(lj, loc, {"curve", "file", "speed", "orientation"}); !ok) return ok.error();
+  if (auto ok = only_members(lj, loc, {"curve", "file", "surface", "speed", "orientation"}); !ok) return ok.error();
   RawPathLeg leg;
   auto curve = read_curve_ref(lj, loc, cx, true);
   if (!curve) return curve.error();
   leg.curve = std::move(*curve);
   auto speed = object_member(lj, loc, "speed",
                              {"kind", "start_frame", "end_frame", "from", "to", "fraction", "ease", "keys", "interpolation",
-                              "velocities", "fit", "track", "repair"});
+                              "velocities", "fit", "track", "repair", "accelerations", "shape", "start_speed"});
   if (!speed) return speed.error();
   if (!*speed) return error_at(ErrorCode::InvalidArgument, "missing required member \"speed\"", at(loc, "speed"));
   if (auto ok = read_speed(**speed, at(loc, "speed"), leg); !ok) return ok.error();
-  auto orientation = object_member(lj, loc, "orientation", {"mode", "up", "look_at", "banking", "local_rotation"});
+  auto orientation = object_member(lj, loc, "orientation", {"mode", "up", "look_at", "banking", "local_rotation", "closing"});
   if (!orientation) return orientation.error();
   if (*orientation) {
     if (auto ok = read_orientation(**orientation, at(loc, "orientation"), leg); !ok) return ok.error();
@@ -438,7 +550,7 @@ Expected<void> read_paths(const json& root, const Context& cx, RawScene& scene) 
       const json& pj = (*ps)[i];
       const Loc p{"paths", i};
       if (!pj.is_object()) return error_at(ErrorCode::InvalidArgument, "a path must be an object, found " + type_name(pj), p);
-      if (auto ok = only_members(pj, p, {"name", "curve", "file"}); !ok) return ok.error();
+      if (auto ok = only_members(pj, p, {"name", "curve", "file", "surface"}); !ok) return ok.error();
       RawScenePath path;
       auto name = pj.find("name");
       if (name == pj.end() || !name->is_string()) {

@@ -30,11 +30,7 @@ constexpr double kAcrossTolerance = 1e-9;
 // The timing search keeps one byte per (distance step, frame) state: at most 64 MB.
 constexpr double kMaxTimingStates = 64e6;
 
-std::string via_ptr(std::size_t i) {
-  std::string s("/via/");
-  s.append(std::to_string(i));
-  return s;
-}
+std::vector<LocationStep> via_ptr(std::size_t i) { return {std::string("via"), i}; }
 std::string obstacle_text(int k) { return "obstacle " + std::to_string(k); }
 std::string num(double v) {
   char buf[32];
@@ -177,18 +173,17 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
   const double longest = std::max({extent.x, extent.y, extent.z});
   double h = options.cell_size;
   if (!std::isfinite(h) || h < 0)
-    return Error{ErrorCode::InvalidArgument, "cell_size must be finite and >= 0 (0: automatic)", "/cell_size"};
+    return Error{ErrorCode::InvalidArgument, "cell_size must be finite and >= 0 (0: automatic)", "", {std::string("cell_size")}};
   if (h == 0) h = longest / kDefaultCellsPerSide;
   double margin = options.margin;
-  if (!std::isfinite(margin)) return Error{ErrorCode::InvalidArgument, "margin must be finite", "/margin"};
+  if (!std::isfinite(margin)) return Error{ErrorCode::InvalidArgument, "margin must be finite", "", {std::string("margin")}};
   if (margin < 0) margin = h / 4;
   Lattice lat{env, h, margin, 0, 0, 0, {}};
   const double nxd = std::floor(extent.x / h) + 1, nyd = std::floor(extent.y / h) + 1, nzd = std::floor(extent.z / h) + 1;
   if (!(nxd * nyd * nzd <= double(options.max_nodes)) || nxd * nyd * nzd > 1e9)
     return Error{ErrorCode::InvalidArgument,
                  "cell_size " + num(h) + " gives " + num(nxd * nyd * nzd) + " lattice nodes, more than the limit of " +
-                     std::to_string(options.max_nodes),
-                 "/cell_size"};
+                     std::to_string(options.max_nodes), "", {std::string("cell_size")}};
   lat.nx = int(nxd);
   lat.ny = int(nyd);
   lat.nz = int(nzd);
@@ -197,19 +192,20 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
   // Every point the path must pass, with its place and name.
   struct Stop {
     Vec3d p;
-    std::string where, name;
+    std::vector<LocationStep> where;
+    std::string name;
   };
-  std::vector<Stop> stops{{ends.start, "/start", "the start"}};
+  std::vector<Stop> stops{{ends.start, {std::string("start")}, "the start"}};
   for (std::size_t i = 0; i < ends.via.size(); ++i) stops.push_back({ends.via[i], via_ptr(i), "via point " + std::to_string(i)});
-  stops.push_back({ends.goal, "/goal", "the goal"});
+  stops.push_back({ends.goal, {std::string("goal")}, "the goal"});
   for (const Stop& s : stops) {
     if (!(std::isfinite(s.p.x) && std::isfinite(s.p.y) && std::isfinite(s.p.z)))
-      return Error{ErrorCode::NotFinite, s.name + " is not finite", s.where};
-    if (!env.in_bounds(s.p)) return Error{ErrorCode::InvalidArgument, s.name + " lies outside the bounds", s.where};
+      return Error{ErrorCode::NotFinite, s.name + " is not finite", "", s.where};
+    if (!env.in_bounds(s.p)) return Error{ErrorCode::InvalidArgument, s.name + " lies outside the bounds", "", s.where};
     if (const int k = env.blocking_static(s.p, 0); k >= 0)
       return Error{ErrorCode::InvalidArgument,
                    s.name + " lies inside " + obstacle_text(k) + " grown by the object's radius " + num(env.radius()),
-                   s.where};
+                   "", s.where};
   }
 
   PlannedPolyline out;
@@ -224,7 +220,7 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
                    stops[leg + 1].name + " cannot be reached from " + stops[leg].name +
                        ": no path on the lattice of spacing " + num(h) + " inside the bounds (a gap narrower than about " +
                        num(h + 2 * (env.radius() + margin)) + " may be missed; try a smaller cell_size)",
-                   stops[leg + 1].where};
+                   "", stops[leg + 1].where};
     out.lattice_length += lattice_length;
     pts = shortcut(env, pts, margin);
     out.points.insert(out.points.end(), pts.begin() + 1, pts.end());
@@ -236,7 +232,7 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
 
 Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPolyline& polyline,
                                          const PathSmoothingOptions& options) {
-  if (polyline.points.empty()) return Error{ErrorCode::TooFewPoints, "the polyline has no points", "points"};
+  if (polyline.points.empty()) return Error{ErrorCode::TooFewPoints, "the polyline has no points", "", {std::string("points")}};
   SmoothPath out;
   out.control_points = polyline.points;
   if (out.control_points.size() == 1) out.control_points.push_back(out.control_points[0]);
@@ -297,10 +293,10 @@ std::string_view avoidance_name(Avoidance a) noexcept {
 Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRomSpline<Vec3d>>& path,
                                const PathTimingOptions& options) {
   if (!(options.speed > 0) || !std::isfinite(options.speed))
-    return Error{ErrorCode::InvalidArgument, "speed must be finite and > 0", "/speed"};
+    return Error{ErrorCode::InvalidArgument, "speed must be finite and > 0", "", {std::string("speed")}};
   if (!(options.fps > 0) || !std::isfinite(options.fps))
-    return Error{ErrorCode::InvalidArgument, "fps must be finite and > 0", "/fps"};
-  if (options.substeps < 1) return Error{ErrorCode::InvalidArgument, "substeps must be >= 1", "substeps"};
+    return Error{ErrorCode::InvalidArgument, "fps must be finite and > 0", "", {std::string("fps")}};
+  if (options.substeps < 1) return Error{ErrorCode::InvalidArgument, "substeps must be >= 1", "", {std::string("substeps")}};
   const double L = path.length(), dt = 1 / options.fps;
   struct Draft {
     std::vector<TimeDistanceKey<double>> keys;
@@ -333,8 +329,7 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
   if (!((step_count + 1) * frames <= kMaxTimingStates))
     return Error{ErrorCode::InvalidArgument,
                  "the timing search would need " + num((step_count + 1) * frames) + " (distance step, frame) states, more than " +
-                     num(kMaxTimingStates) + "; lower fps or raise speed",
-                 "/fps"};
+                     num(kMaxTimingStates) + "; lower fps or raise speed", "", {std::string("fps")}};
   const int S = int(step_count), J = int(frames);
   std::vector<Vec3d> pos(std::size_t(S) + 1);
   for (int i = 0; i <= S; ++i) pos[std::size_t(i)] = path.point_at_length(std::min(L, ds * i));
@@ -395,7 +390,7 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
   };
   if (!free_at(0, 0))
     return Error{ErrorCode::InvalidArgument,
-                 "the start lies inside moving " + obstacle_text(blocker) + " (grown by the radius) at t = 0", "/start"};
+                 "the start lies inside moving " + obstacle_text(blocker) + " (grown by the radius) at t = 0", "", {std::string("start")}};
   // move[j][i]: how many steps were taken into (i, frame j), −1 when (i, j) is unreachable.
   std::vector<std::vector<std::int8_t>> move(1, std::vector<std::int8_t>(std::size_t(S) + 1, -1));
   move[0][0] = 0;
@@ -425,7 +420,7 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
                  "no timing along the path avoids moving " + obstacle_text(blocker) + " within " +
                      num(options.max_duration_factor) + " times the constant-speed duration (" + num(nominal) +
                      " s): waiting on the static path does not let it pass",
-                 "/obstacles/" + std::to_string(blocker)};
+                 "", {std::string("obstacles"), std::size_t(blocker)}};
   // Walk back, then keep the frames where the step count changes.
   std::vector<int> steps(std::size_t(arrival) + 1, 0), index(std::size_t(arrival) + 1, 0);
   index[std::size_t(arrival)] = S;
@@ -500,6 +495,12 @@ Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, cons
   PathEnds cur_ends = ends;
   std::vector<Detour> detours;
   const Error timing_error = cur.timing->has_value() ? Error{} : cur.timing->error();
+  // An option of the timing out of range (speed, fps, the size of the search) is not something a
+  // detour can fix: report it at once (steering with speed 0 would scan 10⁷ frames per attempt).
+  if (!cur.timing->has_value() && !timing_error.location.empty()) {
+    const auto* first_step = std::get_if<std::string>(&timing_error.location.front());
+    if (first_step && (*first_step == "speed" || *first_step == "fps")) return timing_error;
+  }
   while (!cur.timing->has_value()) {
     if (!options.steering || int(detours.size()) >= options.max_detours) return timing_error;
     const auto& arc = *cur.arc;

@@ -213,6 +213,9 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
           if (keys[i].speed.has_value() != with_speed)
             return fail(ErrorCode::InvalidArgument, sub(where, "speed"), "give a speed on every key or on none");
           if (with_speed && !std::isfinite(*keys[i].speed)) return fail(ErrorCode::NotFinite, sub(where, "speed"), "speed is not finite");
+          if (keys[i].acceleration)
+            return fail(ErrorCode::InvalidArgument, sub(where, "acceleration"),
+                        "distance_keys take no acceleration: use speed.kind \"constraints\" for ⟨frame, distance, speed, acceleration⟩");
         }
         if (with_speed) {
           std::vector<TimeDistanceVelocityKey<double>> k;
@@ -251,6 +254,70 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
       }
       range = curve->domain();
       speed = PathMotion::KeyedSpeed{std::move(*curve), offset};
+      break;
+    }
+    case SpeedKind::constraints: {
+      const Loc at{"speed", "keys"};
+      const auto& keys = sp.keys;
+      if (keys.empty()) return fail(ErrorCode::TooFewPoints, at, "needs at least 1 constraint key, got none");
+      std::vector<MotionConstraint<double>> k;
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        const Loc where = sub(at, i);
+        if (!std::isfinite(keys[i].frame)) return fail(ErrorCode::NotFinite, sub(where, "frame"), "frame is not finite");
+        if (auto ok = check_distance(keys[i].distance * scale, L, sub(where, "distance"), "key " + std::to_string(i) + "'s distance"); !ok)
+          return ok.error();
+        if (keys[i].speed && !std::isfinite(*keys[i].speed)) return fail(ErrorCode::NotFinite, sub(where, "speed"), "speed is not finite");
+        if (keys[i].speed && *keys[i].speed < 0)
+          return fail(ErrorCode::InvalidArgument, sub(where, "speed"),
+                      "speed = " + num(*keys[i].speed) + " is negative (the object would move backwards)");
+        if (keys[i].acceleration && !std::isfinite(*keys[i].acceleration))
+          return fail(ErrorCode::NotFinite, sub(where, "acceleration"), "acceleration is not finite");
+        MotionConstraint<double> c{keys[i].frame, std::min(keys[i].distance * scale, L)};
+        if (keys[i].speed) c.v = *keys[i].speed * scale / fps;
+        if (keys[i].acceleration) c.a = *keys[i].acceleration * scale / (fps * fps);
+        k.push_back(c);
+      }
+      auto curve = PiecewiseDistanceCurve<double>::from_constraints(k);
+      if (!curve) return place(curve.error(), at);
+      range = curve->domain();
+      speed = PathMotion::PolynomialSpeed{std::move(*curve)};
+      break;
+    }
+    case SpeedKind::acceleration_keys: {
+      const Loc at{"speed", "accelerations"};
+      const auto& keys = sp.accelerations;
+      if (keys.size() < 2)
+        return fail(ErrorCode::TooFewPoints, at, "needs at least 2 acceleration keys, got " + std::to_string(keys.size()));
+      const double from = sp.from.value_or(0.0) * scale;
+      if (auto ok = check_distance(from, L, Loc{"speed", "from"}, "from"); !ok) return ok.error();
+      std::optional<double> to;
+      if (sp.to) {
+        to = *sp.to * scale;
+        if (auto ok = check_distance(*to, L, Loc{"speed", "to"}, "to"); !ok) return ok.error();
+        if (*to < from)
+          return fail(ErrorCode::NotMonotone, {"speed", "to"}, "the distance runs backwards from " + num(from) + " to " + num(*to));
+      }
+      std::vector<TimeAccelerationKey<double>> k;
+      for (const auto& key : keys) k.push_back({key.frame, key.acceleration * scale / (fps * fps)});
+      AccelerationIntegration<double> opt{.shape = sp.shape, .start_speed = sp.start_speed * scale / fps,
+                                          .start_distance = std::min(from, L), .end_distance = to};
+      if (to) opt.end_distance = std::min(*to, L);
+      auto curve = PiecewiseDistanceCurve<double>::from_acceleration_curve(k, opt);
+      if (!curve) {
+        Error e = curve.error();
+        if (!e.location.empty() && e.location.front() == LocationStep{std::string("start_speed")})
+          return fail(e.code, {"speed", "start_speed"}, e.message);
+        if (!e.location.empty() && e.location.front() == LocationStep{std::string("end_distance")})
+          return fail(e.code, {"speed", "to"}, e.message);
+        return place(std::move(e), at);
+      }
+      const double end = curve->sample(curve->domain().hi).s;
+      if (end > L * (1 + kLengthSlack))
+        return fail(ErrorCode::InvalidArgument, at,
+                    "the accelerations carry the object to distance " + num(end / scale) + ", beyond the path's length " +
+                        num(L / scale) + " (give speed.to to scale them)");
+      range = curve->domain();
+      speed = PathMotion::PolynomialSpeed{std::move(*curve)};
       break;
     }
     case SpeedKind::track: {
@@ -315,7 +382,10 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
   motion.local_ = normalized(lq);
   motion.local_track_ = o.local_track;
   if (o.mode == OrientationMode::rotation_minimizing) {
-    auto rmf = RotationMinimizingFrames<AnyCurve>::build(raw.path, RmfOptions<double>{.initial_normal = motion.up_});
+    auto rmf = RotationMinimizingFrames<AnyCurve>::build(raw.path, RmfOptions<double>{.initial_normal = motion.up_,
+                                                                                       .closing = raw.orientation.closing});
+    if (!rmf && raw.orientation.closing == RmfClosing::distribute)
+      return fail(rmf.error().code, {"orientation", "closing"}, rmf.error().message);
     if (!rmf) return place(Error{rmf.error().code, rmf.error().message, ""}, {"orientation", "up"});
     motion.rmf_.emplace(std::move(*rmf));
   } else if (o.mode == OrientationMode::frenet) {
@@ -338,6 +408,9 @@ EaseSample<double> PathMotion::distance_at(double frame) const noexcept {
   } else if (const auto* k = std::get_if<KeyedSpeed>(&speed_)) {
     const EaseSample<double> n = k->curve.sample(frame);
     out = {k->offset + n.s, inside ? n.velocity : 0.0, inside ? n.acceleration : 0.0};
+  } else if (const auto* p = std::get_if<PolynomialSpeed>(&speed_)) {
+    const EaseSample<double> n = p->curve.sample(frame);
+    out = {n.s, inside ? n.velocity : 0.0, inside ? n.acceleration : 0.0};
   } else {
     const auto& t = std::get<TrackSpeed>(speed_);
     out = {double(t.track.sample(float(frame))) * t.scale, t.track.derivative(float(frame)) * t.scale, 0.0};
@@ -411,7 +484,10 @@ void PathMotion::sample(std::span<const double> frames, std::span<PathSample> ou
 namespace {
 constexpr std::array<std::string_view, 7> kEaseKindNames = {"linear", "sine", "sine_pieces", "cubic",
                                                             "constant_acceleration", "cubic_bezier", "penner"};
-constexpr std::array<std::string_view, 4> kSpeedKindNames = {"ease", "distance_keys", "velocity_keys", "track"};
+constexpr std::array<std::string_view, 6> kSpeedKindNames = {"ease",  "distance_keys", "velocity_keys",
+                                                             "track", "constraints",   "acceleration_keys"};
+constexpr std::array<std::string_view, 2> kAccelerationShapeNames = {"constant", "linear"};
+constexpr std::array<std::string_view, 3> kRmfClosingNames = {"automatic", "distribute", "none"};
 constexpr std::array<std::string_view, 4> kOrientationNames = {"rotation_minimizing", "frenet", "up", "look_at"};
 constexpr std::array<std::string_view, 10> kEasingCurveNames = {"sine", "quad",   "cubic",  "quart",  "quint",
                                                                 "expo", "circ",   "back",   "bounce", "elastic"};
@@ -439,6 +515,8 @@ std::string_view to_string(EasingCurve v) noexcept { return name_of(kEasingCurve
 std::string_view to_string(EasingDirection v) noexcept { return name_of(kEasingDirectionNames, v); }
 std::string_view to_string(PositionInterpolation v) noexcept { return name_of(kInterpolationNames, v); }
 std::string_view to_string(VelocityFit v) noexcept { return name_of(kFitNames, v); }
+std::string_view to_string(AccelerationShape v) noexcept { return name_of(kAccelerationShapeNames, v); }
+std::string_view to_string(RmfClosing v) noexcept { return name_of(kRmfClosingNames, v); }
 
 template <>
 std::optional<EaseKind> enum_from_string<EaseKind>(std::string_view n) noexcept { return find_name<EaseKind>(kEaseKindNames, n); }
@@ -459,6 +537,14 @@ std::optional<EasingDirection> enum_from_string<EasingDirection>(std::string_vie
 template <>
 std::optional<PositionInterpolation> enum_from_string<PositionInterpolation>(std::string_view n) noexcept {
   return find_name<PositionInterpolation>(kInterpolationNames, n);
+}
+template <>
+std::optional<RmfClosing> enum_from_string<RmfClosing>(std::string_view n) noexcept {
+  return find_name<RmfClosing>(kRmfClosingNames, n);
+}
+template <>
+std::optional<AccelerationShape> enum_from_string<AccelerationShape>(std::string_view n) noexcept {
+  return find_name<AccelerationShape>(kAccelerationShapeNames, n);
 }
 template <>
 std::optional<VelocityFit> enum_from_string<VelocityFit>(std::string_view n) noexcept {

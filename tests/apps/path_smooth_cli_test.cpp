@@ -159,4 +159,40 @@ TEST(PathsDemo, ShowsFramesSmoothingAndAFoundPath) {
   EXPECT_NE(r.out.find("length 20.82842712474619 cells"), std::string::npos);  // 18 + 2√2: 18 straight moves and 2 diagonals, counted on the printed grid
 }
 
+// --resample N: rows first resampled equally in arc length (fewer or more), then smoothed.
+TEST(PathSmoothCli, ResampleToFewerAndMoreRows) {
+  // An L-shaped polyline of length 4 (3 along x, 1 along y) in 3 rows, resampled to 9 rows: spacing
+  // ½ (closed form: (0,0) (0.5,0) … (3,0) (3,0.5) (3,1)); --iterations 0 leaves them unsmoothed.
+  const auto csv = write_test_file("ell.csv", "x,y\n0,0\n3,0\n3,1\n");
+  CliRun r = run_cli("path smooth " + csv.string() + " --method linear --iterations 0 --resample 9");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto rows = parse_csv(r.out, true);
+  ASSERT_EQ(rows.size(), 9u);
+  for (std::size_t k = 0; k < 7; ++k) {
+    EXPECT_NEAR(rows[k][0], 0.5 * double(k), 1e-15) << k;
+    EXPECT_EQ(rows[k][1], 0.0) << k;
+  }
+  EXPECT_NEAR(rows[7][1], 0.5, 1e-15);
+  EXPECT_EQ(rows[8][0], 3.0);
+  EXPECT_EQ(rows[8][1], 1.0);
+  // The texts' data set (10 rows) down to 4 with smoothing: ends kept by Eq. 3.35, 4 rows out.
+  const auto data = write_test_file("data.csv", kData);
+  r = run_cli("path smooth " + data.string() + " --method linear --resample 4");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  rows = parse_csv(r.out, true);
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0][0], 1.0);
+  EXPECT_EQ(rows[0][1], 1.6);
+  EXPECT_EQ(rows[3][0], 10.0);
+  EXPECT_EQ(rows[3][1], 1.4);
+  // Bad counts exit with 2 naming the option.
+  r = run_cli("path smooth " + data.string() + " --resample 1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--resample"), std::string::npos) << r.err;
+  const auto single = write_test_file("one.csv", "1,2\n");
+  r = run_cli("path smooth " + single.string() + " --resample 3");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("at least 2 points"), std::string::npos) << r.err;
+}
+
 }  // namespace

@@ -87,6 +87,8 @@ TEST(EnvironmentFile, MalformedFilesNameThePointer) {
     const auto f = parse_environment_json(text, "env.json");
     ASSERT_FALSE(f) << c.pointer;
     EXPECT_EQ(f.error().where, c.where) << c.pointer << ": " << f.error().message;
+    // The structured location is the same place (the pointer after "env.json:").
+    EXPECT_EQ("env.json:" + json_pointer(f.error().location), std::string(c.where)) << c.pointer;
     if (have_jsonschema() && c.schema_sees_it) {
       const std::string path = std::string(INBETWEEN_BINARY_DIR) + "/env-bad-" + std::to_string(&c - cases) + ".json";
       std::ofstream(path) << text;
@@ -114,6 +116,13 @@ TEST(EnvironmentFile, MalformedFilesNameThePointer) {
   const auto f = parse_environment_json("{\"inbetween_env\": 1", "env.json");
   ASSERT_FALSE(f);
   EXPECT_EQ(f.error().where, "env.json");
+  // A syntax error names its line and column; nesting beyond 512 levels is refused, not recursed into.
+  const auto line3 = parse_environment_json("{\"inbetween_env\": 1,\n\"radius\": 1,\n\"start\": [1, 2,, 3]}", "env.json");
+  ASSERT_FALSE(line3);
+  EXPECT_NE(line3.error().message.find("line 3"), std::string::npos) << line3.error().message;
+  const auto deep = parse_environment_json("{\"via\": " + std::string(1000, '[') + std::string(1000, ']') + "}", "env.json");
+  ASSERT_FALSE(deep);
+  EXPECT_NE(deep.error().message.find("nested deeper than 512"), std::string::npos) << deep.error().message;
 }
 
 // Robustness: one number of the example replaced by an extreme value, then the whole pipeline of
@@ -144,13 +153,13 @@ TEST(EnvironmentFile, ExtremeNumbersGiveErrorsOrFiniteResultsSeededLoop) {
     if (!f) continue;
     auto env = Environment::build(f->environment);
     if (!env) {
-      EXPECT_EQ(env.error().where.rfind("/", 0), 0u) << env.error().describe();
+      EXPECT_FALSE(env.error().location.empty()) << env.error().describe();
       continue;
     }
     f->planner.max_nodes = 200'000;
     auto poly = plan_polyline(*env, f->ends, f->planner);
     if (!poly) {
-      EXPECT_EQ(poly.error().where.rfind("/", 0), 0u) << poly.error().describe();
+      EXPECT_FALSE(poly.error().location.empty()) << poly.error().describe();
       continue;
     }
     for (const Vec3d& p : poly->points) ASSERT_TRUE(finite3(p));
@@ -161,7 +170,7 @@ TEST(EnvironmentFile, ExtremeNumbersGiveErrorsOrFiniteResultsSeededLoop) {
     if (!arc) continue;  // a path of astronomical length: the arc-length builder refuses it
     auto timing = time_path(*env, *arc, f->timing);
     if (!timing) {
-      EXPECT_EQ(timing.error().where.rfind("/", 0), 0u) << timing.error().describe();
+      EXPECT_FALSE(timing.error().location.empty()) << timing.error().describe();
       continue;
     }
     for (const auto& k : timing->keys) ASSERT_TRUE(std::isfinite(k.t) && std::isfinite(k.s));
@@ -169,7 +178,8 @@ TEST(EnvironmentFile, ExtremeNumbersGiveErrorsOrFiniteResultsSeededLoop) {
 }
 
 TEST(EnvironmentFile, LibraryErrorsGetTheFileName) {
-  const Error e{ErrorCode::InvalidArgument, "obstacle 2: radius must be finite and > 0", "/obstacles/2/sphere/radius"};
+  const Error e{ErrorCode::InvalidArgument, "obstacle 2: radius must be finite and > 0", "",
+                {std::string("obstacles"), std::size_t{2}, std::string("sphere"), std::string("radius")}};
   EXPECT_EQ(locate_environment_error(e, "env.json").describe(),
             "env.json:/obstacles/2/sphere/radius: obstacle 2: radius must be finite and > 0");
 }

@@ -79,7 +79,9 @@ TEST(SceneSchema, EnumerationsMatchTheReader) {
     for (int i = 0; i <= int(last); ++i) out.insert(std::string(inbetween::to_string(decltype(last)(i))));
     return out;
   };
-  EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("kind")), names(inbetween::SpeedKind::track));
+  EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("kind")), names(inbetween::SpeedKind::acceleration_keys));
+  EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("shape")), names(inbetween::AccelerationShape::Linear));
+  EXPECT_EQ(enum_of(defs.at("orientation").at("properties").at("closing")), names(inbetween::RmfClosing::none));
   EXPECT_EQ(enum_of(defs.at("ease").at("properties").at("kind")), names(inbetween::EaseKind::penner));
   EXPECT_EQ(enum_of(defs.at("ease").at("properties").at("curve")), names(inbetween::EasingCurve::elastic));
   EXPECT_EQ(enum_of(defs.at("ease").at("properties").at("direction")), names(inbetween::EasingDirection::in_out));

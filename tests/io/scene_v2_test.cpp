@@ -3,6 +3,11 @@
 // rotations through SceneCursor, curve files relative to the scene, and the reader's version check.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
+#include "inbetween/io/obj.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -203,6 +208,107 @@ TEST(SceneV2, InlineCurveErrorsNameTheirPlace) {
   EXPECT_EQ(r.error().where, "/objects/0/path/curve/points");
 }
 
+
+// Speed forms of §3.2.4 in a scene file: ⟨frame, distance, speed, acceleration⟩ constraints and an
+// acceleration–time curve; their errors carry the JSON pointer of the member.
+TEST(SceneV2, ConstraintAndAccelerationSpeedsRead) {
+  const auto text = [](const std::string& speed) {
+    return R"({"inbetween": 2, "objects": [{"name": "o", "path": {"curve": {"type": "bezier", "points": [[0, 0, 0], [10, 0, 0]]},
+                                         "speed": )" + speed + "}}]}";
+  };
+  // Rest to rest over one second (24 frames, the default fps) covering 5: the quintic with zero
+  // speed and acceleration at both ends, s = 5·(10τ³ − 15τ⁴ + 6τ⁵); at τ = ½ that is 2.5.
+  auto scene = parse(text(R"({"kind": "constraints", "keys": [{"frame": 0, "distance": 0, "speed": 0, "acceleration": 0},
+                                                          {"frame": 24, "distance": 5, "speed": 0, "acceleration": 0}]})"));
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  std::vector<double> row(scene->columns().size());
+  scene->sample(12, row);
+  EXPECT_NEAR(row[0], 2.5, 1e-12);  // x on the straight path = distance
+  scene->sample(6, row);
+  const double tau = 0.25;
+  EXPECT_NEAR(row[0], 5 * (10 * tau * tau * tau - 15 * tau * tau * tau * tau + 6 * tau * tau * tau * tau * tau), 1e-12);
+  // Constant acceleration 2 per second² from rest: s = t² at t = 1 s (frame 24).
+  scene = parse(text(R"({"kind": "acceleration_keys", "accelerations": [{"frame": 0, "acceleration": 2}, {"frame": 48, "acceleration": 2}],
+                        "shape": "constant"})"));
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  scene->sample(24, row);
+  EXPECT_NEAR(row[0], 1.0, 1e-12);
+  // Errors.
+  auto bad = parse(text(R"({"kind": "constraints", "keys": [{"frame": 0, "distance": 0}, {"frame": 10, "distance": 2, "speed": 4.8, "acceleration": 0},
+                                                        {"frame": 20, "distance": 2.2, "speed": 0, "acceleration": -400}]})"));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/keys/1");
+  EXPECT_NE(bad.error().message.find("backwards"), std::string::npos) << bad.error().message;
+  bad = parse(text(R"({"kind": "constraints", "keys": [{"frame": 0, "distance": 0}, {"frame": 0, "distance": 1}]})"));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/keys/1");
+  bad = parse(text(R"({"kind": "acceleration_keys", "accelerations": [{"frame": 0, "acceleration": 1}, {"frame": 4}]})"));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/accelerations/1/acceleration");
+  bad = parse(text(R"({"kind": "acceleration_keys", "shape": "cubic", "accelerations": [{"frame": 0, "acceleration": 1}, {"frame": 4, "acceleration": 1}]})"));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/shape");
+  bad = parse(text(R"({"kind": "acceleration_keys", "accelerations": [{"frame": 0, "acceleration": 0}, {"frame": 4, "acceleration": 0}], "start_speed": -2})"));
+  ASSERT_FALSE(bad.has_value());
+  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/start_speed");
+}
+
+// A path on a mesh (texts 004 §3.4.4) as a scene path: the plane path's points are coplanar, so
+// the Catmull-Rom spline through them (and every sampled position) lies in the plane through the
+// two vertices that contains the average of their normals — checked against that plane computed
+// here from the mesh read independently; the ends are the two vertices.
+TEST(SceneV2, SurfacePathIsASceneCurve) {
+  const std::string mesh = std::string(INBETWEEN_SOURCE_DIR) + "/examples/meshes/icosphere.obj";
+  const auto text = [&](const std::string& surface) {
+    return R"({"inbetween": 2, "paths": [{"name": "s", "surface": )" + surface +
+           R"(}], "objects": [{"name": "o", "path": {"curve": "s", "speed": {"kind": "ease", "start_frame": 0, "end_frame": 24}}}]})";
+  };
+  auto scene = parse(text(R"({"mesh": ")" + mesh + R"(", "from": 0, "to": 41})"));
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  std::ifstream in(mesh);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  auto m = parse_obj(ss.str(), "icosphere.obj");
+  ASSERT_TRUE(m);
+  const Vec3d a = m->vertex(0), b = m->vertex(41);
+  const Vec3d plane_normal = normalized(cross(b - a, m->normal(0) + m->normal(41)), Vec3d{});
+  std::vector<double> row(scene->columns().size());
+  for (int f = 0; f <= 24; ++f) {
+    scene->sample(f, row);
+    const Vec3d p{row[0], row[1], row[2]};
+    // Coordinates ~1 and a spline of ~10 segments: rounding only (64 ulp).
+    EXPECT_NEAR(dot(p - a, plane_normal), 0.0, 64 * 2.2e-16) << f;
+    if (f == 0) EXPECT_LE(distance(p, a), 1e-15);
+    if (f == 24) EXPECT_LE(distance(p, b), 1e-12);
+  }
+  // Errors name the member of "surface".
+  const auto where = [&](const std::string& surface) {
+    auto r = parse(text(surface));
+    EXPECT_FALSE(r.has_value()) << surface;
+    return r ? std::string() : r.error().where + " | " + r.error().message;
+  };
+  EXPECT_EQ(where(R"({"mesh": "no-such.obj", "from": 0, "to": 1})").rfind("/paths/0/surface/mesh |", 0), 0u);
+  EXPECT_EQ(where(R"({"mesh": ")" + mesh + R"(", "from": 0, "to": 42})").rfind("/paths/0/surface/to |", 0), 0u);
+  EXPECT_EQ(where(R"({"mesh": ")" + mesh + R"(", "from": 1.5, "to": 2})").rfind("/paths/0/surface/from |", 0), 0u);
+  EXPECT_EQ(where(R"({"mesh": ")" + mesh + R"(", "from": 3, "to": 3})").rfind("/paths/0/surface/to |", 0), 0u);
+  EXPECT_EQ(where(R"({"mesh": ")" + mesh + R"(", "from": 0, "to": 2, "method": "fly"})").rfind("/paths/0/surface/method |", 0), 0u);
+  EXPECT_EQ(where(R"({"mesh": ")" + mesh + R"(", "to": 2})").rfind("/paths/0/surface/from |", 0), 0u);
+  // Vertices 0 and 11 are antipodal: no plane contains the chord and the average normal.
+  const std::string antipodal = where(R"({"mesh": ")" + mesh + R"(", "from": 0, "to": 11})");
+  EXPECT_EQ(antipodal.rfind("/paths/0/surface/to |", 0), 0u) << antipodal;
+  EXPECT_NE(antipodal.find("parallel"), std::string::npos) << antipodal;
+  // A malformed mesh: the OBJ's own line is in the message.
+  const fs::path bad = fs::path(INBETWEEN_BINARY_DIR) / "surface-bad.obj";
+  std::ofstream(bad) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n";
+  const std::string bad_mesh = where(R"({"mesh": ")" + bad.string() + R"(", "from": 0, "to": 1})");
+  EXPECT_EQ(bad_mesh.rfind("/paths/0/surface/mesh |", 0), 0u) << bad_mesh;
+  EXPECT_NE(bad_mesh.find("line 4"), std::string::npos) << bad_mesh;
+  // "surface" with "curve" in the same entry.
+  auto both = parse(R"({"inbetween": 2, "paths": [{"name": "s", "curve": {"type": "bezier", "points": [[0,0,0],[1,0,0]]},
+                        "surface": {"mesh": "x.obj", "from": 0, "to": 1}}], "objects": []})");
+  ASSERT_FALSE(both.has_value());
+  EXPECT_EQ(both.error().where, "/paths/0/surface");
+}
 
 // A scalar track of the scene drives the distance (so a graph editor can); a track key beyond the
 // path's length is reported at the track's own key.

@@ -133,27 +133,27 @@ TEST(Environment, BuilderErrorsNameTheObstacle) {
   };
   auto e = with(SphereObstacle{{0, 0, 0}, 0});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().where, "/obstacles/1/sphere/radius");
+  EXPECT_EQ(json_pointer(e.error().location), "/obstacles/1/sphere/radius");
   EXPECT_NE(e.error().message.find("obstacle 1"), std::string::npos);
   e = with(BoxObstacle{{0, 0, 0}, {1, 0, 1}});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().where, "/obstacles/1/box/max");
+  EXPECT_EQ(json_pointer(e.error().location), "/obstacles/1/box/max");
   e = with(OrientedBoxObstacle{{0, 0, 0}, {1, 1, 1}, Quatd::from_wxyz(0, 0, 0, 0)});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().where, "/obstacles/1/obb/rotation");
+  EXPECT_EQ(json_pointer(e.error().location), "/obstacles/1/obb/rotation");
   e = with(OrientedBoxObstacle{{0, 0, 0}, {1, -1, 1}, Quatd{}});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().where, "/obstacles/1/obb/half_size");
+  EXPECT_EQ(json_pointer(e.error().location), "/obstacles/1/obb/half_size");
   e = with(MovingSphereObstacle{{0, 0, 0}, {std::nan(""), 0, 0}, 1, 0});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().where, "/obstacles/1/moving_sphere/velocity");
+  EXPECT_EQ(json_pointer(e.error().location), "/obstacles/1/moving_sphere/velocity");
   EXPECT_EQ(e.error().code, ErrorCode::NotFinite);
   RawEnvironment raw{-1, {0, 0, 0}, {1, 1, 1}, {}};
-  EXPECT_EQ(Environment::build(raw).error().where, "/radius");
+  EXPECT_EQ(json_pointer(Environment::build(raw).error().location), "/radius");
   raw = RawEnvironment{1, {0, 0, 0}, {1, 0, 1}, {}};
-  EXPECT_EQ(Environment::build(raw).error().where, "/bounds/max");
+  EXPECT_EQ(json_pointer(Environment::build(raw).error().location), "/bounds/max");
   raw = RawEnvironment{1, {-1e308, 0, 0}, {1e308, 1, 1}, {}};  // max − min overflows
-  EXPECT_EQ(Environment::build(raw).error().where, "/bounds/max");
+  EXPECT_EQ(json_pointer(Environment::build(raw).error().location), "/bounds/max");
   // A rotation of norm 2 is normalised.
   e = with(OrientedBoxObstacle{{0, 0, 0}, {1, 1, 1}, Quatd::from_wxyz(2, 0, 0, 0)});
   ASSERT_TRUE(e);

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <algorithm>
 #include <cmath>
 #include <queue>
@@ -223,11 +225,11 @@ TEST(PathPlanner, ImpossibleProblemsAreReported) {
   ASSERT_TRUE(env);
   auto p = plan_polyline(*env, {{7, 5, 5.5}, {}, {9, 9, 9}});
   ASSERT_FALSE(p);
-  EXPECT_EQ(p.error().where, "/start");
+  EXPECT_EQ(json_pointer(p.error().location), "/start");
   EXPECT_NE(p.error().message.find("obstacle 4"), std::string::npos) << p.error().message;
   p = plan_polyline(*env, {{1, 1, 1}, {}, {11, 9, 9}});
   ASSERT_FALSE(p);
-  EXPECT_EQ(p.error().where, "/goal");
+  EXPECT_EQ(json_pointer(p.error().location), "/goal");
   // A via point sealed in a closed shell of six boxes.
   RawEnvironment raw = wall_with_hole(5);
   const Vec3d c{2, 8, 8};
@@ -242,7 +244,7 @@ TEST(PathPlanner, ImpossibleProblemsAreReported) {
   ASSERT_TRUE(sealed);
   p = plan_polyline(*sealed, {{1, 1, 1}, {c}, {9, 9, 9}}, {.cell_size = 0.5});
   ASSERT_FALSE(p);
-  EXPECT_EQ(p.error().where, "/via/0");
+  EXPECT_EQ(json_pointer(p.error().location), "/via/0");
   EXPECT_NE(p.error().message.find("cannot be reached from the start"), std::string::npos) << p.error().message;
   // The hole is narrower than the object: x-wall everywhere.
   RawEnvironment closed = wall_with_hole(5);
@@ -251,7 +253,7 @@ TEST(PathPlanner, ImpossibleProblemsAreReported) {
   ASSERT_TRUE(env2);
   p = plan_polyline(*env2, {{1.5, 5, 5}, {}, {9, 9, 9}}, {.cell_size = 0.5});
   ASSERT_FALSE(p);
-  EXPECT_EQ(p.error().where, "/goal");
+  EXPECT_EQ(json_pointer(p.error().location), "/goal");
 }
 
 // An S-bend A → B → C → D with equal spans of 4: on B → C the Catmull-Rom span is the Hermite
@@ -349,8 +351,8 @@ TEST(PathTiming, ConstantSpeedWithoutMovingObstaclesAndErrors) {
   ASSERT_TRUE(t);
   EXPECT_EQ(t->avoidance, Avoidance::None);
   EXPECT_NEAR(t->duration, 2.5, kRounding);  // length 5 (a 3-4-5 triangle) at speed 2
-  EXPECT_EQ(time_path(*env, *arc, {.speed = 0}).error().where, "/speed");
-  EXPECT_EQ(time_path(*env, *arc, {.fps = std::nan("")}).error().where, "/fps");
+  EXPECT_EQ(json_pointer(time_path(*env, *arc, {.speed = 0}).error().location), "/speed");
+  EXPECT_EQ(json_pointer(time_path(*env, *arc, {.fps = std::nan("")}).error().location), "/fps");
   // A sphere that sweeps back along the whole path toward the start: waiting cannot help.
   RawEnvironment head_on{0.3, {0, 0, 0}, {10, 10, 10}, {MovingSphereObstacle{{9, 1, 1}, {-0.5, 0, 0}, 1, 0}}};
   const auto env2 = Environment::build(head_on);
@@ -359,7 +361,7 @@ TEST(PathTiming, ConstantSpeedWithoutMovingObstaclesAndErrors) {
   const auto arc2 = ArcLength<CatmullRomSpline<Vec3d>>::build(s2->curve);
   const auto t2 = time_path(*env2, *arc2, {.speed = 2});
   ASSERT_FALSE(t2);
-  EXPECT_EQ(t2.error().where, "/obstacles/0");
+  EXPECT_EQ(json_pointer(t2.error().location), "/obstacles/0");
 }
 
 }  // namespace
@@ -392,7 +394,7 @@ TEST(FindPath, SteersAroundAHeadOnMoverThatTimingCannotAvoid) {
   const double fps = 24;
   auto timing_only = find_path(*env, ends, {.timing = {.speed = 2, .fps = fps}, .steering = false});
   ASSERT_FALSE(timing_only);
-  EXPECT_EQ(timing_only.error().where, "/obstacles/0");
+  EXPECT_EQ(json_pointer(timing_only.error().location), "/obstacles/0");
   auto steered = find_path(*env, ends, {.timing = {.speed = 2, .fps = fps}});
   ASSERT_TRUE(steered) << steered.error().describe();
   EXPECT_EQ(steered->avoidance, Avoidance::Steering);
@@ -413,6 +415,24 @@ TEST(FindPath, UsesTimingWhenWaitingSuffices) {
   EXPECT_TRUE(f->detours.empty());
   EXPECT_GT(f->timing.wait, 0.0);
   expect_timed_motion_clear(*env, *f, 24);
+}
+
+// Timing options out of range are reported at once, not steered around (found by the environment
+// fuzz target: speed 0 with a mover made every steering attempt scan 10⁷ frames).
+TEST(FindPath, TimingOptionErrorsAreNotSteeredAround) {
+  RawEnvironment raw{0.3, {0, 0, 0}, {10, 10, 10}, {MovingSphereObstacle{{9, 5, 5}, {-1, 0, 0}, 1, 0}}};
+  const auto env = Environment::build(raw);
+  ASSERT_TRUE(env);
+  const PathEnds ends{{1, 5, 5}, {}, {9, 5, 5}};
+  const auto t0 = std::chrono::steady_clock::now();
+  auto zero = find_path(*env, ends, {.timing = {.speed = 0, .fps = 24}});
+  ASSERT_FALSE(zero);
+  EXPECT_EQ(json_pointer(zero.error().location), "/speed");
+  auto bad_fps = find_path(*env, ends, {.timing = {.speed = 2, .fps = -1}});
+  ASSERT_FALSE(bad_fps);
+  EXPECT_EQ(json_pointer(bad_fps.error().location), "/fps");
+  // Generous: the two calls plan a 10³ lattice each (milliseconds); the bug took seconds.
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
 }
 
 }  // namespace

@@ -53,4 +53,59 @@ struct ArcLineArc {
   }
 };
 
+/// The trefoil knot (sin u + 2 sin 2u, cos u − 2 cos 2u, −sin 3u), u ∈ [0, 2π]: closed and smooth
+/// (every derivative periodic), curvature never zero, in 12 equal pieces for sampling.
+template <class T>
+struct Trefoil {
+  using point_type = Vec3<T>;
+  using scalar_type = T;
+  Interval<T> domain() const noexcept { return {T(0), T(2) * pi_v<T>}; }
+  int segment_count() const noexcept { return 12; }
+  Interval<T> segment_domain(int i) const noexcept {
+    const T w = T(2) * pi_v<T> / T(12);
+    return {w * T(i), i == 11 ? T(2) * pi_v<T> : w * T(i + 1)};
+  }
+  Vec3<T> point(T u) const noexcept { return derivative(u, 0); }
+  Vec3<T> derivative(T u, int k) const noexcept {
+    u = domain().clamp(u);
+    const T s1 = std::sin(u), c1 = std::cos(u), s2 = std::sin(2 * u), c2 = std::cos(2 * u), s3 = std::sin(3 * u),
+            c3 = std::cos(3 * u);
+    switch (k) {
+      case 0: return {s1 + 2 * s2, c1 - 2 * c2, -s3};
+      case 1: return {c1 + 4 * c2, -s1 + 4 * s2, -3 * c3};
+      case 2: return {-s1 - 8 * s2, -c1 + 8 * c2, 9 * s3};
+      case 3: return {-c1 - 16 * c2, s1 - 16 * s2, 27 * c3};
+      default: return {};
+    }
+  }
+};
+
+/// A circle of radius 2 in the plane through the origin with normal (1, 1, 1)/√3, u ∈ [0, 2π],
+/// in 8 pieces: closed, planar, constant curvature ½, no torsion.
+template <class T>
+struct TiltedCircle {
+  using point_type = Vec3<T>;
+  using scalar_type = T;
+  Interval<T> domain() const noexcept { return {T(0), T(2) * pi_v<T>}; }
+  int segment_count() const noexcept { return 8; }
+  Interval<T> segment_domain(int i) const noexcept {
+    const T w = T(2) * pi_v<T> / T(8);
+    return {w * T(i), i == 7 ? T(2) * pi_v<T> : w * T(i + 1)};
+  }
+  Vec3<T> point(T u) const noexcept { return derivative(u, 0); }
+  Vec3<T> derivative(T u, int k) const noexcept {
+    u = domain().clamp(u);
+    // Orthonormal a = (1, −1, 0)/√2, b = (1, 1, −2)/√6, both ⟂ (1, 1, 1).
+    const Vec3<T> a = Vec3<T>{1, -1, 0} / std::sqrt(T(2)), b = Vec3<T>{1, 1, -2} / std::sqrt(T(6));
+    const T c = std::cos(u), s = std::sin(u);
+    switch (k) {
+      case 0: return (a * c + b * s) * T(2);
+      case 1: return (a * -s + b * c) * T(2);
+      case 2: return (a * -c - b * s) * T(2);
+      case 3: return (a * s - b * c) * T(2);
+      default: return {};
+    }
+  }
+};
+
 }  // namespace inbetween::test

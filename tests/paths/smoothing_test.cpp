@@ -273,5 +273,92 @@ TYPED_TEST(SmoothingTyped, MuseumPathsStayFinite) {
   }
 }
 
+// ---- resampling by arc length
+
+// A straight line with uneven spacing: the resampled points are at x = L·k/(N − 1) exactly
+// (closed form), for fewer and for more points than the input.
+TEST(Resample, StraightLineGivesEquallySpacedPoints) {
+  const std::vector<double> xs{0.0, 0.5, 0.75, 3.0, 3.1, 8.0};
+  for (std::size_t count : {2u, 3u, 5u, 17u}) {
+    auto r = resample_by_arc_length(xs, count);
+    ASSERT_TRUE(r) << r.error().describe();
+    ASSERT_EQ(r->size(), count);
+    for (std::size_t k = 0; k < count; ++k) EXPECT_NEAR((*r)[k], 8.0 * double(k) / double(count - 1), 1e-15 * 8) << k;
+  }
+}
+
+// The unit square's perimeter (length 4) in 9 points: corners and edge midpoints, exactly.
+TEST(Resample, SquareCornersAndMidpoints) {
+  const std::vector<Vec2d> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}};
+  auto r = resample_by_arc_length(square, 9);
+  ASSERT_TRUE(r);
+  const std::vector<Vec2d> want{{0, 0}, {0.5, 0}, {1, 0}, {1, 0.5}, {1, 1}, {0.5, 1}, {0, 1}, {0, 0.5}, {0, 0}};
+  for (std::size_t k = 0; k < want.size(); ++k) EXPECT_LE(norm((*r)[k] - want[k]), 1e-15) << k;
+}
+
+template <class T>
+class ResampleTyped : public ::testing::Test {};
+using ResampleScalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(ResampleTyped, ResampleScalars);
+
+// Property (seeded): every resampled point lies on the input polyline, in order, at arc length
+// L·k/(N − 1) — located independently by walking the chords and measuring point-to-segment
+// distance; ends kept exactly.
+TYPED_TEST(ResampleTyped, PointsLieOnThePolylineAtEqualArcLength) {
+  using T = TypeParam;
+  test::Random rng(test::seed_for(3413));
+  SCOPED_TRACE(rng.trace());
+  for (int trial = 0; trial < 100; ++trial) {
+    const int n = rng.integer(2, 30);
+    std::vector<Vec3<T>> p;
+    for (int i = 0; i < n; ++i) p.push_back(rng.vec3<T>(T(-5), T(5)));
+    if (trial % 10 == 0) p.push_back(p.back());  // a coincident pair
+    const std::size_t count = std::size_t(rng.integer(2, 60));
+    auto r = resample_by_arc_length(p, count);
+    ASSERT_TRUE(r) << r.error().describe();
+    ASSERT_EQ(r->size(), count);
+    EXPECT_EQ(r->front(), p.front());
+    EXPECT_EQ(r->back(), p.back());
+    std::vector<T> cum{T(0)};
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) cum.push_back(cum.back() + norm(p[i + 1] - p[i]));
+    const T L = cum.back();
+    // Lengths ~ up to 300: a few hundred roundings of the running sum; 64 ulp × L.
+    const T tol = test::roundtrip_tol<T> * std::max(T(1), L);
+    std::size_t j = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const Vec3<T> q = (*r)[k];
+      // The first chord from j on that holds q (distance to the segment within tol).
+      bool found = false;
+      for (; j + 1 < p.size(); ++j) {
+        const Vec3<T> d = p[j + 1] - p[j];
+        const T dd = dot(d, d);
+        const T f = dd > T(0) ? std::clamp(dot(q - p[j], d) / dd, T(0), T(1)) : T(0);
+        if (norm(q - (p[j] + d * f)) <= tol) {
+          EXPECT_NEAR(cum[j] + f * std::sqrt(dd), L * T(k) / T(count - 1), tol) << "trial " << trial << " k " << k;
+          found = true;
+          break;
+        }
+      }
+      ASSERT_TRUE(found) << "trial " << trial << " point " << k << " is off the polyline or out of order";
+    }
+  }
+}
+
+TEST(Resample, MuseumAndErrors) {
+  // All points coincident: count copies (documented fallback).
+  const std::vector<Vec2d> same{{1, 2}, {1, 2}, {1, 2}};
+  auto r = resample_by_arc_length(same, 4);
+  ASSERT_TRUE(r);
+  for (const Vec2d& q : *r) EXPECT_EQ(q, (Vec2d{1, 2}));
+  EXPECT_EQ(json_pointer(resample_by_arc_length(same, 1).error().location), "/count");
+  const std::vector<Vec2d> one{{0, 0}};
+  EXPECT_EQ(resample_by_arc_length(one, 3).error().code, ErrorCode::TooFewPoints);
+  const std::vector<Vec2d> nan{{0, 0}, {std::nan(""), 1}};
+  EXPECT_EQ(json_pointer(resample_by_arc_length(nan, 3).error().location), "/points/1");
+  const double big = std::numeric_limits<double>::max();
+  const std::vector<double> huge{-big, big, -big};
+  EXPECT_EQ(resample_by_arc_length(huge, 3).error().code, ErrorCode::NotFinite);
+}
+
 }  // namespace
 }  // namespace inbetween

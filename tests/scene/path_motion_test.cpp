@@ -529,6 +529,127 @@ TEST(PathMotion, VelocityKeysCoverTheDistance) {
   EXPECT_EQ(c.sample(0).speed, 0.0);
 }
 
+TEST(PathMotion, ConstraintTuplesAreMetInSceneUnits) {
+  const AnyCurve path = test_path();
+  RawPathMotion raw{.path = path};
+  // ⟨frame, distance, speed (per second), acceleration (per second²)⟩: the builder converts to per
+  // frame (speed/fps, acceleration/fps²) and the curve meets every given value; the middle key has
+  // no speed (estimated) and the last no acceleration (C¹ only there).
+  raw.speed = RawSpeed{.kind = SpeedKind::constraints,
+                       .keys = {{0, 0, 0.0, 2.0}, {24, 2, std::nullopt, 0.0}, {48, 5, 3.0, std::nullopt}}};
+  const PathMotion m = build(raw);
+  EXPECT_EQ(m.frame_range().lo, 0.0);
+  EXPECT_EQ(m.frame_range().hi, 48.0);
+  EXPECT_NEAR(m.sample(0).distance, 0.0, 1e-12);
+  EXPECT_NEAR(m.sample(24).distance, 2.0, 1e-12);
+  EXPECT_NEAR(m.sample(48).distance, 5.0, 1e-12);
+  EXPECT_NEAR(m.sample(48).speed, 3.0, 1e-12);
+  // Acceleration per frame² ↔ per second²: distance_at(0).acceleration · fps² = 2.
+  EXPECT_NEAR(m.distance_at(0).acceleration * kFps * kFps, 2.0, 1e-10);
+  EXPECT_NEAR(m.distance_at(24).acceleration * kFps * kFps, 0.0, 1e-10);
+  // The same curve as the timing module builds it directly (composition, nothing re-derived).
+  const std::vector<MotionConstraint<double>> direct = {
+      {0, 0, 0.0, 2.0 / (kFps * kFps)}, {24, 2, std::nullopt, 0.0}, {48, 5, 3.0 / kFps, std::nullopt}};
+  auto c = PiecewiseDistanceCurve<double>::from_constraints(direct);
+  ASSERT_TRUE(c);
+  for (int f = 0; f <= 48; f += 3) EXPECT_EQ(m.distance_at(f).s, c->sample(f).s) << f;
+  // A set that would back up is refused naming the key (tuple 1 → 2; key 0 → 1 is the straight
+  // line: the estimated start speed (3·0.2 − 0.2)/2 = 0.2 per frame equals the secant).
+  raw.speed = RawSpeed{.kind = SpeedKind::constraints, .keys = {{0, 0}, {10, 2, 4.8, 0.0}, {20, 2.2, 0.0, -400.0}}};
+  auto bad = build_path_motion(raw, kFps);
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().code, ErrorCode::NotMonotone);
+  EXPECT_EQ(json_pointer(bad.error().location), "/speed/keys/1");
+  // Equal frames, a negative speed, acceleration on a distance key, none at all.
+  raw.speed = RawSpeed{.kind = SpeedKind::constraints, .keys = {{0, 0}, {0, 1}}};
+  EXPECT_EQ(json_pointer(build_path_motion(raw, kFps).error().location), "/speed/keys/1");
+  raw.speed = RawSpeed{.kind = SpeedKind::constraints, .keys = {{0, 0}, {5, 1, -1.0}}};
+  EXPECT_EQ(json_pointer(build_path_motion(raw, kFps).error().location), "/speed/keys/1/speed");
+  raw.speed = RawSpeed{.kind = SpeedKind::distance_keys, .keys = {{0, 0}, {5, 1, std::nullopt, 1.0}}};
+  EXPECT_EQ(json_pointer(build_path_motion(raw, kFps).error().location), "/speed/keys/1/acceleration");
+  raw.speed = RawSpeed{.kind = SpeedKind::constraints};
+  EXPECT_EQ(json_pointer(build_path_motion(raw, kFps).error().location), "/speed/keys");
+  // A single key: the object waits at that distance.
+  raw.speed = RawSpeed{.kind = SpeedKind::constraints, .keys = {{12, 1.5}}};
+  const PathMotion rest = build(raw);
+  EXPECT_NEAR(rest.sample(0).distance, 1.5, 1e-12);
+  EXPECT_EQ(rest.sample(30).speed, 0.0);
+}
+
+TEST(PathMotion, AccelerationKeysIntegrateInClosedForm) {
+  const AnyCurve path = test_path();
+  RawPathMotion raw{.path = path};
+  // Constant acceleration 0.5 per second² from rest at distance 1 for 2 s (frames 0–48):
+  // s = 1 + 0.25·(f/24)², speed = 0.5·f/24 per second.
+  raw.speed = RawSpeed{.kind = SpeedKind::acceleration_keys, .from = 1.0, .accelerations = {{0, 0.5}, {48, 0.5}}};
+  const PathMotion m = build(raw);
+  for (int f = 0; f <= 48; f += 4) {
+    const double t = f / kFps;
+    EXPECT_NEAR(m.sample(f).distance, 1 + 0.25 * t * t, 1e-12) << f;
+    EXPECT_NEAR(m.sample(f).speed, 0.5 * t, 1e-12) << f;
+  }
+  // Linear (jerk 1 per second³ from 0) with start speed 1 per second, scaled to end at 4:
+  // unscaled s = t + t³/6 = 1 + 8/6 at t = 2 s; the acceleration part (8/6) scales by
+  // k = (4 − 2)/(8/6) = 1.5, so s = t + 1.5·t³/6.
+  raw.speed = RawSpeed{.kind = SpeedKind::acceleration_keys, .to = 4.0, .accelerations = {{0, 0.0}, {48, 2.0}},
+                       .shape = AccelerationShape::Linear, .start_speed = 1.0};
+  const PathMotion l = build(raw);
+  for (int f = 0; f <= 48; f += 4) {
+    const double t = f / kFps;
+    EXPECT_NEAR(l.sample(f).distance, t + 1.5 * t * t * t / 6, 1e-12) << f;
+  }
+  // Errors: beyond the length, backing up, a negative start speed, an unreachable end.
+  raw.speed = RawSpeed{.kind = SpeedKind::acceleration_keys, .accelerations = {{0, 100.0}, {48, 100.0}}};
+  auto e = build_path_motion(raw, kFps);
+  ASSERT_FALSE(e);
+  EXPECT_EQ(json_pointer(e.error().location), "/speed/accelerations");
+  EXPECT_NE(e.error().message.find("beyond the path's length"), std::string::npos) << e.error().message;
+  raw.speed = RawSpeed{.kind = SpeedKind::acceleration_keys, .accelerations = {{0, 0.0}, {24, -1.0}, {48, 0.0}},
+                       .start_speed = 0.5};
+  e = build_path_motion(raw, kFps);
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.error().code, ErrorCode::NotMonotone);
+  EXPECT_EQ(json_pointer(e.error().location), "/speed/accelerations/1");
+  raw.speed = RawSpeed{.kind = SpeedKind::acceleration_keys, .accelerations = {{0, 0.0}, {24, 0.0}}, .start_speed = -1};
+  EXPECT_EQ(json_pointer(build_path_motion(raw, kFps).error().location), "/speed/start_speed");
+  raw.speed = RawSpeed{.kind = SpeedKind::acceleration_keys, .to = 3.0, .accelerations = {{0, 0.0}, {24, 0.0}}};
+  EXPECT_EQ(json_pointer(build_path_motion(raw, kFps).error().location), "/speed/to");
+  raw.speed = RawSpeed{.kind = SpeedKind::acceleration_keys, .accelerations = {{0, 0.0}, {0, 0.0}}};
+  EXPECT_EQ(json_pointer(build_path_motion(raw, kFps).error().location), "/speed/accelerations/1");
+}
+
+TEST(PathMotion, ClosedPathsComeBackToTheirStartFrame) {
+  // A closed Catmull-Rom loop through 8 points on the trefoil knot (non-planar: the plain RMF misses
+  // its start frame by the loop's holonomy).
+  std::vector<Vec3d> pts;
+  for (int i = 0; i < 8; ++i) {
+    const double u = 2 * pi_v<double> * i / 8;
+    pts.push_back({std::sin(u) + 2 * std::sin(2 * u), std::cos(u) - 2 * std::cos(2 * u), -std::sin(3 * u)});
+  }
+  auto loop = build_catmull_rom(pts, CatmullRomOptions<double>{.closed = true});
+  ASSERT_TRUE(loop);
+  RawPathMotion raw{.path = AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{*loop}}};
+  raw.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 48};
+  const auto end_gap = [&](RmfClosing closing) {
+    raw.orientation.closing = closing;
+    const PathMotion m = build(raw);
+    const Quatd a = m.sample(0).rotation, b = m.sample(48).rotation;
+    return 1 - std::abs(dot(a, b));  // 0 when the same rotation (either sign)
+  };
+  // automatic (the default) and distribute: the end frame is the start frame (rounding only:
+  // 1 − |cos(θ/2)| ≈ θ²/8, so 1e-14 means θ ≲ 3e-7 rad; the library's own bound is 64 ulp).
+  EXPECT_LE(end_gap(RmfClosing::automatic), 1e-14);
+  EXPECT_LE(end_gap(RmfClosing::distribute), 1e-14);
+  // none: the plain RMF comes back turned (the trefoil's holonomy is far from 0).
+  EXPECT_GT(end_gap(RmfClosing::none), 1e-3);
+  // distribute on an open path is an error at the member.
+  RawPathMotion open{.path = test_path(), .speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 10}};
+  open.orientation.closing = RmfClosing::distribute;
+  auto e = build_path_motion(open, kFps);
+  ASSERT_FALSE(e);
+  EXPECT_EQ(json_pointer(e.error().location), "/orientation/closing");
+}
+
 TEST(PathMotion, TrackGivesTheDistanceAndItsDerivative) {
   const AnyCurve path = test_path();
   RawFCurve rf;
@@ -763,12 +884,15 @@ TEST(PathMotion, RandomPathsAndEasesKeepEveryProperty) {
 
 TEST(PathMotionNames, RoundTrip) {
   for (int i = 0; i < 7; ++i) EXPECT_EQ(enum_from_string<EaseKind>(to_string(EaseKind(i))), EaseKind(i));
-  for (int i = 0; i < 4; ++i) EXPECT_EQ(enum_from_string<SpeedKind>(to_string(SpeedKind(i))), SpeedKind(i));
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(enum_from_string<SpeedKind>(to_string(SpeedKind(i))), SpeedKind(i));
   for (int i = 0; i < 4; ++i) EXPECT_EQ(enum_from_string<OrientationMode>(to_string(OrientationMode(i))), OrientationMode(i));
   for (int i = 0; i < 10; ++i) EXPECT_EQ(enum_from_string<EasingCurve>(to_string(EasingCurve(i))), EasingCurve(i));
   for (int i = 0; i < 3; ++i) EXPECT_EQ(enum_from_string<EasingDirection>(to_string(EasingDirection(i))), EasingDirection(i));
   for (int i = 0; i < 3; ++i)
     EXPECT_EQ(enum_from_string<PositionInterpolation>(to_string(PositionInterpolation(i))), PositionInterpolation(i));
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(enum_from_string<RmfClosing>(to_string(RmfClosing(i))), RmfClosing(i));
+  for (int i = 0; i < 2; ++i)
+    EXPECT_EQ(enum_from_string<AccelerationShape>(to_string(AccelerationShape(i))), AccelerationShape(i));
   for (int i = 0; i < 2; ++i) EXPECT_EQ(enum_from_string<VelocityFit>(to_string(VelocityFit(i))), VelocityFit(i));
   EXPECT_EQ(to_string(EaseKind::constant_acceleration), "constant_acceleration");
   EXPECT_EQ(to_string(OrientationMode::rotation_minimizing), "rotation_minimizing");

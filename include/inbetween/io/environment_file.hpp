@@ -3,8 +3,8 @@
 /// docs/environment.schema.json) of the obstacles, the moving object's radius, the search bounds,
 /// the start, via points and goal, and the speed and frame rate of the timing.  The reader checks
 /// the JSON shape (types, arities, unknown fields); the values are checked by the library's
-/// builders (Environment::build, plan_polyline, time_path), whose errors already carry JSON
-/// pointers of this shape and only need the file name in front (locate_environment_error).
+/// builders (Environment::build, plan_polyline, time_path), whose errors carry structured
+/// locations of this shape and only need rendering with the file name (locate_environment_error).
 
 #include <string>
 #include <string_view>
@@ -26,12 +26,16 @@ struct EnvironmentFile {
   PathTimingOptions timing;     ///< "speed" and "fps" when given
 };
 
-/// Parses an environment file.  Errors carry `where` = "<source_name>:<JSON pointer>" (for example
-/// "env.json:/obstacles/2/box/min/1") and say what was expected.
+/// Parses an environment file.  The JSON is read with bounded nesting (at most 512 levels); a
+/// syntax error names its line and column.  Errors carry the structured place in
+/// `location` ({"obstacles", 2, "box", "min", 1}) and, rendered once, `where` =
+/// "<source_name>:<JSON pointer>" ("env.json:/obstacles/2/box/min/1"; just the source name for
+/// errors of the whole text), and say what was expected.
 Expected<EnvironmentFile> parse_environment_json(std::string_view text, std::string_view source_name);
-
-/// A library error whose `where` is a JSON pointer of the environment file ("/start",
-/// "/obstacles/3/sphere/radius") with the file name put in front ("env.json:/start").
+/// A library error (Environment::build, plan_polyline, time_path) whose `location` names a place in
+/// the environment file ({"obstacles", 3, "sphere", "radius"}) with `where` set to
+/// "<source_name>:<JSON pointer>" ("env.json:/obstacles/3/sphere/radius"); an error without a
+/// location gets just the source name.
 Error locate_environment_error(const Error& error, std::string_view source_name);
 
 }  // namespace inbetween

@@ -10,8 +10,9 @@
 ///
 /// Raw → built: a RawEnvironment (plain data, in the order of the environment file) is checked by
 /// Environment::build (finite numbers, positive sizes, non-zero rotations, which are normalised);
-/// errors carry a JSON pointer into the environment file's shape ("/obstacles/3/sphere/radius",
-/// docs/paths.md), so the file reader only prefixes the file name.  The built Environment answers
+/// errors carry a structured location (Error::location) in the environment file's shape
+/// ({"obstacles", 3, "sphere", "radius"}, rendered "/obstacles/3/sphere/radius"; docs/paths.md), so
+/// the file reader only renders it once with the file name in front.  The built Environment answers
 /// "is this point / segment clear?" through a bounding-volume hierarchy over the static obstacles.
 ///
 /// Convention: a point p is clear of obstacle k when distance(p, obstacle k) ≥ r + margin (touching
@@ -90,7 +91,7 @@ double segment_distance_to_obstacle(const OrientedBoxObstacle& o, const Vec3d& a
 /// total and noexcept.
 class Environment {
  public:
-  /// Checks and builds.  Errors (where = JSON pointer of the file shape): radius not finite or < 0
+  /// Checks and builds.  Errors (Error::location in the file's shape, shown here as JSON pointers): radius not finite or < 0
   /// ("/radius"), bounds not finite or empty ("/bounds/min", "/bounds/max"), and per obstacle k a
   /// non-finite number, a size ≤ 0, box min not below max, or a zero rotation
   /// ("/obstacles/k/<kind>/<field>", message naming "obstacle k").

@@ -36,7 +36,7 @@ struct PlannerOptions {
   /// Extra clearance of lattice nodes, edges and shortcuts beyond r (room for the spline to bend);
   /// < 0 picks h/4.  The start, goal and via points only need to clear r.
   double margin = -1;
-  /// Refuse lattices with more nodes than this (InvalidArgument, where "/cell_size").
+  /// Refuse lattices with more nodes than this (InvalidArgument, location "/cell_size").
   long long max_nodes = 8'000'000;
 };
 
@@ -58,8 +58,8 @@ struct PlannedPolyline {
   long long expanded = 0;      ///< lattice nodes taken from the open list, all legs
 };
 
-/// Plans start → via → goal through the static obstacles.  Errors (where = JSON pointer of the
-/// environment file): a point outside the bounds or inside a grown static obstacle ("/start",
+/// Plans start → via → goal through the static obstacles.  Errors (Error::location in the
+/// environment file's shape, shown as JSON pointers): a point outside the bounds or inside a grown static obstacle ("/start",
 /// "/via/i", "/goal", naming the obstacle), options out of range ("/cell_size", "/margin"), and a
 /// leg without a path ("/via/i" or "/goal": "cannot be reached from …").
 Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& ends, const PlannerOptions& options = {});
@@ -128,7 +128,7 @@ struct PathTiming {
 /// ds = speed/(fps·substeps); a state is allowed when the point clears every moving sphere k by
 /// (speed + |v_k|)/(2·fps) beyond r + R_k at that frame's time, which guarantees clearance at every
 /// time in between (the distance is Lipschitz with constant speed + |v_k|).  The earliest arrival
-/// is kept.  Errors: speed or fps out of range ("/speed", "/fps"), a moving sphere on the start at
+/// is kept.  Errors (Error::location, shown as JSON pointers): speed or fps out of range ("/speed", "/fps"), a moving sphere on the start at
 /// t = 0 ("/start"), or no arrival within max_duration_factor × L/speed ("/obstacles/k", the
 /// sphere that blocked the farthest point reached; also as soon as every reachable state is hit),
 /// or a search of more than 64·10⁶ states ("/fps").  A path of length 0 gets keys (0, 0), (1/fps, 0).

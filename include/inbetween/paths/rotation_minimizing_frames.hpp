@@ -16,22 +16,50 @@
 /// skip the second; the normal is then re-orthogonalised against the tangent (perpendicular_part).
 /// The start normal is options.initial_normal projected off the start tangent, or, when that is
 /// zero, the Frenet normal at the start, or any_perpendicular(tangent) on a straight start.
+///
+/// Closed curves: an RMF carried once around a closed curve generally comes back rotated about the
+/// tangent by a closing angle φ (the holonomy: the total torsion ∫τ ds mod 2π for a curve without
+/// inflections).  With RmfClosing::distribute (or automatic on a closed, tangent-continuous curve)
+/// the normal at arc length s is additionally turned about the tangent by φ·s/L, where φ ∈ [−π, π]
+/// is the angle from the plain RMF's end normal to its start normal; so the frame at the end
+/// equals the frame at the start and the twist rate is the constant φ/L (the smallest constant
+/// twist that closes the frame).  s is measured by 8-point Gauss–Legendre
+/// quadrature of |P'| between the samples.
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "inbetween/arclength/gauss_legendre.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/paths/frenet_frames.hpp"
 #include "inbetween/paths/path_frame.hpp"
 
 namespace inbetween {
 
+/// What an RMF does at the end of a closed curve.
+enum class RmfClosing {
+  automatic,   ///< distribute the closing twist when the curve is closed (see rmf_closed_tolerance)
+  distribute,  ///< always distribute it; an error when the curve is not closed
+  none,        ///< the plain RMF: the end frame may differ from the start frame by the closing angle
+};
+
+/// The relative tolerance for "closed": |P(end) − P(start)| ≤ tol·max(1, extent of the curve) and
+/// |T̂(end) − T̂(start)| ≤ tol, with tol = √eps (1.5e-8 in double, 3.5e-4 in float): far above the
+/// rounding of a curve built closed, far below any gap a user would mean.
+template <Real T>
+T rmf_closed_tolerance() noexcept {
+  return std::sqrt(std::numeric_limits<T>::epsilon());
+}
+
 /// Options of RotationMinimizingFrames::build.
 template <Real T>
 struct RmfOptions {
   int samples_per_segment = 32;  ///< ≥ 1 double-reflection steps per curve segment
   Vec3<T> initial_normal{};      ///< normal at the start (projected off the tangent); zero: Frenet
+  RmfClosing closing = RmfClosing::automatic;  ///< closed curves: distribute the closing twist
 };
 
 namespace detail {
@@ -88,6 +116,25 @@ class RotationMinimizingFrames {
     }
     for (std::size_t i = 0; i + 1 < n; ++i)
       f.r_[i + 1] = detail::double_reflection(f.x_[i], f.t_[i], f.r_[i], f.x_[i + 1], f.t_[i + 1]);
+    // Closing: is the curve closed (position and tangent), and by how much does the frame miss?
+    T extent{};
+    for (const Vec3<T>& x : f.x_) extent = std::max(extent, norm(x - f.x_[0]));
+    const T tol = rmf_closed_tolerance<T>();
+    const bool closed = n > 1 && norm(f.x_[n - 1] - f.x_[0]) <= tol * std::max(T(1), extent) &&
+                        norm(f.t_[n - 1] - f.t_[0]) <= tol;
+    if (options.closing == RmfClosing::distribute && !closed)
+      return Error{ErrorCode::InvalidArgument,
+                   "closing = distribute needs a closed curve: the end is " + std::to_string(double(norm(f.x_[n - 1] - f.x_[0]))) +
+                       " from the start and the end tangent differs by " + std::to_string(double(norm(f.t_[n - 1] - f.t_[0]))),
+                   "closing"};
+    f.s_.assign(n, T(0));
+    const GaussLegendreRule rule = gauss_legendre_rule(8);
+    for (std::size_t i = 0; i + 1 < n; ++i) f.s_[i + 1] = f.s_[i] + f.length_between(f.u_[i], f.u_[i + 1], rule);
+    if (closed && options.closing != RmfClosing::none && f.s_.back() > T(0)) {
+      const Vec3<T> r_end = perpendicular_part(f.r_[n - 1], f.t_[0]);
+      const T phi = std::atan2(dot(cross(r_end, f.r_[0]), f.t_[0]), dot(r_end, f.r_[0]));
+      if (std::isfinite(phi)) f.twist_rate_ = phi / f.s_.back();
+    }
     return f;
   }
 
@@ -98,6 +145,13 @@ class RotationMinimizingFrames {
   /// Parameter of sample i.
   T sample_parameter(std::size_t i) const noexcept { return u_[i]; }
 
+  /// The twist added per unit arc length to close the frame on a closed curve (radians per length
+  /// unit; 0 for an open curve or with RmfClosing::none).  Times the length it is the closing angle
+  /// φ ∈ [−π, π] by which the plain RMF misses its start frame.
+  T closing_twist_rate() const noexcept { return twist_rate_; }
+  /// The curve's arc length as the frames measure it (Gauss–Legendre between the samples).
+  T length() const noexcept { return s_.back(); }
+
   /// The frame at u (clamped; NaN reads as the start).  Never NaN for a built curve.
   PathFrame<T> frame_at(T u) const noexcept {
     const Interval<T> dom = curve_.domain();
@@ -106,14 +160,27 @@ class RotationMinimizingFrames {
     const std::size_t i = it == u_.begin() ? 0 : std::size_t(it - u_.begin()) - 1;
     const Vec3<T> t = unit_tangent(curve_, u);
     const Vec3<T> r = u == u_[i] ? r_[i] : detail::double_reflection(x_[i], t_[i], r_[i], curve_.point(u), t);
-    const Vec3<T> nrm = perpendicular_part(r, t);
+    Vec3<T> nrm = perpendicular_part(r, t);
+    if (twist_rate_ != T(0)) {
+      // Turn about t by the distributed share of the closing angle: n cos θ + (t × n) sin θ.
+      const T s = u == u_[i] ? s_[i] : s_[i] + length_between(u_[i], u, gauss_legendre_rule(8));
+      const T theta = twist_rate_ * s;
+      nrm = perpendicular_part(nrm * std::cos(theta) + cross(t, nrm) * std::sin(theta), t);
+    }
     return {t, nrm, cross(t, nrm)};
   }
 
  private:
+  T length_between(T a, T b, const GaussLegendreRule& rule) const noexcept {
+    const T l = integrate_gauss_legendre<T>([&](T v) { return norm(curve_.derivative(v, 1)); }, a, b, rule);
+    return std::isfinite(l) ? l : T(0);
+  }
+
   C curve_{};
   std::vector<T> u_;
   std::vector<Vec3<T>> x_, t_, r_;
+  std::vector<T> s_;  // arc length at each sample
+  T twist_rate_{};
 };
 
 /// Builds rotation-minimising frames along `curve`; see RotationMinimizingFrames::build.

@@ -23,6 +23,7 @@
 /// Errors: no points (TooFewPoints, location {"points"}), a non-finite point (NotFinite, location
 /// {"points", i}), bad options (InvalidArgument, location {"<option>"}).
 
+#include <algorithm>
 #include <cmath>
 #include <span>
 #include <string>
@@ -212,6 +213,52 @@ template <Point P>
 Expected<std::vector<P>> smooth_convolution(const std::vector<P>& points,
                                             const ConvolutionOptions<scalar_of<P>>& options = {}) {
   return smooth_convolution(std::span<const P>(points), options);
+}
+
+/// Resampling (§3.4.3: smoothing "with or without averaging down the number of points making up
+/// the path", and "additional points"): `count` points equally spaced in arc length along the
+/// polyline through `points` (arc length = the sum of chord lengths), the first and last points
+/// kept exactly; point k lies at arc length L·k/(count − 1), linearly interpolated on its chord.
+/// count may be smaller or larger than points.size().  Coincident consecutive points are passed
+/// over; a polyline of length 0 gives `count` copies of its first point (documented fallback).
+/// Errors: fewer than 2 points (TooFewPoints, {"points"}), a non-finite point (NotFinite,
+/// {"points", i}), count < 2 (InvalidArgument, {"count"}), a length that overflows the scalar
+/// (NotFinite, {"points"}).  Allocates the result only.
+template <Point P>
+Expected<std::vector<P>> resample_by_arc_length(std::span<const P> points, std::size_t count) {
+  using T = scalar_of<P>;
+  if (auto ok = detail::check_path_points(points, 2); !ok) return ok.error();
+  if (count < 2)
+    return Error{ErrorCode::InvalidArgument, "count must be at least 2 (the two ends), got " + std::to_string(count), "",
+                 {"count"}};
+  const std::size_t n = points.size();
+  T total{};
+  for (std::size_t i = 0; i + 1 < n; ++i) total += distance(points[i], points[i + 1]);
+  if (!std::isfinite(total))
+    return Error{ErrorCode::NotFinite, "the path's length overflows the number type", "", {"points"}};
+  std::vector<P> out(count, points[0]);
+  if (!(total > T(0))) return out;
+  std::size_t j = 0;   // current chord [j, j + 1]
+  T s_j{};             // arc length at points[j]
+  T len_j = distance(points[0], points[1]);
+  for (std::size_t k = 1; k + 1 < count; ++k) {
+    const T s = total * (T(k) / T(count - 1));
+    while (j + 2 < n && s_j + len_j < s) {
+      s_j += len_j;
+      ++j;
+      len_j = distance(points[j], points[j + 1]);
+    }
+    const T f = len_j > T(0) ? std::clamp((s - s_j) / len_j, T(0), T(1)) : T(0);
+    out[k] = points[j] + (points[j + 1] - points[j]) * f;
+  }
+  out[count - 1] = points[n - 1];
+  return out;
+}
+
+/// See resample_by_arc_length(std::span).
+template <Point P>
+Expected<std::vector<P>> resample_by_arc_length(const std::vector<P>& points, std::size_t count) {
+  return resample_by_arc_length(std::span<const P>(points), count);
 }
 
 }  // namespace inbetween

@@ -31,6 +31,7 @@
 #include "inbetween/timing/distance_time.hpp"
 #include "inbetween/timing/ease.hpp"
 #include "inbetween/timing/penner.hpp"
+#include "inbetween/timing/piecewise_distance.hpp"
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
 
@@ -86,6 +87,8 @@ enum class SpeedKind : std::uint8_t {
   distance_keys,  ///< ⟨frame, distance⟩ or ⟨frame, distance, speed⟩ keys
   velocity_keys,  ///< a piecewise-linear velocity–time curve covering [from, to]
   track,          ///< a scalar F-curve giving the distance at every frame
+  constraints,    ///< ⟨frame, distance, speed?, acceleration?⟩ tuples (§3.2.4), C² where accelerations are given
+  acceleration_keys,  ///< an acceleration–time curve integrated twice from a start speed and distance
 };
 
 /// A distance–time key (scene file: speed.keys[i]).
@@ -93,8 +96,18 @@ struct RawDistanceKey {
   double frame = 0;     ///< animation frame
   double distance = 0;  ///< arc length travelled at `frame` (a fraction of the length with speed.fraction)
   /// Speed at `frame` in length units per second (fraction of the length per second with
-  /// speed.fraction).  Give it on every key (first-order constraints, C¹ Hermite) or on none.
+  /// speed.fraction).  distance_keys: give it on every key (first-order constraints, C¹ Hermite)
+  /// or on none; constraints: on any key (estimated from the distances where absent).
   std::optional<double> speed;
+  /// constraints only: acceleration at `frame` in length units per second² (fraction of the length
+  /// with speed.fraction); the distance is C² there.
+  std::optional<double> acceleration;
+};
+
+/// A key of an acceleration–time curve (scene file: speed.accelerations[i]).
+struct RawAccelerationKey {
+  double frame = 0;         ///< animation frame
+  double acceleration = 0;  ///< length units per second² (fraction of the length with speed.fraction)
 };
 
 /// A key of a velocity–time curve (scene file: speed.velocities[i]).
@@ -124,6 +137,13 @@ struct RawSpeed {
   /// velocity_keys: how the curve is adjusted so that it covers exactly [from, to].
   VelocityFit fit = VelocityFit::FixKeysAdjustInterior;
   std::optional<FCurve> track;  ///< track: the distance as a scalar F-curve (the scene resolves names)
+  /// acceleration_keys: ≥ 2 keys, frames strictly increasing.  The start distance is `from`
+  /// (default 0); with `to` every acceleration is scaled by one factor so the motion ends there.
+  std::vector<RawAccelerationKey> accelerations;
+  /// acceleration_keys: constant on [frame_i, frame_{i+1}) (Figure 3.16) or linear between keys.
+  AccelerationShape shape = AccelerationShape::Constant;
+  /// acceleration_keys: the speed at the first key, length units (or fractions) per second, ≥ 0.
+  double start_speed = 0;
   /// distance_keys and velocity_keys: when the distance would run backwards, replace the curve by
   /// the monotone cubic through the same keys (DistanceTimeCurve::monotone_repair) instead of
   /// failing.  Never silent: without it the builder reports the frames where it happens.
@@ -155,6 +175,11 @@ struct RawOrientation {
   /// look_at: the fixed target point (a caller may pass another point per sample, e.g. an object's).
   Vec3d look_at{};
   std::optional<RawBanking> banking;  ///< roll into (or out of) turns; none by default
+  /// rotation_minimizing on a closed path: `automatic` (default) turns the frame about the tangent
+  /// by the closing angle spread linearly in arc length so that it comes back to its start frame
+  /// (paths/rotation_minimizing_frames.hpp); `distribute` requires a closed path; `none` keeps the
+  /// plain RMF.
+  RmfClosing closing = RmfClosing::automatic;
   /// A constant rotation on top of the path frame (world_from_object = world_from_path · local).
   Quatd local_rotation{};
   /// A keyed rotation on top of the path frame; when present it replaces local_rotation.
@@ -241,7 +266,10 @@ class PathMotion {
     FCurve track;
     double scale = 1;  // L with fraction, else 1
   };
-  using Speed = std::variant<EaseSpeed, KeyedSpeed, TrackSpeed>;
+  struct PolynomialSpeed {
+    PiecewiseDistanceCurve<double> curve;  // frame → distance (constraints, acceleration_keys)
+  };
+  using Speed = std::variant<EaseSpeed, KeyedSpeed, TrackSpeed, PolynomialSpeed>;
 
   PathMotion(ArcLength<AnyCurve> arc, Speed speed, double fps) : arc_(std::move(arc)), speed_(std::move(speed)), fps_(fps) {}
   friend Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps);
@@ -270,20 +298,29 @@ class PathMotion {
 ///   (Penner back, elastic and bounce, a cubic-bezier with y outside [0, 1]) naming the frames;
 /// - distance_keys / velocity_keys: too few keys, frames not increasing, a key distance outside
 ///   [0, L] (naming the key), distances that run backwards (naming the frames) unless `repair`;
+/// - constraints: no key, frames not increasing, a distance outside [0, L] or below the previous
+///   key's, a negative speed, a single key with a speed or acceleration, a curve that would run
+///   backwards between keys i and i + 1 ({"speed", "keys", i}; repair does not apply);
+/// - acceleration_keys: fewer than 2 keys, frames not increasing, a negative start_speed, a speed
+///   that turns negative ({"speed", "accelerations", i}), an end beyond the path's length, a `to`
+///   the accelerations cannot reach ({"speed", "to"});
 /// - track: missing, a key value outside [0, L] (naming the key) or a curve that runs backwards
 ///   between keys (naming the frames; repair does not apply to tracks);
 /// - orientation: a zero or non-finite up vector, banking options out of range, a non-finite
-///   look_at point or local rotation.
+///   look_at point or local rotation; closing = distribute on a path that is not closed
+///   ({"orientation", "closing"}).
 [[nodiscard]] Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps);
 
 /// The scene-file name of each enumerator ("constant_acceleration", "distance_keys",
 /// "rotation_minimizing", …); enum_from_string<E>(name) (tracks/fcurve.hpp) parses them back.
 [[nodiscard]] std::string_view to_string(EaseKind v) noexcept;
-[[nodiscard]] std::string_view to_string(SpeedKind v) noexcept;        ///< "ease", "distance_keys", "velocity_keys", "track"
+[[nodiscard]] std::string_view to_string(SpeedKind v) noexcept;        ///< "ease", "distance_keys", "velocity_keys", "track", "constraints", "acceleration_keys"
 [[nodiscard]] std::string_view to_string(OrientationMode v) noexcept;  ///< "rotation_minimizing", "frenet", "up", "look_at"
 [[nodiscard]] std::string_view to_string(EasingCurve v) noexcept;      ///< "sine", "quad", …, "elastic"
 [[nodiscard]] std::string_view to_string(EasingDirection v) noexcept;  ///< "in", "out", "in_out"
 [[nodiscard]] std::string_view to_string(PositionInterpolation v) noexcept;  ///< "linear", "catmull_rom", "monotone_cubic"
+[[nodiscard]] std::string_view to_string(AccelerationShape v) noexcept;  ///< "constant", "linear"
+[[nodiscard]] std::string_view to_string(RmfClosing v) noexcept;  ///< "automatic", "distribute", "none"
 [[nodiscard]] std::string_view to_string(VelocityFit v) noexcept;  ///< "float_to_keep_average", "fix_keys_adjust_interior"
 
 }  // namespace inbetween
