@@ -187,6 +187,13 @@ template <Real W, int N>
 /// path's double weights at 2^-12 (both far below the rounding of the result).
 template <Real T>
 inline constexpr double fast_slerp_near_cut = sizeof(T) <= 4 ? 0x1p-12 : 0x1p-20;
+
+/// Below this distance c of cos θ from 1 the near path's correction c_a·a, c_b·b is dropped: it is
+/// at most c/3 relative (|b₁| ≤ |y|/3), mostly along a (the result's norm: ≤ 2^-23.6 in float,
+/// 2^-51.6 in double, inside fast_slerp_max_error_rad), and its part across a is ≤ (c/3)·θ with
+/// θ ≤ √(2.1c): 6e-11 rad in float, 5e-24 rad in double.  That leaves glm's blend a + u(b − a).
+template <Real T>
+inline constexpr double fast_slerp_lerp_cut = sizeof(T) <= 4 ? 0x1p-22 : 0x1p-50;
 }  // namespace detail
 
 /// Largest rotation-angle error (radians) of fast_slerp() against slerp() evaluated in long double
@@ -228,6 +235,14 @@ template <Real T>
   std::memcpy(&vb, &b, sizeof vb);
   const V4 pr = va * vb;
   const T dt = (pr[0] + pr[1]) + (pr[2] + pr[3]);
+  if (std::abs(dt) > T(1) - T(detail::fast_slerp_lerp_cut<T>)) {
+    // Ends within rounding of each other: the plain blend a + u(b − a), see fast_slerp_lerp_cut.
+    const V4 vbs = vb * std::copysign(T(1), dt);
+    const V4 r = va + (vbs - va) * u;
+    Quat<T> q;
+    std::memcpy(&q, &r, sizeof q);
+    return q;
+  }
   if (std::abs(dt) > T(1) - T(detail::fast_slerp_near_cut<T>)) {
     const T sign = std::copysign(T(1), dt);
     const T y = std::min(std::abs(dt), T(1)) - T(1);  // cos θ − 1 in [−cut, 0]
