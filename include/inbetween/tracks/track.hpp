@@ -148,7 +148,10 @@ class Track {
       if (i + 1 >= n) continue;
       const T t0 = frames_[i], t1 = frames_[i + 1];
       const Segment g = segments_[i];
-      for (; k < count && frames[k] > t0 && frames[k] < t1; ++k) out[k] = g.value(frames[k] - t0);
+      // Find the run first, then evaluate it in a counted loop the compiler can vectorise.
+      std::size_t end = k;
+      while (end < count && frames[end] > t0 && frames[end] < t1) ++end;
+      for (; k < end; ++k) out[k] = g.value(frames[k] - t0);
     }
   }
 
