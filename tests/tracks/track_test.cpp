@@ -294,3 +294,60 @@ TEST(TrackBuild, SingleKeyIsConstantEverywhere) {
 
 }  // namespace
 }  // namespace inbetween
+
+namespace inbetween {
+namespace {
+// Issue 12: the track samples through power-form segments built once (and 1/h); an independent
+// evaluation of the Hermite basis in long double on the same keys and resolved tangents bounds the
+// difference.  Budget (rounding analysis, no fitted number): building a, b, c takes ≤ 4 roundings
+// of terms ≤ M = |p₀| + |p₁| + |m₀h| + |m₁h|, Horner ≤ 6 more, and v = (f − t₀)·(1/h) is off by
+// ≤ 3 roundings, moving the cubic by ≤ 3ε·|p'(v)| ≤ 3ε·6M: under 32·ε·M all together.
+template <class T>
+class TrackPowerForm : public ::testing::Test {};
+using TrackScalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(TrackPowerForm, TrackScalars);
+
+TYPED_TEST(TrackPowerForm, MatchesTheHermiteBasisInLongDouble) {
+  using T = TypeParam;
+  using L = long double;
+  test::Random rng(test::seed_for(1205));
+  SCOPED_TRACE(rng.trace());
+  for (int round = 0; round < 20; ++round) {
+    std::vector<TrackKey<T>> keys;
+    T f = rng.uniform<T>(T(-10), T(10));
+    for (int i = 0; i < 12; ++i) {
+      TrackKey<T> k;
+      k.frame = f;
+      k.value = rng.uniform<T>(T(-5), T(5));
+      k.tangent = TangentKind(rng.integer(0, 7));
+      k.in_tangent = rng.uniform<T>(T(-3), T(3));
+      k.out_tangent = rng.uniform<T>(T(-3), T(3));
+      keys.push_back(k);
+      f += rng.uniform<T>(T(0.01), T(4));
+    }
+    const auto tr = build_track(keys);
+    ASSERT_TRUE(tr.has_value()) << tr.error().describe();
+    const auto fr = tr->frames();
+    const auto val = tr->values();
+    const auto in = tr->in_tangents();
+    const auto out = tr->out_tangents();
+    TrackCursor cursor;
+    for (std::size_t i = 0; i + 1 < fr.size(); ++i) {
+      for (int s = 1; s < 16; ++s) {
+        const T frame = fr[i] + (fr[i + 1] - fr[i]) * T(s) / T(16);
+        if (!(frame > fr[i] && frame < fr[i + 1])) continue;
+        const L h = L(fr[i + 1]) - L(fr[i]), v = (L(frame) - L(fr[i])) / h;
+        const L m0 = L(out[i]) * h, m1 = L(in[i + 1]) * h;
+        const L want = tr->stepped(i) ? L(val[i])
+                                      : L(val[i]) * (2 * v * v * v - 3 * v * v + 1) + m0 * (v * v * v - 2 * v * v + v) +
+                                            L(val[i + 1]) * (-2 * v * v * v + 3 * v * v) + m1 * (v * v * v - v * v);
+        const L scale = std::abs(L(val[i])) + std::abs(L(val[i + 1])) + std::abs(m0) + std::abs(m1);
+        const L budget = 32 * L(std::numeric_limits<T>::epsilon()) * scale;
+        EXPECT_LE(std::abs(L(tr->sample(frame)) - want), budget) << "segment " << i << " frame " << frame;
+        EXPECT_LE(std::abs(L(tr->sample(frame, cursor)) - want), budget) << "cursor, segment " << i;
+      }
+    }
+  }
+}
+}  // namespace
+}  // namespace inbetween

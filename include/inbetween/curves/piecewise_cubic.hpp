@@ -7,16 +7,40 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "inbetween/curves/curve.hpp"
+#include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/format.hpp"
 #include "inbetween/math/vec.hpp"
 
 namespace inbetween {
+
+/// Explicit cache of a sequential sweep over one PiecewiseCubic (ozz-style: the caller owns it):
+/// the segment last used, its domain [lo, hi) and 1/(hi − lo).  While the parameter stays in that
+/// segment, PiecewiseCubic::point(u, cursor) needs no knot search and no division.  A cursor
+/// belongs to one curve object: used with another one (or with a copy) it notices the different
+/// address and refills itself; reset it to `{}` if a curve is destroyed and another is built at
+/// the same address.  Value-initialised: empty (the first query fills it).
+template <Real T>
+struct PiecewiseCursor {
+  const void* curve = nullptr;  ///< the curve whose segment is cached (nullptr: empty)
+  int segment = 0;              ///< index of the cached segment
+  T lo{};                       ///< u at the start of the cached segment
+  T hi{};                       ///< u at its end (exclusive, except at the end of the domain)
+  T inv_span{};                 ///< 1/(hi − lo)
+};
+
+/// Relative bound of |point(u, cursor) − point(u)| per component, in units of the segment's
+/// |a| + |b| + |c| + |d|: v = (u − lo)·(1/h) and (u − lo)/h differ by at most 3 roundings (3ε·v),
+/// which moves P by at most (3|a| + 2|b| + |c|)·3ε, and the two Horner evaluations each round by at
+/// most 6ε·Σ|coefficient| (Higham, Accuracy and Stability, §5.1): 9ε + 12ε < 24ε.
+template <Real T>
+inline constexpr T piecewise_cursor_tolerance = T(24) * std::numeric_limits<T>::epsilon();
 
 /// A C⁰ chain of cubic segments with the queries of the Curve, PiecewiseCubicCurve,
 /// ControlledCurve and SegmentedCurve concepts.  A default-constructed object is the constant zero
@@ -90,6 +114,30 @@ class PiecewiseCubic {
   }
   /// P(u), u clamped into domain().
   P point(T u) const noexcept { return derivative(u, 0); }
+  /// P(u) for sequential sweeps, u clamped into domain(): while u stays in the cursor's segment,
+  /// no knot search and a multiplication by the cached 1/span instead of point(u)'s division, so
+  /// the result may differ from point(u) by rounding: within piecewise_cursor_tolerance<T>·
+  /// (|a| + |b| + |c| + |d|) per component of the segment's power form (tested).  Never allocates.
+  P point(T u, PiecewiseCursor<T>& cursor) const noexcept {
+    if (cursor.curve == this && u >= cursor.lo && u < cursor.hi) [[likely]]
+      return segments_[cursor.segment].point((u - cursor.lo) * cursor.inv_span);
+    return point_refill(u, cursor);
+  }
+  /// out[k] = point(u[k], cursor) for every k (spans of equal size).  Runs of parameters in one
+  /// segment are evaluated in a tight loop over the caller's parameters (fastest when u is
+  /// sorted); identical to the single form, value for value.  Never allocates.
+  void points(std::span<const T> u, std::span<P> out, PiecewiseCursor<T>& cursor) const noexcept {
+    INBETWEEN_ASSERT(u.size() == out.size());
+    std::size_t k = 0;
+    const std::size_t n = u.size();
+    while (k < n) {
+      out[k] = point(u[k], cursor);
+      ++k;
+      const PowerCubic<P> g = segments_[cursor.segment];
+      const T lo = cursor.lo, hi = cursor.hi, inv = cursor.inv_span;
+      for (; k < n && u[k] >= lo && u[k] < hi; ++k) out[k] = g.point((u[k] - lo) * inv);
+    }
+  }
   /// d^kP/du^k (k = 0..3; zero beyond), right limit at joints, u clamped into domain().
   P derivative(T u, int k) const noexcept {
     u = domain().clamp(u);
@@ -123,6 +171,21 @@ class PiecewiseCubic {
   }
 
  protected:
+  /// The cursor's slow path: clamp, binary search, refill, evaluate as the fast path does.
+  P point_refill(T u, PiecewiseCursor<T>& cursor) const noexcept {
+    // NaN compares false everywhere and clamps to itself: evaluate it without caching (the
+    // result is NaN, as point(NaN) is).
+    if (std::isnan(u)) return point(u);
+    u = domain().clamp(u);
+    const int i = segment_at(u);
+    cursor.curve = this;
+    cursor.segment = i;
+    cursor.lo = breaks_[i];
+    cursor.hi = breaks_[i + 1];
+    cursor.inv_span = T(1) / (cursor.hi - cursor.lo);
+    return segments_[i].point(std::clamp((u - cursor.lo) * cursor.inv_span, T(0), T(1)));
+  }
+
   /// Checks a freshly built chain: breakpoints finite and strictly increasing, and every segment
   /// bounded on v ∈ [0, 1] (|a| + |b| + |c| + |d| finite per component, which bounds every Horner
   /// step).  Finite inputs can still fail (coordinates or tangents near the largest value, or

@@ -9,6 +9,7 @@
 #include <array>
 #include <type_traits>
 #include <cmath>
+#include <cstring>
 
 #include "inbetween/math/euler.hpp"
 #include "inbetween/math/mat.hpp"
@@ -186,11 +187,18 @@ template <Real W, int N>
 /// path's double weights at 2^-12 (both far below the rounding of the result).
 template <Real T>
 inline constexpr double fast_slerp_near_cut = sizeof(T) <= 4 ? 0x1p-12 : 0x1p-20;
+
+/// Below this distance c of cos θ from 1 the near path's correction c_a·a, c_b·b is dropped: it is
+/// at most c/3 relative (|b₁| ≤ |y|/3), mostly along a (the result's norm: ≤ 2^-23.6 in float,
+/// 2^-51.6 in double, inside fast_slerp_max_error_rad), and its part across a is ≤ (c/3)·θ with
+/// θ ≤ √(2.1c): 6e-11 rad in float, 5e-24 rad in double.  That leaves glm's blend a + u(b − a).
+template <Real T>
+inline constexpr double fast_slerp_lerp_cut = sizeof(T) <= 4 ? 0x1p-22 : 0x1p-50;
 }  // namespace detail
 
 /// Largest rotation-angle error (radians) of fast_slerp() against slerp() evaluated in long double
 /// on the same inputs, over unit inputs and u in [0, 1]: about twice the measured maximum
-/// (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.2e-7 in float, 7.2e-16 in
+/// (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.1e-7 in float, 6.2e-16 in
 /// double, over random, nearly identical, nearly opposite and museum pairs).  glm and Eigen slerp
 /// measure 1.9e-7 to 2.3e-7 (float) and 3e-16 to 4e-16 (double) on the benchmark's pairs
 /// (bench/RESULTS.md).
@@ -211,25 +219,62 @@ inline constexpr T fast_slerp_max_error_rad = sizeof(T) <= 4 ? T(4e-7) : T(1.5e-
 template <Real T>
 [[gnu::always_inline]] inline Quat<T> fast_slerp(const Quat<T>& a, const Quat<T>& b, T u) noexcept {
   using W = detail::fast_slerp_weight_t<T>;
-  const W d = W(a.w) * W(b.w) + W(a.x) * W(b.x) + W(a.y) * W(b.y) + W(a.z) * W(b.z);
+  using L = detail::fast_slerp_lanes<W>;
+  // Nearly identical ends (cos θ within fast_slerp_near_cut of 1), decided and computed in T: with
+  // y = cos θ − 1, the weights are (1 − u)(1 + c_a) and u(1 + c_b) with c = b₁(1 + b₂) of the
+  // series (two terms, see fast_slerp_near_cut), and the result is formed as
+  //   q = a + [u·(b − a) + (1 − u)c_a·a + u·c_b·b],
+  // whose bracket is O(θ): its roundings are relative to θ, so the result carries one rounding of
+  // the final addition (½ ulp per component) — no conversion to W and no normalisation needed.
+  // The rounding of the dot product in T (about 2ε) moves y, hence c_a and c_b, which changes the
+  // result mostly along a (its norm, by ≤ 2ε/3) and along the arc by O(ε·θ).
+  using V4 [[gnu::vector_size(4 * sizeof(T))]] = T;  // (w, x, y, z): SSE registers
+  static_assert(sizeof(Quat<T>) == sizeof(V4));
+  V4 va, vb;
+  std::memcpy(&va, &a, sizeof va);
+  std::memcpy(&vb, &b, sizeof vb);
+  const V4 pr = va * vb;
+  const T dt = (pr[0] + pr[1]) + (pr[2] + pr[3]);
+  if (std::abs(dt) > T(1) - T(detail::fast_slerp_lerp_cut<T>)) {
+    // Ends within rounding of each other: the plain blend a + u(b − a), see fast_slerp_lerp_cut.
+    const V4 vbs = vb * std::copysign(T(1), dt);
+    const V4 r = va + (vbs - va) * u;
+    Quat<T> q;
+    std::memcpy(&q, &r, sizeof q);
+    return q;
+  }
+  if (std::abs(dt) > T(1) - T(detail::fast_slerp_near_cut<T>)) {
+    const T sign = std::copysign(T(1), dt);
+    const T y = std::min(std::abs(dt), T(1)) - T(1);  // cos θ − 1 in [−cut, 0]
+    const T sa = T(1) - u, sb = u;
+    const auto c = [y](T s) {  // b₁(1 + b₂), b_i = (s²/(i(2i+1)) − i/(2i+1))·y
+      const T s2 = s * s;
+      return ((s2 - T(1)) * T(1.0 / 3.0) * y) * (T(1) + (s2 * T(0.1) - T(0.4)) * y);
+    };
+    const T ka = sa * c(sa), kb = sb * c(sb);
+    const V4 vbs = vb * sign;
+    const V4 r = va + ((vbs - va) * u + (va * ka + vbs * kb));
+    Quat<T> q;
+    std::memcpy(&q, &r, sizeof q);
+    return q;
+  }
+  const W d = std::is_same_v<T, W> ? W(dt) : W(a.w) * W(b.w) + W(a.x) * W(b.x) + W(a.y) * W(b.y) + W(a.z) * W(b.z);
   // Shortest arc: b → −b when a·b < 0, as slerp() (d + 0 turns −0 into +0; branch-free).
   const W sign = std::copysign(W(1), d + W(0));
   const W x = std::min(std::abs(d), W(1));  // cos θ in [0, 1]
-  if (x > W(1) - W(detail::fast_slerp_near_cut<T>)) {
-    // Nearly identical ends: two terms of the series in cos θ − 1 itself, no root, no division.
-    const detail::fast_slerp_lanes<W> w = detail::sin_ratio_series<W, 2>(detail::fast_slerp_lanes<W>{W(1) - W(u), W(u)}, x - W(1));
-    const W wa = w[0], wb = w[1] * sign;
-    return {T(W(a.w) * wa + W(b.w) * wb), T(W(a.x) * wa + W(b.x) * wb), T(W(a.y) * wa + W(b.y) * wb),
-            T(W(a.z) * wa + W(b.z) * wb)};
-  }
   const W h = std::sqrt(W(0.5) + W(0.5) * x);  // cos(θ/2) in [cos(π/4), 1]
-  const W k = W(1) / (W(4) * h * (h + W(1)));
-  const W y = (x - W(1)) * (W(2) * h) * k;  // cos(θ/2) − 1 = (x − 1)/(2(h + 1)), no cancellation
-  const W inv = W(2) * (h + W(1)) * k;      // 1/(2 cos(θ/2)) = sin(θ/2)/sin θ
+  W y;
+  if constexpr (std::is_same_v<T, W>) {
+    y = (x - W(1)) / (W(2) * (h + W(1)));  // cos(θ/2) − 1 without cancellation
+  } else {
+    // Float inputs, double weights: h − 1 directly (no division on the critical path).  Its
+    // cancellation costs a relative 2⁻⁵³/|y| ≤ 2⁻³⁹ (|y| ≥ cut/4 = 2⁻¹⁴ here): far below float.
+    y = h - W(1);
+  }
+  const W inv = W(0.5) / h;  // 1/(2 cos(θ/2)) = sin(θ/2)/sin θ, off the series' critical path
   // sin(uθ)/sin θ = [sin(2u·θ/2)/sin(θ/2)]·[sin(θ/2)/sin θ]
   constexpr int n = detail::fast_slerp_terms<T>;
-  const detail::fast_slerp_lanes<W> w =
-      detail::sin_ratio_series<W, n>(detail::fast_slerp_lanes<W>{W(2) * (W(1) - W(u)), W(2) * W(u)}, y) * inv;
+  const L w = detail::sin_ratio_series<W, n>(L{W(2) * (W(1) - W(u)), W(2) * W(u)}, y) * inv;
   const W wa = w[0], wb = w[1] * sign;
   // Blended in W too, so that a float result is rounded once per component.
   return {T(W(a.w) * wa + W(b.w) * wb), T(W(a.x) * wa + W(b.x) * wb), T(W(a.y) * wa + W(b.y) * wb),

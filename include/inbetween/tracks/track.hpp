@@ -124,16 +124,53 @@ class Track {
   }
   /// Value at `frame`, starting the segment search from `cursor` and updating it: O(1) when
   /// frames advance (or go back) by less than a segment per call.
-  [[nodiscard]] V sample(T frame, TrackCursor& cursor) const noexcept { return sample(frame, cursor, true); }
-  /// out[i] = sample(frames[i], cursor); spans of equal size; no allocation.
+  [[nodiscard]] V sample(T frame, TrackCursor& cursor) const noexcept {
+    // Fast path of sequential playback, inline at the call site: the frame is strictly inside
+    // the cursor's segment (NaN fails both comparisons), so no extend mode, search or end-key case
+    // applies.  The same power form as the full path below: identical values.
+    const std::size_t i = cursor.segment;
+    if (i + 1 < frames_.size() && frame > frames_[i] && frame < frames_[i + 1]) [[likely]]
+      return segments_[i].value(frame - frames_[i]);
+    return sample(frame, cursor, true);
+  }
+  /// out[i] = sample(frames[i], cursor); spans of equal size; no allocation.  Frames that fall in
+  /// the same segment one after another are evaluated in a run (the segment's power form kept in
+  /// registers, no per-frame search or extend checks); the values equal the single form's bit for
+  /// bit, because both evaluate the same power form.
   void sample(std::span<const T> frames, std::span<V> out, TrackCursor& cursor) const noexcept {
     INBETWEEN_ASSERT(frames.size() == out.size());
-    for (std::size_t i = 0; i < frames.size(); ++i) out[i] = sample(frames[i], cursor, true);
+    const std::size_t count = frames.size(), n = frames_.size();
+    std::size_t k = 0;
+    while (k < count) {
+      out[k] = sample(frames[k], cursor, true);
+      ++k;
+      const std::size_t i = cursor.segment;
+      if (i + 1 >= n) continue;
+      const T t0 = frames_[i], t1 = frames_[i + 1];
+      const Segment g = segments_[i];
+      // Find the run first, then evaluate it in a counted loop the compiler can vectorise.
+      std::size_t end = k;
+      while (end < count && frames[end] > t0 && frames[end] < t1) ++end;
+      for (; k < end; ++k) out[k] = g.value(frames[k] - t0);
+    }
   }
 
  private:
   template <class W>
   friend Expected<Track<W>> build_track(std::span<const TrackKey<W>> keys, TrackExtend before, TrackExtend after);
+
+  /// Segment i's Hermite cubic pre-converted to power form in v = (frame − t_i)/h (built once):
+  /// ((a·v + b)·v + c)·v + d with a = 2(p₀ − p₁) + m₀ + m₁, b = 3(p₁ − p₀) − 2m₀ − m₁, c = m₀,
+  /// d = p₀, m₀ = out_i·h, m₁ = in_{i+1}·h; a stepped segment is the constant p₀ (a = b = c = 0).
+  struct Segment {
+    V a{}, b{}, c{}, d{};  ///< power-form coefficients
+    T inv_span{};          ///< 1/h (+inf when h is subnormal: v is then clamped to 1)
+    /// The value at `offset` = frame − t_i in (0, h).
+    [[gnu::always_inline]] V value(T offset) const noexcept {
+      const T v = std::min(offset * inv_span, T(1));
+      return ((a * v + b) * v + c) * v + d;
+    }
+  };
 
   Track() = default;  // only build_track() makes tracks: a Track always has ≥ 1 key
   V sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept;
@@ -142,6 +179,7 @@ class Track {
   std::vector<T> frames_;
   std::vector<V> values_, in_, out_;
   std::vector<std::uint8_t> stepped_;
+  std::vector<Segment> segments_;  // n − 1 power-form segments (sampling's working form)
   TrackExtend before_ = TrackExtend::constant, after_ = TrackExtend::constant;
 };
 
@@ -289,6 +327,26 @@ Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend be
     tr.in_[i] = in;
     tr.out_[i] = out;
   }
+  tr.segments_.resize(n - 1);
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    typename Track<V>::Segment& g = tr.segments_[i];
+    const T h = tr.frames_[i + 1] - tr.frames_[i];
+    g.inv_span = T(1) / h;
+    g.d = tr.values_[i];
+    if (tr.stepped_[i]) continue;  // the constant p₀
+    const V p0 = tr.values_[i], p1 = tr.values_[i + 1];
+    const V m0 = tr.out_[i] * h, m1 = tr.in_[i + 1] * h;
+    g.a = (p0 - p1) * T(2) + m0 + m1;
+    g.b = (p1 - p0) * T(3) - m0 * T(2) - m1;
+    g.c = m0;
+    // Finite keys and slopes can still overflow here (values near the type's maximum, or a slope
+    // times a huge key spacing): reject, so that no built track evaluates to inf or NaN.
+    if (!track_detail::finite(g.a) || !track_detail::finite(g.b) || !track_detail::finite(g.c))
+      return fail(ErrorCode::NotFinite,
+                  "the segment after this key overflows (values or tangents times the key spacing too large for the "
+                  "scalar type)",
+                  {"keys", i});
+  }
   return tr;
 }
 
@@ -312,20 +370,19 @@ V Track<V>::evaluate_inside(T frame, TrackCursor& cursor, bool use_cursor) const
   const T t0 = frames_[i], t1 = frames_[i + 1];
   if (frame <= t0) return values_[i];
   if (frame >= t1) return values_[i + 1];
-  if (stepped_[i]) return values_[i];
-  const T h = t1 - t0;
-  const T u = (frame - t0) / h;
-  const T u2 = u * u, u3 = u2 * u;
-  const T h00 = T(2) * u3 - T(3) * u2 + T(1);
-  const T h10 = u3 - T(2) * u2 + u;
-  const T h01 = T(-2) * u3 + T(3) * u2;
-  const T h11 = u3 - u2;
-  return values_[i] * h00 + out_[i] * (h10 * h) + values_[i + 1] * h01 + in_[i + 1] * (h11 * h);
+  return segments_[i].value(frame - t0);
 }
 
 template <class V>
 V Track<V>::sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept {
   const std::size_t n = frames_.size();
+  // Fast path of sequential playback: the frame is strictly inside the cursor's segment (NaN
+  // fails both comparisons), so no extend mode, search or end-key case applies.
+  if (use_cursor) {
+    const std::size_t i = cursor.segment;
+    if (i + 1 < n && frame > frames_[i] && frame < frames_[i + 1]) [[likely]]
+      return segments_[i].value(frame - frames_[i]);
+  }
   if (std::isnan(frame) || n == 1) return values_[0];
   // ±inf acts as the largest finite frame: linear extension would give 0·inf and the cycle modes
   // inf − inf, both NaN.
