@@ -750,9 +750,17 @@ class Plotter {
   // pieces) as (frame, label) markers.
   void ease_markers(const RawPathLeg& leg, std::vector<std::pair<double, std::string>>& out) const {
     const RawSpeed& s = leg.speed;
-    // Keyed forms: their keys are where the speed form changes piece (the acceleration may jump).
+    // Keyed forms: their keys are where the speed form changes piece (the acceleration may jump;
+    // constraint tuples are C² only where they give an acceleration, acceleration keys of shape
+    // constant jump at every key).
     if (s.kind == SpeedKind::distance_keys) {
       for (std::size_t k = 0; k < s.keys.size(); ++k) out.emplace_back(s.keys[k].frame, "key " + std::to_string(k));
+    } else if (s.kind == SpeedKind::constraints) {
+      for (std::size_t k = 0; k < s.keys.size(); ++k) out.emplace_back(s.keys[k].frame, "constraint " + std::to_string(k));
+    } else if (s.kind == SpeedKind::acceleration_keys) {
+      for (std::size_t k = 0; k < s.accelerations.size(); ++k) {
+        out.emplace_back(s.accelerations[k].frame, "a key " + std::to_string(k));
+      }
     } else if (s.kind == SpeedKind::velocity_keys) {
       for (std::size_t k = 0; k < s.velocities.size(); ++k) out.emplace_back(s.velocities[k].frame, "v key " + std::to_string(k));
     } else if (s.kind == SpeedKind::track) {

@@ -260,7 +260,7 @@ class Writer {
     if (s.fraction) j["fraction"] = true;
     if (s.repair) j["repair"] = true;
     if (s.kind == SpeedKind::ease) j["ease"] = ease(s.ease, at(loc, "ease"));
-    if (s.kind == SpeedKind::distance_keys) {
+    if (s.kind == SpeedKind::distance_keys || s.kind == SpeedKind::constraints) {
       json keys = json::array();
       for (std::size_t i = 0; i < s.keys.size(); ++i) {
         const auto kl = at(at(loc, "keys"), i);
@@ -268,6 +268,8 @@ class Writer {
         kj["frame"] = number(s.keys[i].frame, at(kl, "frame"));
         kj["distance"] = number(s.keys[i].distance, at(kl, "distance"));
         if (s.keys[i].speed) kj["speed"] = number(*s.keys[i].speed, at(kl, "speed"));
+        // Read for both kinds (src/io/scene_v2.cpp); the builder refuses it on distance_keys.
+        if (s.keys[i].acceleration) kj["acceleration"] = number(*s.keys[i].acceleration, at(kl, "acceleration"));
         keys.push_back(std::move(kj));
       }
       j["keys"] = std::move(keys);
@@ -285,6 +287,19 @@ class Writer {
       j["velocities"] = std::move(keys);
     }
     if (s.fit != d.fit) j["fit"] = std::string(to_string(s.fit));
+    if (s.kind == SpeedKind::acceleration_keys) {
+      json keys = json::array();
+      for (std::size_t i = 0; i < s.accelerations.size(); ++i) {
+        const auto kl = at(at(loc, "accelerations"), i);
+        json kj = json::object();
+        kj["frame"] = number(s.accelerations[i].frame, at(kl, "frame"));
+        kj["acceleration"] = number(s.accelerations[i].acceleration, at(kl, "acceleration"));
+        keys.push_back(std::move(kj));
+      }
+      j["accelerations"] = std::move(keys);
+      if (s.shape != d.shape) j["shape"] = std::string(to_string(s.shape));
+      if (s.start_speed != d.start_speed) j["start_speed"] = number(s.start_speed, at(loc, "start_speed"));
+    }
     if (s.kind == SpeedKind::track) j["track"] = leg.speed_track;
     return j;
   }
@@ -308,6 +323,7 @@ class Writer {
       if (o.banking->lean_out) bj["lean_out"] = true;
       j["banking"] = std::move(bj);
     }
+    if (o.closing != RmfClosing::automatic) j["closing"] = std::string(to_string(o.closing));
     if (leg.local_rotation_keys) {
       json rj = json::object();
       quat_keys(rj, leg.local_rotation_keys->keys, leg.local_rotation_keys->distance_factor, leg.local_rotation_keys->time_aware,

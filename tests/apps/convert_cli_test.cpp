@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "support/cli.hpp"
 
@@ -32,6 +33,22 @@ TEST(ConvertCli, WritesGlbAndReportsEveryChannel) {
   const std::string gltf = inbetween::test::slurp(inbetween::test::test_dir() / "zoo.gltf");
   EXPECT_NE(gltf.find("\"asset\""), std::string::npos);
   EXPECT_NE(gltf.find("data:application/octet-stream;base64,"), std::string::npos);
+}
+
+// Every example scene converts to a GLB (reach_and_grasp.json's new speed kinds and
+// surface_walk.json's surface paths go through the built Scene like any path object).
+TEST(ConvertCli, EveryExampleSceneWritesAGlb) {
+  std::vector<fs::path> scenes;
+  for (const auto& e : fs::directory_iterator(fs::path(INBETWEEN_SOURCE_DIR) / "examples/scenes")) {
+    if (e.path().extension() == ".json") scenes.push_back(e.path());
+  }
+  ASSERT_GE(scenes.size(), 4u);
+  for (const fs::path& scene : scenes) {
+    const fs::path out = inbetween::test::test_dir() / (scene.stem().string() + ".glb");
+    const auto r = run_cli("convert '" + scene.string() + "' '" + out.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << scene << ": " << r.err;
+    EXPECT_EQ(inbetween::test::slurp(out).substr(0, 4), "glTF") << scene;
+  }
 }
 
 TEST(ConvertCli, BadInputExitsTwoWithoutOutput) {
@@ -64,10 +81,12 @@ TEST(ConvertCli, BadInputExitsTwoWithoutOutput) {
 
 
 // `convert SCENE.json OUT.json` (version 2: paths, path objects, cameras): the written scene bakes
-// exactly as the source (the CSV of both, byte for byte), for frame22 and for the scene with every
-// version-2 member.
+// exactly as the source (the CSV of both, byte for byte), for frame22, for the scene with every
+// version-2 member, for reach_and_grasp.json (constraint tuples, acceleration keys) and for
+// surface_walk.json (surface paths, written as their fitted curves).
 TEST(ConvertCli, SceneToSceneKeepsPathsAndCameras) {
-  for (const char* file : {"examples/scenes/frame22.json", "tests/data/scenes/v2_every_member.json"}) {
+  for (const char* file : {"examples/scenes/frame22.json", "tests/data/scenes/v2_every_member.json",
+                           "examples/scenes/reach_and_grasp.json", "examples/scenes/surface_walk.json"}) {
     const std::string in = std::string(INBETWEEN_SOURCE_DIR) + "/" + file;
     const fs::path out = inbetween::test::test_dir() / "copy.json";
     const auto c = run_cli("convert '" + in + "' '" + out.string() + "'");

@@ -78,6 +78,24 @@ TEST(PlotCli, WritesEveryPlotAndAnIndex) {
   EXPECT_NE(slurp(cube / "tracks/camera.orientation.svg").find("angle_deg(camera.orientation)"), std::string::npos);
 }
 
+// The constraint tuples and acceleration keys of scene format 2 are marked on the speed plots like
+// distance keys (tests/data/scenes/plot_speed_forms.json: "constrained" has 4 tuples at frames
+// 3, 15, 30, 42; "ramped" 4 acceleration keys at 0, 12, 30, 38), at their frames.
+TEST(PlotCli, MarksConstraintTuplesAndAccelerationKeys) {
+  const fs::path out = test_dir() / "speed_forms";
+  fs::remove_all(out);
+  const std::string scene = std::string(INBETWEEN_SOURCE_DIR) + "/tests/data/scenes/plot_speed_forms.json";
+  const CliRun r = run_cli("plot " + qp(scene) + " -o " + qp(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string constrained = slurp(out / "paths/constrained-speed.svg");
+  for (int k = 0; k < 4; ++k) EXPECT_NE(constrained.find("constraint " + std::to_string(k)), std::string::npos) << k;
+  EXPECT_EQ(constrained.find("constraint 4"), std::string::npos);
+  const std::string ramped = slurp(out / "paths/ramped-speed.svg");
+  for (int k = 0; k < 4; ++k) EXPECT_NE(ramped.find("a key " + std::to_string(k)), std::string::npos) << k;
+  EXPECT_EQ(ramped.find("a key 4"), std::string::npos);
+  EXPECT_NE(slurp(out / "paths/accelerated-speed.svg").find("a key 3"), std::string::npos);
+}
+
 TEST(PlotCli, GltfInput) {
   const fs::path out = test_dir() / "glb";
   fs::remove_all(out);

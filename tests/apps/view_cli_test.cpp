@@ -98,6 +98,35 @@ TEST(ViewCli, EmbedsTheValuesBakeWritesAndFetchesNothing) {
   EXPECT_NEAR(legs[1].back()[1].get<double>(), 10, 1e-12);
 }
 
+// Every example scene (reach_and_grasp.json's constraint tuples and acceleration keys,
+// surface_walk.json's surface paths included) gives a page whose rows are its bake.
+TEST(ViewCli, EveryExampleSceneEmbedsItsBake) {
+  if (!has_preview()) GTEST_SKIP() << "built without the preview page (esbuild or tools/threejs missing: make deps)";
+  std::vector<fs::path> scenes;
+  for (const auto& e : fs::directory_iterator(fs::path(INBETWEEN_SOURCE_DIR) / "examples/scenes")) {
+    if (e.path().extension() == ".json") scenes.push_back(e.path());
+  }
+  ASSERT_GE(scenes.size(), 4u);
+  for (const fs::path& scene : scenes) {
+    SCOPED_TRACE(scene.filename().string());
+    const fs::path page = test_dir() / (scene.stem().string() + ".html");
+    auto r = run_cli("view '" + scene.string() + "' -o '" + page.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto data = embedded_data(slurp(page));
+    ASSERT_TRUE(data.is_object()) << "no embedded data";
+    r = run_cli("bake '" + scene.string() + "' --format json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto bake = nlohmann::json::parse(r.out);
+    ASSERT_EQ(data["rows"].size(), bake["rows"].size());
+    ASSERT_GT(data["rows"].size(), 1u);
+    for (std::size_t i = 0; i < data["rows"].size(); ++i) {
+      for (std::size_t c = 0; c < data["columns"].size(); ++c)
+        ASSERT_EQ(data["rows"][i][c].get<double>(), bake["rows"][i][c + 2].get<double>())
+            << data["columns"][c] << " at frame " << data["frames"][i];
+    }
+  }
+}
+
 TEST(ViewCli, FramesOptionPicksTheRows) {
   if (!has_preview()) GTEST_SKIP() << "built without the preview page";
   const fs::path page = test_dir() / "p.html";

@@ -43,8 +43,9 @@ struct Loaded {
   Scene scene;
 };
 
+// The path is given so that files the scene names (surface_walk.json's mesh) resolve beside it.
 Loaded load(const fs::path& p) {
-  auto raw = read_scene_json(test::slurp(p));
+  auto raw = read_scene_json(test::slurp(p), p.string());
   EXPECT_TRUE(raw) << raw.error().describe();
   auto scene = build_scene(*raw);
   EXPECT_TRUE(scene) << scene.error().describe();

@@ -176,14 +176,18 @@ TEST(SceneWrite, NonFiniteNumberIsRefusedWithItsPlace) {
 }
 
 
-// Version 2: paths, path legs (every speed kind, ease families with parameters, orientation modes
-// with banking, constant and keyed local rotation, look_at a point or an object) and cameras
-// (every COI mode, up, up_path, tilt, tilt_track, a camera under a path object) survive
-// read → write → read: the second write equals the first, the members are in the text, and both
-// scenes bake the same bit for bit.  tests/data/scenes/v2_every_member.json (every member away
-// from its default; built by build_scene) and examples/scenes/frame22.json.
+// Version 2: paths, path legs (every speed kind — constraint tuples with key accelerations and
+// acceleration keys with shape and start speed included —, ease families with parameters,
+// orientation modes with banking and RMF closing, constant and keyed local rotation, look_at a
+// point or an object) and cameras (every COI mode, up, up_path, tilt, tilt_track, a camera under a
+// path object) survive read → write → read: the second write equals the first, the members are in
+// the text, and both scenes bake the same bit for bit.  tests/data/scenes/v2_every_member.json
+// (every member away from its default; built by build_scene), examples/scenes/frame22.json,
+// reach_and_grasp.json (both new speed kinds) and surface_walk.json (surface paths: resolved to
+// their fitted curve at read time, so the writer writes that curve, and the bake must not move).
 TEST(SceneWrite, Version2PathsAndCamerasSurviveWriteThenRead) {
-  for (const char* file : {"tests/data/scenes/v2_every_member.json", "examples/scenes/frame22.json"}) {
+  for (const char* file : {"tests/data/scenes/v2_every_member.json", "examples/scenes/frame22.json",
+                           "examples/scenes/reach_and_grasp.json", "examples/scenes/surface_walk.json"}) {
     SCOPED_TRACE(file);
     const std::string path = std::string(INBETWEEN_SOURCE_DIR) + "/" + file;
     auto raw = read_scene_json(test::slurp(path), path);
@@ -226,7 +230,12 @@ TEST(SceneWrite, Version2PathsAndCamerasSurviveWriteThenRead) {
         "\"kind\": \"track\"", "\"track\": \"dist\"", "\"fraction\": true", "\"frenet\"", "\"cubic_bezier\"", "\"x1\": 0.3",
         "\"sine_pieces\"", "\"k2\": 0.7", "\"yfov_deg\": 30.0", "\"up\": [0.0, 0.0, 1.0]", "\"tilt_deg\": 5.0", "\"count\": 3",
         "\"spread\": 0.5", "\"up_path\": \"a\"", "\"tilt_track\": \"tilt\"", "\"coi_path\": \"b\"", "\"hold_until\": 10.0",
-        "\"move_frames\": 15.0", "\"target\": \"flyer\"", "\"t2\": 0.6", "\"parent\": \"walker\""}) {
+        "\"move_frames\": 15.0", "\"target\": \"flyer\"", "\"t2\": 0.6", "\"parent\": \"walker\"",
+        // paths2's members: constraint tuples with a key acceleration, acceleration keys with their
+        // shape and start speed, the RMF closing.
+        "\"kind\": \"constraints\"", "\"acceleration\": -0.25", "\"kind\": \"acceleration_keys\"", "\"accelerations\"",
+        "\"acceleration\": -0.5", "\"shape\": \"linear\"", "\"start_speed\": 0.5", "\"from\": 0.25", "\"to\": 3.0",
+        "\"closing\": \"none\""}) {
     EXPECT_NE(text->find(member), std::string::npos) << member << "\n" << *text;
   }
 }
