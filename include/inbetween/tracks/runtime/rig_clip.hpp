@@ -214,9 +214,8 @@ Expected<bool> add_vec(Channels& ch, const Track<Vec3<T>>& tr, std::size_t joint
 }
 
 // Sorts a kind's blocks (pushed channel by channel, channel c's at begin[c] …) into stream order.
-template <Real T, class Channels>
+template <Real T, std::size_t B, class Channels>
 void finish_stream(Channels& ch) {
-  constexpr std::size_t B = RigClip<T>::block;
   const std::size_t n = ch.data.size() / B;
   std::vector<std::uint32_t> owner(n), local(n), order(n);
   for (std::size_t c = 0; c < ch.begin.size(); ++c)
@@ -242,10 +241,9 @@ void finish_stream(Channels& ch) {
 // Segment of a channel (its k-th block at data[where[b + k]·B]) whose [lo, hi) holds `frame`,
 // starting from the cursor: a short walk when playback moves a segment or two, a binary search
 // otherwise.  The segments tile (−∞, +∞), so one always answers.
-template <Real T>
+template <Real T, std::size_t B>
 std::uint32_t find_segment(const T* data, const std::uint32_t* where, std::uint32_t count, T frame,
                            std::uint32_t cursor) noexcept {
-  constexpr std::size_t B = RigClip<T>::block;
   const auto lo_of = [&](std::uint32_t k) { return data[std::size_t(where[k]) * B]; };
   const auto hi_of = [&](std::uint32_t k) { return data[std::size_t(where[k]) * B + 1]; };
   std::uint32_t k = std::min(cursor, count - 1);
@@ -264,9 +262,8 @@ std::uint32_t find_segment(const T* data, const std::uint32_t* where, std::uint3
 }
 
 // Copies block src into joint j's column of a kind's cache (groups of G joints, field-major).
-template <Real T, std::size_t G>
+template <Real T, std::size_t G, std::size_t B>
 inline void put_block(const T* src, T* cache, std::size_t j) noexcept {
-  constexpr std::size_t B = RigClip<T>::block;
   T* dst = cache + (j / G) * B * G + j % G;
   for (std::size_t f = 0; f < B; ++f) dst[f * G] = src[f];
 }
@@ -275,10 +272,9 @@ inline void put_block(const T* src, T* cache, std::size_t j) noexcept {
 // whose lo ≤ frame, in time order: each replaces its channel's cached segment, the last one wins);
 // backward playback, or a forward jump past more blocks than twice the channels, finds each
 // stale channel's segment from its cursor and repositions the stream.
-template <Real T, std::size_t G, class Channels>
+template <Real T, std::size_t G, std::size_t B, class Channels>
 inline void advance(const Channels& ch, std::size_t joints, T frame, T previous, std::size_t& next,
                     std::uint32_t* segment, T* cache) noexcept {
-  constexpr std::size_t B = RigClip<T>::block;
   const T* data = ch.data.data();
   const std::size_t n = ch.owner.size();
   if (frame >= previous) {
@@ -287,7 +283,7 @@ inline void advance(const Channels& ch, std::size_t joints, T frame, T previous,
     for (; p < limit && data[p * B] <= frame; ++p) {
       const std::uint32_t c = ch.owner[p];
       segment[c] = ch.local[p];
-      put_block<T, G>(data + p * B, cache, c);
+      put_block<T, G, B>(data + p * B, cache, c);
     }
     if (p == n || data[p * B] > frame) {
       next = p;
@@ -297,9 +293,9 @@ inline void advance(const Channels& ch, std::size_t joints, T frame, T previous,
   for (std::size_t j = 0; j < joints; ++j) {
     const T* col = cache + (j / G) * B * G + j % G;
     if (frame >= col[0] && frame < col[G]) continue;  // cached [lo, hi) still holds frame
-    const std::uint32_t k = find_segment<T>(data, ch.where.data() + ch.begin[j], ch.count[j], frame, segment[j]);
+    const std::uint32_t k = find_segment<T, B>(data, ch.where.data() + ch.begin[j], ch.count[j], frame, segment[j]);
     segment[j] = k;
-    put_block<T, G>(data + std::size_t(ch.where[ch.begin[j] + k]) * B, cache, j);
+    put_block<T, G, B>(data + std::size_t(ch.where[ch.begin[j] + k]) * B, cache, j);
   }
   // First block whose lo > frame.
   std::size_t lo = 0, hi = n;
@@ -385,7 +381,7 @@ Expected<RigClip<T>> build_rig_clip(std::span<const Track<Vec3<T>>> translations
     }
     rig_detail::push_constant_rot<T>(ch.data, f[n - 1], inf_t, k[n - 1]);
   }
-  for (auto& ch : clip.kind_) rig_detail::finish_stream<T>(ch);
+  for (auto& ch : clip.kind_) rig_detail::finish_stream<T, RigClip<T>::block>(ch);
   return clip;
 }
 
@@ -415,7 +411,7 @@ void sample_rig(const RigClip<T>& clip, T frame, RigContext<T>& context, std::sp
   const T big = std::numeric_limits<T>::max();
   frame = frame > -big ? (frame < big ? frame : big) : -big;  // NaN → −big
   for (std::size_t kind = 0; kind < 3; ++kind) {
-    rig_detail::advance<T, W>(clip.kind_[kind], J, frame, context.time, context.next[kind],
+    rig_detail::advance<T, W, B>(clip.kind_[kind], J, frame, context.time, context.next[kind],
                               context.segment.data() + kind * J, context.cache.data() + kind * B * S);
   }
   context.time = frame;
