@@ -10,6 +10,7 @@
 
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
+#include "inbetween/tracks/runtime/fcurve_clip.hpp"
 #include "inbetween/tracks/runtime/rig_clip.hpp"
 #include "inbetween/tracks/track.hpp"
 
@@ -293,6 +294,74 @@ void BM_RigRuntime(benchmark::State& state) {
   }
 }
 
+// The same rig as Blender F-curves: 10 Bézier curves per joint (location xyz, rotation_quaternion
+// wxyz, scale xyz) through the same keys (auto-clamped handles, Blender's default).  Per-curve: one
+// FCurve::sample(frame, cursor) per curve (Blender's root-finding evaluation, with a cursor) and
+// the quaternion normalised, as Blender does; runtime: build_fcurve_rig + sample_fcurve_rig.
+std::vector<FCurve> make_fcurve_rig(int joints) {
+  const auto rig = make_rig<float>(joints);
+  std::vector<FCurve> curves;
+  for (const auto& j : rig) {
+    const auto f = j.translation.frames();
+    for (int k = 0; k < 10; ++k) {
+      RawFCurve raw;
+      for (std::size_t i = 0; i < f.size(); ++i) {
+        const Vec3f t = j.translation.values()[i], s = j.scale.values()[i];
+        const Quatf q = j.rotation.keys()[i];
+        const float v[10] = {t.x, t.y, t.z, q.w, q.x, q.y, q.z, s.x, s.y, s.z};
+        FCurveKey key;
+        key.frame = f[i];
+        key.value = v[k];
+        raw.keys.push_back(key);
+      }
+      curves.push_back(build_fcurve(raw).value());
+    }
+  }
+  return curves;
+}
+
+void BM_RigFCurvePerCurve(benchmark::State& state) {
+  const int joints = int(state.range(0));
+  const auto curves = make_fcurve_rig(joints);
+  const double end = rig_end(make_rig<float>(joints)), step = 1.0 / double(state.range(1));
+  std::vector<TrackCursor> cursors(curves.size());
+  std::vector<JointPose<float>> pose(static_cast<std::size_t>(joints));
+  double frame = 0;
+  for (auto _ : state) {
+    const float f = float(frame);
+    for (std::size_t j = 0; j < pose.size(); ++j) {
+      float v[10];
+      for (std::size_t k = 0; k < 10; ++k) v[k] = curves[10 * j + k].sample(f, cursors[10 * j + k]);
+      pose[j].translation = {v[0], v[1], v[2]};
+      pose[j].rotation = normalized(Quatf::from_wxyz(v[3], v[4], v[5], v[6]));
+      pose[j].scale = {v[7], v[8], v[9]};
+    }
+    benchmark::DoNotOptimize(pose.data());
+    benchmark::ClobberMemory();
+    frame += step;
+    if (frame > end) frame = 0;
+  }
+}
+
+void BM_RigFCurveRuntime(benchmark::State& state) {
+  const int joints = int(state.range(0));
+  const auto curves = make_fcurve_rig(joints);
+  const auto clip = build_fcurve_rig(curves).value();
+  const double end = rig_end(make_rig<float>(joints)), step = 1.0 / double(state.range(1));
+  auto ctx = make_fcurve_context(clip);
+  std::vector<JointPose<float>> pose(static_cast<std::size_t>(joints));
+  double frame = 0;
+  for (auto _ : state) {
+    sample_fcurve_rig(clip, float(frame), ctx, std::span<JointPose<float>>(pose));
+    benchmark::DoNotOptimize(pose.data());
+    benchmark::ClobberMemory();
+    frame += step;
+    if (frame > end) frame = 0;
+  }
+  state.counters["pieces_per_curve"] = double(clip.pieces()) / double(clip.channels());
+  state.counters["max_fit_error"] = double(clip.max_fit_error());
+}
+
 #define RIG_ARGS ->ArgsProduct({{25, 64, 71, 551, 1024}, {2, 8}})
 BENCHMARK(BM_RigPerTrack<float>) RIG_ARGS;
 BENCHMARK(BM_RigPerTrack<double>) RIG_ARGS;
@@ -300,6 +369,8 @@ BENCHMARK(BM_RigMemoryFloor<float>) RIG_ARGS;
 BENCHMARK(BM_RigMemoryFloor<double>) RIG_ARGS;
 BENCHMARK(BM_RigRuntime<float>) RIG_ARGS;
 BENCHMARK(BM_RigRuntime<double>) RIG_ARGS;
+BENCHMARK(BM_RigFCurvePerCurve) RIG_ARGS;
+BENCHMARK(BM_RigFCurveRuntime) RIG_ARGS;
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -270,7 +270,7 @@ inline void put_block(const T* src, T* cache, std::size_t j) noexcept {
 
 // Brings one kind's cache to `frame`.  Forward playback consumes the stream's next blocks (those
 // whose lo ≤ frame, in time order: each replaces its channel's cached segment, the last one wins);
-// backward playback, or a forward jump past more blocks than twice the channels, finds each
+// backward playback, or a forward jump past more blocks than 16 per channel, finds each
 // stale channel's segment from its cursor and repositions the stream.
 template <Real T, std::size_t G, std::size_t B, class Channels>
 inline void advance(const Channels& ch, std::size_t joints, T frame, T previous, std::size_t& next,
@@ -278,7 +278,7 @@ inline void advance(const Channels& ch, std::size_t joints, T frame, T previous,
   const T* data = ch.data.data();
   const std::size_t n = ch.owner.size();
   if (frame >= previous) {
-    const std::size_t limit = std::min(n, next + 2 * joints);
+    const std::size_t limit = std::min(n, next + 16 * joints);
     std::size_t p = next;
     for (; p < limit && data[p * B] <= frame; ++p) {
       const std::uint32_t c = ch.owner[p];
