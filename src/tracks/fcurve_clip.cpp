@@ -229,8 +229,16 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   constexpr std::size_t W = V::size();
   const std::size_t C = clip.channels_;
   INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == B * context.stride);
+  if (std::isnan(frame)) {
+    // As FCurve::sample: the first key's value, c0 of each channel's second piece (it starts at
+    // the first key: its snap band, a constant segment, a fitted piece whose first node is the
+    // key — Blender snaps there — or, for one key, the held end).  Cache and stream are untouched.
+    for (std::size_t i = 0; i < C; ++i)
+      context.values[i] = clip.data_.data[std::size_t(clip.data_.where[clip.data_.begin[i] + 1]) * B + 4];
+    return;
+  }
   const float big = std::numeric_limits<float>::max();
-  frame = frame > -big ? (frame < big ? frame : big) : -big;  // NaN → −big (the first value)
+  frame = frame > -big ? (frame < big ? frame : big) : -big;
   rig_detail::advance<float, W, B>(clip.data_, C, frame, context.time, context.next, context.segment.data(),
                                    context.cache.data());
   context.time = frame;

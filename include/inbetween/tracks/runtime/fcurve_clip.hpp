@@ -106,7 +106,7 @@ class FCurveClip {
 [[nodiscard]] FCurveClip::Context make_fcurve_context(const FCurveClip& clip);
 
 /// Fills out[c] with channel c at `frame` (out.size() == clip.channels()).  Any frame is valid (NaN
-/// reads as the first value, ±inf as the largest finite float); noexcept, no allocation.
+/// gives each curve's first key value as FCurve::sample does, ±inf acts as the largest finite float); noexcept, no allocation.
 void sample_fcurves(const FCurveClip& clip, float frame, FCurveClip::Context& context, std::span<float> out) noexcept;
 
 /// Fills every joint's pose at `frame` (clip from build_fcurve_rig, out.size() == clip.joints()):
