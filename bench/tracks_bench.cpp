@@ -4,12 +4,14 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <map>
 #include <random>
 #include <span>
 #include <vector>
 
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
+#include "inbetween/tracks/runtime/fcurve_clip.hpp"
 #include "inbetween/tracks/runtime/rig_clip.hpp"
 #include "inbetween/tracks/track.hpp"
 
@@ -159,39 +161,49 @@ BENCHMARK(BM_FCurveSequential)->RangeMultiplier(16)->Range(16, 1 << 16);
 
 
 // ---------------------------------------------------------------- whole rigs (issue 12)
-// A character rig of J joints, each with translation and scale Track<Vec3d> (linear keys) and a
-// QuatTrack (slerp keys), 30 keys per channel at uneven frames, played back sequentially (half a
-// frame per call, every joint's three cursors kept) through today's per-track API.  Reported per
-// character and per joint, next to a game's 1 ms animation budget per
-// frame.  Floor: a plain read of the same bytes the sampling touches (the two bracketing keys'
-// frames and values of every channel, found with the same cursors), so the ratio shows how far
-// per-track sampling is from memory-bound.  One iteration = one character; divide by J for a joint.
-// BM_RigRuntime below samples the same rig through the runtime layer.
+// A character rig of J joints, each with translation and scale Track<Vec3<T>> (linear keys) and a
+// QuatTrack (slerp keys), 30 keys per channel at uneven frames (spacing uniform in [0.5, 1.5], so
+// about 1 frame), played back sequentially, every joint's three cursors kept.  Second argument:
+// calls per frame — 2 (half a key interval per call, as before) or 8 (60 Hz playback of keys
+// ~7.5 Hz apart: most calls change no key).  Reported per character (one iteration); divide by J
+// for a joint, compare with a game's 1 ms animation budget per frame.  Floor: a plain read of the
+// same bytes the sampling touches (the two bracketing keys' frames and values of every channel,
+// found with the same cursors), in the same scalar type, so runtime / floor shows how far
+// sampling is from memory-bound.  BM_RigPerTrack: one Track/QuatTrack::sample per channel (the
+// scalar reference API); BM_RigRuntime: the same tracks compiled by build_rig_clip, one
+// sample_rig call per character.  tools/bench/ozz_rig_bench.cpp builds the same clip (same seed)
+// for ozz-animation's SamplingJob out of tree.
+template <class T>
 struct RigJoint {
-  Track<Vec3d> translation, scale;
-  QuatTrack<double> rotation;
+  Track<Vec3<T>> translation, scale;
+  QuatTrack<T> rotation;
 };
 
-std::vector<RigJoint> make_rig(int joints) {
+template <class T>
+std::vector<RigJoint<T>> make_rig(int joints) {
   std::mt19937_64 rng(1212);
   std::uniform_real_distribution<double> d(-1, 1), step(0.5, 1.5);
-  std::vector<RigJoint> rig;
+  std::vector<RigJoint<T>> rig;
   for (int j = 0; j < joints; ++j) {
-    std::vector<TrackKey<Vec3d>> tk, sk;
-    std::vector<QuatKey<double>> rk;
+    std::vector<TrackKey<Vec3<T>>> tk, sk;
+    std::vector<QuatKey<T>> rk;
     double f = 0;
     for (int k = 0; k < 30; ++k) {
-      TrackKey<Vec3d> t;
-      t.frame = f;
-      t.value = {d(rng), d(rng), d(rng)};
+      TrackKey<Vec3<T>> t;
+      t.frame = T(f);
+      const double a = d(rng), b = d(rng), c = d(rng);
+      t.value = {T(a), T(b), T(c)};
       t.tangent = TangentKind::linear;
       tk.push_back(t);
-      TrackKey<Vec3d> sc = t;
-      sc.value = {1 + 0.1 * d(rng), 1 + 0.1 * d(rng), 1 + 0.1 * d(rng)};
+      TrackKey<Vec3<T>> sc = t;
+      const double sa = d(rng), sb = d(rng), scc = d(rng);
+      sc.value = {T(1 + 0.1 * sa), T(1 + 0.1 * sb), T(1 + 0.1 * scc)};
       sk.push_back(sc);
-      QuatKey<double> r;
-      r.frame = f;
-      r.value = Quatd::from_axis_angle(Vec3d{d(rng), d(rng), d(rng) + 2}, 1.5 * d(rng));
+      QuatKey<T> r;
+      r.frame = T(f);
+      const double ax = d(rng), ay = d(rng), az = d(rng), ang = d(rng);
+      const Quatd qd = Quatd::from_axis_angle(Vec3d{ax, ay, az + 2}, 1.5 * ang);
+      r.value = Quat<T>::from_wxyz(T(qd.w), T(qd.x), T(qd.y), T(qd.z));
       r.interpolation = QuatInterpolation::slerp;
       rk.push_back(r);
       f += step(rng);
@@ -201,53 +213,56 @@ std::vector<RigJoint> make_rig(int joints) {
   return rig;
 }
 
-double rig_end(const std::vector<RigJoint>& rig) {
+template <class T>
+double rig_end(const std::vector<RigJoint<T>>& rig) {
   double end = 1e300;
-  for (const auto& j : rig) end = std::min({end, j.translation.frames().back(), j.rotation.frames().back()});
+  for (const auto& j : rig) end = std::min({end, double(j.translation.frames().back()), double(j.rotation.frames().back())});
   return end;
 }
 
+template <class T>
 void BM_RigPerTrack(benchmark::State& state) {
-  const auto rig = make_rig(int(state.range(0)));
-  const double end = rig_end(rig);
+  const auto rig = make_rig<T>(int(state.range(0)));
+  const double end = rig_end(rig), step = 1.0 / double(state.range(1));
   std::vector<TrackCursor> cursors(rig.size() * 3);
-  std::vector<Vec3d> t(rig.size()), sc(rig.size());
-  std::vector<Quatd> r(rig.size());
+  std::vector<Vec3<T>> t(rig.size()), sc(rig.size());
+  std::vector<Quat<T>> r(rig.size());
   double frame = 0;
   for (auto _ : state) {
     for (std::size_t j = 0; j < rig.size(); ++j) {
-      t[j] = rig[j].translation.sample(frame, cursors[3 * j]);
-      r[j] = rig[j].rotation.sample(frame, cursors[3 * j + 1]);
-      sc[j] = rig[j].scale.sample(frame, cursors[3 * j + 2]);
+      t[j] = rig[j].translation.sample(T(frame), cursors[3 * j]);
+      r[j] = rig[j].rotation.sample(T(frame), cursors[3 * j + 1]);
+      sc[j] = rig[j].scale.sample(T(frame), cursors[3 * j + 2]);
     }
     benchmark::DoNotOptimize(t.data());
     benchmark::DoNotOptimize(r.data());
     benchmark::DoNotOptimize(sc.data());
     benchmark::ClobberMemory();
-    frame += 0.5;
+    frame += step;
     if (frame > end) frame = 0;
   }
 }
-BENCHMARK(BM_RigPerTrack)->Arg(25)->Arg(64)->Arg(71)->Arg(551)->Arg(1024);
 
+template <class T>
 void BM_RigMemoryFloor(benchmark::State& state) {
-  const auto rig = make_rig(int(state.range(0)));
-  const double end = rig_end(rig);
+  const auto rig = make_rig<T>(int(state.range(0)));
+  const double end = rig_end(rig), step = 1.0 / double(state.range(1));
   std::vector<std::size_t> seg(rig.size() * 3, 0);
   double frame = 0;
   for (auto _ : state) {
-    double acc = 0;
+    T acc = 0;
+    const T f = T(frame);
     for (std::size_t j = 0; j < rig.size(); ++j) {
       // Same bytes as sampling: both bracketing keys' frame and value, per channel.
-      const auto read = [&](std::span<const double> frames, auto values, std::size_t& i) {
-        while (i + 2 < frames.size() && frames[i + 1] <= frame) ++i;
-        if (frame < frames[i]) i = 0;
+      const auto read = [&](std::span<const T> frames, auto values, std::size_t& i) {
+        while (i + 2 < frames.size() && frames[i + 1] <= f) ++i;
+        if (f < frames[i]) i = 0;
         const auto& a = values[i];
         const auto& b = values[i + 1];
-        const double* pa = reinterpret_cast<const double*>(&a);
-        const double* pb = reinterpret_cast<const double*>(&b);
-        double sum = frames[i] + frames[i + 1];
-        for (std::size_t c = 0; c < sizeof(a) / sizeof(double); ++c) sum += pa[c] + pb[c];
+        const T* pa = reinterpret_cast<const T*>(&a);
+        const T* pb = reinterpret_cast<const T*>(&b);
+        T sum = frames[i] + frames[i + 1];
+        for (std::size_t c = 0; c < sizeof(a) / sizeof(T); ++c) sum += pa[c] + pb[c];
         return sum;
       };
       acc += read(rig[j].translation.frames(), rig[j].translation.values(), seg[3 * j]);
@@ -255,33 +270,116 @@ void BM_RigMemoryFloor(benchmark::State& state) {
       acc += read(rig[j].scale.frames(), rig[j].scale.values(), seg[3 * j + 2]);
     }
     benchmark::DoNotOptimize(acc);
-    frame += 0.5;
+    frame += step;
     if (frame > end) frame = 0;
   }
 }
-BENCHMARK(BM_RigMemoryFloor)->Arg(25)->Arg(64)->Arg(71)->Arg(551)->Arg(1024);
 
-// The same rig compiled into the runtime layer (RigClip: SoA power-form segments, fast_slerp, one
-// context with every cursor, one call per character).
+template <class T>
 void BM_RigRuntime(benchmark::State& state) {
-  const auto rig = make_rig(int(state.range(0)));
-  std::vector<Track<Vec3d>> tv, sv;
-  std::vector<QuatTrack<double>> rv;
+  const auto rig = make_rig<T>(int(state.range(0)));
+  std::vector<Track<Vec3<T>>> tv, sv;
+  std::vector<QuatTrack<T>> rv;
   for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
-  const auto clip = build_rig_clip<double>(tv, rv, sv).value();
-  const double end = rig_end(rig);
+  const auto clip = build_rig_clip<T>(tv, rv, sv).value();
+  const double end = rig_end(rig), step = 1.0 / double(state.range(1));
   RigContext ctx = make_rig_context(clip);
-  std::vector<JointPose<double>> pose(rig.size());
+  std::vector<JointPose<T>> pose(rig.size());
   double frame = 0;
   for (auto _ : state) {
-    sample_rig(clip, frame, ctx, std::span<JointPose<double>>(pose));
+    sample_rig(clip, T(frame), ctx, std::span<JointPose<T>>(pose));
     benchmark::DoNotOptimize(pose.data());
     benchmark::ClobberMemory();
-    frame += 0.5;
+    frame += step;
     if (frame > end) frame = 0;
   }
 }
-BENCHMARK(BM_RigRuntime)->Arg(25)->Arg(64)->Arg(71)->Arg(551)->Arg(1024);
+
+// The same rig as Blender F-curves: 10 Bézier curves per joint (location xyz, rotation_quaternion
+// wxyz, scale xyz) through the same keys (auto-clamped handles, Blender's default).  Per-curve: one
+// FCurve::sample(frame, cursor) per curve (Blender's root-finding evaluation, with a cursor) and
+// the quaternion normalised, as Blender does; runtime: build_fcurve_rig + sample_fcurve_rig.
+std::vector<FCurve> make_fcurve_rig(int joints) {
+  const auto rig = make_rig<float>(joints);
+  std::vector<FCurve> curves;
+  for (const auto& j : rig) {
+    const auto f = j.translation.frames();
+    for (int k = 0; k < 10; ++k) {
+      RawFCurve raw;
+      for (std::size_t i = 0; i < f.size(); ++i) {
+        const Vec3f t = j.translation.values()[i], s = j.scale.values()[i];
+        const Quatf q = j.rotation.keys()[i];
+        const float v[10] = {t.x, t.y, t.z, q.w, q.x, q.y, q.z, s.x, s.y, s.z};
+        FCurveKey key;
+        key.frame = f[i];
+        key.value = v[k];
+        raw.keys.push_back(key);
+      }
+      curves.push_back(build_fcurve(raw).value());
+    }
+  }
+  return curves;
+}
+
+void BM_RigFCurvePerCurve(benchmark::State& state) {
+  const int joints = int(state.range(0));
+  const auto curves = make_fcurve_rig(joints);
+  const double end = rig_end(make_rig<float>(joints)), step = 1.0 / double(state.range(1));
+  std::vector<TrackCursor> cursors(curves.size());
+  std::vector<JointPose<float>> pose(static_cast<std::size_t>(joints));
+  double frame = 0;
+  for (auto _ : state) {
+    const float f = float(frame);
+    for (std::size_t j = 0; j < pose.size(); ++j) {
+      float v[10];
+      for (std::size_t k = 0; k < 10; ++k) v[k] = curves[10 * j + k].sample(f, cursors[10 * j + k]);
+      pose[j].translation = {v[0], v[1], v[2]};
+      pose[j].rotation = normalized(Quatf::from_wxyz(v[3], v[4], v[5], v[6]));
+      pose[j].scale = {v[7], v[8], v[9]};
+    }
+    benchmark::DoNotOptimize(pose.data());
+    benchmark::ClobberMemory();
+    frame += step;
+    if (frame > end) frame = 0;
+  }
+}
+
+// Compiling 10·J curves fits every segment against FCurve::sample (seconds at 1024 joints): built
+// once per rig size and kept for the repetitions.
+const FCurveClip& fcurve_rig_clip(int joints) {
+  static std::map<int, FCurveClip> clips;
+  auto it = clips.find(joints);
+  if (it == clips.end()) it = clips.emplace(joints, build_fcurve_rig(make_fcurve_rig(joints)).value()).first;
+  return it->second;
+}
+
+void BM_RigFCurveRuntime(benchmark::State& state) {
+  const int joints = int(state.range(0));
+  const FCurveClip& clip = fcurve_rig_clip(joints);
+  const double end = rig_end(make_rig<float>(joints)), step = 1.0 / double(state.range(1));
+  auto ctx = make_fcurve_context(clip);
+  std::vector<JointPose<float>> pose(static_cast<std::size_t>(joints));
+  double frame = 0;
+  for (auto _ : state) {
+    sample_fcurve_rig(clip, float(frame), ctx, std::span<JointPose<float>>(pose));
+    benchmark::DoNotOptimize(pose.data());
+    benchmark::ClobberMemory();
+    frame += step;
+    if (frame > end) frame = 0;
+  }
+  state.counters["pieces_per_curve"] = double(clip.pieces()) / double(clip.channels());
+  state.counters["max_fit_error"] = double(clip.max_fit_error());
+}
+
+#define RIG_ARGS ->ArgsProduct({{25, 64, 71, 551, 1024}, {2, 8}})
+BENCHMARK(BM_RigPerTrack<float>) RIG_ARGS;
+BENCHMARK(BM_RigPerTrack<double>) RIG_ARGS;
+BENCHMARK(BM_RigMemoryFloor<float>) RIG_ARGS;
+BENCHMARK(BM_RigMemoryFloor<double>) RIG_ARGS;
+BENCHMARK(BM_RigRuntime<float>) RIG_ARGS;
+BENCHMARK(BM_RigRuntime<double>) RIG_ARGS;
+BENCHMARK(BM_RigFCurvePerCurve) RIG_ARGS;
+BENCHMARK(BM_RigFCurveRuntime) RIG_ARGS;
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -16,6 +16,7 @@
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
+#include "inbetween/tracks/runtime/fcurve_clip.hpp"
 #include "inbetween/tracks/runtime/rig_clip.hpp"
 #include "inbetween/tracks/transform_track.hpp"
 #include "support/museum_tracks.hpp"
@@ -74,6 +75,32 @@ TEST(HotPath, RigClipSamplingNeverAllocates) {
             }),
             0);
   EXPECT_NEAR(pose[0].translation.z, 7.0, 1e-12);  // held after the last key (closed form)
+}
+
+TEST(HotPath, FCurveClipSamplingNeverAllocates) {
+  // Issue 12: the F-curve runtime fills every channel (and every joint's pose) into caller-owned
+  // spans; forwards, backwards and jumps all run on the context's storage.
+  RawFCurve raw;
+  for (int i = 0; i < 6; ++i) {
+    FCurveKey k;
+    k.frame = 4.0 * i;
+    k.value = double((i * 7) % 5);
+    raw.keys.push_back(k);
+  }
+  const std::vector<FCurve> curves(20, *build_fcurve(raw));  // two joints of 10 curves
+  const auto clip = build_fcurve_rig(curves);
+  ASSERT_TRUE(clip);
+  auto ctx = make_fcurve_context(*clip);
+  std::vector<float> values(clip->channels());
+  std::vector<JointPose<float>> pose(clip->joints());
+  EXPECT_EQ(allocations_in([&] {
+              for (float f = -2; f < 24; f += 0.3f) sample_fcurves(*clip, f, ctx, std::span<float>(values));
+              for (float f = 24; f > -2; f -= 1.7f) sample_fcurve_rig(*clip, f, ctx, std::span<JointPose<float>>(pose));
+            }),
+            0);
+  sample_fcurves(*clip, 30.0f, ctx, std::span<float>(values));
+  EXPECT_EQ(values[0], 0.0f);  // held after the last key, whose value is (5·7) mod 5 = 0
+  EXPECT_EQ(values[10], 0.0f);
 }
 
 template <class T>

@@ -1,11 +1,17 @@
 #pragma once
 /// The tracks runtime (issue 12, "compile once, sample many channels per call"): a RigClip is an
-/// immutable clip compiled from per-joint translation, rotation and scale tracks, with every key
-/// laid out for the sampler — structure of arrays per channel kind, Vec3 segments pre-converted
-/// from Hermite to power form in the segment's local parameter, rotation segments kept as key
-/// pairs with their slerp arc precomputed (fast_slerp_on_arc: no dot, root or division per
-/// sample) — and a RigContext that carries every channel's cursor.  One call,
-/// sample_rig(), fills a caller-owned span with every joint's pose and never allocates.
+/// immutable clip compiled from per-joint translation, rotation and scale tracks.  Every channel is
+/// cut into segments that tile the whole frame line — a constant segment before the first key, one
+/// per key interval, a constant segment after the last key — and each segment is stored as one
+/// 16-scalar block (its frame interval, its parameter origin and 1/length, and its coefficients:
+/// Vec3 segments in power form in the local parameter u, rotation segments as the two keys with
+/// the arc's Ω² and 1/sinc(Ω) precomputed).  A RigContext<T> keeps, per channel, the current
+/// segment and a copy of its block in structure-of-arrays order (one array per field over all
+/// joints, ozz-animation's "decompressed keys" cache); sample_rig() refreshes only the channels
+/// whose segment changed and then evaluates all joints with straight-line loops the compiler
+/// vectorises (4 floats or 2 doubles per SSE2 register, 8/4 with AVX).  Rotations are exact slerp
+/// weights from an even polynomial: sin(uΩ)/sin(Ω) = u·sinc(uΩ)/sinc(Ω) with sinc's Taylor series
+/// in (uΩ)², Ω ≤ π/2 (no trigonometry, no root, no division, no normalisation per sample).
 ///
 /// Supported input (anything else is refused by build_rig_clip with Unsupported and the place):
 /// Track<Vec3<T>> of every tangent kind (linear, Hermite, Catmull-Rom, TCB, flat, clamped, plateau,
@@ -16,15 +22,17 @@
 /// rig_runtime_vec_tolerance and rig_runtime_rotation_tolerance (tests/tracks/rig_clip_test.cpp).
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <span>
 #include <string>
 #include <vector>
+#include <experimental/simd>
 
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
-#include "inbetween/math/orientation_interp.hpp"
 #include "inbetween/math/quat.hpp"
 #include "inbetween/math/vec.hpp"
 #include "inbetween/tracks/quat_track.hpp"
@@ -45,71 +53,133 @@ struct JointPose {
 /// of that magnitude; 64·ε leaves room).
 template <Real T>
 inline constexpr T rig_runtime_vec_tolerance = T(64) * std::numeric_limits<T>::epsilon();
-/// Agreement of a RigClip's rotations with QuatTrack::sample (rotation angle, radians):
-/// fast_slerp's bound plus slerp's own few-ulp error.
-template <Real T>
-inline constexpr T rig_runtime_rotation_tolerance = fast_slerp_max_error_rad<T> + T(16) * std::numeric_limits<T>::epsilon();
 
-/// Every channel's cursor for one playback stream of a RigClip (make it with make_rig_context).
+/// Truncation of the runtime's sinc series at Ω = π/2 (its worst case), relative to the slerp
+/// weight: the first omitted Taylor term (π/2)^(2n+2)/(2n+3)! divided by sinc(π/2) = 2/π — float
+/// keeps terms up to x¹⁰: 5.7e-8; double up to x²⁰: 1.3e-18 (below rounding).
+template <Real T>
+inline constexpr T rig_slerp_series_error = sizeof(T) == 4 ? T(5.7e-8) : T(1.3e-18);
+
+/// Agreement of a RigClip's rotations with QuatTrack::sample (rotation angle, radians): the series
+/// truncation (rig_slerp_series_error, times 2 for the two weights) plus 16·ε of rounding in the
+/// weights, the blend and the reference slerp's own few-ulp error.
+template <Real T>
+inline constexpr T rig_runtime_rotation_tolerance = T(2) * rig_slerp_series_error<T> + T(16) * std::numeric_limits<T>::epsilon();
+
+template <Real T>
+class RigClip;
+
+/// One playback stream of a RigClip (make it with make_rig_context): per channel its current
+/// segment, and a copy of that segment's block in SIMD-register order (groups of
+/// native_simd<T>::size() joints, field by field: ozz-animation's "decompressed keys" cache);
+/// per channel kind the position in the clip's time-sorted block stream.  Reusable, copyable;
+/// one per character instance that plays the clip.
+template <Real T>
 struct RigContext {
-  std::vector<std::uint32_t> segment;  ///< per channel (3 per joint: T, R, S): last segment used
+  std::vector<std::uint32_t> segment;  ///< per channel (T of all joints, then R, then S): segment index in its channel
+  std::vector<T> cache;                ///< 3 kinds × padded joints × 16 fields (filled by sample_rig)
+  std::size_t stride = 0;              ///< padded joint count (a multiple of 16)
+  std::array<std::size_t, 3> next{};   ///< per kind: first stream block not yet consumed (its lo > time)
+  T time = -std::numeric_limits<T>::infinity();  ///< frame of the last sample (clamped; −∞ before the first)
 };
 
-/// A compiled, immutable T+R+S clip of J joints.
+/// A compiled, immutable T+R+S clip of J joints (build it with build_rig_clip).
 template <Real T>
 class RigClip {
  public:
   /// Number of joints.
   [[nodiscard]] std::size_t joints() const noexcept { return joints_; }
 
+  /// Scalars per segment block: lo, hi (the frame interval [lo, hi) the segment answers), origin,
+  /// 1/length (u = (frame − origin)·inv_length, clamped to [0, 1]; 0 for the constant end
+  /// segments) and 12 coefficients: Vec3 c0.xyz, c1.xyz, c2.xyz, c3.xyz of
+  /// ((c3·u + c2)·u + c1)·u + c0; rotations q0.xyzw, q1.xyzw, Ω², 1/sinc(Ω), 0, 0.
+  static constexpr std::size_t block = 16;
+
  private:
   template <Real U>
   friend Expected<RigClip<U>> build_rig_clip(std::span<const Track<Vec3<U>>>, std::span<const QuatTrack<U>>,
                                              std::span<const Track<Vec3<U>>>);
   template <Real U>
-  friend void sample_rig(const RigClip<U>&, U, RigContext&, std::span<JointPose<U>>) noexcept;
+  friend void sample_rig(const RigClip<U>&, U, RigContext<U>&, std::span<JointPose<U>>) noexcept;
+  template <Real U>
+  friend RigContext<U> make_rig_context(const RigClip<U>&);
 
   RigClip() = default;
 
-  // A Vec3 channel kind (translations or scales), structure of arrays over all joints' segments:
-  // segment k of channel c is begin[c] + k; start frame, 1/length and the power-form coefficients
-  // value(u) = ((c3·u + c2)·u + c1)·u + c0, u = (frame − start)·inv_length in [0, 1].
-  struct VecChannels {
-    std::vector<std::uint32_t> begin, count;  // per channel: first segment and number of segments
-    std::vector<T> start, inv_length;
-    std::vector<Vec3<T>> c0, c1, c2, c3;
-    std::vector<T> first, last;               // per channel: first and last key frame
-    std::vector<Vec3<T>> first_value, last_value;
-  };
-  // Rotation channels: per segment the two keys and whether it is a step.
-  struct RotChannels {
-    std::vector<std::uint32_t> begin, count;
-    std::vector<T> start, inv_length;
-    std::vector<Quat<T>> q0, q1;
-    std::vector<FastSlerpArc<T>> arc;  // per segment: the slerp arc, precomputed
-    std::vector<std::uint8_t> step;
-    std::vector<T> first, last;
-    std::vector<Quat<T>> first_value, last_value;
+  // One channel kind (0 translations, 1 rotations, 2 scales).  data holds every segment block of
+  // every channel of the kind, sorted by lo (then channel): the order forward playback needs
+  // them in, so sequential sampling reads data front to back.  Block p belongs to channel
+  // owner[p] as its segment local[p]; channel c's segment k is block where[begin[c] + k].
+  struct Channels {
+    std::vector<std::uint32_t> begin, count;  // per channel
+    std::vector<std::uint32_t> where;         // per (channel, segment): block position
+    std::vector<std::uint32_t> owner, local;  // per block
+    std::vector<T> data;                      // block scalars, blocks in stream order
   };
 
   std::size_t joints_ = 0;
-  VecChannels translation_, scale_;
-  RotChannels rotation_;
+  std::array<Channels, 3> kind_;
 };
 
-/// A context with every channel's cursor at the clip's start.
+/// A context before the clip's start (the first sample_rig fills every channel's cache).
 template <Real T>
-RigContext make_rig_context(const RigClip<T>& clip) {
-  return RigContext{std::vector<std::uint32_t>(3 * clip.joints(), 0)};
+RigContext<T> make_rig_context(const RigClip<T>& clip) {
+  RigContext<T> ctx;
+  ctx.stride = (clip.joints() + 15) / 16 * 16;
+  ctx.segment.assign(3 * clip.joints(), 0);
+  ctx.cache.assign(3 * RigClip<T>::block * ctx.stride, T(0));
+  return ctx;
 }
 
 namespace rig_detail {
-template <Real T>
-std::string vec_name(bool translation) {
-  return translation ? "translations" : "scales";
+namespace stdx = std::experimental;
+inline constexpr double inf = std::numeric_limits<double>::infinity();
+
+// sinc(x) = sin(x)/x as a polynomial in x², Taylor coefficients 1/(2k+1)! with alternating signs;
+// float keeps 6 terms, double 11 (rig_slerp_series_error).
+template <Real T, class V>
+inline V sinc_series(V x2) noexcept {
+  if constexpr (sizeof(T) == 4) {
+    return T(1) + x2 * (T(-1.0 / 6) + x2 * (T(1.0 / 120) + x2 * (T(-1.0 / 5040) + x2 * (T(1.0 / 362880) +
+                                                                                          x2 * T(-1.0 / 39916800)))));
+  } else {
+    V p = V(T(1.0 / 51090942171709440000.0));
+    p = T(-1.0 / 121645100408832000.0) + x2 * p;
+    p = T(1.0 / 355687428096000.0) + x2 * p;
+    p = T(-1.0 / 1307674368000.0) + x2 * p;
+    p = T(1.0 / 6227020800.0) + x2 * p;
+    p = T(-1.0 / 39916800.0) + x2 * p;
+    p = T(1.0 / 362880.0) + x2 * p;
+    p = T(-1.0 / 5040.0) + x2 * p;
+    p = T(1.0 / 120.0) + x2 * p;
+    p = T(-1.0 / 6.0) + x2 * p;
+    return T(1) + x2 * p;
+  }
 }
 
-// Compiles one Vec3 track into the channel arrays; Unsupported for extend modes other than constant.
+template <Real T>
+void push_block(std::vector<T>& data, T lo, T hi, T origin, T inv_length, std::initializer_list<T> coef) {
+  data.push_back(lo);
+  data.push_back(hi);
+  data.push_back(origin);
+  data.push_back(inv_length);
+  for (const T c : coef) data.push_back(c);
+  for (std::size_t i = 4 + coef.size(); i < RigClip<T>::block; ++i) data.push_back(T(0));
+}
+
+template <Real T>
+void push_constant_vec(std::vector<T>& data, T lo, T hi, const Vec3<T>& v) {
+  push_block<T>(data, lo, hi, T(0), T(0), {v.x, v.y, v.z});
+}
+
+template <Real T>
+void push_constant_rot(std::vector<T>& data, T lo, T hi, const Quat<T>& q) {
+  // q0 = q1 = q, Ω = 0: the weights (1 − u) and u blend q with itself.
+  push_block<T>(data, lo, hi, T(0), T(0), {q.x, q.y, q.z, q.w, q.x, q.y, q.z, q.w, T(0), T(1)});
+}
+
+// Compiles one Vec3 track into the channel's blocks; Unsupported for extend modes other than constant.
 template <Real T, class Channels>
 Expected<bool> add_vec(Channels& ch, const Track<Vec3<T>>& tr, std::size_t joint, const char* kind) {
   if (tr.extend_before() != TrackExtend::constant || tr.extend_after() != TrackExtend::constant) {
@@ -123,51 +193,137 @@ Expected<bool> add_vec(Channels& ch, const Track<Vec3<T>>& tr, std::size_t joint
   const auto in = tr.in_tangents();
   const auto out = tr.out_tangents();
   const std::size_t n = f.size();
-  ch.begin.push_back(std::uint32_t(ch.start.size()));
-  ch.count.push_back(std::uint32_t(n > 1 ? n - 1 : 1));
-  ch.first.push_back(f[0]);
-  ch.last.push_back(f[n - 1]);
-  ch.first_value.push_back(v[0]);
-  ch.last_value.push_back(v[n - 1]);
-  if (n == 1) {  // one key: a constant segment
-    ch.start.push_back(f[0]);
-    ch.inv_length.push_back(T(0));
-    ch.c0.push_back(v[0]);
-    ch.c1.push_back({});
-    ch.c2.push_back({});
-    ch.c3.push_back({});
-    return true;
-  }
+  const T inf_t = std::numeric_limits<T>::infinity();
+  ch.begin.push_back(std::uint32_t(ch.data.size() / RigClip<T>::block));
+  ch.count.push_back(std::uint32_t(n + 1));
+  push_constant_vec<T>(ch.data, -inf_t, f[0], v[0]);
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const T h = f[i + 1] - f[i];
-    ch.start.push_back(f[i]);
-    ch.inv_length.push_back(T(1) / h);
     if (tr.stepped(i)) {
-      ch.c0.push_back(v[i]);
-      ch.c1.push_back({});
-      ch.c2.push_back({});
-      ch.c3.push_back({});
+      push_constant_vec<T>(ch.data, f[i], f[i + 1], v[i]);
       continue;
     }
     // Hermite p0, p1, m0 = out_i·h, m1 = in_{i+1}·h to power form.
     const Vec3<T> p0 = v[i], p1 = v[i + 1], m0 = out[i] * h, m1 = in[i + 1] * h;
-    ch.c0.push_back(p0);
-    ch.c1.push_back(m0);
-    ch.c2.push_back((p1 - p0) * T(3) - m0 * T(2) - m1);
-    ch.c3.push_back((p0 - p1) * T(2) + m0 + m1);
+    const Vec3<T> c2 = (p1 - p0) * T(3) - m0 * T(2) - m1, c3 = (p0 - p1) * T(2) + m0 + m1;
+    push_block<T>(ch.data, f[i], f[i + 1], f[i], T(1) / h,
+                  {p0.x, p0.y, p0.z, m0.x, m0.y, m0.z, c2.x, c2.y, c2.z, c3.x, c3.y, c3.z});
   }
+  push_constant_vec<T>(ch.data, f[n - 1], inf_t, v[n - 1]);
   return true;
 }
 
-// Segment of channel c holding `frame` (first ≤ frame < last), from the cursor; O(1) when playback
-// moves less than a segment per call.
-template <Real T>
-std::uint32_t find_segment(std::span<const T> start, std::uint32_t begin, std::uint32_t count, T frame,
+// Sorts a kind's blocks (pushed channel by channel, channel c's at begin[c] …) into stream order.
+template <Real T, std::size_t B, class Channels>
+void finish_stream(Channels& ch) {
+  const std::size_t n = ch.data.size() / B;
+  std::vector<std::uint32_t> owner(n), local(n), order(n);
+  for (std::size_t c = 0; c < ch.begin.size(); ++c)
+    for (std::uint32_t k = 0; k < ch.count[c]; ++k) owner[ch.begin[c] + k] = std::uint32_t(c), local[ch.begin[c] + k] = k;
+  for (std::size_t i = 0; i < n; ++i) order[i] = std::uint32_t(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const T la = ch.data[a * B], lb = ch.data[b * B];
+    return la < lb || (la == lb && owner[a] < owner[b]);
+  });
+  std::vector<T> data(n * B);
+  ch.where.assign(n, 0);
+  ch.owner.resize(n);
+  ch.local.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    std::copy_n(ch.data.begin() + std::ptrdiff_t(order[p] * B), B, data.begin() + std::ptrdiff_t(p * B));
+    ch.owner[p] = owner[order[p]];
+    ch.local[p] = local[order[p]];
+    ch.where[order[p]] = std::uint32_t(p);  // channel c's segment k was pushed at begin[c] + k
+  }
+  ch.data = std::move(data);
+}
+
+// Segment of a channel (its k-th block at data[where[b + k]·B]) whose [lo, hi) holds `frame`,
+// starting from the cursor: a short walk when playback moves a segment or two, a binary search
+// otherwise.  The segments tile (−∞, +∞), so one always answers.
+template <Real T, std::size_t B>
+std::uint32_t find_segment(const T* data, const std::uint32_t* where, std::uint32_t count, T frame,
                            std::uint32_t cursor) noexcept {
+  const auto lo_of = [&](std::uint32_t k) { return data[std::size_t(where[k]) * B]; };
+  const auto hi_of = [&](std::uint32_t k) { return data[std::size_t(where[k]) * B + 1]; };
   std::uint32_t k = std::min(cursor, count - 1);
-  while (k + 1 < count && start[begin + k + 1] <= frame) ++k;
-  while (k > 0 && start[begin + k] > frame) --k;
-  return k;
+  for (int step = 0; step < 2; ++step) {
+    if (frame >= hi_of(k) && k + 1 < count) ++k;
+    else if (frame < lo_of(k) && k > 0) --k;
+  }
+  if (frame >= lo_of(k) && frame < hi_of(k)) return k;
+  std::uint32_t lo = 0, hi = count - 1;  // last segment with lo ≤ frame
+  while (lo < hi) {
+    const std::uint32_t mid = (lo + hi + 1) / 2;
+    if (lo_of(mid) <= frame) lo = mid;
+    else hi = mid - 1;
+  }
+  return lo;
+}
+
+// Copies block src into joint j's column of a kind's cache (groups of G joints, field-major).
+template <Real T, std::size_t G, std::size_t B>
+inline void put_block(const T* src, T* cache, std::size_t j) noexcept {
+  T* dst = cache + (j / G) * B * G + j % G;
+  for (std::size_t f = 0; f < B; ++f) dst[f * G] = src[f];
+}
+
+// Brings one kind's cache to `frame`.  Forward playback consumes the stream's next blocks (those
+// whose lo ≤ frame, in time order: each replaces its channel's cached segment, the last one wins);
+// backward playback, or a forward jump past more blocks than 16 per channel, finds each
+// stale channel's segment from its cursor and repositions the stream.
+template <Real T, std::size_t G, std::size_t B, class Channels>
+inline void advance(const Channels& ch, std::size_t joints, T frame, T previous, std::size_t& next,
+                    std::uint32_t* segment, T* cache) noexcept {
+  const T* data = ch.data.data();
+  const std::size_t n = ch.owner.size();
+  if (frame >= previous) {
+    const std::size_t limit = std::min(n, next + 16 * joints);
+    std::size_t p = next;
+    for (; p < limit && data[p * B] <= frame; ++p) {
+      const std::uint32_t c = ch.owner[p];
+      segment[c] = ch.local[p];
+      put_block<T, G, B>(data + p * B, cache, c);
+    }
+    if (p == n || data[p * B] > frame) {
+      next = p;
+      return;
+    }
+  }
+  for (std::size_t j = 0; j < joints; ++j) {
+    const T* col = cache + (j / G) * B * G + j % G;
+    if (frame >= col[0] && frame < col[G]) continue;  // cached [lo, hi) still holds frame
+    const std::uint32_t k = find_segment<T, B>(data, ch.where.data() + ch.begin[j], ch.count[j], frame, segment[j]);
+    segment[j] = k;
+    put_block<T, G, B>(data + std::size_t(ch.where[ch.begin[j] + k]) * B, cache, j);
+  }
+  // First block whose lo > frame.
+  std::size_t lo = 0, hi = n;
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (data[mid * B] <= frame) lo = mid + 1;
+    else hi = mid;
+  }
+  next = lo;
+}
+// SIMD helpers of sample_rig over one group of V::size() joints' cached fields (field f at c + f·W).
+template <class V>
+[[gnu::always_inline]] inline V load(const typename V::value_type* p) noexcept {
+  return V(p, stdx::element_aligned);
+}
+// u = clamp((frame − origin)·inv_length, 0, 1); finite because sample_rig keeps frame finite.
+template <class V>
+[[gnu::always_inline]] inline V param(const typename V::value_type* c, V frame) noexcept {
+  using T = typename V::value_type;
+  constexpr std::size_t W = V::size();
+  return stdx::max(V(T(0)), stdx::min((frame - load<V>(c + 2 * W)) * load<V>(c + 3 * W), V(T(1))));
+}
+// ((c3·u + c2)·u + c1)·u + c0 for one axis.
+template <class V>
+[[gnu::always_inline]] inline V cubic(const typename V::value_type* c, std::size_t axis, V u) noexcept {
+  constexpr std::size_t W = V::size();
+  return ((load<V>(c + (13 + axis) * W) * u + load<V>(c + (10 + axis) * W)) * u + load<V>(c + (7 + axis) * W)) * u +
+         load<V>(c + (4 + axis) * W);
 }
 }  // namespace rig_detail
 
@@ -185,29 +341,18 @@ Expected<RigClip<T>> build_rig_clip(std::span<const Track<Vec3<T>>> translations
   }
   RigClip<T> clip;
   clip.joints_ = rotations.size();
+  const T inf_t = std::numeric_limits<T>::infinity();
   for (std::size_t j = 0; j < clip.joints_; ++j) {
-    if (auto r = rig_detail::add_vec<T>(clip.translation_, translations[j], j, "translations"); !r) return r.error();
-    if (auto r = rig_detail::add_vec<T>(clip.scale_, scales[j], j, "scales"); !r) return r.error();
+    if (auto r = rig_detail::add_vec<T>(clip.kind_[0], translations[j], j, "translations"); !r) return r.error();
+    if (auto r = rig_detail::add_vec<T>(clip.kind_[2], scales[j], j, "scales"); !r) return r.error();
     const QuatTrack<T>& q = rotations[j];
-    auto& ch = clip.rotation_;
+    auto& ch = clip.kind_[1];
     const auto f = q.frames();
     const auto k = q.keys();
     const std::size_t n = f.size();
-    ch.begin.push_back(std::uint32_t(ch.start.size()));
-    ch.count.push_back(std::uint32_t(n > 1 ? n - 1 : 1));
-    ch.first.push_back(f[0]);
-    ch.last.push_back(f[n - 1]);
-    ch.first_value.push_back(k[0]);
-    ch.last_value.push_back(k[n - 1]);
-    if (n == 1) {
-      ch.start.push_back(f[0]);
-      ch.inv_length.push_back(T(0));
-      ch.q0.push_back(k[0]);
-      ch.q1.push_back(k[0]);
-      ch.arc.push_back({});
-      ch.step.push_back(1);
-      continue;
-    }
+    ch.begin.push_back(std::uint32_t(ch.data.size() / RigClip<T>::block));
+    ch.count.push_back(std::uint32_t(n + 1));
+    rig_detail::push_constant_rot<T>(ch.data, -inf_t, f[0], k[0]);
     for (std::size_t i = 0; i + 1 < n; ++i) {
       const QuatInterpolation mode = q.interpolation(i);
       if (mode != QuatInterpolation::step && mode != QuatInterpolation::slerp) {
@@ -218,14 +363,25 @@ Expected<RigClip<T>> build_rig_clip(std::span<const Track<Vec3<T>>> translations
         return Error{ErrorCode::Unsupported, "a long-way slerp segment (keys on opposite sides) is not supported",
                      "", {"rotations", j, "keys", i + 1}};
       }
-      ch.start.push_back(f[i]);
-      ch.inv_length.push_back(T(1) / (f[i + 1] - f[i]));
-      ch.q0.push_back(k[i]);
-      ch.q1.push_back(k[i + 1]);
-      ch.arc.push_back(fast_slerp_arc(k[i], k[i + 1]));
-      ch.step.push_back(mode == QuatInterpolation::step ? 1 : 0);
+      if (mode == QuatInterpolation::step) {
+        rig_detail::push_constant_rot<T>(ch.data, f[i], f[i + 1], k[i]);
+        continue;
+      }
+      // Ω, the 4-D angle between the keys, in double from the stored keys: 2·atan2(|a − b|, |a + b|)
+      // (accurate at every angle), in [0, π/2] because dot ≥ 0.
+      const Quat<T>& a = k[i];
+      const Quat<T>& b = k[i + 1];
+      const double dx = double(a.x) - b.x, dy = double(a.y) - b.y, dz = double(a.z) - b.z, dw = double(a.w) - b.w;
+      const double sx = double(a.x) + b.x, sy = double(a.y) + b.y, sz = double(a.z) + b.z, sw = double(a.w) + b.w;
+      const double omega = 2 * std::atan2(std::sqrt(dx * dx + dy * dy + dz * dz + dw * dw),
+                                          std::sqrt(sx * sx + sy * sy + sz * sz + sw * sw));
+      const double inv_sinc = omega < 1e-8 ? 1.0 : omega / std::sin(omega);
+      rig_detail::push_block<T>(ch.data, f[i], f[i + 1], f[i], T(1) / (f[i + 1] - f[i]),
+                                {a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w, T(omega * omega), T(inv_sinc)});
     }
+    rig_detail::push_constant_rot<T>(ch.data, f[n - 1], inf_t, k[n - 1]);
   }
+  for (auto& ch : clip.kind_) rig_detail::finish_stream<T, RigClip<T>::block>(ch);
   return clip;
 }
 
@@ -239,38 +395,63 @@ Expected<RigClip<T>> build_rig_clip(const std::vector<Track<Vec3<T>>>& translati
 }
 
 /// Samples every joint at `frame` into out (out.size() must equal clip.joints(), context made for
-/// this clip), advancing the context's cursors.  Outside a channel's keys its end value is held;
-/// NaN reads as the first frame.  noexcept, no allocation.
+/// this clip by make_rig_context), advancing the context.  Outside a channel's keys its end value
+/// is held; NaN reads as −∞ (the first value), ±∞ as the end values.  noexcept, no allocation.
 template <Real T>
-void sample_rig(const RigClip<T>& clip, T frame, RigContext& context, std::span<JointPose<T>> out) noexcept {
-  INBETWEEN_ASSERT(out.size() == clip.joints_ && context.segment.size() == 3 * clip.joints_);
-  if (std::isnan(frame)) frame = -std::numeric_limits<T>::infinity();
-  const auto vec_at = [frame](const typename RigClip<T>::VecChannels& ch, std::size_t c,
-                              std::uint32_t& cursor) noexcept -> Vec3<T> {
-    if (!(frame > ch.first[c])) return ch.first_value[c];
-    if (!(frame < ch.last[c])) return ch.last_value[c];
-    const std::uint32_t b = ch.begin[c];
-    const std::uint32_t k = rig_detail::find_segment<T>(ch.start, b, ch.count[c], frame, cursor);
-    cursor = k;
-    const std::size_t s = b + k;
-    const T u = (frame - ch.start[s]) * ch.inv_length[s];
-    return ((ch.c3[s] * u + ch.c2[s]) * u + ch.c1[s]) * u + ch.c0[s];
-  };
-  const auto& rc = clip.rotation_;
-  for (std::size_t j = 0; j < clip.joints_; ++j) {
-    out[j].translation = vec_at(clip.translation_, j, context.segment[3 * j]);
-    out[j].scale = vec_at(clip.scale_, j, context.segment[3 * j + 2]);
-    if (!(frame > rc.first[j])) {
-      out[j].rotation = rc.first_value[j];
-    } else if (!(frame < rc.last[j])) {
-      out[j].rotation = rc.last_value[j];
-    } else {
-      const std::uint32_t b = rc.begin[j];
-      const std::uint32_t k = rig_detail::find_segment<T>(rc.start, b, rc.count[j], frame, context.segment[3 * j + 1]);
-      context.segment[3 * j + 1] = k;
-      const std::size_t s = b + k;
-      const T u = std::clamp((frame - rc.start[s]) * rc.inv_length[s], T(0), T(1));
-      out[j].rotation = rc.step[s] ? rc.q0[s] : fast_slerp_on_arc(rc.q0[s], rc.q1[s], rc.arc[s], u);
+void sample_rig(const RigClip<T>& clip, T frame, RigContext<T>& context, std::span<JointPose<T>> out) noexcept {
+  constexpr std::size_t B = RigClip<T>::block;
+  const std::size_t J = clip.joints_;
+  const std::size_t S = context.stride;
+  namespace stdx = rig_detail::stdx;
+  using V = stdx::native_simd<T>;
+  constexpr std::size_t W = V::size();
+  static_assert(16 % W == 0, "the padded joint count is a multiple of 16");
+  INBETWEEN_ASSERT(out.size() == J && context.segment.size() == 3 * J && context.cache.size() == 3 * B * S);
+  // A finite frame keeps u = (frame − origin)·0 finite on the constant end segments.
+  const T big = std::numeric_limits<T>::max();
+  frame = frame > -big ? (frame < big ? frame : big) : -big;  // NaN → −big
+  for (std::size_t kind = 0; kind < 3; ++kind) {
+    rig_detail::advance<T, W, B>(clip.kind_[kind], J, frame, context.time, context.next[kind],
+                              context.segment.data() + kind * J, context.cache.data() + kind * B * S);
+  }
+  context.time = frame;
+  // Evaluate W = native_simd<T>::size() joints at a time (4 floats / 2 doubles with SSE2, 8 / 4
+  // with AVX) from the cache (field f of joint group g at (g·16 + f)·W) into local arrays, then
+  // write the AoS poses.
+  const T* tc = context.cache.data();
+  const T* rc = tc + B * S;
+  const T* sc = rc + B * S;
+  const V f(frame), one(T(1));
+  const auto ld = [](const T* p) noexcept { return rig_detail::load<V>(p); };
+  const auto param = [&](const T* c) noexcept { return rig_detail::param<V>(c, f); };
+  const auto cubic = [&](const T* c, std::size_t axis, V u) noexcept { return rig_detail::cubic<V>(c, axis, u); };
+  for (std::size_t j0 = 0; j0 < J; j0 += W) {
+    alignas(64) T res[10][W];
+    const std::size_t g = j0 * B;  // this group's fields start at cache + (j0 / W)·B·W
+    {
+      const V u = param(tc + g);
+      for (std::size_t axis = 0; axis < 3; ++axis) cubic(tc + g, axis, u).copy_to(res[axis], stdx::vector_aligned);
+    }
+    {
+      const V u = param(sc + g);
+      for (std::size_t axis = 0; axis < 3; ++axis) cubic(sc + g, axis, u).copy_to(res[7 + axis], stdx::vector_aligned);
+    }
+    {
+      const V u = param(rc + g);
+      const V v = one - u;
+      const V omega2 = ld(rc + g + 12 * W), k = ld(rc + g + 13 * W);
+      // slerp weights sin(vΩ)/sin Ω and sin(uΩ)/sin Ω = v·sinc(vΩ)/sinc Ω, u·sinc(uΩ)/sinc Ω.
+      const V w0 = v * rig_detail::sinc_series<T>(v * v * omega2) * k;
+      const V w1 = u * rig_detail::sinc_series<T>(u * u * omega2) * k;
+      for (std::size_t c = 0; c < 4; ++c)
+        (w0 * ld(rc + g + (4 + c) * W) + w1 * ld(rc + g + (8 + c) * W)).copy_to(res[3 + c], stdx::vector_aligned);
+    }
+    const std::size_t n = std::min(W, J - j0);
+    for (std::size_t i = 0; i < n; ++i) {
+      JointPose<T>& p = out[j0 + i];
+      p.translation = Vec3<T>{res[0][i], res[1][i], res[2][i]};
+      p.rotation = Quat<T>::from_xyzw(res[3][i], res[4][i], res[5][i], res[6][i]);
+      p.scale = Vec3<T>{res[7][i], res[8][i], res[9][i]};
     }
   }
 }
