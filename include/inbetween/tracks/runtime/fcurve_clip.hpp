@@ -38,7 +38,7 @@ struct FCurveClipOptions {
   float tolerance = 1e-5f;
   /// Pieces a single key segment may be cut into before the fit is accepted as it is (the clip's
   /// max_fit_error() then says how far it is).
-  int max_pieces_per_segment = 512;
+  int max_pieces_per_segment = 4096;
 };
 
 /// Agreement of FCurveClip sampling with FCurve::sample at any frame, relative to the curve's value
@@ -56,19 +56,22 @@ class FCurveClip {
   [[nodiscard]] std::size_t channels() const noexcept { return channels_; }
   /// Joints for a clip made by build_fcurve_rig (channels / 10), 0 otherwise.
   [[nodiscard]] std::size_t joints() const noexcept { return joints_; }
-  /// Number of pieces over all channels (the clip's size: 8 floats each).
+  /// Number of pieces over all channels (the clip's size: block floats each).
   [[nodiscard]] std::size_t pieces() const noexcept { return data_.owner.size(); }
   /// Largest |piece − FCurve::sample| / scale measured at the check frames while building.
   [[nodiscard]] float max_fit_error() const noexcept { return max_fit_error_; }
 
-  /// Floats per piece: lo, hi (the frame interval [lo, hi) the piece answers), origin, 1/length
-  /// (0 for a constant piece), then c0, c1, c2, c3 of ((c3·u + c2)·u + c1)·u + c0.
-  static constexpr std::size_t block = 8;
+  /// Degree of a piece's polynomial.
+  static constexpr std::size_t degree = 7;
+  /// Floats per piece: lo, hi (the frame interval [lo, hi) the piece answers), origin, 2/length
+  /// (0 for a constant piece), band_lo, band_hi (Blender's snap band widths at lo and hi, −1 for
+  /// none: within them u is −1 or +1), then c0 … c7 of the polynomial in u = (frame − origin)·2/length.
+  static constexpr std::size_t block = 6 + degree + 1;
 
   /// The channels' cursors and cache for one playback stream (make it with make_fcurve_context).
   struct Context {
     std::vector<std::uint32_t> segment;  ///< per channel: current piece in the channel
-    std::vector<float> cache;            ///< padded channels × 8 fields, in SIMD-register order
+    std::vector<float> cache;            ///< padded channels × block fields, in SIMD-register order
     std::vector<float> values;           ///< per internal channel: the last sampled value
     std::size_t stride = 0;              ///< padded channel count (a multiple of 16)
     std::size_t next = 0;                ///< first stream piece not yet consumed
