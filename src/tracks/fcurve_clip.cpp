@@ -185,7 +185,19 @@ Expected<bool> compile_curve(const FCurve& curve, std::size_t index, const FCurv
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const float a = keys[i].x, b = keys[i + 1].x;
     if (keys[i].interpolation == Interpolation::constant) {
-      fitter.constant(a, b, keys[i].y);
+      // Key a's value, and key b's within Blender's band before b: y_a + (y_b − y_a)·(u + u²)/2 at
+      // u = 0 (inv_length 0), u = +1 in the band at b (a few float ulps from y_b), −1 in a's.
+      if (double(b) - double(a) >= 1e-3) {
+        const float d = keys[i + 1].y - keys[i].y;
+        std::array<float, D + 1> c{};
+        c[0] = keys[i].y, c[1] = 0.5f * d, c[2] = 0.5f * d;
+        push_piece(data, a, b, 0, 0, kBand, kBand, c);
+      } else {
+        const float a1 = band_end(a, b), b1 = band_start(b, a1);
+        fitter.constant(a, a1, keys[i].y);
+        if (a1 < b1) fitter.constant(a1, b1, keys[i].y);
+        if (b1 < b) fitter.constant(b1, b, keys[i + 1].y);
+      }
       continue;
     }
     // Blender answers the key's own value within 1e-4 frames of a key: on a segment longer than a

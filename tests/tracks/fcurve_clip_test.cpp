@@ -70,6 +70,39 @@ TEST(FCurveClip, AgreesWithFCurveSampleOnRandomCurves) {
             << clip->pieces() << " pieces\n";
 }
 
+TEST(FCurveClip, AgreesAtBlendersSnapBandEdges) {
+  // Blender answers a key's own value within 1e-4 frames of it (|t − x| ≤ 1e-4 in float); the
+  // runtime folds those bands into its pieces (u clamped to ∓1), so the frames just inside and
+  // just outside every band edge, and the keys themselves, are where a wrong band shows.
+  test::Random rng(test::seed_for(1205));
+  SCOPED_TRACE(rng.trace());
+  std::vector<FCurve> curves;
+  for (int i = 0; i < 40; ++i) curves.push_back(random_curve(rng));
+  const auto clip = build_fcurve_clip(curves);
+  ASSERT_TRUE(clip) << clip.error().describe();
+  auto ctx = make_fcurve_context(*clip);
+  std::vector<float> out(curves.size());
+  double worst = 0;
+  std::size_t probes = 0;
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    for (const auto& key : curves[c].keys()) {
+      for (const double d : {-1e-4, 0.0, 1e-4}) {
+        float t = float(double(key.x) + d);
+        for (int s = 0; s < 3; ++s) t = std::nextafter(t, -INFINITY);
+        for (int s = 0; s < 7; ++s, t = std::nextafter(t, INFINITY)) {
+          sample_fcurves(*clip, t, ctx, std::span<float>(out));
+          const double err = std::abs(double(out[c]) - curves[c].sample(t)) / scale_of(curves[c]);
+          worst = std::max(worst, err);
+          ++probes;
+          EXPECT_LE(err, fcurve_runtime_tolerance) << "curve " << c << " frame " << t;
+        }
+      }
+    }
+  }
+  std::cout << "[ measured ] FCurveClip at snap-band edges: " << worst << " of the value scale over " << probes
+            << " frames\n";
+}
+
 TEST(FCurveClip, RigNormalisesTheQuaternion) {
   // One joint: location (1, 2, 3), quaternion curves (w, x, y, z) = (2, 0, 0, 2) → normalised
   // (√½, 0, 0, √½); scale (1, 1, 1).  Single-key curves: constant values (closed form).
