@@ -103,6 +103,36 @@ TEST(FCurveClip, AgreesAtBlendersSnapBandEdges) {
             << " frames\n";
 }
 
+TEST(FCurveClip, AutoClampedBezierSegmentsTakeOnePieceEach) {
+  // The speed of the runtime rests on this (bench/RESULTS.md, the F-curve rig): Bézier keys with
+  // Blender's default auto-clamped handles, 30 keys spaced uniformly in [0.5, 1.5] frames, values
+  // in [−1, 1] as the benchmark rig's, fit one degree-9 piece per segment (the benchmark measured
+  // exactly 31 pieces per curve, 29 segments and 2 extrapolation lines, on all 10240 curves).  A
+  // tenth more is allowed for an unlucky seed; a fit of lower order needs 1.6–2.8× (degree 5–8).
+  test::Random rng(test::seed_for(1206));
+  SCOPED_TRACE(rng.trace());
+  std::vector<FCurve> curves;
+  for (int c = 0; c < 50; ++c) {
+    RawFCurve raw;
+    double f = 0;
+    for (int i = 0; i < 30; ++i) {
+      FCurveKey k;
+      k.frame = f;
+      k.value = rng.uniform<double>(-1, 1);
+      raw.keys.push_back(k);
+      f += rng.uniform<double>(0.5, 1.5);
+    }
+    curves.push_back(build_fcurve(raw).value());
+  }
+  const auto clip = build_fcurve_clip(curves);
+  ASSERT_TRUE(clip) << clip.error().describe();
+  const std::size_t one_each = curves.size() * 31;
+  EXPECT_LE(clip->pieces(), one_each + one_each / 10);
+  EXPECT_LE(clip->max_fit_error(), FCurveClipOptions{}.tolerance);
+  std::cout << "[ measured ] auto-clamped rig curves: " << clip->pieces() << " pieces for " << one_each
+            << " (one per segment), fit error " << clip->max_fit_error() << "\n";
+}
+
 TEST(FCurveClip, RigNormalisesTheQuaternion) {
   // One joint: location (1, 2, 3), quaternion curves (w, x, y, z) = (2, 0, 0, 2) → normalised
   // (√½, 0, 0, √½); scale (1, 1, 1).  Single-key curves: constant values (closed form).
