@@ -250,14 +250,14 @@ Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClip
   clip.channels_ = curves.size();
   clip.joints_ = J;
   auto& ch = clip.data_;
-  // Internal channel k·J + j is curve 10·j + k: one component of every joint side by side.
-  for (std::size_t k = 0; k < 10; ++k) {
-    for (std::size_t j = 0; j < J; ++j) {
-      const std::size_t c = 10 * j + k;
-      ch.begin.push_back(std::uint32_t(ch.data.size() / B));
-      if (auto r = compile_curve(curves[c], c, options, ch.data, clip.max_fit_error_); !r) return r.error();
-      ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
-    }
+  // Internal channel c is curve c (joint-major, 10·j + k): a joint's curves usually share their
+  // key frames (Blender keys a bone's channels together), so the stream hands over a joint's ten
+  // pieces one after another and they land in three neighbouring groups of the context's cache
+  // (component-major, k·J + j, put them in ten groups far apart: 3× the cache lines written).
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    ch.begin.push_back(std::uint32_t(ch.data.size() / B));
+    if (auto r = compile_curve(curves[c], c, options, ch.data, clip.max_fit_error_); !r) return r.error();
+    ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
   }
   rig_detail::finish_stream<float, B>(ch);
   return clip;
@@ -313,13 +313,7 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
 void sample_fcurves(const FCurveClip& clip, float frame, FCurveClip::Context& context, std::span<float> out) noexcept {
   INBETWEEN_ASSERT(out.size() == clip.channels_);
   evaluate_channels(clip, frame, context);
-  const std::size_t J = clip.joints_;
-  if (J == 0) {
-    std::copy_n(context.values.begin(), clip.channels_, out.begin());
-    return;
-  }
-  for (std::size_t j = 0; j < J; ++j)
-    for (std::size_t k = 0; k < 10; ++k) out[10 * j + k] = context.values[k * J + j];
+  std::copy_n(context.values.begin(), clip.channels_, out.begin());
 }
 
 void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context& context,
@@ -330,8 +324,9 @@ void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context&
   const float* v = context.values.data();
   for (std::size_t j = 0; j < J; ++j) {
     JointPose<float>& p = out[j];
-    p.translation = Vec3f{v[j], v[J + j], v[2 * J + j]};
-    const float w = v[3 * J + j], x = v[4 * J + j], y = v[5 * J + j], z = v[6 * J + j];
+    const float* q = v + 10 * j;
+    p.translation = Vec3f{q[0], q[1], q[2]};
+    const float w = q[3], x = q[4], y = q[5], z = q[6];
     const float n2 = w * w + x * x + y * y + z * z;
     if (n2 > 0) {
       const float inv = 1.0f / std::sqrt(n2);
@@ -339,7 +334,7 @@ void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context&
     } else {
       p.rotation = Quatf{};
     }
-    p.scale = Vec3f{v[7 * J + j], v[8 * J + j], v[9 * J + j]};
+    p.scale = Vec3f{q[7], q[8], q[9]};
   }
 }
 

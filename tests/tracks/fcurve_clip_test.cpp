@@ -154,6 +154,34 @@ TEST(FCurveClip, RigNormalisesTheQuaternion) {
   EXPECT_EQ(pose[0].rotation.x, 0.0f);
 }
 
+TEST(FCurveClip, RigChannelsAreTheCurvesInOrder) {
+  // A 3-joint rig of random curves: sample_fcurves gives curve c at out[c], and each joint's pose
+  // reads its own ten curves (translation = curves 10j..10j+2, scale = 10j+7..10j+9), against
+  // FCurve::sample to fcurve_runtime_tolerance of each curve's value scale.
+  test::Random rng(test::seed_for(1207));
+  SCOPED_TRACE(rng.trace());
+  std::vector<FCurve> curves;
+  for (int i = 0; i < 30; ++i) curves.push_back(random_curve(rng));
+  const auto clip = build_fcurve_rig(curves);
+  ASSERT_TRUE(clip) << clip.error().describe();
+  ASSERT_EQ(clip->joints(), 3u);
+  auto ctx = make_fcurve_context(*clip);
+  std::vector<float> out(curves.size());
+  std::vector<JointPose<float>> pose(3);
+  for (float t = -12; t < 50; t += 0.53f) {
+    sample_fcurves(*clip, t, ctx, std::span<float>(out));
+    for (std::size_t c = 0; c < curves.size(); ++c)
+      EXPECT_LE(std::abs(out[c] - curves[c].sample(t)) / scale_of(curves[c]), fcurve_runtime_tolerance) << c << " " << t;
+    sample_fcurve_rig(*clip, t, ctx, std::span<JointPose<float>>(pose));
+    for (std::size_t j = 0; j < 3; ++j) {
+      EXPECT_EQ(pose[j].translation.x, out[10 * j]);
+      EXPECT_EQ(pose[j].translation.z, out[10 * j + 2]);
+      EXPECT_EQ(pose[j].scale.x, out[10 * j + 7]);
+      EXPECT_EQ(pose[j].scale.z, out[10 * j + 9]);
+    }
+  }
+}
+
 TEST(FCurveClip, RefusesWhatItCannotSampleWithThePlace) {
   RawFCurve raw;
   raw.keys.push_back(FCurveKey{.frame = 0, .value = 0});

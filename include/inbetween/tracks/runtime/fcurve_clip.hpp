@@ -78,7 +78,7 @@ class FCurveClip {
   struct Context {
     std::vector<std::uint32_t> segment;  ///< per channel: current piece in the channel
     std::vector<float> cache;            ///< padded channels × block fields, in SIMD-register order
-    std::vector<float> values;           ///< per internal channel: the last sampled value
+    std::vector<float> values;           ///< per channel (curve c, for a rig too): the last sampled value
     std::size_t stride = 0;              ///< padded channel count (a multiple of 16)
     std::size_t next = 0;                ///< first stream piece not yet consumed
     float time = -std::numeric_limits<float>::infinity();  ///< last sampled frame (clamped)
