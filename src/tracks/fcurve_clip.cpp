@@ -67,27 +67,32 @@ struct Fitter {
     }
     double c[D + 1] = {};
     float org = origin, iv = inv;
+    std::size_t m = D + 1;  // interpolation points in u[], y[]
     if (!distinct) {
-      // A piece a few frame ulps wide: the line from its first frame (u = 0 there) through its
-      // last one, in u = (frame − a)/length.
+      // A piece a few frame ulps wide: u = (frame − a)/length (0 at its first frame, ul at its
+      // last), through those two frames' values and, for a piece with a band, the key's value at
+      // u = ∓1, where the band clamps u (the polynomial only matters at these points).
       org = a;
       iv = float(1.0 / h);
       const float last = std::nextafter(b, a);
       const double ul = double((last - a) * iv);
-      c[0] = double(curve.sample(a));
-      c[1] = ul > 0 ? (double(curve.sample(last)) - c[0]) / ul : 0.0;
-    } else {
-      // Newton divided differences, then the power form in u (Horner on the Newton form).
-      double d[D + 1];
-      for (std::size_t k = 0; k <= D; ++k) d[k] = y[k];
-      for (std::size_t j = 1; j <= D; ++j)
-        for (std::size_t k = D; k >= j; --k) d[k] = (d[k] - d[k - 1]) / (u[k] - u[k - j]);
-      c[0] = d[D];
-      for (std::size_t k = D; k-- > 0;) {
-        // c ← c·(u − u_k) + d_k
-        for (std::size_t m = D; m > 0; --m) c[m] = c[m - 1] - u[k] * c[m];
-        c[0] = -u[k] * c[0] + d[k];
-      }
+      const double ya = double(curve.sample(a)), yb = double(curve.sample(b));
+      m = 0;
+      if (band_lo >= 0) u[m] = -1, y[m] = ya, ++m;
+      u[m] = 0, y[m] = ya, ++m;
+      if (ul > 0 && ul < 1) u[m] = ul, y[m] = double(curve.sample(last)), ++m;
+      if (band_hi >= 0) u[m] = 1, y[m] = yb, ++m;
+    }
+    // Newton divided differences, then the power form in u (Horner on the Newton form).
+    double d[D + 1];
+    for (std::size_t k = 0; k < m; ++k) d[k] = y[k];
+    for (std::size_t j = 1; j < m; ++j)
+      for (std::size_t k = m - 1; k >= j; --k) d[k] = (d[k] - d[k - 1]) / (u[k] - u[k - j]);
+    c[0] = d[m - 1];
+    for (std::size_t k = m - 1; k-- > 0;) {
+      // c ← c·(u − u_k) + d_k
+      for (std::size_t q = D; q > 0; --q) c[q] = c[q - 1] - u[k] * c[q];
+      c[0] = -u[k] * c[0] + d[k];
     }
     blk = {a, b, org, iv, band_lo, band_hi};
     for (std::size_t k = 0; k <= D; ++k) blk[6 + k] = float(c[k]);
