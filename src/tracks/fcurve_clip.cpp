@@ -1,4 +1,4 @@
-// FCurveClip: Blender F-curves pre-solved into cubic pieces (include/inbetween/tracks/runtime/fcurve_clip.hpp).
+// FCurveClip: Blender F-curves pre-solved into degree-9 polynomial pieces (include/inbetween/tracks/runtime/fcurve_clip.hpp).
 #include "inbetween/tracks/runtime/fcurve_clip.hpp"
 
 #include <algorithm>
