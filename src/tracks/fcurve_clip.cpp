@@ -1,4 +1,4 @@
-// FCurveClip: Blender F-curves pre-solved into cubic pieces (include/inbetween/tracks/runtime/fcurve_clip.hpp).
+// FCurveClip: Blender F-curves pre-solved into degree-9 polynomial pieces (include/inbetween/tracks/runtime/fcurve_clip.hpp).
 #include "inbetween/tracks/runtime/fcurve_clip.hpp"
 
 #include <algorithm>
@@ -14,88 +14,121 @@ namespace {
 constexpr std::size_t B = FCurveClip::block;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-void push_piece(std::vector<float>& data, float lo, float hi, float origin, float inv_length,
-                const std::array<float, 4>& c) {
-  data.insert(data.end(), {lo, hi, origin, inv_length, c[0], c[1], c[2], c[3]});
+constexpr std::size_t D = FCurveClip::degree;
+constexpr float kBand = 0.0001f;  // Blender's snap band around a key, in frames
+constexpr float kNoBand = -1.0f;  // a band width no |frame − key| ≤ it
+
+// Pushes a block: lo, hi, origin, inv_length, band_lo, band_hi, c0 … cD.
+void push_piece(std::vector<float>& data, float lo, float hi, float origin, float inv_length, float band_lo,
+                float band_hi, const std::array<float, D + 1>& c) {
+  data.insert(data.end(), {lo, hi, origin, inv_length, band_lo, band_hi});
+  data.insert(data.end(), c.begin(), c.end());
 }
 
-// The runtime's evaluation of a piece at `frame`, in float, as sample_fcurves does it.
-float piece_value(float frame, float origin, float inv_length, const std::array<float, 4>& c) {
-  const float u = (frame - origin) * inv_length;
-  return ((c[3] * u + c[2]) * u + c[1]) * u + c[0];
+// The runtime's evaluation of a block at `frame`, in float, in the operations evaluate_channels
+// does: u = (frame − origin)·inv_length, u = +1 inside the band at hi, −1 inside the band at lo
+// (that one wins), then Horner.
+float piece_value(const float* blk, float frame) {
+  float u = (frame - blk[2]) * blk[3];
+  if (blk[1] - frame <= blk[5]) u = 1.0f;
+  if (frame - blk[0] <= blk[4]) u = -1.0f;
+  float v = blk[6 + D];
+  for (std::size_t k = D; k-- > 0;) v = v * u + blk[6 + k];
+  return v;
 }
 
 // Blender's snap band: near_frame(t, x) ⇔ |t − x| ≤ 1e-4 in float (src/tracks/fcurve_eval.cpp).
-bool near_key(float t, float x) { return t > x ? (t - x) <= 0.0001f : (x - t) <= 0.0001f; }
+bool near_key(float t, float x) { return t > x ? (t - x) <= kBand : (x - t) <= kBand; }
 
 struct Fitter {
   const FCurve& curve;
   float tol_abs, scale;
-  int budget;
   std::vector<float>& data;
   float worst = 0;  // relative to scale
 
-  // The cubic through the curve's values at u = 0, ¼, ¾, 1 of [a, b] (Chebyshev–Lobatto nodes of
-  // degree 3), in power form; its worst float error at 28 frames of the piece.
-  float fit(float a, float b, std::array<float, 4>& c, float& inv_length) const {
+  // The degree-D polynomial in u ∈ [−1, 1] over [a, b] through the curve's values at the
+  // Chebyshev–Lobatto nodes u = −cos(πk/D) (endpoints included: the keys' values where the piece
+  // meets a key), in power form; its worst float error at 96 frames of the piece and at the first
+  // and last frames outside the snap bands, evaluated as the runtime does (piece_value).
+  // Each node's u is the one the sampler computes for its float frame, (x − origin)·inv_length,
+  // so the polynomial interpolates the curve at the parameters the runtime evaluates.
+  float fit(float a, float b, float band_lo, float band_hi, std::array<float, 6 + D + 1>& blk) const {
     const double h = double(b) - double(a);
-    inv_length = float(1.0 / h);
-    // Nodes at u ≈ 0, ¼, ¾, 1 rounded to float frames; each node's u is the one the sampler will
-    // compute for that frame, (x − a)·inv_length in float, so the cubic interpolates the curve at
-    // the parameters the runtime evaluates (a node's frame rounding would otherwise cost up to half
-    // a frame ulp times the slope).  The last node is the last float frame before b.
-    const double un[4] = {0, 0.25, 0.75, 1};
-    double u[4], y[4];
-    for (int i = 0; i < 4; ++i) {
-      const float x = i == 0 ? a : (i == 3 ? std::nextafter(b, a) : float(double(a) + un[i] * h));
-      u[i] = double((x - a) * inv_length);
-      y[i] = double(curve.sample(x));
+    const float origin = float(0.5 * (double(a) + double(b)));
+    const float inv = float(2.0 / h);
+    double u[D + 1], y[D + 1];
+    bool distinct = true;
+    for (std::size_t k = 0; k <= D; ++k) {
+      const double node = -std::cos(std::numbers::pi * double(k) / double(D));
+      const float x = k == 0 ? a : (k == D ? b : float(0.5 * (double(a) + double(b)) + 0.5 * h * node));
+      u[k] = k == 0 ? -1.0 : (k == D ? 1.0 : double((x - origin) * inv));
+      y[k] = double(curve.sample(x));
+      if (k > 0 && !(u[k] > u[k - 1])) distinct = false;
     }
-    if (!(u[0] < u[1] && u[1] < u[2] && u[2] < u[3])) {
-      // A piece a few frame ulps wide: the line through its end values (constant if one frame).
-      const double slope = u[3] > u[0] ? (y[3] - y[0]) / (u[3] - u[0]) : 0.0;
-      c = {float(y[0]), float(slope), 0.0f, 0.0f};
-    } else {
-    // Newton divided differences, then the power form in u.
-    const double d1 = (y[1] - y[0]) / (u[1] - u[0]), d1b = (y[2] - y[1]) / (u[2] - u[1]),
-                 d1c = (y[3] - y[2]) / (u[3] - u[2]);
-    const double d2 = (d1b - d1) / (u[2] - u[0]), d2b = (d1c - d1b) / (u[3] - u[1]);
-    const double d3 = (d2b - d2) / (u[3] - u[0]);
-    // p(u) = y0 + d1·(u − u0) + d2·(u − u0)(u − u1) + d3·(u − u0)(u − u1)(u − u2), u0 = 0.
-    const double s1 = u[1] + u[2], p1 = u[1] * u[2];
-    const double c0 = y[0] - d1 * u[0];
-    const double c1 = d1 - d2 * u[1] + d3 * p1;
-    const double c2 = d2 - d3 * s1;
-    const double c3 = d3;
-    c = {float(c0), float(c1), float(c2), float(c3)};
+    double c[D + 1] = {};
+    float org = origin, iv = inv;
+    std::size_t m = D + 1;  // interpolation points in u[], y[]
+    if (!distinct) {
+      // A piece a few frame ulps wide: u = (frame − a)/length (0 at its first frame, ul at its
+      // last), through those two frames' values and, for a piece with a band, the key's value at
+      // u = ∓1, where the band clamps u (the polynomial only matters at these points).
+      org = a;
+      iv = float(1.0 / h);
+      const float last = std::nextafter(b, a);
+      const double ul = double((last - a) * iv);
+      const double ya = double(curve.sample(a)), yb = double(curve.sample(b));
+      m = 0;
+      if (band_lo >= 0) u[m] = -1, y[m] = ya, ++m;
+      u[m] = 0, y[m] = ya, ++m;
+      if (ul > 0 && ul < 1) u[m] = ul, y[m] = double(curve.sample(last)), ++m;
+      if (band_hi >= 0) u[m] = 1, y[m] = yb, ++m;
     }
+    // Newton divided differences, then the power form in u (Horner on the Newton form).
+    double d[D + 1];
+    for (std::size_t k = 0; k < m; ++k) d[k] = y[k];
+    for (std::size_t j = 1; j < m; ++j)
+      for (std::size_t k = m - 1; k >= j; --k) d[k] = (d[k] - d[k - 1]) / (u[k] - u[k - j]);
+    c[0] = d[m - 1];
+    for (std::size_t k = m - 1; k-- > 0;) {
+      // c ← c·(u − u_k) + d_k
+      for (std::size_t q = D; q > 0; --q) c[q] = c[q - 1] - u[k] * c[q];
+      c[0] = -u[k] * c[0] + d[k];
+    }
+    blk = {a, b, org, iv, band_lo, band_hi};
+    for (std::size_t k = 0; k <= D; ++k) blk[6 + k] = float(c[k]);
     float err = 0;
-    for (int i = 0; i < 28; ++i) {
-      const float x = float(double(a) + h * (double(i) + 0.5) / 28.0);
-      if (!(x >= a && x < b)) continue;
-      err = std::max(err, std::abs(piece_value(x, a, inv_length, c) - curve.sample(x)));
-    }
-    err = std::max(err, std::abs(piece_value(a, a, inv_length, c) - curve.sample(a)));
+    const auto check = [&](float x) {
+      if (x >= a && x < b) err = std::max(err, std::abs(piece_value(blk.data(), x) - curve.sample(x)));
+    };
+    for (int i = 0; i < 96; ++i) check(float(double(a) + h * (double(i) + 0.5) / 96.0));
+    check(a);
+    check(std::nextafter(b, a));
+    if (band_lo >= 0) check(std::nextafter(float(double(a) + 1e-4), b)), check(float(double(a) + 1e-4));
+    if (band_hi >= 0) check(std::nextafter(float(double(b) - 1e-4), a)), check(float(double(b) - 1e-4));
     return err;
   }
 
-  // Pieces for [a, b), halving until each passes or the budget is spent.
-  void pieces(float a, float b, int& left) {
-    std::array<float, 4> c{};
-    float inv = 0;
-    const float err = fit(a, b, c, inv);
+  // Pieces for [a, b), halving until each passes or the budget is spent; the bands stay on the
+  // outer ends.
+  void pieces(float a, float b, float band_lo, float band_hi, int& left) {
+    std::array<float, 6 + D + 1> blk{};
+    const float err = fit(a, b, band_lo, band_hi, blk);
     const float mid = float(0.5 * (double(a) + double(b)));
     if (err > tol_abs && left > 1 && mid > a && mid < b) {
       --left;
-      pieces(a, mid, left);
-      pieces(mid, b, left);
+      pieces(a, mid, band_lo, kNoBand, left);
+      pieces(mid, b, kNoBand, band_hi, left);
       return;
     }
     worst = std::max(worst, err / scale);
-    push_piece(data, a, b, a, inv, c);
+    data.insert(data.end(), blk.begin(), blk.end());
   }
 
-  void constant(float lo, float hi, float y) { push_piece(data, lo, hi, 0, 0, {y, 0, 0, 0}); }
+  void constant(float lo, float hi, float y) {
+    std::array<float, D + 1> c{};
+    c[0] = y;
+    push_piece(data, lo, hi, 0, 0, kNoBand, kNoBand, c);
+  }
 };
 
 // First float t > x (t ≤ limit) that is outside key x's snap band.
@@ -147,29 +180,50 @@ Expected<bool> compile_curve(const FCurve& curve, std::size_t index, const FCurv
   float scale = hi - lo;
   scale = std::max(scale, 8.0f * std::numeric_limits<float>::epsilon() * big / options.tolerance);
   if (!(scale > 0)) scale = 1;
-  Fitter fitter{curve, options.tolerance * scale, scale, options.max_pieces_per_segment, data};
+  Fitter fitter{curve, options.tolerance * scale, scale, data};
   // Before the first key: the line through it with the extrapolation slope.
   const float x0 = keys[0].x, xn = keys[n - 1].x;
   const float slope_before = extrapolation_slope(curve, true), slope_after = extrapolation_slope(curve, false);
-  push_piece(data, -kInf, x0, x0, 1.0f, {keys[0].y, slope_before, 0, 0});
+  std::array<float, D + 1> line{};
+  line[0] = keys[0].y, line[1] = slope_before;
+  push_piece(data, -kInf, x0, x0, 1.0f, kNoBand, kNoBand, line);
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const float a = keys[i].x, b = keys[i + 1].x;
     if (keys[i].interpolation == Interpolation::constant) {
-      fitter.constant(a, b, keys[i].y);
+      // Key a's value, and key b's within Blender's band before b: y_a + (y_b − y_a)·(u + u²)/2 at
+      // u = 0 (inv_length 0), u = +1 in the band at b (a few float ulps from y_b), −1 in a's.
+      if (double(b) - double(a) >= 1e-3) {
+        const float d = keys[i + 1].y - keys[i].y;
+        std::array<float, D + 1> c{};
+        c[0] = keys[i].y, c[1] = 0.5f * d, c[2] = 0.5f * d;
+        push_piece(data, a, b, 0, 0, kBand, kBand, c);
+      } else {
+        const float a1 = band_end(a, b), b1 = band_start(b, a1);
+        fitter.constant(a, a1, keys[i].y);
+        if (a1 < b1) fitter.constant(a1, b1, keys[i].y);
+        if (b1 < b) fitter.constant(b1, b, keys[i + 1].y);
+      }
       continue;
     }
-    // Blender answers the key's own value within 1e-4 frames of a key: constant pieces there.
-    const float a1 = band_end(a, b), b1 = band_start(b, a1);
+    // Blender answers the key's own value within 1e-4 frames of a key: on a segment longer than a
+    // millisecond-frame the piece's band widths say so (the runtime clamps u to ∓1 there, where the
+    // polynomial interpolates the keys); shorter segments get constant band pieces.
     int left = options.max_pieces_per_segment;
+    if (double(b) - double(a) >= 1e-3) {
+      fitter.pieces(a, b, kBand, kBand, left);
+      continue;
+    }
+    const float a1 = band_end(a, b), b1 = band_start(b, a1);
     if (a1 < b1) {
       fitter.constant(a, a1, keys[i].y);
-      fitter.pieces(a1, b1, left);
+      fitter.pieces(a1, b1, kNoBand, kNoBand, left);
       fitter.constant(b1, b, keys[i + 1].y);
     } else {
-      fitter.pieces(a, b, left);
+      fitter.pieces(a, b, kNoBand, kNoBand, left);
     }
   }
-  push_piece(data, xn, kInf, xn, 1.0f, {keys[n - 1].y, slope_after, 0, 0});
+  line[0] = keys[n - 1].y, line[1] = slope_after;
+  push_piece(data, xn, kInf, xn, 1.0f, kNoBand, kNoBand, line);
   worst = std::max(worst, fitter.worst);
   return true;
 }
@@ -201,14 +255,14 @@ Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClip
   clip.channels_ = curves.size();
   clip.joints_ = J;
   auto& ch = clip.data_;
-  // Internal channel k·J + j is curve 10·j + k: one component of every joint side by side.
-  for (std::size_t k = 0; k < 10; ++k) {
-    for (std::size_t j = 0; j < J; ++j) {
-      const std::size_t c = 10 * j + k;
-      ch.begin.push_back(std::uint32_t(ch.data.size() / B));
-      if (auto r = compile_curve(curves[c], c, options, ch.data, clip.max_fit_error_); !r) return r.error();
-      ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
-    }
+  // Internal channel c is curve c (joint-major, 10·j + k): a joint's curves usually share their
+  // key frames (Blender keys a bone's channels together), so the stream hands over a joint's ten
+  // pieces one after another and they land in three neighbouring groups of the context's cache
+  // (component-major, k·J + j, put them in ten groups far apart: 3× the cache lines written).
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    ch.begin.push_back(std::uint32_t(ch.data.size() / B));
+    if (auto r = compile_curve(curves[c], c, options, ch.data, clip.max_fit_error_); !r) return r.error();
+    ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
   }
   rig_detail::finish_stream<float, B>(ch);
   return clip;
@@ -230,11 +284,14 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   const std::size_t C = clip.channels_;
   INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == B * context.stride);
   if (std::isnan(frame)) {
-    // As FCurve::sample: the first key's value, c0 of each channel's second piece (it starts at
-    // the first key: its snap band, a constant segment, a fitted piece whose first node is the
-    // key — Blender snaps there — or, for one key, the held end).  Cache and stream are untouched.
-    for (std::size_t i = 0; i < C; ++i)
-      context.values[i] = clip.data_.data[std::size_t(clip.data_.where[clip.data_.begin[i] + 1]) * B + 4];
+    // As FCurve::sample: the first key's value, each channel's second piece at its start (it
+    // starts at the first key: a fitted piece whose band there clamps u to −1, where it
+    // interpolates the key, a constant piece, or, for one key, the held end).  Cache and stream are
+    // untouched.
+    for (std::size_t i = 0; i < C; ++i) {
+      const float* blk = clip.data_.data.data() + std::size_t(clip.data_.where[clip.data_.begin[i] + 1]) * B;
+      context.values[i] = piece_value(blk, blk[0]);
+    }
     return;
   }
   const float big = std::numeric_limits<float>::max();
@@ -248,8 +305,12 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   for (std::size_t c0 = 0; c0 < C; c0 += W) {
     const float* g = cache + c0 * B;  // this group's fields: field k at g + k·W
     const auto ld = [g](std::size_t k) noexcept { return rig_detail::load<V>(g + k * W); };
-    const V u = (f - ld(2)) * ld(3);
-    const V v = ((ld(7) * u + ld(6)) * u + ld(5)) * u + ld(4);
+    V u = (f - ld(2)) * ld(3);
+    // Blender's snap bands: u = +1 within band_hi of hi, −1 within band_lo of lo (that one wins).
+    stdx::where(ld(1) - f <= ld(5), u) = V(1.0f);
+    stdx::where(f - ld(0) <= ld(4), u) = V(-1.0f);
+    V v = ld(6 + D);
+    for (std::size_t k = D; k-- > 0;) v = v * u + ld(6 + k);
     v.copy_to(values + c0, stdx::element_aligned);
   }
 }
@@ -257,13 +318,7 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
 void sample_fcurves(const FCurveClip& clip, float frame, FCurveClip::Context& context, std::span<float> out) noexcept {
   INBETWEEN_ASSERT(out.size() == clip.channels_);
   evaluate_channels(clip, frame, context);
-  const std::size_t J = clip.joints_;
-  if (J == 0) {
-    std::copy_n(context.values.begin(), clip.channels_, out.begin());
-    return;
-  }
-  for (std::size_t j = 0; j < J; ++j)
-    for (std::size_t k = 0; k < 10; ++k) out[10 * j + k] = context.values[k * J + j];
+  std::copy_n(context.values.begin(), clip.channels_, out.begin());
 }
 
 void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context& context,
@@ -274,8 +329,9 @@ void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context&
   const float* v = context.values.data();
   for (std::size_t j = 0; j < J; ++j) {
     JointPose<float>& p = out[j];
-    p.translation = Vec3f{v[j], v[J + j], v[2 * J + j]};
-    const float w = v[3 * J + j], x = v[4 * J + j], y = v[5 * J + j], z = v[6 * J + j];
+    const float* q = v + 10 * j;
+    p.translation = Vec3f{q[0], q[1], q[2]};
+    const float w = q[3], x = q[4], y = q[5], z = q[6];
     const float n2 = w * w + x * x + y * y + z * z;
     if (n2 > 0) {
       const float inv = 1.0f / std::sqrt(n2);
@@ -283,7 +339,7 @@ void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context&
     } else {
       p.rotation = Quatf{};
     }
-    p.scale = Vec3f{v[7 * J + j], v[8 * J + j], v[9 * J + j]};
+    p.scale = Vec3f{q[7], q[8], q[9]};
   }
 }
 

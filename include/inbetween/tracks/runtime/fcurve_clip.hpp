@@ -1,18 +1,24 @@
 #pragma once
 /// The tracks runtime for Blender F-curves (issue 12): an FCurveClip compiles many built FCurves
-/// into pre-solved pieces — every segment of every curve is cut into pieces on which a cubic in the
-/// piece's local parameter u = (frame − origin)/(length) reproduces FCurve::sample (Blender's
-/// root-finding evaluation) to a tolerance checked at build time, so sampling runs no root finder:
-/// one cubic per channel, evaluated native_simd<float>::size() channels at a time from a cache kept
-/// in the context, with the pieces in a time-sorted stream (the RigClip machinery, rig_clip.hpp).
+/// into pre-solved pieces — every segment of every curve is cut into pieces on which a polynomial
+/// of degree 9 in the piece's parameter u = (frame − origin)·2/length ∈ [−1, 1] reproduces
+/// FCurve::sample (Blender's root-finding evaluation) to a tolerance checked at build time, so
+/// sampling runs no root finder: one polynomial per channel, evaluated native_simd<float>::size()
+/// channels at a time from a cache kept in the context, with the pieces in a time-sorted stream
+/// (the RigClip machinery, rig_clip.hpp).  A piece is 16 floats, one 64-byte cache line.
 ///
-/// Pieces: Bézier and easing segments are fitted adaptively (a cubic through the curve's values at
-/// u = 0, ¼, ¾, 1; checked against FCurve::sample at 28 frames of the piece, evaluated in float as
-/// the sampler does; halved until the check passes); linear segments are the same fit (exact up to
-/// rounding); constant segments and Blender's 1e-4-frame snap bands around every key are constant
-/// pieces; outside the keys a line through the end key with FCurve::derivative's extrapolation
-/// slope.  Curves with a Cycles modifier are refused (Unsupported): sample those with
-/// FCurve::sample, the scalar path.
+/// Pieces: Bézier and easing segments are fitted adaptively (the polynomial through the curve's
+/// values at the ten Chebyshev–Lobatto nodes u = −cos(πk/9), the keys' values at the ends; checked
+/// against FCurve::sample at about 100 frames of the piece, evaluated in float as the sampler does;
+/// halved until the check passes); linear segments are the same fit (exact up to rounding).  The
+/// smooth Bézier composite y(x(t)) converges fast: the benchmark rig's segments (auto-clamped
+/// handles) take one piece each.  Blender's 1e-4-frame snap bands around every key (where it
+/// answers the key's value) are not pieces but two band widths per piece: within them the runtime
+/// sets u to −1 or +1, where the polynomial interpolates the key (segments shorter than 1e-3 frames
+/// keep constant band pieces).  Constant segments are one piece (key a's value, key b's in b's
+/// band).  Outside the keys a line through the end key with FCurve::derivative's extrapolation
+/// slope (Blender snaps only between the keys).  Curves with a Cycles modifier are refused
+/// (Unsupported): sample those with FCurve::sample, the scalar path.
 ///
 /// sample_fcurve_rig reads 10 curves per joint — location x, y, z, rotation_quaternion w, x, y, z,
 /// scale x, y, z, the order of Blender's bone channels — and normalises the quaternion, as Blender
@@ -37,17 +43,17 @@ struct FCurveClipOptions {
   /// scale (the range of its key and handle values, at least 8·ε·max |value|, 1 for a flat curve at 0).
   float tolerance = 1e-5f;
   /// Pieces a single key segment may be cut into before the fit is accepted as it is (the clip's
-  /// max_fit_error() then says how far it is).
-  int max_pieces_per_segment = 512;
+  /// max_fit_error() then says how far it is).  4096: next to a near-vertical handle of the Blender
+  /// reference cases the pieces shrink to a few frame ulps, and 512 left one of them 3e-3 off.
+  int max_pieces_per_segment = 4096;
 };
 
 /// Agreement of FCurveClip sampling with FCurve::sample at any frame, relative to the curve's value
-/// scale, with the default options: 10× the fit tolerance.  The fit is checked at 28 frames per
-/// piece only; between them, and on pieces near a vertical handle that reach the width of a few
-/// frame ulps before passing (where one ulp of frame moves the value by more than the tolerance),
-/// the error is larger: measured 5.5e-5 at most over 3.7 million samples of the 262 non-cycling
-/// Blender-agreement curves (tests/io/fcurve_clip_blender_test.cpp), against a goal of 1e-5.
-inline constexpr float fcurve_runtime_tolerance = 1e-4f;
+/// scale, with the default options: 2× the fit tolerance (the fit is checked at about 100 frames
+/// per piece; frames between them may exceed the check a little).  Measured 9.9e-6 at most over
+/// 3.7 million samples of the 262 non-cycling Blender-agreement curves
+/// (tests/io/fcurve_clip_blender_test.cpp) and 7.8e-6 on random curves (tests/tracks/fcurve_clip_test.cpp).
+inline constexpr float fcurve_runtime_tolerance = 2e-5f;
 
 /// A compiled, immutable set of F-curves (build it with build_fcurve_clip or build_fcurve_rig).
 class FCurveClip {
@@ -56,20 +62,23 @@ class FCurveClip {
   [[nodiscard]] std::size_t channels() const noexcept { return channels_; }
   /// Joints for a clip made by build_fcurve_rig (channels / 10), 0 otherwise.
   [[nodiscard]] std::size_t joints() const noexcept { return joints_; }
-  /// Number of pieces over all channels (the clip's size: 8 floats each).
+  /// Number of pieces over all channels (the clip's size: block floats each).
   [[nodiscard]] std::size_t pieces() const noexcept { return data_.owner.size(); }
   /// Largest |piece − FCurve::sample| / scale measured at the check frames while building.
   [[nodiscard]] float max_fit_error() const noexcept { return max_fit_error_; }
 
-  /// Floats per piece: lo, hi (the frame interval [lo, hi) the piece answers), origin, 1/length
-  /// (0 for a constant piece), then c0, c1, c2, c3 of ((c3·u + c2)·u + c1)·u + c0.
-  static constexpr std::size_t block = 8;
+  /// Degree of a piece's polynomial.
+  static constexpr std::size_t degree = 9;
+  /// Floats per piece: lo, hi (the frame interval [lo, hi) the piece answers), origin, 2/length
+  /// (0 for a constant piece), band_lo, band_hi (Blender's snap band widths at lo and hi, −1 for
+  /// none: within them u is −1 or +1), then c0 … c7 of the polynomial in u = (frame − origin)·2/length.
+  static constexpr std::size_t block = 6 + degree + 1;
 
   /// The channels' cursors and cache for one playback stream (make it with make_fcurve_context).
   struct Context {
     std::vector<std::uint32_t> segment;  ///< per channel: current piece in the channel
-    std::vector<float> cache;            ///< padded channels × 8 fields, in SIMD-register order
-    std::vector<float> values;           ///< per internal channel: the last sampled value
+    std::vector<float> cache;            ///< padded channels × block fields, in SIMD-register order
+    std::vector<float> values;           ///< per channel (curve c, for a rig too): the last sampled value
     std::size_t stride = 0;              ///< padded channel count (a multiple of 16)
     std::size_t next = 0;                ///< first stream piece not yet consumed
     float time = -std::numeric_limits<float>::infinity();  ///< last sampled frame (clamped)
