@@ -181,6 +181,47 @@ template <Real W, int N>
   return s * sin_ratio_nest<W, 1, N>(s * s, y);
 }
 
+/// fast_slerp's random-pair path works after two half-angle steps (φ = θ/4 ≤ π/8, s = 4u in
+/// [0, 4], y = cos φ − 1 in [cos(π/8) − 1, 0] ≈ [−0.076, 0]): Eberly's exact terms b_1 … b_{m−1}
+/// and a last term (c₁s² + c₀)·y whose two coefficients are fitted by minimax over that domain
+/// (the idea of Eberly's "optimal" u_n, v_n; fitted with tools/slerp/fit_slerp_weights.py
+/// --quarter m 2, a linear program against sin(sφ)/(s sin φ) in long double).  Largest truncation
+/// of the ratio on the script's 401×401 check grid: 1.1e-8 for float (m = 4, weights in double,
+/// below float rounding) and 5.3e-17 for double (m = 9, below double rounding) — against 8 and 17
+/// terms of the plain series after one half-angle step.
+template <Real T>
+inline constexpr int fast_slerp_fit_terms = sizeof(T) <= 4 ? 4 : 9;
+/// (c₀, c₁) of the fitted last term, from tools/slerp/fit_slerp_weights.py --quarter 4 2 / 9 2.
+template <Real T>
+inline constexpr double fast_slerp_fit_c0 = sizeof(T) <= 4 ? -0.45487229439687982 : -0.49097229605828918;
+template <Real T>
+inline constexpr double fast_slerp_fit_c1 = sizeof(T) <= 4 ? 0.028439358025939634 : 0.0060802472181304438;
+
+/// 1 + b_I(1 + b_{I+1}(1 + … (1 + b_N·r))) with the innermost factor r given, two terms at a
+/// time as sin_ratio_nest.
+template <Real W, int I, int N>
+[[gnu::always_inline]] inline fast_slerp_lanes<W> sin_ratio_nest_to(fast_slerp_lanes<W> s2, W y,
+                                                                    fast_slerp_lanes<W> r) noexcept {
+  if constexpr (I > N) {
+    return r;
+  } else if constexpr (I == N) {
+    return W(1) + sin_ratio_term<W, I>(s2, y) * r;
+  } else {
+    const fast_slerp_lanes<W> bi = sin_ratio_term<W, I>(s2, y), bj = sin_ratio_term<W, I + 1>(s2, y);
+    return (W(1) + bi) + (bi * bj) * sin_ratio_nest_to<W, I + 2, N>(s2, y, r);
+  }
+}
+
+/// sin(sφ)/sin φ for the two lanes of s in [0, 4], φ ≤ π/8, y = cos φ − 1: fast_slerp_fit_terms<T>
+/// terms, the last one fitted (see fast_slerp_fit_terms).
+template <Real T, Real W>
+[[gnu::always_inline]] inline fast_slerp_lanes<W> sin_ratio_fit(fast_slerp_lanes<W> s, W y) noexcept {
+  constexpr int m = fast_slerp_fit_terms<T>;
+  const fast_slerp_lanes<W> s2 = s * s;
+  const fast_slerp_lanes<W> last = W(1) + (W(fast_slerp_fit_c1<T>) * s2 + W(fast_slerp_fit_c0<T>)) * y;
+  return s * sin_ratio_nest_to<W, 1, m - 1>(s2, y, last);
+}
+
 /// Below this distance of cos θ from 1, two terms of the series without the half-angle step reach
 /// the weights' rounding: for s in [0, 1] the first dropped term is s·b₁b₂b₃ with
 /// |b₁b₂b₃| ≤ (1/3)(1/5)(3/7)|y|³ < |y|³/35, i.e. 3e-20 for double at 2^-20 and 4e-13 for the float
@@ -262,19 +303,23 @@ template <Real T>
   // Shortest arc: b → −b when a·b < 0, as slerp() (d + 0 turns −0 into +0; branch-free).
   const W sign = std::copysign(W(1), d + W(0));
   const W x = std::min(std::abs(d), W(1));  // cos θ in [0, 1]
-  const W h = std::sqrt(W(0.5) + W(0.5) * x);  // cos(θ/2) in [cos(π/4), 1]
-  W y;
+  const W h1 = std::sqrt(W(0.5) + W(0.5) * x);   // cos(θ/2) in [cos(π/4), 1]
+  const W h2 = std::sqrt(W(0.5) + W(0.5) * h1);  // cos(θ/4) in [cos(π/8), 1]
+  W y, inv;
   if constexpr (std::is_same_v<T, W>) {
-    y = (x - W(1)) / (W(2) * (h + W(1)));  // cos(θ/2) − 1 without cancellation
+    // cos(θ/4) − 1 = (cos θ − 1)/(4(h1 + 1)(h2 + 1)) without cancellation, and
+    // 1/(4 h1 h2) = sin(θ/4)/sin θ, in one packed division.
+    const L q = L{x - W(1), W(0.25)} / L{W(4) * ((h1 + W(1)) * (h2 + W(1))), h1 * h2};
+    y = q[0];
+    inv = q[1];
   } else {
-    // Float inputs, double weights: h − 1 directly (no division on the critical path).  Its
-    // cancellation costs a relative 2⁻⁵³/|y| ≤ 2⁻³⁹ (|y| ≥ cut/4 = 2⁻¹⁴ here): far below float.
-    y = h - W(1);
+    // Float inputs, double weights: h2 − 1 directly (no division on the critical path).  Its
+    // cancellation costs a relative 2⁻⁵³/|y| ≤ 2⁻³⁷ (|y| ≥ cut/16 = 2⁻¹⁶ here): far below float.
+    y = h2 - W(1);
+    inv = W(0.25) / (h1 * h2);
   }
-  const W inv = W(0.5) / h;  // 1/(2 cos(θ/2)) = sin(θ/2)/sin θ, off the series' critical path
-  // sin(uθ)/sin θ = [sin(2u·θ/2)/sin(θ/2)]·[sin(θ/2)/sin θ]
-  constexpr int n = detail::fast_slerp_terms<T>;
-  const L w = detail::sin_ratio_series<W, n>(L{W(2) * (W(1) - W(u)), W(2) * W(u)}, y) * inv;
+  // sin(uθ)/sin θ = [sin(4u·θ/4)/sin(θ/4)]·[sin(θ/4)/sin θ]
+  const L w = detail::sin_ratio_fit<T, W>(L{W(4) * (W(1) - W(u)), W(4) * W(u)}, y) * inv;
   const W wa = w[0], wb = w[1] * sign;
   // Blended in W too, so that a float result is rounded once per component.
   return {T(W(a.w) * wa + W(b.w) * wb), T(W(a.x) * wa + W(b.x) * wb), T(W(a.y) * wa + W(b.y) * wb),
