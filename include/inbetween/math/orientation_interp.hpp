@@ -198,28 +198,32 @@ template <Real T>
 inline constexpr double fast_slerp_fit_c1 = sizeof(T) <= 4 ? 0.028439358025939634 : 0.0060802472181304438;
 
 /// 1 + b_I(1 + b_{I+1}(1 + … (1 + b_N·r))) with the innermost factor r given, two terms at a
-/// time as sin_ratio_nest.
-template <Real W, int I, int N>
-[[gnu::always_inline]] inline fast_slerp_lanes<W> sin_ratio_nest_to(fast_slerp_lanes<W> s2, W y,
-                                                                    fast_slerp_lanes<W> r) noexcept {
+/// time as sin_ratio_nest; V is a vector of W (two lanes of double, or four of float).
+template <class V, Real W, int I, int N>
+[[gnu::always_inline]] inline V sin_ratio_nest_to(V s2, W y, V r) noexcept {
   if constexpr (I > N) {
     return r;
-  } else if constexpr (I == N) {
-    return W(1) + sin_ratio_term<W, I>(s2, y) * r;
   } else {
-    const fast_slerp_lanes<W> bi = sin_ratio_term<W, I>(s2, y), bj = sin_ratio_term<W, I + 1>(s2, y);
-    return (W(1) + bi) + (bi * bj) * sin_ratio_nest_to<W, I + 2, N>(s2, y, r);
+    constexpr W ui = W(1) / W(I * (2 * I + 1)), vi = W(I) / W(2 * I + 1);
+    const V bi = (ui * s2 - vi) * y;
+    if constexpr (I == N) {
+      return W(1) + bi * r;
+    } else {
+      constexpr W uj = W(1) / W((I + 1) * (2 * I + 3)), vj = W(I + 1) / W(2 * I + 3);
+      const V bj = (uj * s2 - vj) * y;
+      return (W(1) + bi) + (bi * bj) * sin_ratio_nest_to<V, W, I + 2, N>(s2, y, r);
+    }
   }
 }
 
-/// sin(sφ)/sin φ for the two lanes of s in [0, 4], φ ≤ π/8, y = cos φ − 1: fast_slerp_fit_terms<T>
+/// sin(sφ)/sin φ for the lanes of s in [0, 4], φ ≤ π/8, y = cos φ − 1: fast_slerp_fit_terms<T>
 /// terms, the last one fitted (see fast_slerp_fit_terms).
-template <Real T, Real W>
-[[gnu::always_inline]] inline fast_slerp_lanes<W> sin_ratio_fit(fast_slerp_lanes<W> s, W y) noexcept {
+template <Real T, class V, Real W>
+[[gnu::always_inline]] inline V sin_ratio_fit(V s, W y) noexcept {
   constexpr int m = fast_slerp_fit_terms<T>;
-  const fast_slerp_lanes<W> s2 = s * s;
-  const fast_slerp_lanes<W> last = W(1) + (W(fast_slerp_fit_c1<T>) * s2 + W(fast_slerp_fit_c0<T>)) * y;
-  return s * sin_ratio_nest_to<W, 1, m - 1>(s2, y, last);
+  const V s2 = s * s;
+  const V last = W(1) + (W(fast_slerp_fit_c1<T>) * s2 + W(fast_slerp_fit_c0<T>)) * y;
+  return s * sin_ratio_nest_to<V, W, 1, m - 1>(s2, y, last);
 }
 
 /// Below this distance of cos θ from 1, two terms of the series without the half-angle step reach
@@ -299,6 +303,21 @@ template <Real T>
     std::memcpy(&q, &r, sizeof q);
     return q;
   }
+  if constexpr (sizeof(T) <= 4) {
+    // Float: the weights in float too, four lanes (a, b, a, b) of one SSE register, and the blend
+    // in V4 — no conversions.  Same reduction and fitted series as double (see below).
+    const T sign = std::copysign(T(1), dt + T(0));
+    const T x = std::min(std::abs(dt), T(1));
+    const T h1 = std::sqrt(T(0.5) + T(0.5) * x);
+    const T h2 = std::sqrt(T(0.5) + T(0.5) * h1);
+    const V4 q = V4{x - T(1), T(0.25), T(1), T(1)} / V4{T(4) * ((h1 + T(1)) * (h2 + T(1))), h1 * h2, T(1), T(1)};
+    const T sa = T(4) * (T(1) - u), sb = T(4) * u;
+    const V4 w = detail::sin_ratio_fit<T, V4, T>(V4{sa, sb, sa, sb}, q[0]) * q[1];
+    const V4 r = va * w[0] + vb * (w[1] * sign);
+    Quat<T> out;
+    std::memcpy(&out, &r, sizeof out);
+    return out;
+  }
   const W d = std::is_same_v<T, W> ? W(dt) : W(a.w) * W(b.w) + W(a.x) * W(b.x) + W(a.y) * W(b.y) + W(a.z) * W(b.z);
   // Shortest arc: b → −b when a·b < 0, as slerp() (d + 0 turns −0 into +0; branch-free).
   const W sign = std::copysign(W(1), d + W(0));
@@ -319,7 +338,7 @@ template <Real T>
     inv = W(0.25) / (h1 * h2);
   }
   // sin(uθ)/sin θ = [sin(4u·θ/4)/sin(θ/4)]·[sin(θ/4)/sin θ]
-  const L w = detail::sin_ratio_fit<T, W>(L{W(4) * (W(1) - W(u)), W(4) * W(u)}, y) * inv;
+  const L w = detail::sin_ratio_fit<T, L, W>(L{W(4) * (W(1) - W(u)), W(4) * W(u)}, y) * inv;
   const W wa = w[0], wb = w[1] * sign;
   // Blended in W too, so that a float result is rounded once per component.
   return {T(W(a.w) * wa + W(b.w) * wb), T(W(a.x) * wa + W(b.x) * wb), T(W(a.y) * wa + W(b.y) * wb),
