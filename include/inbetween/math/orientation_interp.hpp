@@ -186,7 +186,7 @@ template <Real W, int N>
 /// and a last term (c₁s² + c₀)·y whose two coefficients are fitted by minimax over that domain
 /// (the idea of Eberly's "optimal" u_n, v_n; fitted with tools/slerp/fit_slerp_weights.py
 /// --quarter m 2, a linear program against sin(sφ)/(s sin φ) in long double).  Largest truncation
-/// of the ratio on the script's 401×401 check grid: 1.1e-8 for float (m = 4, weights in double,
+/// of the ratio on the script's 401×401 check grid: 1.1e-8 for float (m = 4, weights in float,
 /// below float rounding) and 5.3e-17 for double (m = 9, below double rounding) — against 8 and 17
 /// terms of the plain series after one half-angle step.
 template <Real T>
@@ -242,18 +242,21 @@ inline constexpr double fast_slerp_lerp_cut = sizeof(T) <= 4 ? 0x1p-22 : 0x1p-50
 }  // namespace detail
 
 /// Largest rotation-angle error (radians) of fast_slerp() against slerp() evaluated in long double
-/// on the same inputs, over unit inputs and u in [0, 1]: about twice the measured maximum
-/// (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.1e-7 in float, 6.2e-16 in
-/// double, over random, nearly identical, nearly opposite and museum pairs).  glm and Eigen slerp
-/// measure 1.9e-7 to 2.3e-7 (float) and 3e-16 to 4e-16 (double) on the benchmark's pairs
-/// (bench/RESULTS.md).
+/// on the same inputs, over unit inputs and u in [0, 1]: 1.6× (float) and 2.4× (double) the measured
+/// maximum (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.5e-7 in float with
+/// the weights computed in float, 6.2e-16 in double, over random, nearly identical, nearly opposite
+/// and museum pairs).  On the benchmark's pairs fast_slerp measures 1.7e-7 (float) and 3.1e-16
+/// (double), glm and Eigen slerp 1.9e-7 to 2.3e-7 and 3.2e-16 to 3.8e-16 (bench/RESULTS.md).
 template <Real T>
 inline constexpr T fast_slerp_max_error_rad = sizeof(T) <= 4 ? T(4e-7) : T(1.5e-15);
 
 /// Slerp without trigonometry, along the shortest arc only (b is flipped to −b when a·b < 0):
-/// the weights sin((1−u)θ)/sin θ and sin(uθ)/sin θ come from one half-angle step
-/// (cos(θ/2) = √((1 + cos θ)/2)) and Eberly's series in cos(θ/2) − 1, truncated where it reaches
-/// the scalar's rounding.  Branch-free apart from the sign flip; one square root and one division.
+/// the weights sin((1−u)θ)/sin θ and sin(uθ)/sin θ come from two half-angle steps
+/// (cos(θ/2) = √((1 + cos θ)/2), then cos(θ/4)) and Eberly's series in cos(θ/4) − 1 with a
+/// minimax-fitted last term (see detail::fast_slerp_fit_terms), truncated below the scalar's
+/// rounding; float inputs are weighted in float (four SSE lanes), double in two SSE2 lanes.
+/// Branch-free apart from the sign flip and the nearly-identical paths; two square roots and one
+/// (packed) division.
 /// Accuracy: rotation angle within fast_slerp_max_error_rad<T> of the exact great arc (so endpoints
 /// are reproduced within that bound, not bit-exactly as slerp() does); slerp() stays the reference.
 /// When a·b is within rounding of 0 the two arcs are equally long and either may be taken.
@@ -327,32 +330,21 @@ template <Real T>
     Quat<T> out;
     std::memcpy(&out, &r, sizeof out);
     return out;
-  }
-  const W d = std::is_same_v<T, W> ? W(dt) : W(a.w) * W(b.w) + W(a.x) * W(b.x) + W(a.y) * W(b.y) + W(a.z) * W(b.z);
-  // Shortest arc: b → −b when a·b < 0, as slerp() (d + 0 turns −0 into +0; branch-free).
-  const W sign = std::copysign(W(1), d + W(0));
-  const W x = std::min(std::abs(d), W(1));  // cos θ in [0, 1]
-  const W h1 = std::sqrt(W(0.5) + W(0.5) * x);   // cos(θ/2) in [cos(π/4), 1]
-  const W h2 = std::sqrt(W(0.5) + W(0.5) * h1);  // cos(θ/4) in [cos(π/8), 1]
-  W y, inv;
-  if constexpr (std::is_same_v<T, W>) {
+  } else {
+    static_assert(std::is_same_v<T, W>);
+    // Shortest arc: b → −b when a·b < 0, as slerp() (dt + 0 turns −0 into +0; branch-free).
+    const T sign = std::copysign(T(1), dt + T(0));
+    const T x = std::min(std::abs(dt), T(1));      // cos θ in [0, 1]
+    const T h1 = std::sqrt(T(0.5) + T(0.5) * x);   // cos(θ/2) in [cos(π/4), 1]
+    const T h2 = std::sqrt(T(0.5) + T(0.5) * h1);  // cos(θ/4) in [cos(π/8), 1]
     // cos(θ/4) − 1 = (cos θ − 1)/(4(h1 + 1)(h2 + 1)) without cancellation, and
     // 1/(4 h1 h2) = sin(θ/4)/sin θ, in one packed division.
-    const L q = L{x - W(1), W(0.25)} / L{W(4) * ((h1 + W(1)) * (h2 + W(1))), h1 * h2};
-    y = q[0];
-    inv = q[1];
-  } else {
-    // Float inputs, double weights: h2 − 1 directly (no division on the critical path).  Its
-    // cancellation costs a relative 2⁻⁵³/|y| ≤ 2⁻³⁷ (|y| ≥ cut/16 = 2⁻¹⁶ here): far below float.
-    y = h2 - W(1);
-    inv = W(0.25) / (h1 * h2);
+    const L q = L{x - T(1), T(0.25)} / L{T(4) * ((h1 + T(1)) * (h2 + T(1))), h1 * h2};
+    // sin(uθ)/sin θ = [sin(4u·θ/4)/sin(θ/4)]·[sin(θ/4)/sin θ]
+    const L w = detail::sin_ratio_fit<T, L, T>(L{T(4) * (T(1) - u), T(4) * u}, q[0]) * q[1];
+    const T wa = w[0], wb = w[1] * sign;
+    return {a.w * wa + b.w * wb, a.x * wa + b.x * wb, a.y * wa + b.y * wb, a.z * wa + b.z * wb};
   }
-  // sin(uθ)/sin θ = [sin(4u·θ/4)/sin(θ/4)]·[sin(θ/4)/sin θ]
-  const L w = detail::sin_ratio_fit<T, L, W>(L{W(4) * (W(1) - W(u)), W(4) * W(u)}, y) * inv;
-  const W wa = w[0], wb = w[1] * sign;
-  // Blended in W too, so that a float result is rounded once per component.
-  return {T(W(a.w) * wa + W(b.w) * wb), T(W(a.x) * wa + W(b.x) * wb), T(W(a.y) * wa + W(b.y) * wb),
-          T(W(a.z) * wa + W(b.z) * wb)};
 }
 
 /// The per-arc part of fast_slerp for unit a, b with a·b ≥ 0 (cos θ in [0, 1]), computed once when
