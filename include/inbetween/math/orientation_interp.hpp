@@ -9,7 +9,9 @@
 #include <array>
 #include <type_traits>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "inbetween/math/euler.hpp"
 #include "inbetween/math/mat.hpp"
@@ -282,10 +284,26 @@ template <Real T>
   std::memcpy(&va, &a, sizeof va);
   std::memcpy(&vb, &b, sizeof vb);
   const V4 pr = va * vb;
-  const T dt = (pr[0] + pr[1]) + (pr[2] + pr[3]);
+  using I4 [[gnu::vector_size(4 * sizeof(T))]] = std::conditional_t<sizeof(T) <= 4, std::int32_t, std::int64_t>;
+  T dt;
+  if constexpr (sizeof(T) <= 4) {
+    // (w·w' + y·y') + (x·x' + z·z'): high half onto low half, then one scalar add (two shuffles
+    // instead of four; nearly identical float pairs 1.26 instead of 1.36 ns).
+    const V4 ph = pr + __builtin_shuffle(pr, I4{2, 3, 0, 1});
+    dt = ph[0] + ph[1];
+  } else {
+    // Double keeps (w·w' + x·x') + (y·y' + z·z'): the other order measured 3.5e-16 instead of
+    // 3.1e-16 on the benchmark's random pairs (the dot's rounding is the largest single error
+    // left, so the order shows) and no speed difference.
+    dt = (pr[0] + pr[1]) + (pr[2] + pr[3]);
+  }
   if (std::abs(dt) > T(1) - T(detail::fast_slerp_lerp_cut<T>)) {
     // Ends within rounding of each other: the plain blend a + u(b − a), see fast_slerp_lerp_cut.
-    const V4 vbs = vb * std::copysign(T(1), dt);
+    // b → −b when a·b < 0: the sign bit of a·b xor-ed into b (no multiply).
+    using Int = std::conditional_t<sizeof(T) <= 4, std::int32_t, std::int64_t>;
+    constexpr Int m = std::numeric_limits<Int>::min();  // the sign bit alone
+    const I4 sgn = reinterpret_cast<I4>(V4{dt, dt, dt, dt}) & I4{m, m, m, m};
+    const V4 vbs = reinterpret_cast<V4>(reinterpret_cast<I4>(vb) ^ sgn);
     const V4 r = va + (vbs - va) * u;
     Quat<T> q;
     std::memcpy(&q, &r, sizeof q);
