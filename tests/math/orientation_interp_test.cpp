@@ -149,7 +149,7 @@ TYPED_TEST(OrientationInterp, SlerpErrorAgainstLongDoubleNeedsNoCutOff) {
 }
 
 TYPED_TEST(OrientationInterp, FastSlerpWithinStatedBound) {
-  // fast_slerp (Eberly's series after one half-angle step) against slerp() in long double on the
+  // fast_slerp (Eberly's series, fitted last term, after two half-angle steps) against slerp() in long double on the
   // same rounded inputs: the rotation angle between them stays within fast_slerp_max_error_rad<T>,
   // over uniform random pairs, nearly identical pairs (angles 3·2^-k down to below ε, both sides of
   // the near-path switch), nearly opposite pairs (the shortest arc's largest angle, θ → π), the

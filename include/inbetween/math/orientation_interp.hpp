@@ -9,7 +9,9 @@
 #include <array>
 #include <type_traits>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "inbetween/math/euler.hpp"
 #include "inbetween/math/mat.hpp"
@@ -181,6 +183,51 @@ template <Real W, int N>
   return s * sin_ratio_nest<W, 1, N>(s * s, y);
 }
 
+/// fast_slerp's random-pair path works after two half-angle steps (φ = θ/4 ≤ π/8, s = 4u in
+/// [0, 4], y = cos φ − 1 in [cos(π/8) − 1, 0] ≈ [−0.076, 0]): Eberly's exact terms b_1 … b_{m−1}
+/// and a last term (c₁s² + c₀)·y whose two coefficients are fitted by minimax over that domain
+/// (the idea of Eberly's "optimal" u_n, v_n; fitted with tools/slerp/fit_slerp_weights.py
+/// --quarter m 2, a linear program against sin(sφ)/(s sin φ) in long double).  Largest truncation
+/// of the ratio on the script's 401×401 check grid: 1.1e-8 for float (m = 4, weights in float,
+/// below float rounding) and 5.3e-17 for double (m = 9, below double rounding) — against 8 and 17
+/// terms of the plain series after one half-angle step.
+template <Real T>
+inline constexpr int fast_slerp_fit_terms = sizeof(T) <= 4 ? 4 : 9;
+/// (c₀, c₁) of the fitted last term, from tools/slerp/fit_slerp_weights.py --quarter 4 2 / 9 2.
+template <Real T>
+inline constexpr double fast_slerp_fit_c0 = sizeof(T) <= 4 ? -0.45487229439687982 : -0.49097229605828918;
+template <Real T>
+inline constexpr double fast_slerp_fit_c1 = sizeof(T) <= 4 ? 0.028439358025939634 : 0.0060802472181304438;
+
+/// 1 + b_I(1 + b_{I+1}(1 + … (1 + b_N·r))) with the innermost factor r given, two terms at a
+/// time as sin_ratio_nest; V is a vector of W (two lanes of double, or four of float).
+template <class V, Real W, int I, int N>
+[[gnu::always_inline]] inline V sin_ratio_nest_to(V s2, W y, V r) noexcept {
+  if constexpr (I > N) {
+    return r;
+  } else {
+    constexpr W ui = W(1) / W(I * (2 * I + 1)), vi = W(I) / W(2 * I + 1);
+    const V bi = (ui * s2 - vi) * y;
+    if constexpr (I == N) {
+      return W(1) + bi * r;
+    } else {
+      constexpr W uj = W(1) / W((I + 1) * (2 * I + 3)), vj = W(I + 1) / W(2 * I + 3);
+      const V bj = (uj * s2 - vj) * y;
+      return (W(1) + bi) + (bi * bj) * sin_ratio_nest_to<V, W, I + 2, N>(s2, y, r);
+    }
+  }
+}
+
+/// sin(sφ)/sin φ for the lanes of s in [0, 4], φ ≤ π/8, y = cos φ − 1: fast_slerp_fit_terms<T>
+/// terms, the last one fitted (see fast_slerp_fit_terms).
+template <Real T, class V, Real W>
+[[gnu::always_inline]] inline V sin_ratio_fit(V s, W y) noexcept {
+  constexpr int m = fast_slerp_fit_terms<T>;
+  const V s2 = s * s;
+  const V last = W(1) + (W(fast_slerp_fit_c1<T>) * s2 + W(fast_slerp_fit_c0<T>)) * y;
+  return s * sin_ratio_nest_to<V, W, 1, m - 1>(s2, y, last);
+}
+
 /// Below this distance of cos θ from 1, two terms of the series without the half-angle step reach
 /// the weights' rounding: for s in [0, 1] the first dropped term is s·b₁b₂b₃ with
 /// |b₁b₂b₃| ≤ (1/3)(1/5)(3/7)|y|³ < |y|³/35, i.e. 3e-20 for double at 2^-20 and 4e-13 for the float
@@ -197,18 +244,21 @@ inline constexpr double fast_slerp_lerp_cut = sizeof(T) <= 4 ? 0x1p-22 : 0x1p-50
 }  // namespace detail
 
 /// Largest rotation-angle error (radians) of fast_slerp() against slerp() evaluated in long double
-/// on the same inputs, over unit inputs and u in [0, 1]: about twice the measured maximum
-/// (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.1e-7 in float, 6.2e-16 in
-/// double, over random, nearly identical, nearly opposite and museum pairs).  glm and Eigen slerp
-/// measure 1.9e-7 to 2.3e-7 (float) and 3e-16 to 4e-16 (double) on the benchmark's pairs
-/// (bench/RESULTS.md).
+/// on the same inputs, over unit inputs and u in [0, 1]: 1.6× (float) and 2.4× (double) the measured
+/// maximum (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.5e-7 in float with
+/// the weights computed in float, 6.2e-16 in double, over random, nearly identical, nearly opposite
+/// and museum pairs).  On the benchmark's pairs fast_slerp measures 1.7e-7 (float) and 3.1e-16
+/// (double), glm and Eigen slerp 1.9e-7 to 2.3e-7 and 3.2e-16 to 3.8e-16 (bench/RESULTS.md).
 template <Real T>
 inline constexpr T fast_slerp_max_error_rad = sizeof(T) <= 4 ? T(4e-7) : T(1.5e-15);
 
 /// Slerp without trigonometry, along the shortest arc only (b is flipped to −b when a·b < 0):
-/// the weights sin((1−u)θ)/sin θ and sin(uθ)/sin θ come from one half-angle step
-/// (cos(θ/2) = √((1 + cos θ)/2)) and Eberly's series in cos(θ/2) − 1, truncated where it reaches
-/// the scalar's rounding.  Branch-free apart from the sign flip; one square root and one division.
+/// the weights sin((1−u)θ)/sin θ and sin(uθ)/sin θ come from two half-angle steps
+/// (cos(θ/2) = √((1 + cos θ)/2), then cos(θ/4)) and Eberly's series in cos(θ/4) − 1 with a
+/// minimax-fitted last term (see detail::fast_slerp_fit_terms), truncated below the scalar's
+/// rounding; float inputs are weighted in float (four SSE lanes), double in two SSE2 lanes.
+/// Branch-free apart from the sign flip and the nearly-identical paths; two square roots and one
+/// (packed) division.
 /// Accuracy: rotation angle within fast_slerp_max_error_rad<T> of the exact great arc (so endpoints
 /// are reproduced within that bound, not bit-exactly as slerp() does); slerp() stays the reference.
 /// When a·b is within rounding of 0 the two arcs are equally long and either may be taken.
@@ -234,10 +284,28 @@ template <Real T>
   std::memcpy(&va, &a, sizeof va);
   std::memcpy(&vb, &b, sizeof vb);
   const V4 pr = va * vb;
-  const T dt = (pr[0] + pr[1]) + (pr[2] + pr[3]);
+  using I4 [[gnu::vector_size(4 * sizeof(T))]] = std::conditional_t<sizeof(T) <= 4, std::int32_t, std::int64_t>;
+  T dt;
+  if constexpr (sizeof(T) <= 4) {
+    // (w·w' + x·x') + (y·y' + z·z') as double below, but with two shuffles instead of four
+    // (neighbours swapped and added, then lanes 0 and 2).  The order matters for the error: the
+    // other pairing, (w·w' + y·y') + (x·x' + z·z'), measured 1.74e-7 instead of 1.55e-7 on the
+    // benchmark's random pairs with -march=native (1.66e-7 either way without).
+    const V4 ph = pr + __builtin_shuffle(pr, I4{1, 0, 3, 2});
+    dt = ph[0] + ph[2];
+  } else {
+    // Double keeps (w·w' + x·x') + (y·y' + z·z'): the other order measured 3.5e-16 instead of
+    // 3.1e-16 on the benchmark's random pairs (the dot's rounding is the largest single error
+    // left, so the order shows) and no speed difference.
+    dt = (pr[0] + pr[1]) + (pr[2] + pr[3]);
+  }
   if (std::abs(dt) > T(1) - T(detail::fast_slerp_lerp_cut<T>)) {
     // Ends within rounding of each other: the plain blend a + u(b − a), see fast_slerp_lerp_cut.
-    const V4 vbs = vb * std::copysign(T(1), dt);
+    // b → −b when a·b < 0: the sign bit of a·b xor-ed into b (no multiply).
+    using Int = std::conditional_t<sizeof(T) <= 4, std::int32_t, std::int64_t>;
+    constexpr Int m = std::numeric_limits<Int>::min();  // the sign bit alone
+    const I4 sgn = reinterpret_cast<I4>(V4{dt, dt, dt, dt}) & I4{m, m, m, m};
+    const V4 vbs = reinterpret_cast<V4>(reinterpret_cast<I4>(vb) ^ sgn);
     const V4 r = va + (vbs - va) * u;
     Quat<T> q;
     std::memcpy(&q, &r, sizeof q);
@@ -258,27 +326,45 @@ template <Real T>
     std::memcpy(&q, &r, sizeof q);
     return q;
   }
-  const W d = std::is_same_v<T, W> ? W(dt) : W(a.w) * W(b.w) + W(a.x) * W(b.x) + W(a.y) * W(b.y) + W(a.z) * W(b.z);
-  // Shortest arc: b → −b when a·b < 0, as slerp() (d + 0 turns −0 into +0; branch-free).
-  const W sign = std::copysign(W(1), d + W(0));
-  const W x = std::min(std::abs(d), W(1));  // cos θ in [0, 1]
-  const W h = std::sqrt(W(0.5) + W(0.5) * x);  // cos(θ/2) in [cos(π/4), 1]
-  W y;
-  if constexpr (std::is_same_v<T, W>) {
-    y = (x - W(1)) / (W(2) * (h + W(1)));  // cos(θ/2) − 1 without cancellation
+  if constexpr (sizeof(T) <= 4) {
+    // Float: the weights in float too, four lanes (a, b, a, b) of one SSE register, and the blend
+    // in V4 — no conversions.  Same reduction and fitted series as double (see below).
+    const T sign = std::copysign(T(1), dt + T(0));
+    const T x = std::min(std::abs(dt), T(1));
+    const T h1 = std::sqrt(T(0.5) + T(0.5) * x);
+    const T h2 = std::sqrt(T(0.5) + T(0.5) * h1);
+    const V4 q = V4{x - T(1), T(0.25), T(1), T(1)} / V4{T(4) * ((h1 + T(1)) * (h2 + T(1))), h1 * h2, T(1), T(1)};
+    const T sa = T(4) * (T(1) - u), sb = T(4) * u;
+    // Weight = s'·(1 + e) with s' = s·sin(θ/4)/sin θ and e = sin(sφ)/(s sin φ) − 1 = b₁(1 + …),
+    // summed as s' + s'·e: the rounding of the small product s'·e is negligible, so each weight
+    // carries two roundings (s' and the sum) instead of three (s·g, ·inv and g's own 1 + …);
+    // measured: worst angle error 2.74e-7 instead of 3.03e-7 over 2·10⁵ random pairs.
+    constexpr int m = detail::fast_slerp_fit_terms<T>;
+    const T y = q[0];
+    const V4 s{sa, sb, sa, sb}, s2 = s * s;
+    const V4 last = T(1) + (T(detail::fast_slerp_fit_c1<T>) * s2 + T(detail::fast_slerp_fit_c0<T>)) * y;
+    const V4 e = ((T(1.0 / 3.0) * s2 - T(1.0 / 3.0)) * y) * detail::sin_ratio_nest_to<V4, T, 2, m - 1>(s2, y, last);
+    const V4 si = s * q[1];
+    const V4 w = si + si * e;
+    const V4 r = va * w[0] + vb * (w[1] * sign);
+    Quat<T> out;
+    std::memcpy(&out, &r, sizeof out);
+    return out;
   } else {
-    // Float inputs, double weights: h − 1 directly (no division on the critical path).  Its
-    // cancellation costs a relative 2⁻⁵³/|y| ≤ 2⁻³⁹ (|y| ≥ cut/4 = 2⁻¹⁴ here): far below float.
-    y = h - W(1);
+    static_assert(std::is_same_v<T, W>);
+    // Shortest arc: b → −b when a·b < 0, as slerp() (dt + 0 turns −0 into +0; branch-free).
+    const T sign = std::copysign(T(1), dt + T(0));
+    const T x = std::min(std::abs(dt), T(1));      // cos θ in [0, 1]
+    const T h1 = std::sqrt(T(0.5) + T(0.5) * x);   // cos(θ/2) in [cos(π/4), 1]
+    const T h2 = std::sqrt(T(0.5) + T(0.5) * h1);  // cos(θ/4) in [cos(π/8), 1]
+    // cos(θ/4) − 1 = (cos θ − 1)/(4(h1 + 1)(h2 + 1)) without cancellation, and
+    // 1/(4 h1 h2) = sin(θ/4)/sin θ, in one packed division.
+    const L q = L{x - T(1), T(0.25)} / L{T(4) * ((h1 + T(1)) * (h2 + T(1))), h1 * h2};
+    // sin(uθ)/sin θ = [sin(4u·θ/4)/sin(θ/4)]·[sin(θ/4)/sin θ]
+    const L w = detail::sin_ratio_fit<T, L, T>(L{T(4) * (T(1) - u), T(4) * u}, q[0]) * q[1];
+    const T wa = w[0], wb = w[1] * sign;
+    return {a.w * wa + b.w * wb, a.x * wa + b.x * wb, a.y * wa + b.y * wb, a.z * wa + b.z * wb};
   }
-  const W inv = W(0.5) / h;  // 1/(2 cos(θ/2)) = sin(θ/2)/sin θ, off the series' critical path
-  // sin(uθ)/sin θ = [sin(2u·θ/2)/sin(θ/2)]·[sin(θ/2)/sin θ]
-  constexpr int n = detail::fast_slerp_terms<T>;
-  const L w = detail::sin_ratio_series<W, n>(L{W(2) * (W(1) - W(u)), W(2) * W(u)}, y) * inv;
-  const W wa = w[0], wb = w[1] * sign;
-  // Blended in W too, so that a float result is rounded once per component.
-  return {T(W(a.w) * wa + W(b.w) * wb), T(W(a.x) * wa + W(b.x) * wb), T(W(a.y) * wa + W(b.y) * wb),
-          T(W(a.z) * wa + W(b.z) * wb)};
 }
 
 /// The per-arc part of fast_slerp for unit a, b with a·b ≥ 0 (cos θ in [0, 1]), computed once when
