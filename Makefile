@@ -84,9 +84,12 @@ screenshots: build
 	cp $(BUILD)/preview-test/preview.png docs/images/preview.png
 	@echo "make: docs/images/preview.png updated from the browser test"
 
+# Runs every bench program (3 interleaved repetitions, medians) and writes the generated section of
+# bench/RESULTS.md (tools/bench/write_results.py; the hand-written analysis below it stays).
+BENCH_MIN_TIME ?= 0.1
 bench: build
-	@set -e; for b in $(BUILD)/bench/inbetween_bench_*; do \
-	  [ -x "$$b" ] || continue; echo "== $$b"; "$$b" --benchmark_min_time=0.2; done
+	python3 tools/bench/write_results.py --build-dir $(BUILD) --min-time $(BENCH_MIN_TIME) \
+	  --command "make bench PRESET=$(PRESET)"
 
 asan:
 	$(MAKE) test PRESET=asan
