@@ -28,3 +28,18 @@ void* operator new(std::size_t size) {
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+// The nothrow and array forms too: std::stable_sort's temporary buffer uses nothrow new and frees
+// with plain delete, so every form must come from the same malloc (AddressSanitizer reports an
+// alloc-dealloc mismatch otherwise), and a sampling path must not hide an allocation in them.
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  if (inbetween::test::g_counting) ++inbetween::test::g_allocations;
+  return std::malloc(size == 0 ? 1 : size);
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void* operator new[](std::size_t size, const std::nothrow_t& tag) noexcept {
+  return operator new(size, tag);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
