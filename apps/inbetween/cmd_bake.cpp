@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "frame_spec.hpp"
 #include "gltf_input.hpp"
 #include "inbetween/io/scene.hpp"
 #include "output.hpp"
@@ -28,16 +29,6 @@ namespace {
 // Frame counts up to 2^53 are exact in a double (and frame i = a + i·step is computed from an
 // exact i); beyond, the count itself is not representable.  Memory does not depend on the count.
 constexpr double kMaxFrames = 9007199254740992.0;  // 2^53
-
-double parse_real(const std::string& text, const std::string& what) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  const double v = std::strtod(begin, &end);
-  if (text.empty() || end != begin + text.size() || !std::isfinite(v)) {
-    throw CommandError{"--frames: " + what + " \"" + text + "\" is not a finite number (expected A:B[:STEP])"};
-  }
-  return v;
-}
 
 /// Frames a, a + step, …, a + (count − 1)·step.
 struct FrameRange {
@@ -51,17 +42,11 @@ struct FrameRange {
 FrameRange frame_range(const std::string& spec, double scene_start, double scene_end) {
   double a = scene_start, b = scene_end, step = 1;
   if (!spec.empty()) {
-    std::vector<std::string> parts;
-    std::stringstream ss(spec);
-    for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
-    if (parts.size() < 2 || parts.size() > 3 || spec.back() == ':') {
-      throw CommandError{"--frames: \"" + spec + "\" is not A:B or A:B:STEP"};
-    }
-    a = parse_real(parts[0], "start");
-    b = parse_real(parts[1], "end");
-    if (parts.size() == 3) step = parse_real(parts[2], "step");
-    if (!(step > 0)) throw CommandError{"--frames: step must be positive"};
-    if (b < a) throw CommandError{"--frames: end " + parts[1] + " is before start " + parts[0]};
+    const FrameSpec f = parse_frame_spec(spec);
+    a = f.start;
+    b = f.end;
+    step = f.step.value_or(1.0);
+    if (b < a) throw CommandError{"--frames: end " + f.end_text + " is before start " + f.start_text};
   }
   const double count_d = std::floor((b - a) / step * (1 + 1e-12) + 1e-9) + 1;
   // Without --frames the scene's "range" is to blame; say so.
@@ -193,18 +178,7 @@ const RegisterCommand kBake{{"bake", 40, [](CLI::App& root) {
   cmd->add_option("--animation", opt->animation, "glTF input: the animation's NAME or INDEX (default: the first)");
   cmd->add_option("--frames", opt->frames, "A:B[:STEP] frames to evaluate (default: the scene's range, step 1; glTF: the animation's time range × fps)");
   cmd->add_option("--fps", opt->fps, "Frames per second: of the time column (default: the scene's fps); glTF input: frame = time · fps (default 24)")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            // CLI::PositiveNumber lets "nan" through (then silently ignored) and prints a 300-digit bound.
-            const char* begin = text.c_str();
-            char* end = nullptr;
-            const double v = std::strtod(begin, &end);
-            if (text.empty() || end != begin + text.size() || !std::isfinite(v) || !(v > 0)) {
-              return "\"" + text + "\" is not a finite positive number";
-            }
-            return {};
-          },
-          "POSITIVE"));
+      ->check(finite_positive_number());
   cmd->add_option("--format", opt->format, "Output format")->check(CLI::IsMember({"csv", "json"}));
   cmd->add_option("-o,--output", opt->output,
                   "Output file (default: standard output); a regular file is replaced whole or not at all");

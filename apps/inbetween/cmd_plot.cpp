@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "frame_spec.hpp"
 #include "gltf_input.hpp"
 #include "inbetween/io/scene.hpp"
 #include "plot.hpp"
@@ -26,16 +27,6 @@ struct PlotCommandOptions {
   double fps = 0;
   std::string progress = "auto";
 };
-
-double parse_real(const std::string& text, const std::string& what) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  const double v = std::strtod(begin, &end);
-  if (text.empty() || end != begin + text.size() || !std::isfinite(v)) {
-    throw CommandError{"--frames: " + what + " \"" + text + "\" is not a finite number (expected A:B[:STEP])"};
-  }
-  return v;
-}
 
 void run_plot(const PlotCommandOptions& opt) {
   const bool gltf = is_gltf_input(opt.input);
@@ -57,20 +48,12 @@ void run_plot(const PlotCommandOptions& opt) {
   options.progress = parse_progress_mode(opt.progress);
   options.title = opt.input == "-" ? std::string("standard input") : std::filesystem::path(opt.input).filename().string();
   if (!opt.frames.empty()) {
-    std::vector<std::string> parts;
-    std::stringstream ss(opt.frames);
-    for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
-    if (parts.size() < 2 || parts.size() > 3 || opt.frames.back() == ':') {
-      throw CommandError{"--frames: \"" + opt.frames + "\" is not A:B or A:B:STEP"};
-    }
-    options.frame_start = parse_real(parts[0], "start");
-    options.frame_end = parse_real(parts[1], "end");
-    if (parts.size() == 3) {
-      options.frame_step = parse_real(parts[2], "step");
-      if (!(options.frame_step > 0)) throw CommandError{"--frames: step must be positive"};
-    }
-    if (!(*options.frame_end > *options.frame_start)) {
-      throw CommandError{"--frames: end " + parts[1] + " is not after start " + parts[0]};
+    const FrameSpec f = parse_frame_spec(opt.frames);
+    options.frame_start = f.start;
+    options.frame_end = f.end;
+    if (f.step) options.frame_step = *f.step;
+    if (!(f.end > f.start)) {
+      throw CommandError{"--frames: end " + f.end_text + " is not after start " + f.start_text};
     }
   }
   auto report = write_plots(*scene, raw, opt.output, options);

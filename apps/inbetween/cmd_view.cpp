@@ -8,6 +8,7 @@
 #include <string>
 
 #include "command.hpp"
+#include "frame_spec.hpp"
 #include "gltf_input.hpp"
 #include "inbetween/io/scene.hpp"
 #include "preview.hpp"
@@ -50,18 +51,7 @@ const RegisterCommand kView{{"view", 45, [](CLI::App& root) {
                   "A:B[:STEP] frames to bake into the page (default: the scene's range, step 1; at most 20000 frames)");
   cmd->add_option("--animation", opt->animation, "glTF input: the animation's NAME or INDEX (default: the first)");
   cmd->add_option("--fps", opt->fps, "glTF input: frame = time · fps (default 24)")
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            // As bake's --fps: CLI::PositiveNumber would let "nan" through.
-            const char* begin = text.c_str();
-            char* end = nullptr;
-            const double v = std::strtod(begin, &end);
-            if (text.empty() || end != begin + text.size() || !std::isfinite(v) || !(v > 0)) {
-              return "\"" + text + "\" is not a finite positive number";
-            }
-            return {};
-          },
-          "POSITIVE"));
+      ->check(finite_positive_number());
   cmd->callback([opt] { run_view(*opt); });
 }}};
 

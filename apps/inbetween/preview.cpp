@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "frame_spec.hpp"
 #include "progress.hpp"
 
 namespace inbetween::cli {
@@ -54,16 +55,6 @@ std::string html_escape(const std::string& text) {
   return out;
 }
 
-double parse_real(const std::string& text, const std::string& what) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  const double v = std::strtod(begin, &end);
-  if (text.empty() || end != begin + text.size() || !std::isfinite(v)) {
-    throw CommandError{"--frames: " + what + " \"" + text + "\" is not a finite number (expected A:B[:STEP])"};
-  }
-  return v;
-}
-
 // Replaces the first `marker` of `page` at or after `from` by `text` and returns the position after
 // it (so a marker-like text inside an inserted value is never replaced); a template without the
 // marker is a build defect.
@@ -99,17 +90,11 @@ void require_preview() {
 PreviewFrames preview_frames(const std::string& spec, const Scene& scene) {
   double a = scene.range_start(), b = scene.range_end(), step = 1;
   if (!spec.empty()) {
-    std::vector<std::string> parts;
-    std::stringstream ss(spec);
-    for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
-    if (parts.size() < 2 || parts.size() > 3 || spec.back() == ':') {
-      throw CommandError{"--frames: \"" + spec + "\" is not A:B or A:B:STEP"};
-    }
-    a = parse_real(parts[0], "start");
-    b = parse_real(parts[1], "end");
-    if (parts.size() == 3) step = parse_real(parts[2], "step");
-    if (!(step > 0)) throw CommandError{"--frames: step must be positive"};
-    if (b < a) throw CommandError{"--frames: end " + parts[1] + " is before start " + parts[0]};
+    const FrameSpec f = parse_frame_spec(spec);
+    a = f.start;
+    b = f.end;
+    step = f.step.value_or(1.0);
+    if (b < a) throw CommandError{"--frames: end " + f.end_text + " is before start " + f.start_text};
   }
   // The same count as `bake` (cmd_bake.cpp), so the page's frames are the rows bake writes.
   const double count_d = std::floor((b - a) / step * (1 + 1e-12) + 1e-9) + 1;
