@@ -40,23 +40,12 @@ struct FrameRange {
 };
 
 FrameRange frame_range(const std::string& spec, double scene_start, double scene_end) {
-  double a = scene_start, b = scene_end, step = 1;
-  if (!spec.empty()) {
-    const FrameSpec f = parse_frame_spec(spec);
-    a = f.start;
-    b = f.end;
-    step = f.step.value_or(1.0);
-    if (b < a) throw CommandError{"--frames: end " + f.end_text + " is before start " + f.start_text};
-  }
-  const double count_d = std::floor((b - a) / step * (1 + 1e-12) + 1e-9) + 1;
-  // Without --frames the scene's "range" is to blame; say so.
-  const std::string what = spec.empty() ? "the scene's /range [" + format_number(a) + ", " + format_number(b) + "]"
-                                        : "--frames " + spec;
-  if (!(count_d <= kMaxFrames)) {
-    throw CommandError{what + ": " + format_number(count_d) +
+  const FrameGrid g = frame_grid(spec, scene_start, scene_end);
+  if (!(g.count <= kMaxFrames)) {
+    throw CommandError{g.what + ": " + format_number(g.count) +
                        " frames; at most 9007199254740992 (2^53, the largest exact count; raise STEP)"};
   }
-  return FrameRange{a, step, std::uint64_t(count_d)};
+  return FrameRange{g.start, g.step, std::uint64_t(g.count)};
 }
 
 // A CSV header field (RFC 4180): names with a comma, quote or line break are quoted, quotes doubled.

@@ -49,6 +49,24 @@ FrameSpec parse_frame_spec(const std::string& spec) {
   return out;
 }
 
+FrameGrid frame_grid(const std::string& spec, double default_start, double default_end) {
+  FrameGrid g;
+  g.start = default_start;
+  g.end = default_end;
+  if (!spec.empty()) {
+    const FrameSpec f = parse_frame_spec(spec);
+    g.start = f.start;
+    g.end = f.end;
+    g.step = f.step.value_or(1.0);
+    if (g.end < g.start) throw CommandError{"--frames: end " + f.end_text + " is before start " + f.start_text};
+  }
+  g.count = std::floor((g.end - g.start) / g.step * (1 + 1e-12) + 1e-9) + 1;
+  // Without --frames the scene's "range" is to blame; say so.
+  g.what = spec.empty() ? "the scene's /range [" + format_number(g.start) + ", " + format_number(g.end) + "]"
+                        : "--frames " + spec;
+  return g;
+}
+
 CLI::Validator finite_positive_number() {
   return CLI::Validator(
       [](std::string& text) -> std::string {

@@ -88,23 +88,13 @@ void require_preview() {
 }
 
 PreviewFrames preview_frames(const std::string& spec, const Scene& scene) {
-  double a = scene.range_start(), b = scene.range_end(), step = 1;
-  if (!spec.empty()) {
-    const FrameSpec f = parse_frame_spec(spec);
-    a = f.start;
-    b = f.end;
-    step = f.step.value_or(1.0);
-    if (b < a) throw CommandError{"--frames: end " + f.end_text + " is before start " + f.start_text};
-  }
-  // The same count as `bake` (cmd_bake.cpp), so the page's frames are the rows bake writes.
-  const double count_d = std::floor((b - a) / step * (1 + 1e-12) + 1e-9) + 1;
-  if (!(count_d <= double(kMaxPreviewFrames))) {
-    const std::string what = spec.empty() ? "the scene's /range [" + format_number(a) + ", " + format_number(b) + "]"
-                                          : "--frames " + spec;
-    throw CommandError{what + ": " + format_number(count_d) + " frames; a preview embeds at most " +
+  // The same grid as `bake` (frame_grid), so the page's frames are the rows bake writes.
+  const FrameGrid g = frame_grid(spec, scene.range_start(), scene.range_end());
+  if (!(g.count <= double(kMaxPreviewFrames))) {
+    throw CommandError{g.what + ": " + format_number(g.count) + " frames; a preview embeds at most " +
                        std::to_string(kMaxPreviewFrames) + " (give --frames A:B:STEP with a larger STEP)"};
   }
-  return PreviewFrames{a, step, std::uint64_t(count_d)};
+  return PreviewFrames{g.start, g.step, std::uint64_t(g.count)};
 }
 
 std::string preview_html(const Scene& scene, const PreviewFrames& frames, const PreviewOptions& options) {
