@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "csv.hpp"
 #include "frame_spec.hpp"
 #include "gltf_input.hpp"
 #include "inbetween/io/scene.hpp"
@@ -56,18 +57,6 @@ std::string csv_field(const std::string& text) {
   return out + "\"";
 }
 
-// Appends the shortest round-trip text of v (in its own precision; "-0" as "0") to `line`: the
-// same text as format_number, without a string per cell.
-template <class T>
-void append_number(std::string& line, T v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  if (res.ptr - buf == 2 && buf[0] == '-' && buf[1] == '0') {
-    line += '0';
-  } else {
-    line.append(buf, res.ptr);
-  }
-}
 
 struct BakeOptions {
   std::string scene_path;

@@ -4,6 +4,7 @@
 // is not a number; a line of number-like fields such as "1,nan" or "1e400,2" is data with a bad
 // value, an error).  Errors are CommandErrors naming the file and line.
 
+#include <charconv>
 #include <string>
 #include <vector>
 
@@ -28,5 +29,18 @@ CsvTable read_csv_table(const std::string& text, const std::string& path, int mi
 /// location: {"points", i} → "<path>: line L" (row i's line), {"points"} → `path`, an option such
 /// as {"control_points"} → "--control-points"; `e.where` unchanged otherwise.
 std::string csv_place(const Error& e, const CsvTable& table, const std::string& path);
+
+/// Appends the shortest round-trip text of v (in its own precision; "-0" as "0") to `line`: the
+/// text `bake` writes in its CSV (and format_number's), without a string per cell.
+template <class T>
+void append_number(std::string& line, T v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  if (res.ptr - buf == 2 && buf[0] == '-' && buf[1] == '0') {
+    line += '0';
+  } else {
+    line.append(buf, res.ptr);
+  }
+}
 
 }  // namespace inbetween::cli

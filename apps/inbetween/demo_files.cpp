@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "csv.hpp"
 #include "frame22_scene.hpp"
 #include "inbetween/io/scene.hpp"
 #include "output.hpp"
@@ -21,17 +22,6 @@
 namespace inbetween::cli {
 namespace {
 
-// Shortest round-trip text in the value's own precision ("-0" as "0"): bake's CSV text.
-template <class T>
-void append_number(std::string& line, T v) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  if (res.ptr - buf == 2 && buf[0] == '-' && buf[1] == '0') {
-    line += '0';
-  } else {
-    line.append(buf, res.ptr);
-  }
-}
 
 std::string fixed(double v, int digits) {
   char buf[64];
