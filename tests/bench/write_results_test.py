@@ -196,7 +196,7 @@ REFERENCE_ROWS = {
     "Catmull-Rom 3-D, 16 points, point, random access (reference)",
     "Catmull-Rom 3-D, 1024 points, point, random access (reference)",
 }
-NO_TARGET_SIZE = {f"{j} joints, {s} key per call" for j in (25, 71, 551) for s in ("½", "⅛")}
+NO_TARGET_SIZE = {f"{j} joints, {s} key interval per call" for j in (25, 71, 551) for s in ("½", "⅛")}
 
 
 def check_targets(test, text):
@@ -302,14 +302,14 @@ class Ozz(unittest.TestCase):
         text = render(load_docs(), ozz)
         times = {b["run_name"]: b["cpu_time"] for b in ozz["benchmarks"] if b["aggregate_name"] == "median"}
         for j, step, label in ((1024, 2, "½"), (64, 8, "⅛")):
-            cells = row(text, f"{j} joints, {label} key per call")
+            cells = row(text, f"{j} joints, {label} key interval per call")
             oz = times[f"BM_OzzSamplingJob/{j}/{step}"]
             self.assertEqual(cells[4], f"{oz / times[f'BM_InbetweenRigClip<float>/{j}/{step}']:.3g}")
             self.assertEqual(cells[5], f"{oz / times[f'BM_InbetweenRigClip<double>/{j}/{step}']:.3g}")
         self.assertIn("ozz-animation 0.16.0 (commit 6cbdc790)", text)
         self.assertIn("Its own run, separate from the tables above", text)
         self.assertNotIn("not run: ozz", text)
-        self.assertEqual(row(text, "25 joints, ⅛ key per call")[6], "no target at this size")
+        self.assertEqual(row(text, "25 joints, ⅛ key interval per call")[6], "no target at this size")
 
     def test_ozz_faster_is_missed(self):
         ozz = load_ozz()
@@ -317,7 +317,8 @@ class Ozz(unittest.TestCase):
         for b in ozz["benchmarks"]:
             if b["run_name"] == "BM_OzzSamplingJob/64/8":
                 b["cpu_time"] = ours / 2
-        self.assertEqual(row(render(load_docs(), ozz), "64 joints, ⅛ key per call")[6], "missed (0.5× < 1×)")
+        self.assertEqual(row(render(load_docs(), ozz), "64 joints, ⅛ key interval per call")[6],
+                         "missed (0.5× < 1×)")
 
     def test_main_adds_the_table_only_when_the_json_exists(self):
         with tempfile.TemporaryDirectory() as d:
@@ -326,7 +327,7 @@ class Ozz(unittest.TestCase):
             self.assertEqual(wr.main(base + ["--ozz-json", str(Path(d) / "absent.json")]), 0)
             self.assertIn("not run: ozz-animation", results.read_text(encoding="utf-8"))
             self.assertEqual(wr.main(base + ["--ozz-json", str(DATA / "ozz_rig_bench.json")]), 0)
-            self.assertIn("| 1024 joints, ½ key per call |", results.read_text(encoding="utf-8"))
+            self.assertIn("| 1024 joints, ½ key interval per call |", results.read_text(encoding="utf-8"))
 
 
 class Splice(unittest.TestCase):

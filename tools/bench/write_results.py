@@ -285,8 +285,8 @@ def ozz_section(ozz: Results | None) -> list[str]:
             target = verdict(q, 1.0, True) if j in OZZ_TARGET_SIZES else "no target at this size"
             rot = " / ".join(fmt_num(ozz.counter(n, "max_drot_rad")) for n in names)
             dt = " / ".join(fmt_num(ozz.counter(n, "max_dt")) for n in names)
-            rows.append([f"{j} joints, {step_label} key per call", fmt_time(oz), fmt_time(fl), fmt_time(db),
-                         fmt_num(q), fmt_num(ratio(oz, db)), target, rot, dt])
+            rows.append([f"{j} joints, {step_label} key interval per call", fmt_time(oz), fmt_time(fl),
+                         fmt_time(db), fmt_num(q), fmt_num(ratio(oz, db)), target, rot, dt])
     intro = (f"Its own run, separate from the tables above: {ctx.get('date', '?')}, ozz-animation "
              f"{ctx.get('ozz_version', '?')} (commit {ctx.get('ozz_commit', '?')}), inbetween "
              f"{ctx.get('inbetween_commit', '?')}, both sides in one binary (`tools/bench/ozz_rig_bench.cpp`) "
