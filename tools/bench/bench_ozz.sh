@@ -60,7 +60,7 @@ flags=$(echo "-std=c++20 -O3 -DNDEBUG $OZZ_CXXFLAGS" | sed "s/ *$//")
   --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true \
   "--benchmark_out=$OUT/ozz_rig_bench.json.tmp" --benchmark_out_format=json
 # What was measured, into the JSON's context (--benchmark_context cannot carry '=' in a value).
-inbetween_commit=$(git rev-parse --short=8 HEAD 2>/dev/null || echo unknown)
+inbetween_commit=$(git describe --always --dirty --abbrev=8 2>/dev/null || echo unknown)
 python3 - "$OUT/ozz_rig_bench.json.tmp" "${ozz_version:-unknown}" "$ozz_commit" "$flags" "$inbetween_commit" <<'PY'
 import json, sys
 path, version, commit, flags, ours = sys.argv[1:]
