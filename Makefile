@@ -15,7 +15,7 @@ DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev lib
         python3 python3-scipy python3-jsonschema clang libclang-rt-dev esbuild chromium \
         pybind11-dev python3-dev python3-pytest python3-numpy
 
-.PHONY: all deps configure build test demo screenshots bench asan fuzz clean
+.PHONY: all deps configure build test demo screenshots bench bench-ozz asan fuzz clean
 
 all: build
 
@@ -90,6 +90,17 @@ BENCH_MIN_TIME ?= 0.1
 bench: build
 	python3 tools/bench/write_results.py --build-dir $(BUILD) --min-time $(BENCH_MIN_TIME) \
 	  --command "make bench PRESET=$(PRESET)"
+
+# ozz-animation's SamplingJob against RigClip on the same clip (issue 12).  ozz is not packaged in
+# Debian: give its source tree (git clone https://github.com/guillaumeblanc/ozz-animation); it is
+# built out of tree in build/ozz, nothing is downloaded.  Not part of `make bench` or `make test`.
+# OZZ_CXXFLAGS (e.g. -march=native) goes to ozz's build and to the benchmark, both sides alike.
+# tools/bench/bench_ozz.sh says what it does step by step; the table lands in bench/RESULTS.md.
+OZZ_SRC ?=
+OZZ_CXXFLAGS ?=
+bench-ozz: configure
+	OZZ_SRC="$(OZZ_SRC)" OZZ_CXXFLAGS="$(OZZ_CXXFLAGS)" BUILD="$(BUILD)" PRESET="$(PRESET)" JOBS="$(JOBS)" \
+	  BENCH_MIN_TIME="$(BENCH_MIN_TIME)" CXX="$(CXX)" tools/bench/bench_ozz.sh
 
 asan:
 	$(MAKE) test PRESET=asan

@@ -14,6 +14,7 @@
 #include "inbetween/tracks/runtime/fcurve_clip.hpp"
 #include "inbetween/tracks/runtime/rig_clip.hpp"
 #include "inbetween/tracks/track.hpp"
+#include "rig_fixture.hpp"
 
 namespace {
 
@@ -171,54 +172,10 @@ BENCHMARK(BM_FCurveSequential)->RangeMultiplier(16)->Range(16, 1 << 16);
 // found with the same cursors), in the same scalar type, so runtime / floor shows how far
 // sampling is from memory-bound.  BM_RigPerTrack: one Track/QuatTrack::sample per channel (the
 // scalar reference API); BM_RigRuntime: the same tracks compiled by build_rig_clip, one
-// sample_rig call per character.  tools/bench/ozz_rig_bench.cpp builds the same clip (same seed)
-// for ozz-animation's SamplingJob out of tree.
-template <class T>
-struct RigJoint {
-  Track<Vec3<T>> translation, scale;
-  QuatTrack<T> rotation;
-};
-
-template <class T>
-std::vector<RigJoint<T>> make_rig(int joints) {
-  std::mt19937_64 rng(1212);
-  std::uniform_real_distribution<double> d(-1, 1), step(0.5, 1.5);
-  std::vector<RigJoint<T>> rig;
-  for (int j = 0; j < joints; ++j) {
-    std::vector<TrackKey<Vec3<T>>> tk, sk;
-    std::vector<QuatKey<T>> rk;
-    double f = 0;
-    for (int k = 0; k < 30; ++k) {
-      TrackKey<Vec3<T>> t;
-      t.frame = T(f);
-      const double a = d(rng), b = d(rng), c = d(rng);
-      t.value = {T(a), T(b), T(c)};
-      t.tangent = TangentKind::linear;
-      tk.push_back(t);
-      TrackKey<Vec3<T>> sc = t;
-      const double sa = d(rng), sb = d(rng), scc = d(rng);
-      sc.value = {T(1 + 0.1 * sa), T(1 + 0.1 * sb), T(1 + 0.1 * scc)};
-      sk.push_back(sc);
-      QuatKey<T> r;
-      r.frame = T(f);
-      const double ax = d(rng), ay = d(rng), az = d(rng), ang = d(rng);
-      const Quatd qd = Quatd::from_axis_angle(Vec3d{ax, ay, az + 2}, 1.5 * ang);
-      r.value = Quat<T>::from_wxyz(T(qd.w), T(qd.x), T(qd.y), T(qd.z));
-      r.interpolation = QuatInterpolation::slerp;
-      rk.push_back(r);
-      f += step(rng);
-    }
-    rig.push_back({build_track(tk).value(), build_track(sk).value(), build_quat_track(rk).value()});
-  }
-  return rig;
-}
-
-template <class T>
-double rig_end(const std::vector<RigJoint<T>>& rig) {
-  double end = 1e300;
-  for (const auto& j : rig) end = std::min({end, double(j.translation.frames().back()), double(j.rotation.frames().back())});
-  return end;
-}
+// sample_rig call per character.  The rig is bench/rig_fixture.hpp's make_rig, which
+// tools/bench/ozz_rig_bench.cpp (`make bench-ozz`) also gives to ozz-animation's SamplingJob.
+using inbetween_bench::make_rig;
+using inbetween_bench::rig_end;
 
 template <class T>
 void BM_RigPerTrack(benchmark::State& state) {

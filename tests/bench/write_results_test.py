@@ -4,11 +4,15 @@
 The recorded files are the median aggregates of one real run (release preset, 2-core EPYC, 2026-11-24).
 Every expected ratio below is recomputed here from the JSON's own cpu_time fields (independent of the
 renderer's code path), and the met/missed cases are perturbed copies of the same data, so a wrong
-ratio direction, a wrong target or a wrong comparison makes this fail.  Standard library only.
+ratio direction, a wrong target or a wrong comparison makes this fail.  ozz_rig_bench.json is the
+median aggregates of one `make bench-ozz` run (ozz-animation 0.16.0, commit 6cbdc790, same machine).
+Seeded random perturbations of all times check every target cell against its own row's ratios, and
+that reference rows never carry a target.  Standard library only.
 """
 
-import copy
 import json
+import random
+import re
 import sys
 import tempfile
 import unittest
@@ -23,6 +27,16 @@ DATA = ROOT / "tests" / "data" / "bench"
 
 def load_docs():
     return {f.stem: json.loads(f.read_text(encoding="utf-8")) for f in sorted(DATA.glob("inbetween_bench_*.json"))}
+
+
+def load_ozz():
+    return json.loads((DATA / "ozz_rig_bench.json").read_text(encoding="utf-8"))
+
+
+def ozz_results(doc):
+    r = wr.Results()
+    r.add_json(wr.OZZ_PROGRAM, doc)
+    return r
 
 
 def results_of(docs):
@@ -56,8 +70,26 @@ def row(text, first_cell):
     raise AssertionError(f"no row {first_cell!r} in\n{text}")
 
 
-def render(docs):
-    return wr.render(results_of(docs), "cmd", "2026-11-24", "1.00, 1.00, 1.00", None)
+def render(docs, ozz=None):
+    return wr.render(results_of(docs), "cmd", "2026-11-24", "1.00, 1.00, 1.00", None,
+                     None if ozz is None else ozz_results(ozz))
+
+
+def tables(text):
+    """{title line: (header cells, [row cells])} for every table after a ### title."""
+    out, title, lines = {}, None, text.splitlines()
+    for i, line in enumerate(lines):
+        if line.startswith("### "):
+            title = line
+        elif line.startswith("| ") and title is not None and title not in out:
+            header = [c.strip() for c in line.strip().strip("|").split("|")]
+            rows = []
+            for body in lines[i + 2:]:
+                if not body.startswith("| "):
+                    break
+                rows.append([c.strip() for c in body.strip().strip("|").split("|")])
+            out[title] = (header, rows)
+    return out
 
 
 class RatioArithmetic(unittest.TestCase):
@@ -146,6 +178,158 @@ class MetOrMissed(unittest.TestCase):
         self.assertIsNone(wr.ratio(1.0, 0.0))
 
 
+# Issue 12's targets, per table: title prefix -> (ratio columns, target column, "≥"/"≤", threshold, number
+# of rows the target applies to).  The thresholds are the issue's; the header must state the same.
+TARGETS = {
+    "### slerp against glm and Eigen": ([4, 5], 6, "≥", 1.5, 4),
+    "### u(s) at 1e-9·L": ([3], 4, "≤", 3.0, 2),
+    "### Catmull-Rom and Hermite against Boost.Math": ([3], 4, "≥", 2.0, 4),
+    "### Batch cubic against the 9-FMA floor": ([3], 4, "≤", 3.0, 1),
+    "### Rig runtime against the memory floor": ([4], 5, "≤", 3.0, 10),
+    "### F-curve rig against the linear-key rig": ([3], 4, "≤", 3.0, 5),
+    "### ozz-animation SamplingJob vs RigClip": ([4], 6, "≥", 1.0, 4),
+}
+# The rows measured for comparison only (the scalar reference paths), and the ozz rows at sizes the
+# issue sets no target for (64 and 1024 joints have one).
+REFERENCE_ROWS = {
+    "u(s), Newton on the Gauss table (`ArcLength::u_at`, reference)",
+    "Catmull-Rom 3-D, 16 points, point, random access (reference)",
+    "Catmull-Rom 3-D, 1024 points, point, random access (reference)",
+}
+NO_TARGET_SIZE = {f"{j} joints, {s} key interval per call" for j in (25, 71, 551) for s in ("½", "⅛")}
+
+
+def check_targets(test, text):
+    """Every target cell agrees with the ratios of its own row; returns (met, missed) counts."""
+    found = tables(text)
+    met = missed = 0
+    for prefix, (ratio_cols, col, op, threshold, targeted) in TARGETS.items():
+        titles = [t for t in found if t.startswith(prefix)]
+        test.assertEqual(len(titles), 1, prefix)
+        header, rows = found[titles[0]]
+        test.assertEqual(re.search(r"target ([≥≤]) ([\d.]+)×", header[col]).groups(), (op, f"{threshold:g}"))
+        n_targeted = 0
+        for cells in rows:
+            label, cell = cells[0], cells[col]
+            if label in REFERENCE_ROWS:
+                test.assertEqual(cell, wr.REFERENCE, label)
+                continue
+            if label in NO_TARGET_SIZE and prefix.startswith("### ozz"):
+                test.assertEqual(cell, "no target at this size", label)
+                continue
+            n_targeted += 1
+            if cell == "not measured":
+                continue
+            ratios = [float(cells[c]) for c in ratio_cols]
+            # The cells carry 3 significant digits: a ratio that rounds onto the threshold is ambiguous.
+            if any(abs(q - threshold) <= 0.005 * threshold for q in ratios):
+                continue
+            ok = all(q >= threshold if op == "≥" else q <= threshold for q in ratios)
+            if ok:
+                test.assertEqual(cell, "met", f"{prefix}: {cells}")
+                met += 1
+            else:
+                test.assertTrue(cell.startswith("missed ("), f"{prefix}: {cells}")
+                missed += 1
+        test.assertEqual(n_targeted, targeted, f"{prefix}: rows a target applies to")
+    return met, missed
+
+
+def scale_times(doc, rng):
+    """Every benchmark's time times a random factor in [1/5, 5] (items_per_second divided by it)."""
+    for b in doc["benchmarks"]:
+        k = 5.0 ** rng.uniform(-1.0, 1.0)
+        b["cpu_time"] *= k
+        if "items_per_second" in b:
+            b["items_per_second"] /= k
+
+
+class TargetsAndReferences(unittest.TestCase):
+    def test_recorded_run(self):
+        met, missed = check_targets(self, render(load_docs(), load_ozz()))
+        self.assertGreater(met, 0)
+
+    def test_random_perturbations_never_label_a_miss_met(self):
+        met = missed = 0
+        for seed in range(40):
+            with self.subTest(seed=seed):
+                rng = random.Random(seed)
+                docs, ozz = load_docs(), load_ozz()
+                for doc in list(docs.values()) + [ozz]:
+                    scale_times(doc, rng)
+                m, x = check_targets(self, render(docs, ozz))
+                met, missed = met + m, missed + x
+        self.assertGreater(met, 40)  # both outcomes occur, so both branches above were exercised
+        self.assertGreater(missed, 40)
+
+    def test_reference_rows_stay_reference_however_fast_or_slow(self):
+        label = "u(s), Newton on the Gauss table (`ArcLength::u_at`, reference)"
+        for factor in (0.5, 100.0):
+            docs = load_docs()
+            point = cpu(docs, "inbetween_bench_arclength", "BM_CurvePoint")
+            set_cpu(docs, "inbetween_bench_arclength", "BM_ArcLengthDefault_UofS", factor * point)
+            cells = row(render(docs), label)
+            self.assertEqual(cells[3], f"{factor:.3g}")  # the ratio is still shown
+            self.assertEqual(cells[4], "reference, no target")
+        newton = cpu(load_docs(), "inbetween_bench_arclength", "BM_ArcLengthDefault_UofS")
+        point = cpu(load_docs(), "inbetween_bench_arclength", "BM_CurvePoint")
+        self.assertGreater(newton / point, 3.0)  # the recorded reference is slower than the target: not "missed"
+        text = render(load_docs())
+        self.assertNotIn("missed (", row(text, label)[4])
+        self.assertEqual(row(text, "Catmull-Rom 3-D, 1024 points, point, random access (reference)")[4],
+                         "reference, no target")
+
+    def test_target_row_missed_is_never_met(self):
+        docs = load_docs()
+        point = cpu(docs, "inbetween_bench_arclength", "BM_CurvePoint")
+        set_cpu(docs, "inbetween_bench_arclength", "BM_ArcLengthInverse_UofS", 50 * point)
+        self.assertEqual(row(render(docs), "u(s), Chebyshev inverse (`ArcLengthInverse`)")[4], "missed (50× > 3×)")
+        boost = cpu(docs, "inbetween_bench_curves", "BM_CatmullRomSequential_Boost/1024")
+        set_cpu(docs, "inbetween_bench_curves", "BM_CatmullRomSequential_OursCursor/1024", boost / 1.5)
+        self.assertEqual(row(render(docs), "Catmull-Rom 3-D, 1024 points, point with cursor")[4],
+                         "missed (1.5× < 2×)")
+
+
+class Ozz(unittest.TestCase):
+    def test_not_run_line_without_json(self):
+        text = render(load_docs())
+        self.assertIn("### ozz-animation SamplingJob vs RigClip", text)
+        self.assertIn("not run: ozz-animation is not packaged; `make bench-ozz OZZ_SRC=…`", text)
+        self.assertNotIn("ozz / ours float", text)
+
+    def test_table_from_recorded_json(self):
+        ozz = load_ozz()
+        text = render(load_docs(), ozz)
+        times = {b["run_name"]: b["cpu_time"] for b in ozz["benchmarks"] if b["aggregate_name"] == "median"}
+        for j, step, label in ((1024, 2, "½"), (64, 8, "⅛")):
+            cells = row(text, f"{j} joints, {label} key interval per call")
+            oz = times[f"BM_OzzSamplingJob/{j}/{step}"]
+            self.assertEqual(cells[4], f"{oz / times[f'BM_InbetweenRigClip<float>/{j}/{step}']:.3g}")
+            self.assertEqual(cells[5], f"{oz / times[f'BM_InbetweenRigClip<double>/{j}/{step}']:.3g}")
+        self.assertIn("ozz-animation 0.16.0 (commit 6cbdc790)", text)
+        self.assertIn("Its own run, separate from the tables above", text)
+        self.assertNotIn("not run: ozz", text)
+        self.assertEqual(row(text, "25 joints, ⅛ key interval per call")[6], "no target at this size")
+
+    def test_ozz_faster_is_missed(self):
+        ozz = load_ozz()
+        ours = next(b["cpu_time"] for b in ozz["benchmarks"] if b["run_name"] == "BM_InbetweenRigClip<float>/64/8")
+        for b in ozz["benchmarks"]:
+            if b["run_name"] == "BM_OzzSamplingJob/64/8":
+                b["cpu_time"] = ours / 2
+        self.assertEqual(row(render(load_docs(), ozz), "64 joints, ⅛ key interval per call")[6],
+                         "missed (0.5× < 1×)")
+
+    def test_main_adds_the_table_only_when_the_json_exists(self):
+        with tempfile.TemporaryDirectory() as d:
+            results = Path(d) / "RESULTS.md"
+            base = ["--json-dir", str(DATA), "--results", str(results), "--build-dir", d, "--load", "1.00"]
+            self.assertEqual(wr.main(base + ["--ozz-json", str(Path(d) / "absent.json")]), 0)
+            self.assertIn("not run: ozz-animation", results.read_text(encoding="utf-8"))
+            self.assertEqual(wr.main(base + ["--ozz-json", str(DATA / "ozz_rig_bench.json")]), 0)
+            self.assertIn("| 1024 joints, ½ key interval per call |", results.read_text(encoding="utf-8"))
+
+
 class Splice(unittest.TestCase):
     def test_replaces_only_the_section(self):
         old = f"intro\n{wr.BEGIN}\nold table\n{wr.END}\n## hand-written analysis\nkept\n"
@@ -161,7 +345,8 @@ class Splice(unittest.TestCase):
         with tempfile.TemporaryDirectory() as d:
             results = Path(d) / "RESULTS.md"
             results.write_text("# analysis\n", encoding="utf-8")
-            args = ["--json-dir", str(DATA), "--results", str(results), "--build-dir", d, "--load", "1.00"]
+            args = ["--json-dir", str(DATA), "--results", str(results), "--build-dir", d, "--load", "1.00",
+                    "--ozz-json", str(DATA / "ozz_rig_bench.json")]
             self.assertEqual(wr.main(args), 0)
             once = results.read_text(encoding="utf-8")
             self.assertEqual(wr.main(args), 0)  # a second run replaces, it does not stack

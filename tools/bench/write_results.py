@@ -13,7 +13,13 @@ after the section stays.  `--json-dir DIR` renders from JSON files already recor
 running anything; `--comparisons-only` runs only the benchmarks the tables use.
 
 The benchmark names below are the ones registered in bench/*.cpp (BENCHMARK(...)->Arg(...)); a
-benchmark missing from the JSON shows as "—" and its target as "not measured", never as met.
+benchmark missing from the JSON shows as "—" and its target as "not measured", never as met.  Rows
+that measure a reference or another form of the API next to the one a target is about (the Newton
+u(s), Catmull-Rom without a cursor) say so ("reference, no target") instead of met/missed.
+
+ozz-animation is not packaged in Debian: `make bench-ozz OZZ_SRC=…` (tools/bench/bench_ozz.sh) runs
+tools/bench/ozz_rig_bench.cpp out of tree and writes build/ozz/ozz_rig_bench.json; when that file
+exists (`--ozz-json`), its table joins the section, otherwise a line says how to produce it.
 """
 
 from __future__ import annotations
@@ -42,6 +48,10 @@ COMPARISON_FILTERS = {
 }
 
 RIG_SIZES = (25, 64, 71, 551, 1024)
+OZZ_TARGET_SIZES = (64, 1024)  # issue 12: faster than ozz-animation's SamplingJob at 64 and 1024 joints
+OZZ_STEPS = ((2, "½"), (8, "⅛"))  # calls per key interval in ozz_rig_bench.cpp: label of the step
+OZZ_PROGRAM = "ozz_rig_bench"
+DEFAULT_OZZ_JSON = Path(__file__).resolve().parents[2] / "build" / "ozz" / f"{OZZ_PROGRAM}.json"
 GAME_RIGS = (25, 71, 551)  # joints of the characters a game programmer recognises (issue 12)
 FRAME_BUDGET_US = 1000.0  # 1 ms per frame for all animation
 
@@ -119,6 +129,9 @@ def verdict(value: float | None, target: float, at_least: bool) -> str:
     return "met" if value <= target else f"missed ({value:.3g}× > {target:g}×)"
 
 
+REFERENCE = "reference, no target"  # a row measured for comparison only; no target applies to it
+
+
 def accuracy_verdict(ours: float | None, peers: list[float | None]) -> str:
     if ours is None or any(p is None for p in peers):
         return "not measured"
@@ -157,39 +170,49 @@ def slerp_section(r: Results) -> list[str]:
 def arclength_section(r: Results) -> list[str]:
     point = r.time("BM_CurvePoint")
     rows = []
-    for name, label in (("BM_ArcLengthInverse_UofS", "u(s), Chebyshev inverse (`ArcLengthInverse`)"),
-                        ("BM_ArcLengthDefault_UofS", "u(s), Newton on the Gauss table (`ArcLength::u_at`)")):
-        t = r.time(name)
+    # (label, time, has a target): the target path is ArcLengthInverse (single and batch); the Newton
+    # u_at is the scalar reference it is built from and checked against.
+    for label, t, targeted in (
+            ("u(s), Chebyshev inverse (`ArcLengthInverse`)", r.time("BM_ArcLengthInverse_UofS"), True),
+            ("u(s), batch of 1024 (per value)", r.per_item_ns("BM_ArcLengthInverse_UofS_Batch"), True),
+            ("u(s), Newton on the Gauss table (`ArcLength::u_at`, reference)",
+             r.time("BM_ArcLengthDefault_UofS"), False)):
         q = ratio(t, point)
-        rows.append([label, fmt_time(t), fmt_time(point), fmt_num(q), verdict(q, 3.0, False)])
-    batch = r.per_item_ns("BM_ArcLengthInverse_UofS_Batch")
-    q = ratio(batch, point)
-    rows.append(["u(s), batch of 1024 (per value)", fmt_time(batch), fmt_time(point), fmt_num(q),
-                 verdict(q, 3.0, False)])
+        rows.append([label, fmt_time(t), fmt_time(point), fmt_num(q),
+                     verdict(q, 3.0, False) if targeted else REFERENCE])
     return (["### u(s) at 1e-9·L against one `point()` (`inbetween_bench_arclength`)", "",
-             "Target: at most 3× one `point()` (ratio = ours / point).", ""]
+             "Target: at most 3× one `point()` (ratio = ours / point), for `ArcLengthInverse`, single "
+             "and batch.  The Newton `ArcLength::u_at` is the scalar reference (the inverse is built from "
+             "its table and tested against it): shown for scale, no target.", ""]
             + table(["query", "time", "one point()", "ratio", "target ≤ 3×"], rows) + [""])
 
 
 def curves_section(r: Results) -> list[str]:
     rows = []
-    for kind, variants, peer in (("Catmull-Rom 3-D", (("Ours", "point"), ("OursCursor", "point with cursor")),
+    # (suffix, label, has a target): the sequential target is about the cursor forms; `point(u)`
+    # without a cursor is the random-access form (a binary search per call, as Boost's upper_bound).
+    for kind, variants, peer in (("Catmull-Rom 3-D", (("OursCursor", "point with cursor", True),
+                                                      ("Ours", "point, random access (reference)", False)),
                                   "BM_CatmullRomSequential_Boost"),
-                                 ("Hermite scalar", (("Ours", "Track with cursor"),), "BM_HermiteSequential_Boost")):
+                                 ("Hermite scalar", (("Ours", "Track with cursor", True),),
+                                  "BM_HermiteSequential_Boost")):
         stem = peer.rsplit("_", 1)[0]
         for n in (16, 1024):
             b = r.time(f"{peer}/{n}")
-            for suffix, label in variants:
+            for suffix, label, targeted in variants:
                 name = f"{stem}_{suffix}/{n}"
                 t = r.time(name)
                 q = ratio(b, t)
                 rows.append([f"{kind}, {n} points, {label}", fmt_time(t), fmt_time(b), fmt_num(q),
-                             verdict(q, 2.0, True), fmt_num(r.counter(name, "max_diff"))])
+                             verdict(q, 2.0, True) if targeted else REFERENCE,
+                             fmt_num(r.counter(name, "max_diff"))])
     batch, floor = r.per_item_ns("BM_BatchCubic_Track"), r.per_item_ns("BM_BatchCubic_NineFmaFloor")
     q = ratio(batch, floor)
     out = (["### Catmull-Rom and Hermite against Boost.Math (`inbetween_bench_curves`)", "",
-            "Target: at least 2× Boost.Math sequentially (ratio = Boost time / ours); `max_diff` is the "
-            "largest coordinate difference between the two on the compared segments.", ""]
+            "Target: at least 2× Boost.Math in a sequential sweep (ratio = Boost time / ours), for the "
+            "cursor forms, which are what sequential playback uses.  `point(u)` without a cursor is the "
+            "random-access form (a binary search per call, as Boost's): shown for comparison, no target.  "
+            "`max_diff` is the largest coordinate difference between the two on the compared segments.", ""]
            + table(["sweep", "ours", "Boost.Math", "Boost / ours", "target ≥ 2×", "max_diff"], rows) + [""])
     out += (["### Batch cubic against the 9-FMA floor (`BM_BatchCubic_*`)", "",
              "Target: `Track<Vec3d>::sample(frames, out, cursor)` within 3× of Horner in registers "
@@ -218,8 +241,9 @@ def rig_section(r: Results) -> list[str]:
             "T+R+S linear/slerp keys, 30 per channel, sequential playback at 2 calls per key interval; time "
             "per character (one `sample_rig` call).  Target: within 3× of the memory-read floor measured in "
             "the same run (ratio = runtime / floor).  The last column is one character's share of the 1 ms "
-            "per frame engines budget for all animation.  ozz-animation is not packaged: "
-            "`tools/bench/ozz_rig_bench.cpp` builds the same clip for its SamplingJob out of tree.", ""]
+            "per frame engines budget for all animation.  The memory floor is the in-tree reference; "
+            "ozz-animation (not packaged in Debian) is compared on the same clip by `make bench-ozz` "
+            "(table below).", ""]
            + table(["rig", "runtime", "per joint", "memory floor", "runtime / floor", "target ≤ 3×",
                     "per-track API", "per-track / runtime", "share of 1 ms"], rows) + [""])
     rows = []
@@ -239,6 +263,46 @@ def rig_section(r: Results) -> list[str]:
             + table(["rig", "F-curve runtime", "linear runtime", "ratio", "target ≤ 3×",
                      "per-curve FCurve::sample", "per-curve / runtime", "max_fit_error"], rows) + [""])
     return out
+
+
+def ozz_section(ozz: Results | None) -> list[str]:
+    """RigClip against ozz-animation's SamplingJob from `make bench-ozz`'s JSON, or how to get it."""
+    title = "### ozz-animation SamplingJob vs RigClip (`make bench-ozz`, out of tree)"
+    if ozz is None:
+        return [title, "", "not run: ozz-animation is not packaged; `make bench-ozz OZZ_SRC=…` "
+                "(docs/benchmarks.md) builds it out of tree and adds this table.", ""]
+    ctx = ozz.contexts.get(OZZ_PROGRAM, {})
+    load = ctx.get("load_avg")
+    rows = []
+    for step, step_label in OZZ_STEPS:
+        for j in RIG_SIZES:
+            names = (f"BM_OzzSamplingJob/{j}/{step}", f"BM_InbetweenRigClip<float>/{j}/{step}",
+                     f"BM_InbetweenRigClip<double>/{j}/{step}")
+            oz, fl, db = (ozz.time(n) for n in names)
+            if oz is None and fl is None and db is None:
+                continue
+            q = ratio(oz, fl)
+            target = verdict(q, 1.0, True) if j in OZZ_TARGET_SIZES else "no target at this size"
+            rot = " / ".join(fmt_num(ozz.counter(n, "max_drot_rad")) for n in names)
+            dt = " / ".join(fmt_num(ozz.counter(n, "max_dt")) for n in names)
+            rows.append([f"{j} joints, {step_label} key interval per call", fmt_time(oz), fmt_time(fl),
+                         fmt_time(db), fmt_num(q), fmt_num(ratio(oz, db)), target, rot, dt])
+    intro = (f"Its own run, separate from the tables above: {ctx.get('date', '?')}, ozz-animation "
+             f"{ctx.get('ozz_version', '?')} (commit {ctx.get('ozz_commit', '?')}), inbetween "
+             f"{ctx.get('inbetween_commit', '?')}, both sides in one binary (`tools/bench/ozz_rig_bench.cpp`) "
+             f"compiled with `{ctx.get('cxxflags', '?')}`, load average (1 min) "
+             f"{'?' if not load else f'{load[0]:.2f}'} as it started; CPU-time medians of 3 interleaved "
+             "repetitions.  The clip is the rig table's (`bench/rig_fixture.hpp`): ozz gets it as a "
+             "`RawAnimation` built without keyframe optimisation and writes SoA transforms; ours writes one "
+             "`JointPose` per joint.  Target: faster than ozz's SamplingJob at 64 and 1024 joints, float clip "
+             "(ratio = ozz / ours ≥ 1), at both playback steps (½ key interval per call as above; ⅛, where "
+             "most calls cross no key: ozz's best case).  Errors: worst rotation angle (rad) and "
+             "translation difference against the per-track API in double over 200 frames (counters "
+             "`max_drot_rad`, `max_dt`; ozz quantises rotations to 16 bits and translations to half floats).")
+    return ([title, "", intro, ""]
+            + table(["rig, step", "ozz SamplingJob", "ours float", "ours double", "ozz / ours float",
+                     "ozz / ours double", "target ≥ 1× (float)", "max rotation error ozz / float / double",
+                     "max translation error ozz / float / double"], rows) + [""])
 
 
 # ----------------------------------------------------------------------------- machine
@@ -305,13 +369,15 @@ def compiler_of(executable: str) -> str:
 
 
 # ----------------------------------------------------------------------------- document
-def render(r: Results, command: str, when: str, load: str, build_dir: Path | None = None) -> str:
+def render(r: Results, command: str, when: str, load: str, build_dir: Path | None = None,
+           ozz: Results | None = None) -> str:
     lines = [BEGIN, "# Benchmark results (generated)", "",
              "Written by `make bench` (`tools/bench/write_results.py`) from the Google Benchmark programs in "
              "`bench/`, each comparison's two sides in one binary.  Times are CPU-time medians; ratios, "
              "targets and met/missed are computed from the numbers of this run.", ""]
     lines += machine_lines(r, command, when, load, build_dir)
     lines += slerp_section(r) + arclength_section(r) + curves_section(r) + rig_section(r)
+    lines += ozz_section(ozz)
     lines.append(END)
     return "\n".join(lines) + "\n"
 
@@ -373,6 +439,15 @@ def read_dir(json_dir: Path) -> Results:
     return r
 
 
+def read_ozz(path: Path) -> Results | None:
+    """The JSON `make bench-ozz` wrote, or None when it has not been run."""
+    if not path.is_file():
+        return None
+    r = Results()
+    r.add_json(OZZ_PROGRAM, json.loads(path.read_text(encoding="utf-8")))
+    return r
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--build-dir", default="build/release", help="build tree with bench/inbetween_bench_*")
@@ -381,6 +456,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--output", help="write the whole document here instead of --results (tests)")
     ap.add_argument("--min-time", default="0.1", help="--benchmark_min_time per benchmark (seconds)")
     ap.add_argument("--comparisons-only", action="store_true", help="run only the benchmarks the tables use")
+    ap.add_argument("--ozz-json", default=str(DEFAULT_OZZ_JSON),
+                    help="`make bench-ozz`'s ozz_rig_bench JSON; its table is added when the file exists")
     ap.add_argument("--date", help="date to print (default: now, UTC)")
     ap.add_argument("--load", help="load average to print (default: os.getloadavg())")
     ap.add_argument("--command", help="command to print (default: this invocation)")
@@ -395,7 +472,7 @@ def main(argv: list[str] | None = None) -> int:
     load = args.load or ", ".join(f"{x:.2f}" for x in os.getloadavg())
     command = args.command or "python3 tools/bench/write_results.py " + " ".join(
         shlex.quote(a) for a in (argv if argv is not None else sys.argv[1:]))
-    section = render(r, command, when, load, Path(args.build_dir))
+    section = render(r, command, when, load, Path(args.build_dir), read_ozz(Path(args.ozz_json)))
     results = Path(args.results)
     old = results.read_text(encoding="utf-8") if results.exists() else ""
     target = Path(args.output) if args.output else results
