@@ -1,12 +1,15 @@
 // FCurveClip: Blender F-curves pre-solved into degree-9 polynomial pieces (include/inbetween/tracks/runtime/fcurve_clip.hpp).
 #include "inbetween/tracks/runtime/fcurve_clip.hpp"
 
+#include "fcurve_internal.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 namespace inbetween {
 namespace {
@@ -164,13 +167,8 @@ float extrapolation_slope(const FCurve& curve, bool before) {
   return fac == 0.0f ? 0.0f : (e.y - h.y) / fac;
 }
 
-Expected<bool> compile_curve(const FCurve& curve, std::size_t index, const FCurveClipOptions& options,
-                             std::vector<float>& data, float& worst) {
-  if (curve.cycles()) {
-    return Error{ErrorCode::Unsupported,
-                 "the runtime does not cycle F-curves (a Cycles modifier): sample this curve with FCurve::sample",
-                 "", {"curves", index}};
-  }
+Expected<bool> compile_curve(const FCurve& curve, const FCurveClipOptions& options, std::vector<float>& data,
+                             float& worst) {
   const auto keys = curve.keys();
   const std::size_t n = keys.size();
   float lo = keys[0].y, hi = keys[0].y, big = std::abs(keys[0].y);
@@ -228,18 +226,211 @@ Expected<bool> compile_curve(const FCurve& curve, std::size_t index, const FCurv
   return true;
 }
 
+// A curve whose Cycles modifier changes some frame: ≥ 2 keys (a period) and a side that cycles.
+bool cycles_frames(const FCurve& curve) {
+  const auto& cy = curve.cycles();
+  return cy && curve.keys().size() >= 2 && (cy->before != CycleMode::none || cy->after != CycleMode::none);
+}
+
 }  // namespace
+
+// The cycle fold (see fcurve_clip.hpp): private parts of FCurveClip and its Context.
+struct FCurveClipAccess {
+  static constexpr std::size_t kFold = 9;  // fold fields: lo, hi, end, n, period, sign, base, wrap, offset
+  using Cycling = FCurveClip::Cycling;
+
+  static void compile(std::span<const FCurve> curves, const FCurveClipOptions& options, FCurveClip& clip) {
+    auto& ch = clip.data_;
+    clip.cycling_of_.assign(curves.size(), -1);
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      ch.begin.push_back(std::uint32_t(ch.data.size() / B));
+      if (cycles_frames(curves[c])) {
+        const auto keys = curves[c].keys();
+        Cycling cy;
+        cy.channel = std::uint32_t(c);
+        cy.begin = std::uint32_t(clip.cyclic_data_.size() / B);
+        cy.cycles = *curves[c].cycles();
+        cy.first_x = keys.front().x, cy.first_y = keys.front().y;
+        cy.last_x = keys.back().x, cy.last_y = keys.back().y;
+        (void)compile_curve(curves[c], options, clip.cyclic_data_, clip.max_fit_error_);
+        cy.count = std::uint32_t(clip.cyclic_data_.size() / B - cy.begin);
+        clip.cycling_of_[c] = std::int32_t(clip.cycling_.size());
+        clip.cycling_.push_back(cy);
+      } else {
+        (void)compile_curve(curves[c], options, ch.data, clip.max_fit_error_);
+      }
+      ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
+    }
+    clip.cyclic_where_.resize(clip.cyclic_data_.size() / B);
+    for (std::size_t k = 0; k < clip.cyclic_where_.size(); ++k) clip.cyclic_where_[k] = std::uint32_t(k);
+    rig_detail::finish_stream<float, B>(ch);
+  }
+
+  // The discrete decisions of Blender's fold at a frame, computed cheaply (no fmod): two frames
+  // with equal signatures in one window get their local frame from the same affine map.
+  struct Signature {
+    int side = 0;
+    bool cycled = false, regular = false, mirrored = false, wrap = false;
+    float m = 0;  // trunc(cycle number)
+    bool operator==(const Signature&) const = default;
+  };
+
+  static Signature signature(const Cycling& cy, float g) noexcept {
+    Signature s;
+    const FCurveCycles& m = cy.cycles;
+    if (g < cy.first_x && m.before != CycleMode::none) s.side = -1;
+    else if (g > cy.last_x && m.after != CycleMode::none) s.side = 1;
+    if (s.side == 0) return s;
+    const float period = cy.last_x - cy.first_x;
+    const float ofs = s.side > 0 ? cy.last_x : cy.first_x;
+    const int count = s.side > 0 ? m.count_after : m.count_before;
+    const CycleMode mode = s.side > 0 ? m.after : m.before;
+    const float rel = g - ofs;
+    const float cycle = float(s.side) * rel / period;
+    s.cycled = count == 0 || !(cycle > float(count));
+    if (!s.cycled) return s;
+    s.m = std::trunc(cycle);
+    s.regular = cycle != s.m;  // a cycle number strictly between integers (2^23 and beyond: never)
+    if (!s.regular) {
+      s.m = cycle;
+      return s;
+    }
+    s.mirrored = mode == CycleMode::mirror && (static_cast<long long>(std::min(cycle, 2.0e9f) + 1) % 2) != 0;
+    const float r = std::fma(-float(s.side) * s.m, period, rel);
+    const float base = s.mirrored ? (s.side < 0 ? cy.first_x : cy.last_x) : cy.first_x;
+    const float local = base + (s.mirrored ? -r : r);
+    s.wrap = local < cy.first_x;
+    return s;
+  }
+
+  // Float order as unsigned integers (for bisection over the floats between two frames).
+  static std::uint32_t key(float x) noexcept {
+    std::uint32_t b;
+    std::memcpy(&b, &x, 4);
+    return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
+  }
+  static float unkey(std::uint32_t k) noexcept {
+    const std::uint32_t b = (k & 0x80000000u) ? (k & 0x7fffffffu) : ~k;
+    float x;
+    std::memcpy(&x, &b, 4);
+    return x;
+  }
+
+  // The farthest frame from f in direction dir (±1) up to which the signature stays s0 (the frames
+  // of one signature form an interval: each decision is monotone in the frame within one cycle).
+  // Starts at `guess` (the cycle boundary in double): a few float steps usually settle it,
+  // otherwise bisection.  Never past a frame whose signature differs, so the window is exact or short.
+  static float edge(const Cycling& cy, const Signature& s0, float f, double guess, int dir) noexcept {
+    const float big = std::numeric_limits<float>::max();
+    const float outward = dir > 0 ? kInf : -kInf;
+    float g = float(std::clamp(guess, -double(big), double(big)));
+    if (!(dir > 0 ? g > f : g < f)) g = f;
+    if (signature(cy, g) == s0) {
+      for (int i = 0; i < 4 && std::abs(g) < big; ++i) {
+        const float h = std::nextafter(g, outward);
+        if (!(signature(cy, h) == s0)) return g;
+        g = h;
+      }
+      return g;  // short of the edge: a shorter window, still exact
+    }
+    float in = f, out = g;
+    for (int i = 0; i < 3; ++i) {
+      const float h = std::nextafter(out, -outward);
+      if (h == in) return in;
+      if (signature(cy, h) == s0) return h;
+      out = h;
+    }
+    std::uint32_t ki = key(in), ko = key(out);
+    while (ki + 1 != ko && ko + 1 != ki) {
+      const std::uint32_t km = ki < ko ? ki + (ko - ki) / 2 : ko + (ki - ko) / 2;
+      if (signature(cy, unkey(km)) == s0) ki = km;
+      else ko = km;
+    }
+    return unkey(ki);
+  }
+
+  // The local frame from a fold's fields at frame f (the operations the SIMD loop does).
+  static float local(const float* F, std::size_t s, std::size_t c, float f) noexcept {
+    const float rel = f - F[2 * s + c];
+    const float r = std::fma(-F[3 * s + c], F[4 * s + c], rel);
+    const float t = F[6 * s + c] + F[5 * s + c] * r;
+    return t + F[7 * s + c];
+  }
+
+  // Sets channel c's fold for frame f: the decisions Blender takes at f (decide_cycles) and the
+  // window of frames around f on which the same affine map gives its local frames.
+  static void set_fold(const Cycling& cy, float f, float* F, std::size_t s, std::size_t c) noexcept {
+    const float period = cy.last_x - cy.first_x;
+    const auto d = fcurve_detail::decide_cycles(cy.cycles, cy.first_x, cy.first_y, cy.last_x, cy.last_y, f);
+    const auto put = [&](float lo, float hi, float ofs, float n, float per, float sign, float base, float wrap,
+                         float off) {
+      const float v[kFold] = {lo, hi, ofs, n, per, sign, base, wrap, off};
+      for (std::size_t k = 0; k < kFold; ++k) F[k * s + c] = v[k];
+    };
+    const FCurveCycles& m = cy.cycles;
+    if (!d.cycled) {
+      // The keys' own pieces at f (inside, on a side without cycling, or past its count).
+      if (d.side == 0) {
+        // Side 0 holds from the first key (or −∞ when nothing cycles before it) to the last (or +∞).
+        put(m.before != CycleMode::none ? cy.first_x : -kInf, m.after != CycleMode::none ? cy.last_x : kInf, 0, 0, 0,
+            1, 0, 0, 0);
+        return;
+      }
+      const Signature s0 = signature(cy, f);
+      if (d.side > 0) {
+        put(edge(cy, s0, f, double(cy.last_x) + double(m.count_after) * double(period), -1), kInf, 0, 0, 0, 1, 0, 0, 0);
+      } else {
+        put(-kInf, edge(cy, s0, f, double(cy.first_x) - double(m.count_before) * double(period), 1), 0, 0, 0, 1, 0, 0, 0);
+      }
+      return;
+    }
+    const Signature s0 = signature(cy, f);
+    if (s0.regular) {
+      const float ofs = d.side > 0 ? cy.last_x : cy.first_x;
+      const float n = float(d.side) * s0.m;
+      const float sign = s0.mirrored ? -1.0f : 1.0f;
+      const float base = s0.mirrored ? (d.side < 0 ? cy.first_x : cy.last_x) : cy.first_x;
+      const float wrap = s0.wrap ? period : 0.0f;
+      put(f, f, ofs, n, period, sign, base, wrap, d.offset);
+      if (local(F, s, c, f) == d.t) {  // as proven in the file comment; checked, else the one-frame fold below
+        // The copy: cycle numbers in (m, m + 1), frames ofs + side·(m … m + 1)·period.
+        const double a = double(ofs) + double(n) * double(period), b = double(ofs) + (double(n) + d.side) * double(period);
+        F[0 * s + c] = edge(cy, s0, f, std::min(a, b), -1);
+        F[1 * s + c] = edge(cy, s0, f, std::max(a, b), 1);
+        return;
+      }
+    }
+    // One frame: local = base = Blender's own answer.
+    put(f, f, f, 0, 0, 1, d.t, 0, d.offset);
+  }
+
+  // Brings cycling channel c to frame f: its fold, then its piece at the local frame.
+  static void refresh(const FCurveClip& clip, FCurveClip::Context& ctx, std::size_t c, float f) noexcept {
+    constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
+    const std::int32_t i = clip.cycling_of_[c];
+    if (i < 0) return;
+    const Cycling& cy = clip.cycling_[std::size_t(i)];
+    float* F = ctx.fold.data();
+    const std::size_t s = ctx.stride;
+    if (!(f >= F[c] && f <= F[s + c])) set_fold(cy, f, F, s, c);
+    const float t = local(F, s, c, f);
+    const std::uint32_t k = rig_detail::find_segment<float, B>(clip.cyclic_data_.data(), clip.cyclic_where_.data() + cy.begin,
+                                                               cy.count, t, ctx.segment[c]);
+    ctx.segment[c] = k;
+    rig_detail::put_block<float, W, B>(clip.cyclic_data_.data() + std::size_t(cy.begin + k) * B, ctx.cache.data(), c);
+  }
+
+  static const float* nan_block(const FCurveClip& clip, std::size_t c) noexcept {
+    const std::int32_t i = clip.cycling_of_[c];
+    if (i >= 0) return clip.cyclic_data_.data() + std::size_t(clip.cycling_[std::size_t(i)].begin + 1) * B;
+    return clip.data_.data.data() + std::size_t(clip.data_.where[clip.data_.begin[c] + 1]) * B;
+  }
+};
 
 Expected<FCurveClip> build_fcurve_clip(std::span<const FCurve> curves, FCurveClipOptions options) {
   FCurveClip clip;
   clip.channels_ = curves.size();
-  auto& ch = clip.data_;
-  for (std::size_t c = 0; c < curves.size(); ++c) {
-    ch.begin.push_back(std::uint32_t(ch.data.size() / B));
-    if (auto r = compile_curve(curves[c], c, options, ch.data, clip.max_fit_error_); !r) return r.error();
-    ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
-  }
-  rig_detail::finish_stream<float, B>(ch);
+  FCurveClipAccess::compile(curves, options, clip);
   return clip;
 }
 
@@ -250,30 +441,40 @@ Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClip
                      std::to_string(curves.size()),
                  ""};
   }
-  const std::size_t J = curves.size() / 10;
   FCurveClip clip;
   clip.channels_ = curves.size();
-  clip.joints_ = J;
-  auto& ch = clip.data_;
+  clip.joints_ = curves.size() / 10;
   // Internal channel c is curve c (joint-major, 10·j + k): a joint's curves usually share their
   // key frames (Blender keys a bone's channels together), so the stream hands over a joint's ten
   // pieces one after another and they land in three neighbouring groups of the context's cache
   // (component-major, k·J + j, put them in ten groups far apart: 3× the cache lines written).
-  for (std::size_t c = 0; c < curves.size(); ++c) {
-    ch.begin.push_back(std::uint32_t(ch.data.size() / B));
-    if (auto r = compile_curve(curves[c], c, options, ch.data, clip.max_fit_error_); !r) return r.error();
-    ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
-  }
-  rig_detail::finish_stream<float, B>(ch);
+  FCurveClipAccess::compile(curves, options, clip);
   return clip;
 }
 
 FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
+  constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
   FCurveClip::Context ctx;
   ctx.stride = (clip.channels() + 15) / 16 * 16;
   ctx.segment.assign(clip.channels(), 0);
   ctx.cache.assign(B * ctx.stride, 0.0f);
   ctx.values.assign(ctx.stride, 0.0f);
+  // The identity fold on (−∞, +∞); cycling channels start with an empty window (refreshed at the
+  // first sample).  Padding lanes' cached pieces span every frame, so the fold check passes there.
+  const std::size_t s = ctx.stride;
+  ctx.fold.assign(FCurveClipAccess::kFold * s, 0.0f);
+  ctx.folding.assign(s / W, 0);
+  for (std::size_t c = 0; c < s; ++c) {
+    ctx.fold[0 * s + c] = -kInf, ctx.fold[1 * s + c] = kInf, ctx.fold[5 * s + c] = 1.0f;
+    if (c < clip.channels() && clip.cycling_of_[c] >= 0) {
+      ctx.fold[0 * s + c] = kInf, ctx.fold[1 * s + c] = -kInf;
+      ctx.folding[c / W] = 1;
+    }
+    if (c >= clip.channels()) {
+      float* col = ctx.cache.data() + (c / W) * B * W + c % W;
+      col[0] = -kInf, col[W] = kInf;
+    }
+  }
   return ctx;
 }
 
@@ -282,14 +483,15 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   using V = stdx::native_simd<float>;
   constexpr std::size_t W = V::size();
   const std::size_t C = clip.channels_;
-  INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == B * context.stride);
+  INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == B * context.stride &&
+                   context.fold.size() == FCurveClipAccess::kFold * context.stride);
   if (std::isnan(frame)) {
     // As FCurve::sample: the first key's value, each channel's second piece at its start (it
     // starts at the first key: a fitted piece whose band there clamps u to −1, where it
-    // interpolates the key, a constant piece, or, for one key, the held end).  Cache and stream are
-    // untouched.
+    // interpolates the key, a constant piece, or, for one key, the held end).  Cache, folds and
+    // stream are untouched.
     for (std::size_t i = 0; i < C; ++i) {
-      const float* blk = clip.data_.data.data() + std::size_t(clip.data_.where[clip.data_.begin[i] + 1]) * B;
+      const float* blk = FCurveClipAccess::nan_block(clip, i);
       context.values[i] = piece_value(blk, blk[0]);
     }
     return;
@@ -301,16 +503,39 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   context.time = frame;
   const V f(frame);
   const float* cache = context.cache.data();
+  const float* fold = context.fold.data();
+  const std::size_t s = context.stride;
   float* values = context.values.data();
   for (std::size_t c0 = 0; c0 < C; c0 += W) {
     const float* g = cache + c0 * B;  // this group's fields: field k at g + k·W
     const auto ld = [g](std::size_t k) noexcept { return rig_detail::load<V>(g + k * W); };
-    V u = (f - ld(2)) * ld(3);
+    V t = f;  // the frame each channel's piece is evaluated at
+    V offset = V(0.0f);
+    if (context.folding[c0 / W]) {
+      // The cycle fold: local = base + sign·fma(−n, period, frame − end) + wrap (identity for the
+      // channels that do not cycle), valid while frame is in the fold's window and local in the
+      // cached piece; a channel outside either is refreshed on the scalar path.
+      const auto fl = [fold, s, c0](std::size_t k) noexcept { return rig_detail::load<V>(fold + k * s + c0); };
+      const auto fold_local = [&]() noexcept {
+        const V r = stdx::fma(-fl(3), fl(4), f - fl(2));
+        return (fl(6) + fl(5) * r) + fl(7);
+      };
+      t = fold_local();
+      const auto ok = (f >= fl(0)) && (f <= fl(1)) && (t >= ld(0)) && (t < ld(1));
+      if (!stdx::all_of(ok)) {
+        for (std::size_t i = 0; i < W; ++i)
+          if (!ok[i]) FCurveClipAccess::refresh(clip, context, c0 + i, frame);
+        t = fold_local();
+      }
+      offset = fl(8);
+    }
+    V u = (t - ld(2)) * ld(3);
     // Blender's snap bands: u = +1 within band_hi of hi, −1 within band_lo of lo (that one wins).
-    stdx::where(ld(1) - f <= ld(5), u) = V(1.0f);
-    stdx::where(f - ld(0) <= ld(4), u) = V(-1.0f);
+    stdx::where(ld(1) - t <= ld(5), u) = V(1.0f);
+    stdx::where(t - ld(0) <= ld(4), u) = V(-1.0f);
     V v = ld(6 + D);
     for (std::size_t k = D; k-- > 0;) v = v * u + ld(6 + k);
+    v += offset;
     v.copy_to(values + c0, stdx::element_aligned);
   }
 }
