@@ -236,7 +236,8 @@ bool cycles_frames(const FCurve& curve) {
 
 // The cycle fold (see fcurve_clip.hpp): private parts of FCurveClip and its Context.
 struct FCurveClipAccess {
-  static constexpr std::size_t kFold = 9;  // fold fields: lo, hi, end, n, period, sign, base, wrap, offset
+  // Fold fields: lo, hi (the window), end, n·period as hi + lo floats, sign, base, wrap, offset.
+  static constexpr std::size_t kFold = 9;
   using Cycling = FCurveClip::Cycling;
 
   static void compile(std::span<const FCurve> curves, const FCurveClipOptions& options, FCurveClip& clip) {
@@ -261,8 +262,6 @@ struct FCurveClipAccess {
       }
       ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
     }
-    clip.cyclic_where_.resize(clip.cyclic_data_.size() / B);
-    for (std::size_t k = 0; k < clip.cyclic_where_.size(); ++k) clip.cyclic_where_[k] = std::uint32_t(k);
     rig_detail::finish_stream<float, B>(ch);
   }
 
@@ -296,7 +295,9 @@ struct FCurveClipAccess {
       return s;
     }
     s.mirrored = mode == CycleMode::mirror && (static_cast<long long>(std::min(cycle, 2.0e9f) + 1) % 2) != 0;
-    const float r = std::fma(-float(s.side) * s.m, period, rel);
+    // fmod(rel, period) = rel − side·m·period exactly: the difference fits a float (|r| < period,
+    // on rel's and period's grid) and double holds side·m·period (m < 2^23) and the difference exactly.
+    const float r = float(double(rel) - double(float(s.side) * s.m) * double(period));
     const float base = s.mirrored ? (s.side < 0 ? cy.first_x : cy.last_x) : cy.first_x;
     const float local = base + (s.mirrored ? -r : r);
     s.wrap = local < cy.first_x;
@@ -349,10 +350,13 @@ struct FCurveClipAccess {
     return unkey(ki);
   }
 
-  // The local frame from a fold's fields at frame f (the operations the SIMD loop does).
+  // The local frame from a fold's fields at frame f (the operations the SIMD loop does):
+  // r = ((f − end) − nd_hi) − nd_lo, exact in the window (f − end − n·period fits a float there,
+  // the first difference is exact by Sterbenz's lemma — (f − end)/(n·period) ∈ [1/2, 2] for n ≠ 0 —
+  // and nd_hi + nd_lo = n·period exactly, Dekker's two-product split); then base ± r and the wrap.
   static float local(const float* F, std::size_t s, std::size_t c, float f) noexcept {
     const float rel = f - F[2 * s + c];
-    const float r = std::fma(-F[3 * s + c], F[4 * s + c], rel);
+    const float r = (rel - F[3 * s + c]) - F[4 * s + c];
     const float t = F[6 * s + c] + F[5 * s + c] * r;
     return t + F[7 * s + c];
   }
@@ -364,7 +368,9 @@ struct FCurveClipAccess {
     const auto d = fcurve_detail::decide_cycles(cy.cycles, cy.first_x, cy.first_y, cy.last_x, cy.last_y, f);
     const auto put = [&](float lo, float hi, float ofs, float n, float per, float sign, float base, float wrap,
                          float off) {
-      const float v[kFold] = {lo, hi, ofs, n, per, sign, base, wrap, off};
+      const double nd = double(n) * double(per);  // exact: |n| < 2^23, 24-bit period
+      const float nd_hi = float(nd), nd_lo = float(nd - double(nd_hi));  // nd_lo exact (two-product)
+      const float v[kFold] = {lo, hi, ofs, nd_hi, nd_lo, sign, base, wrap, off};
       for (std::size_t k = 0; k < kFold; ++k) F[k * s + c] = v[k];
     };
     const FCurveCycles& m = cy.cycles;
@@ -404,20 +410,40 @@ struct FCurveClipAccess {
     put(f, f, f, 0, 0, 1, d.t, 0, d.offset);
   }
 
-  // Brings cycling channel c to frame f: its fold, then its piece at the local frame.
-  static void refresh(const FCurveClip& clip, FCurveClip::Context& ctx, std::size_t c, float f) noexcept {
+  // Brings cycling channel c to frame f: its fold (unless `in_window`: then `t`, the local frame the
+  // SIMD loop computed, stands), then its piece at the local frame.
+  static void refresh(const FCurveClip& clip, FCurveClip::Context& ctx, std::size_t c, float f, bool in_window,
+                      float t) noexcept {
     constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
     const std::int32_t i = clip.cycling_of_[c];
     if (i < 0) return;
     const Cycling& cy = clip.cycling_[std::size_t(i)];
-    float* F = ctx.fold.data();
-    const std::size_t s = ctx.stride;
-    if (!(f >= F[c] && f <= F[s + c])) set_fold(cy, f, F, s, c);
-    const float t = local(F, s, c, f);
-    const std::uint32_t k = rig_detail::find_segment<float, B>(clip.cyclic_data_.data(), clip.cyclic_where_.data() + cy.begin,
-                                                               cy.count, t, ctx.segment[c]);
+    if (!in_window) {
+      float* F = ctx.fold.data();
+      const std::size_t s = ctx.stride;
+      set_fold(cy, f, F, s, c);
+      t = local(F, s, c, f);
+    }
+    // The piece holding t: a few steps from the cursor (playback), else a binary search; the
+    // channel's pieces are contiguous and tile (−∞, +∞).
+    const float* blocks = clip.cyclic_data_.data() + std::size_t(cy.begin) * B;
+    std::uint32_t k = std::min(ctx.segment[c], cy.count - 1);
+    for (int step = 0; step < 3; ++step) {
+      if (t >= blocks[std::size_t(k) * B + 1] && k + 1 < cy.count) ++k;
+      else if (t < blocks[std::size_t(k) * B] && k > 0) --k;
+      else break;
+    }
+    if (!(t >= blocks[std::size_t(k) * B] && t < blocks[std::size_t(k) * B + 1])) {
+      std::uint32_t lo = 0, hi = cy.count - 1;  // last piece with lo ≤ t
+      while (lo < hi) {
+        const std::uint32_t mid = (lo + hi + 1) / 2;
+        if (blocks[std::size_t(mid) * B] <= t) lo = mid;
+        else hi = mid - 1;
+      }
+      k = lo;
+    }
     ctx.segment[c] = k;
-    rig_detail::put_block<float, W, B>(clip.cyclic_data_.data() + std::size_t(cy.begin + k) * B, ctx.cache.data(), c);
+    rig_detail::put_block<float, W, B>(blocks + std::size_t(k) * B, ctx.cache.data(), c);
   }
 
   static const float* nan_block(const FCurveClip& clip, std::size_t c) noexcept {
@@ -512,19 +538,20 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
     V t = f;  // the frame each channel's piece is evaluated at
     V offset = V(0.0f);
     if (context.folding[c0 / W]) {
-      // The cycle fold: local = base + sign·fma(−n, period, frame − end) + wrap (identity for the
-      // channels that do not cycle), valid while frame is in the fold's window and local in the
-      // cached piece; a channel outside either is refreshed on the scalar path.
+      // The cycle fold: local = base + sign·((frame − end) − n·period) + wrap (identity for the
+      // channels that do not cycle; FCurveClipAccess::local), valid while frame is in the fold's
+      // window and local in the cached piece; a channel outside either is refreshed on the scalar path.
       const auto fl = [fold, s, c0](std::size_t k) noexcept { return rig_detail::load<V>(fold + k * s + c0); };
       const auto fold_local = [&]() noexcept {
-        const V r = stdx::fma(-fl(3), fl(4), f - fl(2));
+        const V r = ((f - fl(2)) - fl(3)) - fl(4);
         return (fl(6) + fl(5) * r) + fl(7);
       };
       t = fold_local();
-      const auto ok = (f >= fl(0)) && (f <= fl(1)) && (t >= ld(0)) && (t < ld(1));
+      const auto in_window = (f >= fl(0)) && (f <= fl(1));
+      const auto ok = in_window && (t >= ld(0)) && (t < ld(1));
       if (!stdx::all_of(ok)) {
         for (std::size_t i = 0; i < W; ++i)
-          if (!ok[i]) FCurveClipAccess::refresh(clip, context, c0 + i, frame);
+          if (!ok[i]) FCurveClipAccess::refresh(clip, context, c0 + i, frame, in_window[i], t[i]);
         t = fold_local();
       }
       offset = fl(8);

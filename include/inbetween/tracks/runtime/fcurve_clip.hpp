@@ -25,7 +25,7 @@
 /// answered — and folds each frame into the keyed range as Blender's fcm_cycles_time does, in
 /// float and in its order of operations (the code FCurve::sample runs, fcurve_detail::decide_cycles).
 /// The fold is kept in the context as an affine map valid on a window of frames (one cycle copy:
-/// local = base ± ((frame − end key) − n·period), exact there by an fma, plus the period for the
+/// local = base ± ((frame − end key) − n·period), exact there (n·period as two floats), plus the period for the
 /// wrapped copies before the keys, and the copy's value offset); the SIMD loop applies it to every
 /// channel of a group holding a cycling channel and checks frame and local frame against the window
 /// and the cached piece, and a channel that left either is refreshed (window, piece) on the scalar
@@ -113,8 +113,9 @@ class FCurveClip {
     std::vector<float> cache;            ///< padded channels × block fields, in SIMD-register order
     std::vector<float> values;           ///< per channel (curve c, for a rig too): the last sampled value
     /// Per channel, field-major (fold[k·stride + c]), the cycle fold in force: k = 0, 1 the window
-    /// [lo, hi] of frames it is valid on, 2 end key, 3 cycle number n, 4 period, 5 sign ±1, 6 base,
-    /// 7 wrap (0 or the period), 8 value offset: local = base + sign·fma(−n, period, frame − end) + wrap.
+    /// [lo, hi] of frames it is valid on, 2 end key, 3 and 4 n·period (cycle number times period) as
+    /// a sum of two floats, 5 sign ±1, 6 base, 7 wrap (0 or the period), 8 value offset:
+    /// local = base + sign·(((frame − end) − nd_hi) − nd_lo) + wrap.
     /// Channels without cycles: the identity on (−∞, +∞).
     std::vector<float> fold;
     std::vector<std::uint8_t> folding;   ///< per SIMD group of channels: 1 if one of them cycles
@@ -146,7 +147,6 @@ class FCurveClip {
   std::vector<Cycling> cycling_;
   std::vector<std::int32_t> cycling_of_;   // per channel: index into cycling_, −1 for none
   std::vector<float> cyclic_data_;         // cycling channels' pieces, channel after channel
-  std::vector<std::uint32_t> cyclic_where_;  // 0, 1, 2, … (find_segment's indirection)
   std::size_t channels_ = 0, joints_ = 0;
   float max_fit_error_ = 0;
 };
