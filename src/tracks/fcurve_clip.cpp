@@ -238,31 +238,54 @@ bool cycles_frames(const FCurve& curve) {
 struct FCurveClipAccess {
   // Fold fields: lo, hi (the window), end, n·period as hi + lo floats, sign, base, wrap, offset.
   static constexpr std::size_t kFold = 9;
-  using Cycling = FCurveClip::Cycling;
+  // A class's state: its fold (fields 0–7 as the channels'), 8 its last local frame, 9 the lo of
+  // its next stream piece (+∞ past the last): a class whose local frame moves on within
+  // [last, next lo) has nothing to do.  16 floats: one cache line.
+  static constexpr std::size_t kClass = 16;
+  using CycleClass = FCurveClip::CycleClass;
 
   static void compile(std::span<const FCurve> curves, const FCurveClipOptions& options, FCurveClip& clip) {
     auto& ch = clip.data_;
-    clip.cycling_of_.assign(curves.size(), -1);
+    clip.class_of_.assign(curves.size(), -1);
+    clip.member_of_.assign(curves.size(), 0);
     for (std::size_t c = 0; c < curves.size(); ++c) {
       ch.begin.push_back(std::uint32_t(ch.data.size() / B));
       if (cycles_frames(curves[c])) {
         const auto keys = curves[c].keys();
-        Cycling cy;
-        cy.channel = std::uint32_t(c);
-        cy.begin = std::uint32_t(clip.cyclic_data_.size() / B);
-        cy.cycles = *curves[c].cycles();
-        cy.first_x = keys.front().x, cy.first_y = keys.front().y;
-        cy.last_x = keys.back().x, cy.last_y = keys.back().y;
-        (void)compile_curve(curves[c], options, clip.cyclic_data_, clip.max_fit_error_);
-        cy.count = std::uint32_t(clip.cyclic_data_.size() / B - cy.begin);
-        clip.cycling_of_[c] = std::int32_t(clip.cycling_.size());
-        clip.cycling_.push_back(cy);
+        const FCurveCycles& m = *curves[c].cycles();
+        const float x0 = keys.front().x, x1 = keys.back().x;
+        std::size_t q = 0;
+        for (; q < clip.classes_.size(); ++q) {
+          const CycleClass& k = clip.classes_[q];
+          if (k.first_x == x0 && k.last_x == x1 && k.cycles.before == m.before && k.cycles.after == m.after &&
+              k.cycles.count_before == m.count_before && k.cycles.count_after == m.count_after)
+            break;
+        }
+        if (q == clip.classes_.size()) {
+          CycleClass k;
+          k.cycles = m, k.first_x = x0, k.last_x = x1;
+          clip.classes_.push_back(std::move(k));
+        }
+        CycleClass& k = clip.classes_[q];
+        clip.class_of_[c] = std::int32_t(q);
+        clip.member_of_[c] = std::uint32_t(k.members.size());
+        k.members.push_back(std::uint32_t(c));
+        k.first_y.push_back(keys.front().y);
+        k.last_y.push_back(keys.back().y);
+        k.pieces.begin.push_back(std::uint32_t(k.pieces.data.size() / B));
+        (void)compile_curve(curves[c], options, k.pieces.data, clip.max_fit_error_);
+        k.pieces.count.push_back(std::uint32_t(k.pieces.data.size() / B - k.pieces.begin.back()));
+        ++clip.cycling_;
       } else {
         (void)compile_curve(curves[c], options, ch.data, clip.max_fit_error_);
       }
       ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
     }
     rig_detail::finish_stream<float, B>(ch);
+    for (CycleClass& k : clip.classes_) {
+      rig_detail::finish_stream<float, B>(k.pieces);
+      for (auto& o : k.pieces.owner) o = k.members[o];  // member index → channel (the cache column)
+    }
   }
 
   // The discrete decisions of Blender's fold at a frame, computed cheaply (no fmod): two frames
@@ -274,7 +297,7 @@ struct FCurveClipAccess {
     bool operator==(const Signature&) const = default;
   };
 
-  static Signature signature(const Cycling& cy, float g) noexcept {
+  static Signature signature(const CycleClass& cy, float g) noexcept {
     Signature s;
     const FCurveCycles& m = cy.cycles;
     if (g < cy.first_x && m.before != CycleMode::none) s.side = -1;
@@ -321,7 +344,7 @@ struct FCurveClipAccess {
   // of one signature form an interval: each decision is monotone in the frame within one cycle).
   // Starts at `guess` (the cycle boundary in double): a few float steps usually settle it,
   // otherwise bisection.  Never past a frame whose signature differs, so the window is exact or short.
-  static float edge(const Cycling& cy, const Signature& s0, float f, double guess, int dir) noexcept {
+  static float edge(const CycleClass& cy, const Signature& s0, float f, double guess, int dir) noexcept {
     const float big = std::numeric_limits<float>::max();
     const float outward = dir > 0 ? kInf : -kInf;
     float g = float(std::clamp(guess, -double(big), double(big)));
@@ -350,28 +373,29 @@ struct FCurveClipAccess {
     return unkey(ki);
   }
 
-  // The local frame from a fold's fields at frame f (the operations the SIMD loop does):
-  // r = ((f − end) − nd_hi) − nd_lo, exact in the window (f − end − n·period fits a float there,
-  // the first difference is exact by Sterbenz's lemma — (f − end)/(n·period) ∈ [1/2, 2] for n ≠ 0 —
-  // and nd_hi + nd_lo = n·period exactly, Dekker's two-product split); then base ± r and the wrap.
-  static float local(const float* F, std::size_t s, std::size_t c, float f) noexcept {
-    const float rel = f - F[2 * s + c];
-    const float r = (rel - F[3 * s + c]) - F[4 * s + c];
-    const float t = F[6 * s + c] + F[5 * s + c] * r;
-    return t + F[7 * s + c];
+  // The local frame from fold fields at frame f (field k at F[k·s]; the operations the SIMD loop
+  // does): r = ((f − end) − nd_hi) − nd_lo, exact in the window (f − end − n·period fits a float
+  // there, the first difference is exact by Sterbenz's lemma — (f − end)/(n·period) ∈ [1/2, 2] for
+  // n ≠ 0 — and nd_hi + nd_lo = n·period exactly, Dekker's two-product split); then base ± r and the wrap.
+  static float local(const float* F, std::size_t s, float f) noexcept {
+    const float rel = f - F[2 * s];
+    const float r = (rel - F[3 * s]) - F[4 * s];
+    const float t = F[6 * s] + F[5 * s] * r;
+    return t + F[7 * s];
   }
 
-  // Sets channel c's fold for frame f: the decisions Blender takes at f (decide_cycles) and the
-  // window of frames around f on which the same affine map gives its local frames.
-  static void set_fold(const Cycling& cy, float f, float* F, std::size_t s, std::size_t c) noexcept {
+  enum class FoldKind { identity, copy, one_frame };
+
+  // Sets a class's fold S[0 … 7] for frame f: the decisions Blender takes at f (decide_cycles) and
+  // the window of frames around f on which the same affine map gives its local frames.
+  static FoldKind set_fold(const CycleClass& cy, float f, float* S) noexcept {
     const float period = cy.last_x - cy.first_x;
-    const auto d = fcurve_detail::decide_cycles(cy.cycles, cy.first_x, cy.first_y, cy.last_x, cy.last_y, f);
-    const auto put = [&](float lo, float hi, float ofs, float n, float per, float sign, float base, float wrap,
-                         float off) {
+    const auto d = fcurve_detail::decide_cycles(cy.cycles, cy.first_x, 0.0f, cy.last_x, 0.0f, f);
+    const auto put = [&](float lo, float hi, float ofs, float n, float per, float sign, float base, float wrap) {
       const double nd = double(n) * double(per);  // exact: |n| < 2^23, 24-bit period
       const float nd_hi = float(nd), nd_lo = float(nd - double(nd_hi));  // nd_lo exact (two-product)
-      const float v[kFold] = {lo, hi, ofs, nd_hi, nd_lo, sign, base, wrap, off};
-      for (std::size_t k = 0; k < kFold; ++k) F[k * s + c] = v[k];
+      const float v[8] = {lo, hi, ofs, nd_hi, nd_lo, sign, base, wrap};
+      std::copy_n(v, 8, S);
     };
     const FCurveCycles& m = cy.cycles;
     if (!d.cycled) {
@@ -379,16 +403,16 @@ struct FCurveClipAccess {
       if (d.side == 0) {
         // Side 0 holds from the first key (or −∞ when nothing cycles before it) to the last (or +∞).
         put(m.before != CycleMode::none ? cy.first_x : -kInf, m.after != CycleMode::none ? cy.last_x : kInf, 0, 0, 0,
-            1, 0, 0, 0);
-        return;
+            1, 0, 0);
+        return FoldKind::identity;
       }
       const Signature s0 = signature(cy, f);
       if (d.side > 0) {
-        put(edge(cy, s0, f, double(cy.last_x) + double(m.count_after) * double(period), -1), kInf, 0, 0, 0, 1, 0, 0, 0);
+        put(edge(cy, s0, f, double(cy.last_x) + double(m.count_after) * double(period), -1), kInf, 0, 0, 0, 1, 0, 0);
       } else {
-        put(-kInf, edge(cy, s0, f, double(cy.first_x) - double(m.count_before) * double(period), 1), 0, 0, 0, 1, 0, 0, 0);
+        put(-kInf, edge(cy, s0, f, double(cy.first_x) - double(m.count_before) * double(period), 1), 0, 0, 0, 1, 0, 0);
       }
-      return;
+      return FoldKind::identity;
     }
     const Signature s0 = signature(cy, f);
     if (s0.regular) {
@@ -397,58 +421,87 @@ struct FCurveClipAccess {
       const float sign = s0.mirrored ? -1.0f : 1.0f;
       const float base = s0.mirrored ? (d.side < 0 ? cy.first_x : cy.last_x) : cy.first_x;
       const float wrap = s0.wrap ? period : 0.0f;
-      put(f, f, ofs, n, period, sign, base, wrap, d.offset);
-      if (local(F, s, c, f) == d.t) {  // as proven in the file comment; checked, else the one-frame fold below
+      put(f, f, ofs, n, period, sign, base, wrap);
+      if (local(S, 1, f) == d.t) {  // as proven above; checked, else the one-frame fold below
         // The copy: cycle numbers in (m, m + 1), frames ofs + side·(m … m + 1)·period.
         const double a = double(ofs) + double(n) * double(period), b = double(ofs) + (double(n) + d.side) * double(period);
-        F[0 * s + c] = edge(cy, s0, f, std::min(a, b), -1);
-        F[1 * s + c] = edge(cy, s0, f, std::max(a, b), 1);
-        return;
+        S[0] = edge(cy, s0, f, std::min(a, b), -1);
+        S[1] = edge(cy, s0, f, std::max(a, b), 1);
+        return FoldKind::copy;
       }
     }
     // One frame: local = base = Blender's own answer.
-    put(f, f, f, 0, 0, 1, d.t, 0, d.offset);
+    put(f, f, f, 0, 0, 1, d.t, 0);
+    return FoldKind::one_frame;
   }
 
-  // Brings cycling channel c to frame f: its fold (unless `in_window`: then `t`, the local frame the
-  // SIMD loop computed, stands), then its piece at the local frame.
-  static void refresh(const FCurveClip& clip, FCurveClip::Context& ctx, std::size_t c, float f, bool in_window,
-                      float t) noexcept {
+  // Brings cycle class q to frame f: its fold (and its members' SIMD fold fields and value offsets
+  // when the fold changes), its local frame, and its members' cached pieces, consumed from the
+  // class's stream in local-frame order as the main stream is (rig_detail::advance).
+  static void advance_class(const FCurveClip& clip, FCurveClip::Context& ctx, std::size_t q, float f) noexcept {
     constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
-    const std::int32_t i = clip.cycling_of_[c];
-    if (i < 0) return;
-    const Cycling& cy = clip.cycling_[std::size_t(i)];
-    if (!in_window) {
+    const CycleClass& cy = clip.classes_[q];
+    float* S = ctx.class_fold.data() + q * kClass;
+    const std::size_t s = ctx.stride;
+    if (!(f >= S[0] && f <= S[1])) {
+      const FoldKind kind = set_fold(cy, f, S);
       float* F = ctx.fold.data();
-      const std::size_t s = ctx.stride;
-      set_fold(cy, f, F, s, c);
-      t = local(F, s, c, f);
-    }
-    // The piece holding t: a few steps from the cursor (playback), else a binary search; the
-    // channel's pieces are contiguous and tile (−∞, +∞).
-    const float* blocks = clip.cyclic_data_.data() + std::size_t(cy.begin) * B;
-    std::uint32_t k = std::min(ctx.segment[c], cy.count - 1);
-    for (int step = 0; step < 3; ++step) {
-      if (t >= blocks[std::size_t(k) * B + 1] && k + 1 < cy.count) ++k;
-      else if (t < blocks[std::size_t(k) * B] && k > 0) --k;
-      else break;
-    }
-    if (!(t >= blocks[std::size_t(k) * B] && t < blocks[std::size_t(k) * B + 1])) {
-      std::uint32_t lo = 0, hi = cy.count - 1;  // last piece with lo ≤ t
-      while (lo < hi) {
-        const std::uint32_t mid = (lo + hi + 1) / 2;
-        if (blocks[std::size_t(mid) * B] <= t) lo = mid;
-        else hi = mid - 1;
+      for (std::size_t i = 0; i < cy.members.size(); ++i) {
+        const std::size_t c = cy.members[i];
+        for (std::size_t k = 0; k < 8; ++k) F[k * s + c] = S[k];
+        // The value offset: Blender's own (the same on the whole copy: k = side·(m + 1) there).
+        F[8 * s + c] = kind == FoldKind::identity ? 0.0f
+                                                  : fcurve_detail::decide_cycles(cy.cycles, cy.first_x, cy.first_y[i],
+                                                                                 cy.last_x, cy.last_y[i], f).offset;
       }
-      k = lo;
     }
-    ctx.segment[c] = k;
-    rig_detail::put_block<float, W, B>(blocks + std::size_t(k) * B, ctx.cache.data(), c);
+    const float t = local(S, 1, f);
+    const auto& ch = cy.pieces;
+    const float* data = ch.data.data();
+    const std::size_t n = ch.owner.size();
+    float* cache = ctx.cache.data();
+    std::size_t& next = ctx.class_next[q];
+    const float previous = S[8];
+    S[8] = t;
+    if (t >= previous) {
+      const std::size_t limit = std::min(n, next + 16 * cy.members.size());
+      std::size_t p = next;
+      for (; p < limit && data[p * B] <= t; ++p) {
+        const std::uint32_t c = ch.owner[p];
+        ctx.segment[c] = ch.local[p];
+        rig_detail::put_block<float, W, B>(data + p * B, cache, c);
+      }
+      if (p == n || data[p * B] > t) {
+        next = p;
+        S[9] = p < n ? data[p * B] : kInf;
+        return;
+      }
+    }
+    for (std::size_t i = 0; i < cy.members.size(); ++i) {
+      const std::size_t c = cy.members[i];
+      const float* col = cache + (c / W) * B * W + c % W;
+      if (t >= col[0] && t < col[W]) continue;  // cached [lo, hi) still holds t
+      const std::uint32_t k = rig_detail::find_segment<float, B>(data, ch.where.data() + ch.begin[i], ch.count[i], t,
+                                                                 ctx.segment[c]);
+      ctx.segment[c] = k;
+      rig_detail::put_block<float, W, B>(data + std::size_t(ch.where[ch.begin[i] + k]) * B, cache, c);
+    }
+    std::size_t lo = 0, hi = n;  // first piece whose lo > t
+    while (lo < hi) {
+      const std::size_t mid = (lo + hi) / 2;
+      if (data[mid * B] <= t) lo = mid + 1;
+      else hi = mid;
+    }
+    next = lo;
+    S[9] = lo < n ? data[lo * B] : kInf;
   }
 
   static const float* nan_block(const FCurveClip& clip, std::size_t c) noexcept {
-    const std::int32_t i = clip.cycling_of_[c];
-    if (i >= 0) return clip.cyclic_data_.data() + std::size_t(clip.cycling_[std::size_t(i)].begin + 1) * B;
+    const std::int32_t q = clip.class_of_[c];
+    if (q >= 0) {
+      const auto& ch = clip.classes_[std::size_t(q)].pieces;
+      return ch.data.data() + std::size_t(ch.where[ch.begin[clip.member_of_[c]] + 1]) * B;
+    }
     return clip.data_.data.data() + std::size_t(clip.data_.where[clip.data_.begin[c] + 1]) * B;
   }
 };
@@ -485,22 +538,22 @@ FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
   ctx.segment.assign(clip.channels(), 0);
   ctx.cache.assign(B * ctx.stride, 0.0f);
   ctx.values.assign(ctx.stride, 0.0f);
-  // The identity fold on (−∞, +∞); cycling channels start with an empty window (refreshed at the
-  // first sample).  Padding lanes' cached pieces span every frame, so the fold check passes there.
+  // The identity fold on (−∞, +∞) for every channel; a cycling channel's fields are its class's,
+  // written when the class's fold is first set (the first sample).
   const std::size_t s = ctx.stride;
   ctx.fold.assign(FCurveClipAccess::kFold * s, 0.0f);
   ctx.folding.assign(s / W, 0);
   for (std::size_t c = 0; c < s; ++c) {
     ctx.fold[0 * s + c] = -kInf, ctx.fold[1 * s + c] = kInf, ctx.fold[5 * s + c] = 1.0f;
-    if (c < clip.channels() && clip.cycling_of_[c] >= 0) {
-      ctx.fold[0 * s + c] = kInf, ctx.fold[1 * s + c] = -kInf;
-      ctx.folding[c / W] = 1;
-    }
-    if (c >= clip.channels()) {
-      float* col = ctx.cache.data() + (c / W) * B * W + c % W;
-      col[0] = -kInf, col[W] = kInf;
-    }
+    if (c < clip.channels() && clip.class_of_[c] >= 0) ctx.folding[c / W] = 1;
   }
+  // Each class's fold starts empty (set at the first sample) and its local frame before any.
+  ctx.class_fold.assign(FCurveClipAccess::kClass * clip.classes_.size(), 0.0f);
+  for (std::size_t q = 0; q < clip.classes_.size(); ++q) {
+    float* S = ctx.class_fold.data() + q * FCurveClipAccess::kClass;
+    S[0] = kInf, S[1] = -kInf, S[8] = -kInf, S[9] = -kInf;
+  }
+  ctx.class_next.assign(clip.classes_.size(), 0);
   return ctx;
 }
 
@@ -527,6 +580,19 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   rig_detail::advance<float, W, B>(clip.data_, C, frame, context.time, context.next, context.segment.data(),
                                    context.cache.data());
   context.time = frame;
+  for (std::size_t q = 0; q < clip.classes_.size(); ++q) {
+    // The common case inline: the class's fold still holds and its local frame moved on within
+    // [last local frame, its next piece's lo) — nothing to consume, no cached piece to change.
+    float* S = context.class_fold.data() + q * FCurveClipAccess::kClass;
+    if (frame >= S[0] && frame <= S[1]) {
+      const float t = FCurveClipAccess::local(S, 1, frame);
+      if (t >= S[8] && t < S[9]) {
+        S[8] = t;
+        continue;
+      }
+    }
+    FCurveClipAccess::advance_class(clip, context, q, frame);
+  }
   const V f(frame);
   const float* cache = context.cache.data();
   const float* fold = context.fold.data();
@@ -538,22 +604,12 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
     V t = f;  // the frame each channel's piece is evaluated at
     V offset = V(0.0f);
     if (context.folding[c0 / W]) {
-      // The cycle fold: local = base + sign·((frame − end) − n·period) + wrap (identity for the
-      // channels that do not cycle; FCurveClipAccess::local), valid while frame is in the fold's
-      // window and local in the cached piece; a channel outside either is refreshed on the scalar path.
+      // The cycle fold: local = base + sign·((frame − end) − n·period) + wrap, the class's local
+      // frame bit for bit (the same float operations; the identity for channels that do not
+      // cycle), and the channel's value offset.
       const auto fl = [fold, s, c0](std::size_t k) noexcept { return rig_detail::load<V>(fold + k * s + c0); };
-      const auto fold_local = [&]() noexcept {
-        const V r = ((f - fl(2)) - fl(3)) - fl(4);
-        return (fl(6) + fl(5) * r) + fl(7);
-      };
-      t = fold_local();
-      const auto in_window = (f >= fl(0)) && (f <= fl(1));
-      const auto ok = in_window && (t >= ld(0)) && (t < ld(1));
-      if (!stdx::all_of(ok)) {
-        for (std::size_t i = 0; i < W; ++i)
-          if (!ok[i]) FCurveClipAccess::refresh(clip, context, c0 + i, frame, in_window[i], t[i]);
-        t = fold_local();
-      }
+      const V r = ((f - fl(2)) - fl(3)) - fl(4);
+      t = (fl(6) + fl(5) * r) + fl(7);
       offset = fl(8);
     }
     V u = (t - ld(2)) * ld(3);

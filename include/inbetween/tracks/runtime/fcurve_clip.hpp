@@ -94,9 +94,16 @@ class FCurveClip {
   /// Joints for a clip made by build_fcurve_rig (channels / 10), 0 otherwise.
   [[nodiscard]] std::size_t joints() const noexcept { return joints_; }
   /// Number of pieces over all channels (the clip's size: block floats each).
-  [[nodiscard]] std::size_t pieces() const noexcept { return data_.owner.size() + cyclic_data_.size() / block; }
+  [[nodiscard]] std::size_t pieces() const noexcept {
+    std::size_t n = data_.owner.size();
+    for (const auto& k : classes_) n += k.pieces.owner.size();
+    return n;
+  }
   /// Number of channels with a Cycles modifier (folded into their keyed range at sampling).
-  [[nodiscard]] std::size_t cycling_channels() const noexcept { return cycling_.size(); }
+  [[nodiscard]] std::size_t cycling_channels() const noexcept { return cycling_; }
+  /// Number of cycle classes: cycling channels with the same end-key frames and Cycles settings
+  /// share one folded local frame and one piece stream.
+  [[nodiscard]] std::size_t cycle_classes() const noexcept { return classes_.size(); }
   /// Largest |piece − FCurve::sample| / scale measured at the check frames while building.
   [[nodiscard]] float max_fit_error() const noexcept { return max_fit_error_; }
 
@@ -112,12 +119,16 @@ class FCurveClip {
     std::vector<std::uint32_t> segment;  ///< per channel: current piece in the channel
     std::vector<float> cache;            ///< padded channels × block fields, in SIMD-register order
     std::vector<float> values;           ///< per channel (curve c, for a rig too): the last sampled value
-    /// Per channel, field-major (fold[k·stride + c]), the cycle fold in force: k = 0, 1 the window
-    /// [lo, hi] of frames it is valid on, 2 end key, 3 and 4 n·period (cycle number times period) as
-    /// a sum of two floats, 5 sign ±1, 6 base, 7 wrap (0 or the period), 8 value offset:
-    /// local = base + sign·(((frame − end) − nd_hi) − nd_lo) + wrap.
-    /// Channels without cycles: the identity on (−∞, +∞).
+    /// Per channel, field-major (fold[k·stride + c]), its cycle class's fold in force: k = 0, 1 the
+    /// window [lo, hi] of frames it is valid on, 2 end key, 3 and 4 n·period (cycle number times
+    /// period) as a sum of two floats, 5 sign ±1, 6 base, 7 wrap (0 or the period), 8 the channel's
+    /// value offset: local = base + sign·(((frame − end) − nd_hi) − nd_lo) + wrap.  Channels
+    /// without cycles: the identity on (−∞, +∞).
     std::vector<float> fold;
+    /// Per cycle class, 16 floats: its fold (fields 0–7 as in `fold`), 8 the last local frame,
+    /// 9 the lo of the next piece of its stream (+∞ past the last).
+    std::vector<float> class_fold;
+    std::vector<std::size_t> class_next;  ///< per cycle class: first piece of its stream not yet consumed
     std::vector<std::uint8_t> folding;   ///< per SIMD group of channels: 1 if one of them cycles
     std::size_t stride = 0;              ///< padded channel count (a multiple of 16)
     std::size_t next = 0;                ///< first stream piece not yet consumed
@@ -139,14 +150,17 @@ class FCurveClip {
     std::vector<float> data;
   };
   Channels data_;  // channels without cycling; a cycling channel has no piece in the stream
-  struct Cycling {  // a channel with a Cycles modifier
-    std::uint32_t channel = 0, begin = 0, count = 0;  // its pieces: cyclic_data_[begin·block …]
+  struct CycleClass {  // cycling channels with the same end-key frames and Cycles settings: one local frame
     FCurveCycles cycles;
-    float first_x = 0, first_y = 0, last_x = 0, last_y = 0;  // the end keys
+    float first_x = 0, last_x = 0;
+    std::vector<std::uint32_t> members;  // their channels
+    std::vector<float> first_y, last_y;  // per member: the end keys' values (repeat_offset's step)
+    Channels pieces;  // the members' pieces in local-frame stream order (owner: the channel)
   };
-  std::vector<Cycling> cycling_;
-  std::vector<std::int32_t> cycling_of_;   // per channel: index into cycling_, −1 for none
-  std::vector<float> cyclic_data_;         // cycling channels' pieces, channel after channel
+  std::vector<CycleClass> classes_;
+  std::vector<std::int32_t> class_of_;     // per channel: its cycle class, −1 for none
+  std::vector<std::uint32_t> member_of_;   // per channel: its index in the class's members
+  std::size_t cycling_ = 0;
   std::size_t channels_ = 0, joints_ = 0;
   float max_fit_error_ = 0;
 };
