@@ -167,8 +167,8 @@ float extrapolation_slope(const FCurve& curve, bool before) {
   return fac == 0.0f ? 0.0f : (e.y - h.y) / fac;
 }
 
-Expected<bool> compile_curve(const FCurve& curve, const FCurveClipOptions& options, std::vector<float>& data,
-                             float& worst) {
+// Appends the pieces of one curve (its keyed range and the two extrapolation lines) to `data`.
+void compile_curve(const FCurve& curve, const FCurveClipOptions& options, std::vector<float>& data, float& worst) {
   const auto keys = curve.keys();
   const std::size_t n = keys.size();
   float lo = keys[0].y, hi = keys[0].y, big = std::abs(keys[0].y);
@@ -223,7 +223,6 @@ Expected<bool> compile_curve(const FCurve& curve, const FCurveClipOptions& optio
   line[0] = keys[n - 1].y, line[1] = slope_after;
   push_piece(data, xn, kInf, xn, 1.0f, kNoBand, kNoBand, line);
   worst = std::max(worst, fitter.worst);
-  return true;
 }
 
 // A curve whose Cycles modifier changes some frame: ≥ 2 keys (a period) and a side that cycles.
@@ -273,11 +272,11 @@ struct FCurveClipAccess {
         k.first_y.push_back(keys.front().y);
         k.last_y.push_back(keys.back().y);
         k.pieces.begin.push_back(std::uint32_t(k.pieces.data.size() / B));
-        (void)compile_curve(curves[c], options, k.pieces.data, clip.max_fit_error_);
+        compile_curve(curves[c], options, k.pieces.data, clip.max_fit_error_);
         k.pieces.count.push_back(std::uint32_t(k.pieces.data.size() / B - k.pieces.begin.back()));
         ++clip.cycling_;
       } else {
-        (void)compile_curve(curves[c], options, ch.data, clip.max_fit_error_);
+        compile_curve(curves[c], options, ch.data, clip.max_fit_error_);
       }
       ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
     }

@@ -314,7 +314,8 @@ TEST(FCurveClipCycles, BlendersRecordedMirrorAndOffsetExample) {
   // Measured in Blender 3.4.1 (docs: ../shared/guide/blender-fcurves.md §13): LINEAR keys (0, 0),
   // (10, 10), (20, 4), Cycles before MIRROR, after REPEAT_OFFSET.
   RawFCurve raw;
-  for (const auto& [x, y] : {std::pair{0.0, 0.0}, {10.0, 10.0}, {20.0, 4.0}})
+  const std::pair<double, double> keys[] = {{0.0, 0.0}, {10.0, 10.0}, {20.0, 4.0}};
+  for (const auto& [x, y] : keys)
     raw.keys.push_back(FCurveKey{.frame = x, .value = y, .interpolation = Interpolation::linear});
   raw.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset};
   const std::vector<FCurve> curves{build_fcurve(raw).value()};
@@ -323,8 +324,9 @@ TEST(FCurveClipCycles, BlendersRecordedMirrorAndOffsetExample) {
   auto ctx = make_fcurve_context(*clip);
   float v = 0;
   const float scale = scale_of(curves[0]);  // 10: the keys' value range
-  for (const auto& [frame, blender] : {std::pair{-25.0f, 7.0f}, {-15.0f, 7.0f}, {-5.0f, 5.0f}, {20.0f, 4.0f},
-                                       {25.0f, 9.0f}, {30.0f, 14.0f}, {40.0f, 8.0f}, {45.0f, 13.0f}}) {
+  const std::pair<float, float> recorded[] = {{-25.0f, 7.0f}, {-15.0f, 7.0f}, {-5.0f, 5.0f}, {20.0f, 4.0f},
+                                              {25.0f, 9.0f},  {30.0f, 14.0f}, {40.0f, 8.0f}, {45.0f, 13.0f}};
+  for (const auto& [frame, blender] : recorded) {
     sample_fcurves(*clip, frame, ctx, std::span<float>(&v, 1));
     EXPECT_NEAR(v, blender, fcurve_runtime_tolerance * scale) << "frame " << frame;
   }
@@ -348,6 +350,9 @@ TEST(FCurveClipCycles, WalkCycleRigAgreesAndNormalises) {
   const auto clip = build_fcurve_rig(curves);
   ASSERT_TRUE(clip) << clip.error().describe();
   EXPECT_EQ(clip->cycling_channels(), curves.size());
+  // Keys on the same frames, two Cycles settings (location repeats with offset): two classes,
+  // each with one local frame and one piece stream for its channels of all joints.
+  EXPECT_EQ(clip->cycle_classes(), 2u);
   EXPECT_EQ(clip->pieces(), curves.size() * 6);  // 4 segments (one piece each) + 2 lines: nothing unrolled
   auto ctx = make_fcurve_context(*clip);
   std::vector<float> out(curves.size());
