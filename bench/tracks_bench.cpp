@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <map>
+#include <utility>
 #include <random>
 #include <span>
 #include <vector>
@@ -328,6 +329,63 @@ void BM_RigFCurveRuntime(benchmark::State& state) {
   state.counters["max_fit_error"] = double(clip.max_fit_error());
 }
 
+// The same rig as walk cycles: every curve with a Cycles modifier (location x y z repeat with
+// offset after the keys, as a walking root moves on; every other curve repeat; repeat before),
+// played from the first key through three more copies (frames 0 … 4·end) with the same steps, so
+// three quarters of the samples fold the frame into the keyed range.  Compare with
+// BM_RigFCurveRuntime (the same keys without cycles, frames 0 … end).  Third argument 0: exactly
+// those keys — every joint keyed at its own random frames, so every joint has its own cycle (its
+// own cycle class: the worst case for the runtime, which shares one folded local frame and one
+// piece stream per class); 1: each joint's key frames scaled to end at the rig's last frame, so
+// all joints share one cycle, as a character's walk cycle keyed over one frame range does.
+std::vector<FCurve> make_cycling_fcurve_rig(int joints, bool shared) {
+  const auto rig = make_rig<float>(joints);
+  const double end = rig_end(rig);
+  std::vector<FCurve> curves;
+  for (const auto& j : rig) {
+    const auto f = j.translation.frames();
+    const double stretch = shared ? end / double(f.back()) : 1.0;
+    for (int k = 0; k < 10; ++k) {
+      RawFCurve raw;
+      for (std::size_t i = 0; i < f.size(); ++i) {
+        const Vec3f t = j.translation.values()[i], s = j.scale.values()[i];
+        const Quatf q = j.rotation.keys()[i];
+        const float v[10] = {t.x, t.y, t.z, q.w, q.x, q.y, q.z, s.x, s.y, s.z};
+        FCurveKey key;
+        key.frame = i + 1 == f.size() && shared ? end : double(f[i]) * stretch;
+        key.value = v[k];
+        raw.keys.push_back(key);
+      }
+      raw.cycles = FCurveCycles{.before = CycleMode::repeat, .after = k < 3 ? CycleMode::repeat_offset : CycleMode::repeat};
+      curves.push_back(build_fcurve(raw).value());
+    }
+  }
+  return curves;
+}
+
+void BM_RigFCurveRuntimeCyclic(benchmark::State& state) {
+  const int joints = int(state.range(0));
+  const bool shared = state.range(2) != 0;
+  static std::map<std::pair<int, bool>, FCurveClip> clips;
+  auto it = clips.find({joints, shared});
+  if (it == clips.end())
+    it = clips.emplace(std::pair{joints, shared}, build_fcurve_rig(make_cycling_fcurve_rig(joints, shared)).value()).first;
+  const FCurveClip& clip = it->second;
+  const double end = 4 * rig_end(make_rig<float>(joints)), step = 1.0 / double(state.range(1));
+  auto ctx = make_fcurve_context(clip);
+  std::vector<JointPose<float>> pose(static_cast<std::size_t>(joints));
+  double frame = 0;
+  for (auto _ : state) {
+    sample_fcurve_rig(clip, float(frame), ctx, std::span<JointPose<float>>(pose));
+    benchmark::DoNotOptimize(pose.data());
+    benchmark::ClobberMemory();
+    frame += step;
+    if (frame > end) frame = 0;
+  }
+  state.counters["pieces_per_curve"] = double(clip.pieces()) / double(clip.channels());
+  state.counters["cycle_classes"] = double(clip.cycle_classes());
+}
+
 #define RIG_ARGS ->ArgsProduct({{25, 64, 71, 551, 1024}, {2, 8}})
 BENCHMARK(BM_RigPerTrack<float>) RIG_ARGS;
 BENCHMARK(BM_RigPerTrack<double>) RIG_ARGS;
@@ -337,6 +395,7 @@ BENCHMARK(BM_RigRuntime<float>) RIG_ARGS;
 BENCHMARK(BM_RigRuntime<double>) RIG_ARGS;
 BENCHMARK(BM_RigFCurvePerCurve) RIG_ARGS;
 BENCHMARK(BM_RigFCurveRuntime) RIG_ARGS;
+BENCHMARK(BM_RigFCurveRuntimeCyclic)->ArgsProduct({{25, 64, 71, 551, 1024}, {2, 8}, {0, 1}});
 }  // namespace
 
 BENCHMARK_MAIN();

@@ -1,12 +1,15 @@
 // FCurveClip: Blender F-curves pre-solved into degree-9 polynomial pieces (include/inbetween/tracks/runtime/fcurve_clip.hpp).
 #include "inbetween/tracks/runtime/fcurve_clip.hpp"
 
+#include "fcurve_internal.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 namespace inbetween {
 namespace {
@@ -164,13 +167,8 @@ float extrapolation_slope(const FCurve& curve, bool before) {
   return fac == 0.0f ? 0.0f : (e.y - h.y) / fac;
 }
 
-Expected<bool> compile_curve(const FCurve& curve, std::size_t index, const FCurveClipOptions& options,
-                             std::vector<float>& data, float& worst) {
-  if (curve.cycles()) {
-    return Error{ErrorCode::Unsupported,
-                 "the runtime does not cycle F-curves (a Cycles modifier): sample this curve with FCurve::sample",
-                 "", {"curves", index}};
-  }
+// Appends the pieces of one curve (its keyed range and the two extrapolation lines) to `data`.
+void compile_curve(const FCurve& curve, const FCurveClipOptions& options, std::vector<float>& data, float& worst) {
   const auto keys = curve.keys();
   const std::size_t n = keys.size();
   float lo = keys[0].y, hi = keys[0].y, big = std::abs(keys[0].y);
@@ -225,21 +223,292 @@ Expected<bool> compile_curve(const FCurve& curve, std::size_t index, const FCurv
   line[0] = keys[n - 1].y, line[1] = slope_after;
   push_piece(data, xn, kInf, xn, 1.0f, kNoBand, kNoBand, line);
   worst = std::max(worst, fitter.worst);
-  return true;
+}
+
+// A curve whose Cycles modifier changes some frame: ≥ 2 keys (a period) and a side that cycles.
+bool cycles_frames(const FCurve& curve) {
+  const auto& cy = curve.cycles();
+  return cy && curve.keys().size() >= 2 && (cy->before != CycleMode::none || cy->after != CycleMode::none);
 }
 
 }  // namespace
 
+// The cycle fold (see fcurve_clip.hpp): private parts of FCurveClip and its Context.
+struct FCurveClipAccess {
+  // Fold fields: lo, hi (the window), end, n·period as hi + lo floats, sign, base, wrap, offset.
+  static constexpr std::size_t kFold = 9;
+  // A class's state: its fold (fields 0–7 as the channels'), 8 its last local frame, 9 the lo of
+  // its next stream piece (+∞ past the last): a class whose local frame moves on within
+  // [last, next lo) has nothing to do.  16 floats: one cache line.
+  static constexpr std::size_t kClass = 16;
+  using CycleClass = FCurveClip::CycleClass;
+
+  static void compile(std::span<const FCurve> curves, const FCurveClipOptions& options, FCurveClip& clip) {
+    auto& ch = clip.data_;
+    clip.class_of_.assign(curves.size(), -1);
+    clip.member_of_.assign(curves.size(), 0);
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      ch.begin.push_back(std::uint32_t(ch.data.size() / B));
+      if (cycles_frames(curves[c])) {
+        const auto keys = curves[c].keys();
+        const FCurveCycles& m = *curves[c].cycles();
+        const float x0 = keys.front().x, x1 = keys.back().x;
+        std::size_t q = 0;
+        for (; q < clip.classes_.size(); ++q) {
+          const CycleClass& k = clip.classes_[q];
+          if (k.first_x == x0 && k.last_x == x1 && k.cycles.before == m.before && k.cycles.after == m.after &&
+              k.cycles.count_before == m.count_before && k.cycles.count_after == m.count_after)
+            break;
+        }
+        if (q == clip.classes_.size()) {
+          CycleClass k;
+          k.cycles = m, k.first_x = x0, k.last_x = x1;
+          clip.classes_.push_back(std::move(k));
+        }
+        CycleClass& k = clip.classes_[q];
+        clip.class_of_[c] = std::int32_t(q);
+        clip.member_of_[c] = std::uint32_t(k.members.size());
+        k.members.push_back(std::uint32_t(c));
+        k.first_y.push_back(keys.front().y);
+        k.last_y.push_back(keys.back().y);
+        k.pieces.begin.push_back(std::uint32_t(k.pieces.data.size() / B));
+        compile_curve(curves[c], options, k.pieces.data, clip.max_fit_error_);
+        k.pieces.count.push_back(std::uint32_t(k.pieces.data.size() / B - k.pieces.begin.back()));
+        ++clip.cycling_;
+      } else {
+        compile_curve(curves[c], options, ch.data, clip.max_fit_error_);
+      }
+      ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
+    }
+    rig_detail::finish_stream<float, B>(ch);
+    for (CycleClass& k : clip.classes_) {
+      rig_detail::finish_stream<float, B>(k.pieces);
+      for (auto& o : k.pieces.owner) o = k.members[o];  // member index → channel (the cache column)
+    }
+  }
+
+  // The discrete decisions of Blender's fold at a frame, computed cheaply (no fmod): two frames
+  // with equal signatures in one window get their local frame from the same affine map.
+  struct Signature {
+    int side = 0;
+    bool cycled = false, regular = false, mirrored = false, wrap = false;
+    float m = 0;  // trunc(cycle number)
+    bool operator==(const Signature&) const = default;
+  };
+
+  static Signature signature(const CycleClass& cy, float g) noexcept {
+    Signature s;
+    const FCurveCycles& m = cy.cycles;
+    if (g < cy.first_x && m.before != CycleMode::none) s.side = -1;
+    else if (g > cy.last_x && m.after != CycleMode::none) s.side = 1;
+    if (s.side == 0) return s;
+    const float period = cy.last_x - cy.first_x;
+    const float ofs = s.side > 0 ? cy.last_x : cy.first_x;
+    const int count = s.side > 0 ? m.count_after : m.count_before;
+    const CycleMode mode = s.side > 0 ? m.after : m.before;
+    const float rel = g - ofs;
+    const float cycle = float(s.side) * rel / period;
+    s.cycled = count == 0 || !(cycle > float(count));
+    if (!s.cycled) return s;
+    s.m = std::trunc(cycle);
+    s.regular = cycle != s.m;  // a cycle number strictly between integers (2^23 and beyond: never)
+    if (!s.regular) {
+      s.m = cycle;
+      return s;
+    }
+    s.mirrored = mode == CycleMode::mirror && (static_cast<long long>(std::min(cycle, 2.0e9f) + 1) % 2) != 0;
+    // fmod(rel, period) = rel − side·m·period exactly: the difference fits a float (|r| < period,
+    // on rel's and period's grid) and double holds side·m·period (m < 2^23) and the difference exactly.
+    const float r = float(double(rel) - double(float(s.side) * s.m) * double(period));
+    const float base = s.mirrored ? (s.side < 0 ? cy.first_x : cy.last_x) : cy.first_x;
+    const float local = base + (s.mirrored ? -r : r);
+    s.wrap = local < cy.first_x;
+    return s;
+  }
+
+  // Float order as unsigned integers (for bisection over the floats between two frames).
+  static std::uint32_t key(float x) noexcept {
+    std::uint32_t b;
+    std::memcpy(&b, &x, 4);
+    return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
+  }
+  static float unkey(std::uint32_t k) noexcept {
+    const std::uint32_t b = (k & 0x80000000u) ? (k & 0x7fffffffu) : ~k;
+    float x;
+    std::memcpy(&x, &b, 4);
+    return x;
+  }
+
+  // The farthest frame from f in direction dir (±1) up to which the signature stays s0 (the frames
+  // of one signature form an interval: each decision is monotone in the frame within one cycle).
+  // Starts at `guess` (the cycle boundary in double): a few float steps usually settle it,
+  // otherwise bisection.  Never past a frame whose signature differs, so the window is exact or short.
+  static float edge(const CycleClass& cy, const Signature& s0, float f, double guess, int dir) noexcept {
+    const float big = std::numeric_limits<float>::max();
+    const float outward = dir > 0 ? kInf : -kInf;
+    float g = float(std::clamp(guess, -double(big), double(big)));
+    if (!(dir > 0 ? g > f : g < f)) g = f;
+    if (signature(cy, g) == s0) {
+      for (int i = 0; i < 4 && std::abs(g) < big; ++i) {
+        const float h = std::nextafter(g, outward);
+        if (!(signature(cy, h) == s0)) return g;
+        g = h;
+      }
+      return g;  // short of the edge: a shorter window, still exact
+    }
+    float in = f, out = g;
+    for (int i = 0; i < 3; ++i) {
+      const float h = std::nextafter(out, -outward);
+      if (h == in) return in;
+      if (signature(cy, h) == s0) return h;
+      out = h;
+    }
+    std::uint32_t ki = key(in), ko = key(out);
+    while (ki + 1 != ko && ko + 1 != ki) {
+      const std::uint32_t km = ki < ko ? ki + (ko - ki) / 2 : ko + (ki - ko) / 2;
+      if (signature(cy, unkey(km)) == s0) ki = km;
+      else ko = km;
+    }
+    return unkey(ki);
+  }
+
+  // The local frame from fold fields at frame f (field k at F[k·s]; the operations the SIMD loop
+  // does): r = ((f − end) − nd_hi) − nd_lo, exact in the window (f − end − n·period fits a float
+  // there, the first difference is exact by Sterbenz's lemma — (f − end)/(n·period) ∈ [1/2, 2] for
+  // n ≠ 0 — and nd_hi + nd_lo = n·period exactly, Dekker's two-product split); then base ± r and the wrap.
+  static float local(const float* F, std::size_t s, float f) noexcept {
+    const float rel = f - F[2 * s];
+    const float r = (rel - F[3 * s]) - F[4 * s];
+    const float t = F[6 * s] + F[5 * s] * r;
+    return t + F[7 * s];
+  }
+
+  enum class FoldKind { identity, copy, one_frame };
+
+  // Sets a class's fold S[0 … 7] for frame f: the decisions Blender takes at f (decide_cycles) and
+  // the window of frames around f on which the same affine map gives its local frames.
+  static FoldKind set_fold(const CycleClass& cy, float f, float* S) noexcept {
+    const float period = cy.last_x - cy.first_x;
+    const auto d = fcurve_detail::decide_cycles(cy.cycles, cy.first_x, 0.0f, cy.last_x, 0.0f, f);
+    const auto put = [&](float lo, float hi, float ofs, float n, float per, float sign, float base, float wrap) {
+      const double nd = double(n) * double(per);  // exact: |n| < 2^23, 24-bit period
+      const float nd_hi = float(nd), nd_lo = float(nd - double(nd_hi));  // nd_lo exact (two-product)
+      const float v[8] = {lo, hi, ofs, nd_hi, nd_lo, sign, base, wrap};
+      std::copy_n(v, 8, S);
+    };
+    const FCurveCycles& m = cy.cycles;
+    if (!d.cycled) {
+      // The keys' own pieces at f (inside, on a side without cycling, or past its count).
+      if (d.side == 0) {
+        // Side 0 holds from the first key (or −∞ when nothing cycles before it) to the last (or +∞).
+        put(m.before != CycleMode::none ? cy.first_x : -kInf, m.after != CycleMode::none ? cy.last_x : kInf, 0, 0, 0,
+            1, 0, 0);
+        return FoldKind::identity;
+      }
+      const Signature s0 = signature(cy, f);
+      if (d.side > 0) {
+        put(edge(cy, s0, f, double(cy.last_x) + double(m.count_after) * double(period), -1), kInf, 0, 0, 0, 1, 0, 0);
+      } else {
+        put(-kInf, edge(cy, s0, f, double(cy.first_x) - double(m.count_before) * double(period), 1), 0, 0, 0, 1, 0, 0);
+      }
+      return FoldKind::identity;
+    }
+    const Signature s0 = signature(cy, f);
+    if (s0.regular) {
+      const float ofs = d.side > 0 ? cy.last_x : cy.first_x;
+      const float n = float(d.side) * s0.m;
+      const float sign = s0.mirrored ? -1.0f : 1.0f;
+      const float base = s0.mirrored ? (d.side < 0 ? cy.first_x : cy.last_x) : cy.first_x;
+      const float wrap = s0.wrap ? period : 0.0f;
+      put(f, f, ofs, n, period, sign, base, wrap);
+      if (local(S, 1, f) == d.t) {  // as proven above; checked, else the one-frame fold below
+        // The copy: cycle numbers in (m, m + 1), frames ofs + side·(m … m + 1)·period.
+        const double a = double(ofs) + double(n) * double(period), b = double(ofs) + (double(n) + d.side) * double(period);
+        S[0] = edge(cy, s0, f, std::min(a, b), -1);
+        S[1] = edge(cy, s0, f, std::max(a, b), 1);
+        return FoldKind::copy;
+      }
+    }
+    // One frame: local = base = Blender's own answer.
+    put(f, f, f, 0, 0, 1, d.t, 0);
+    return FoldKind::one_frame;
+  }
+
+  // Brings cycle class q to frame f: its fold (and its members' SIMD fold fields and value offsets
+  // when the fold changes), its local frame, and its members' cached pieces, consumed from the
+  // class's stream in local-frame order as the main stream is (rig_detail::advance).
+  static void advance_class(const FCurveClip& clip, FCurveClip::Context& ctx, std::size_t q, float f) noexcept {
+    constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
+    const CycleClass& cy = clip.classes_[q];
+    float* S = ctx.class_fold.data() + q * kClass;
+    const std::size_t s = ctx.stride;
+    if (!(f >= S[0] && f <= S[1])) {
+      const FoldKind kind = set_fold(cy, f, S);
+      float* F = ctx.fold.data();
+      for (std::size_t i = 0; i < cy.members.size(); ++i) {
+        const std::size_t c = cy.members[i];
+        for (std::size_t k = 0; k < 8; ++k) F[k * s + c] = S[k];
+        // The value offset: Blender's own (the same on the whole copy: k = side·(m + 1) there).
+        F[8 * s + c] = kind == FoldKind::identity ? 0.0f
+                                                  : fcurve_detail::decide_cycles(cy.cycles, cy.first_x, cy.first_y[i],
+                                                                                 cy.last_x, cy.last_y[i], f).offset;
+      }
+    }
+    const float t = local(S, 1, f);
+    const auto& ch = cy.pieces;
+    const float* data = ch.data.data();
+    const std::size_t n = ch.owner.size();
+    float* cache = ctx.cache.data();
+    std::size_t& next = ctx.class_next[q];
+    const float previous = S[8];
+    S[8] = t;
+    if (t >= previous) {
+      const std::size_t limit = std::min(n, next + 16 * cy.members.size());
+      std::size_t p = next;
+      for (; p < limit && data[p * B] <= t; ++p) {
+        const std::uint32_t c = ch.owner[p];
+        ctx.segment[c] = ch.local[p];
+        rig_detail::put_block<float, W, B>(data + p * B, cache, c);
+      }
+      if (p == n || data[p * B] > t) {
+        next = p;
+        S[9] = p < n ? data[p * B] : kInf;
+        return;
+      }
+    }
+    for (std::size_t i = 0; i < cy.members.size(); ++i) {
+      const std::size_t c = cy.members[i];
+      const float* col = cache + (c / W) * B * W + c % W;
+      if (t >= col[0] && t < col[W]) continue;  // cached [lo, hi) still holds t
+      const std::uint32_t k = rig_detail::find_segment<float, B>(data, ch.where.data() + ch.begin[i], ch.count[i], t,
+                                                                 ctx.segment[c]);
+      ctx.segment[c] = k;
+      rig_detail::put_block<float, W, B>(data + std::size_t(ch.where[ch.begin[i] + k]) * B, cache, c);
+    }
+    std::size_t lo = 0, hi = n;  // first piece whose lo > t
+    while (lo < hi) {
+      const std::size_t mid = (lo + hi) / 2;
+      if (data[mid * B] <= t) lo = mid + 1;
+      else hi = mid;
+    }
+    next = lo;
+    S[9] = lo < n ? data[lo * B] : kInf;
+  }
+
+  static const float* nan_block(const FCurveClip& clip, std::size_t c) noexcept {
+    const std::int32_t q = clip.class_of_[c];
+    if (q >= 0) {
+      const auto& ch = clip.classes_[std::size_t(q)].pieces;
+      return ch.data.data() + std::size_t(ch.where[ch.begin[clip.member_of_[c]] + 1]) * B;
+    }
+    return clip.data_.data.data() + std::size_t(clip.data_.where[clip.data_.begin[c] + 1]) * B;
+  }
+};
+
 Expected<FCurveClip> build_fcurve_clip(std::span<const FCurve> curves, FCurveClipOptions options) {
   FCurveClip clip;
   clip.channels_ = curves.size();
-  auto& ch = clip.data_;
-  for (std::size_t c = 0; c < curves.size(); ++c) {
-    ch.begin.push_back(std::uint32_t(ch.data.size() / B));
-    if (auto r = compile_curve(curves[c], c, options, ch.data, clip.max_fit_error_); !r) return r.error();
-    ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
-  }
-  rig_detail::finish_stream<float, B>(ch);
+  FCurveClipAccess::compile(curves, options, clip);
   return clip;
 }
 
@@ -250,30 +519,40 @@ Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClip
                      std::to_string(curves.size()),
                  ""};
   }
-  const std::size_t J = curves.size() / 10;
   FCurveClip clip;
   clip.channels_ = curves.size();
-  clip.joints_ = J;
-  auto& ch = clip.data_;
+  clip.joints_ = curves.size() / 10;
   // Internal channel c is curve c (joint-major, 10·j + k): a joint's curves usually share their
   // key frames (Blender keys a bone's channels together), so the stream hands over a joint's ten
   // pieces one after another and they land in three neighbouring groups of the context's cache
   // (component-major, k·J + j, put them in ten groups far apart: 3× the cache lines written).
-  for (std::size_t c = 0; c < curves.size(); ++c) {
-    ch.begin.push_back(std::uint32_t(ch.data.size() / B));
-    if (auto r = compile_curve(curves[c], c, options, ch.data, clip.max_fit_error_); !r) return r.error();
-    ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
-  }
-  rig_detail::finish_stream<float, B>(ch);
+  FCurveClipAccess::compile(curves, options, clip);
   return clip;
 }
 
 FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
+  constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
   FCurveClip::Context ctx;
   ctx.stride = (clip.channels() + 15) / 16 * 16;
   ctx.segment.assign(clip.channels(), 0);
   ctx.cache.assign(B * ctx.stride, 0.0f);
   ctx.values.assign(ctx.stride, 0.0f);
+  // The identity fold on (−∞, +∞) for every channel; a cycling channel's fields are its class's,
+  // written when the class's fold is first set (the first sample).
+  const std::size_t s = ctx.stride;
+  ctx.fold.assign(FCurveClipAccess::kFold * s, 0.0f);
+  ctx.folding.assign(s / W, 0);
+  for (std::size_t c = 0; c < s; ++c) {
+    ctx.fold[0 * s + c] = -kInf, ctx.fold[1 * s + c] = kInf, ctx.fold[5 * s + c] = 1.0f;
+    if (c < clip.channels() && clip.class_of_[c] >= 0) ctx.folding[c / W] = 1;
+  }
+  // Each class's fold starts empty (set at the first sample) and its local frame before any.
+  ctx.class_fold.assign(FCurveClipAccess::kClass * clip.classes_.size(), 0.0f);
+  for (std::size_t q = 0; q < clip.classes_.size(); ++q) {
+    float* S = ctx.class_fold.data() + q * FCurveClipAccess::kClass;
+    S[0] = kInf, S[1] = -kInf, S[8] = -kInf, S[9] = -kInf;
+  }
+  ctx.class_next.assign(clip.classes_.size(), 0);
   return ctx;
 }
 
@@ -282,14 +561,15 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   using V = stdx::native_simd<float>;
   constexpr std::size_t W = V::size();
   const std::size_t C = clip.channels_;
-  INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == B * context.stride);
+  INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == B * context.stride &&
+                   context.fold.size() == FCurveClipAccess::kFold * context.stride);
   if (std::isnan(frame)) {
     // As FCurve::sample: the first key's value, each channel's second piece at its start (it
     // starts at the first key: a fitted piece whose band there clamps u to −1, where it
-    // interpolates the key, a constant piece, or, for one key, the held end).  Cache and stream are
-    // untouched.
+    // interpolates the key, a constant piece, or, for one key, the held end).  Cache, folds and
+    // stream are untouched.
     for (std::size_t i = 0; i < C; ++i) {
-      const float* blk = clip.data_.data.data() + std::size_t(clip.data_.where[clip.data_.begin[i] + 1]) * B;
+      const float* blk = FCurveClipAccess::nan_block(clip, i);
       context.values[i] = piece_value(blk, blk[0]);
     }
     return;
@@ -299,18 +579,45 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   rig_detail::advance<float, W, B>(clip.data_, C, frame, context.time, context.next, context.segment.data(),
                                    context.cache.data());
   context.time = frame;
+  for (std::size_t q = 0; q < clip.classes_.size(); ++q) {
+    // The common case inline: the class's fold still holds and its local frame moved on within
+    // [last local frame, its next piece's lo) — nothing to consume, no cached piece to change.
+    float* S = context.class_fold.data() + q * FCurveClipAccess::kClass;
+    if (frame >= S[0] && frame <= S[1]) {
+      const float t = FCurveClipAccess::local(S, 1, frame);
+      if (t >= S[8] && t < S[9]) {
+        S[8] = t;
+        continue;
+      }
+    }
+    FCurveClipAccess::advance_class(clip, context, q, frame);
+  }
   const V f(frame);
   const float* cache = context.cache.data();
+  const float* fold = context.fold.data();
+  const std::size_t s = context.stride;
   float* values = context.values.data();
   for (std::size_t c0 = 0; c0 < C; c0 += W) {
     const float* g = cache + c0 * B;  // this group's fields: field k at g + k·W
     const auto ld = [g](std::size_t k) noexcept { return rig_detail::load<V>(g + k * W); };
-    V u = (f - ld(2)) * ld(3);
+    V t = f;  // the frame each channel's piece is evaluated at
+    V offset = V(0.0f);
+    if (context.folding[c0 / W]) {
+      // The cycle fold: local = base + sign·((frame − end) − n·period) + wrap, the class's local
+      // frame bit for bit (the same float operations; the identity for channels that do not
+      // cycle), and the channel's value offset.
+      const auto fl = [fold, s, c0](std::size_t k) noexcept { return rig_detail::load<V>(fold + k * s + c0); };
+      const V r = ((f - fl(2)) - fl(3)) - fl(4);
+      t = (fl(6) + fl(5) * r) + fl(7);
+      offset = fl(8);
+    }
+    V u = (t - ld(2)) * ld(3);
     // Blender's snap bands: u = +1 within band_hi of hi, −1 within band_lo of lo (that one wins).
-    stdx::where(ld(1) - f <= ld(5), u) = V(1.0f);
-    stdx::where(f - ld(0) <= ld(4), u) = V(-1.0f);
+    stdx::where(ld(1) - t <= ld(5), u) = V(1.0f);
+    stdx::where(t - ld(0) <= ld(4), u) = V(-1.0f);
     V v = ld(6 + D);
     for (std::size_t k = D; k-- > 0;) v = v * u + ld(6 + k);
+    v += offset;
     v.copy_to(values + c0, stdx::element_aligned);
   }
 }

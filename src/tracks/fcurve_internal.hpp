@@ -13,4 +13,19 @@ namespace inbetween::fcurve_detail {
 void recalc_handles(std::vector<FCurve::Key>& keys, Extrapolation extrapolation, AutoSmoothing smoothing,
                     const std::optional<FCurveCycles>& cycles);
 
+/// Blender 3.4's Cycles time mapping (fcm_cycles_time, in float, in its order of operations) of
+/// `frame` for keys first (x, y) … last (x, y), with the decisions it took: the FCurve's
+/// map_cycles and the runtime's cycle folding (fcurve_clip.cpp) both call it, so they agree.
+struct CycleDecision {
+  float t = 0;       ///< the frame inside the keyed range (unchanged when not cycled)
+  float offset = 0;  ///< value added by repeat_offset
+  float sign = 1;    ///< d t / d frame: −1 on a mirrored copy
+  int side = 0;      ///< −1 before the first key, +1 after the last (with a mode other than none), 0 otherwise
+  bool cycled = false;  ///< side ≠ 0 and within the side's cycle count
+  float cycle = 0;   ///< Blender's cycle number side·(frame − end key)/period (when side ≠ 0)
+};
+/// See CycleDecision.
+CycleDecision decide_cycles(const FCurveCycles& cycles, float first_x, float first_y, float last_x, float last_y,
+                            float frame) noexcept;
+
 }  // namespace inbetween::fcurve_detail

@@ -4,8 +4,10 @@
 // forwards in small steps over each curve's range and beyond, backwards, and at the recorded
 // frames, agrees with FCurve::sample (the scalar reference, bit-identical to Blender on these
 // cases) to fcurve_runtime_tolerance of the curve's value scale — and so with Blender's recorded
-// values to the same.  Curves with a Cycles modifier are refused by the runtime (Unsupported) and
-// stay on the scalar path: counted and printed, not compared.
+// values to the same.  Curves with a Cycles modifier (every mode pair, counts, cycle-aware handles
+// among the cases) are in the clip too, folded into their keyed range at sampling; they are also
+// played over several cycle copies each way, at their cycle boundaries and at far frames.  The
+// check is fcurve_runtime_agrees (the tolerance plus one float ulp, for repeat_offset's offset).
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -52,17 +54,11 @@ TEST(FCurveClipBlender, AgreesWithFCurveSampleOnEveryRecordedCase) {
   int cycled = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const auto& curve = std::get<inbetween::SceneScalarTrack>(parsed->tracks()[i]).curve;
-    if (curve.cycles()) {
-      ++cycled;
-      const auto one = std::vector<inbetween::FCurve>{curve};
-      const auto refused = inbetween::build_fcurve_clip(one);
-      ASSERT_FALSE(refused);
-      EXPECT_EQ(refused.error().code, inbetween::ErrorCode::Unsupported);
-      continue;
-    }
+    cycled += curve.cycles().has_value();
     curves.push_back(curve);
     case_of.push_back(i);
   }
+  ASSERT_GE(cycled, 1);  // the file records Cycles cases: they must not drop out silently
   const auto clip = inbetween::build_fcurve_clip(curves);
   ASSERT_TRUE(clip) << clip.error().describe();
   const float fit_tolerance = inbetween::FCurveClipOptions{}.tolerance;
@@ -75,20 +71,44 @@ TEST(FCurveClipBlender, AgreesWithFCurveSampleOnEveryRecordedCase) {
     first = std::min(first, curves[c].keys().front().x);
     last = std::max(last, curves[c].keys().back().x);
   }
-  double worst = 0, worst_blender = 0;
+  double worst = 0, worst_blender = 0;  // beyond one float ulp, relative to the value scale
   long samples = 0;
+  const auto beyond_ulp = [](double value, double reference) {
+    const float big = float(std::max(std::abs(value), std::abs(reference)));
+    return std::max(0.0, std::abs(value - reference) - (double(std::nextafter(big, INFINITY)) - double(big)));
+  };
   const auto check = [&](float frame) {
     inbetween::sample_fcurves(*clip, frame, ctx, std::span<float>(out));
     for (std::size_t c = 0; c < curves.size(); ++c) {
-      const double err = std::abs(double(out[c]) - double(curves[c].sample(frame))) / scale[c];
-      worst = std::max(worst, err);
+      const float ref = curves[c].sample(frame);
+      ASSERT_FALSE(std::isnan(out[c])) << "case " << case_of[c] << " frame " << frame;
+      if (std::isfinite(ref)) worst = std::max(worst, beyond_ulp(out[c], ref) / scale[c]);
       ++samples;
-      EXPECT_LE(err, inbetween::fcurve_runtime_tolerance) << "case " << case_of[c] << " frame " << frame;
+      EXPECT_TRUE(inbetween::fcurve_runtime_agrees(out[c], ref, scale[c]))
+          << "case " << case_of[c] << " frame " << frame << ": runtime " << out[c] << ", FCurve::sample " << ref;
     }
   };
   const float span = last - first;
   for (float f = first - 0.1f * span; f <= last + 0.1f * span; f += span / 4000) check(f);  // forwards
   for (float f = last + 0.05f * span; f >= first - 0.05f * span; f -= span / 997) check(f);  // backwards
+  // Several cycle copies of every cycling case each way, forwards then backwards.
+  for (float f = first - 3 * span; f <= last + 3 * span; f += span / 1511) check(f);
+  for (float f = last + 3 * span; f >= first - 3 * span; f -= span / 89) check(f);
+  // The cycling cases' cycle boundaries first/last + k·period (k = −5 … 5) and 3 float steps each
+  // side, and far frames (one-frame folds beyond 2^23 cycles, the float extremes).
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    if (!curves[c].cycles()) continue;
+    const float x0 = curves[c].keys().front().x, x1 = curves[c].keys().back().x, period = x1 - x0;
+    for (int k = -5; k <= 5; ++k) {
+      for (const float end : {x0, x1}) {
+        float t = float(double(end) + double(k) * double(period));
+        for (int s = 0; s < 3; ++s) t = std::nextafter(t, -INFINITY);
+        for (int s = 0; s < 7; ++s, t = std::nextafter(t, INFINITY)) check(t);
+      }
+    }
+  }
+  for (const float big : {1e4f, 1e6f, 1e8f, 1e20f, 3.4e38f})
+    for (const float sign : {1.0f, -1.0f}) check(sign * big);
   // The recorded frames (around each key, inside and outside the 1e-4 snap band), and Blender's values.
   for (std::size_t c = 0; c < curves.size(); ++c) {
     const auto& frames = cases[case_of[c]].at("frames");
@@ -96,13 +116,13 @@ TEST(FCurveClipBlender, AgreesWithFCurveSampleOnEveryRecordedCase) {
     for (std::size_t s = 0; s < frames.size(); ++s) {
       const float frame = float(frames[s].get<double>());
       check(frame);
-      worst_blender = std::max(worst_blender, std::abs(double(out[c]) - values[s].get<double>()) / scale[c]);
+      worst_blender = std::max(worst_blender, beyond_ulp(out[c], values[s].get<double>()) / scale[c]);
     }
   }
   EXPECT_LE(worst_blender, inbetween::fcurve_runtime_tolerance);
   std::cout << "[ measured ] FCurveClip on " << curves.size() << " Blender cases (" << cycled
-            << " with Cycles: scalar path), " << clip->pieces() << " pieces, " << samples
-            << " samples: max |runtime - FCurve::sample| = " << worst << " of the value scale (fit check "
+            << " with Cycles, " << clip->cycling_channels() << " of them cycling), " << clip->pieces() << " pieces, " << samples
+            << " samples: max |runtime - FCurve::sample| - 1 ulp = " << worst << " of the value scale (fit check "
             << clip->max_fit_error() << "), vs Blender's recorded values " << worst_blender << "\n";
 }
 

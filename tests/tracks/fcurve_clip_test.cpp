@@ -1,8 +1,9 @@
 // The F-curve runtime (runtime/fcurve_clip.hpp): seeded random Bézier/easing curves compiled into
 // an FCurveClip agree with FCurve::sample (the scalar reference) to fcurve_runtime_tolerance of
 // the value scale, forwards, backwards and with jumps; a rig of 10 curves per joint gives the
-// normalised quaternion; what the runtime cannot sample is refused with its place.  Agreement on
-// every recorded Blender case: tests/io/fcurve_clip_blender_test.cpp.
+// normalised quaternion; curves with a Cycles modifier (every mode, counts, cycle-aware handles)
+// agree at cycle boundaries, far from the keys and on backward seeks.  Agreement on every recorded
+// Blender case: tests/io/fcurve_clip_blender_test.cpp.
 #include "inbetween/tracks/runtime/fcurve_clip.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <utility>
 #include <vector>
 
 #include "support/random.hpp"
@@ -182,21 +184,189 @@ TEST(FCurveClip, RigChannelsAreTheCurvesInOrder) {
   }
 }
 
-TEST(FCurveClip, RefusesWhatItCannotSampleWithThePlace) {
+TEST(FCurveClip, RigRefusesACountNotAMultipleOfTen) {
   RawFCurve raw;
   raw.keys.push_back(FCurveKey{.frame = 0, .value = 0});
   raw.keys.push_back(FCurveKey{.frame = 4, .value = 1});
   const FCurve plain = build_fcurve(raw).value();
-  raw.cycles = FCurveCycles{};
-  const FCurve cycled = build_fcurve(raw).value();
-  const std::vector<FCurve> curves{plain, cycled};
-  const auto e = build_fcurve_clip(curves);
-  ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().code, ErrorCode::Unsupported);
-  EXPECT_EQ(json_pointer(e.error().location), "/curves/1");
   const auto r = build_fcurve_rig(std::vector<FCurve>(9, plain));
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
+}
+
+// ---- The Cycles modifier through the runtime -------------------------------------------------
+
+// A random curve with a Cycles modifier: every mode on each side (none included), counts 0–3,
+// both extrapolations and smoothings, random handle types (auto and auto-clamped on both ends
+// make Blender's cycle-aware handles when both counts are 0 and both modes repeat).  `integral`
+// puts the keys on whole frames, as animators' walk cycles are: then the cycle boundaries
+// last + k·period are exact floats and Blender's r == 0 branch is hit.
+FCurve random_cycling_curve(test::Random& rng, bool integral) {
+  RawFCurve raw;
+  raw.extrapolation = rng.integer(0, 1) ? Extrapolation::linear : Extrapolation::constant;
+  raw.auto_smoothing = rng.integer(0, 1) ? AutoSmoothing::cont_accel : AutoSmoothing::none;
+  double f = integral ? double(rng.integer(-10, 10)) : rng.uniform<double>(-10, 10);
+  const int n = rng.integer(2, 7);
+  for (int i = 0; i < n; ++i) {
+    FCurveKey k;
+    k.frame = f;
+    k.value = rng.uniform<double>(-5, 5);
+    k.interpolation = rng.integer(0, 3) == 0 ? Interpolation(rng.integer(0, 12)) : Interpolation::bezier;
+    if (rng.integer(0, 2) == 0) k.handle_left_type = k.handle_right_type = HandleType(rng.integer(2, 4));
+    raw.keys.push_back(k);
+    f += integral ? double(rng.integer(1, 6)) : rng.uniform<double>(0.3, 6);
+  }
+  FCurveCycles cy;
+  cy.before = CycleMode(rng.integer(0, 3));
+  cy.after = CycleMode(rng.integer(0, 3));
+  if (rng.integer(0, 1)) cy.count_before = rng.integer(0, 3);
+  if (rng.integer(0, 1)) cy.count_after = rng.integer(0, 3);
+  raw.cycles = cy;
+  return build_fcurve(raw).value();
+}
+
+struct CycleCheck {
+  double worst = 0;  // max(0, |runtime − FCurve::sample| − 1 ulp) / scale: what fcurve_runtime_tolerance bounds
+  long samples = 0, exact = 0;  // samples, and those equal to FCurve::sample bit for bit
+};
+
+// Samples the clip at every frame in order (the context carries over: forwards, backwards, jumps)
+// and checks every channel against FCurve::sample with fcurve_runtime_agrees; never NaN.
+void check_frames(const FCurveClip& clip, FCurveClip::Context& ctx, const std::vector<FCurve>& curves,
+                  const std::vector<float>& frames, CycleCheck& out) {
+  std::vector<float> values(curves.size());
+  for (const float t : frames) {
+    sample_fcurves(clip, t, ctx, std::span<float>(values));
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      const float ref = curves[c].sample(t);
+      ASSERT_FALSE(std::isnan(values[c])) << "curve " << c << " frame " << t;
+      EXPECT_TRUE(fcurve_runtime_agrees(values[c], ref, scale_of(curves[c])))
+          << "curve " << c << " frame " << t << ": runtime " << values[c] << ", FCurve::sample " << ref;
+      if (std::isfinite(ref) && std::isfinite(values[c])) {
+        const float big = std::max(std::abs(values[c]), std::abs(ref));
+        const double ulp = double(std::nextafter(big, INFINITY)) - double(big);
+        out.worst = std::max(out.worst, std::max(0.0, std::abs(double(values[c]) - ref) - ulp) / scale_of(curves[c]));
+      }
+      out.exact += values[c] == ref;
+      ++out.samples;
+    }
+  }
+}
+
+// Frames at and around every curve's cycle boundaries first + k·period and last + k·period
+// (k = −9 … 9, in float as Blender's fmod sees them) and its snap bands, 4 float steps each side.
+std::vector<float> boundary_frames(const std::vector<FCurve>& curves) {
+  std::vector<float> frames;
+  for (const FCurve& c : curves) {
+    const float x0 = c.keys().front().x, x1 = c.keys().back().x, period = x1 - x0;
+    for (int k = -9; k <= 9; ++k) {
+      for (const float end : {x0, x1}) {
+        for (const double d : {-1e-4, 0.0, 1e-4}) {
+          float t = float(double(end) + double(k) * double(period) + d);
+          for (int s = 0; s < 4; ++s) t = std::nextafter(t, -INFINITY);
+          for (int s = 0; s < 9; ++s, t = std::nextafter(t, INFINITY)) frames.push_back(t);
+        }
+      }
+    }
+  }
+  return frames;
+}
+
+void cycling_agreement(std::uint64_t seed, bool integral) {
+  test::Random rng(test::seed_for(seed));
+  SCOPED_TRACE(rng.trace());
+  std::vector<FCurve> curves;
+  for (int i = 0; i < 48; ++i) curves.push_back(random_cycling_curve(rng, integral));
+  const auto clip = build_fcurve_clip(curves);
+  ASSERT_TRUE(clip) << clip.error().describe();
+  EXPECT_EQ(clip->cycling_channels(), std::size_t(std::count_if(curves.begin(), curves.end(), [](const FCurve& c) {
+              return c.cycles()->before != CycleMode::none || c.cycles()->after != CycleMode::none;
+            })));
+  auto ctx = make_fcurve_context(*clip);
+  CycleCheck check;
+  std::vector<float> frames;
+  for (float t = -150; t < 200; t += 0.043f) frames.push_back(t);  // forwards over many copies
+  for (float t = 200; t > -150; t -= 0.61f) frames.push_back(t);   // backwards
+  for (int i = 0; i < 400; ++i) frames.push_back(rng.uniform<float>(-400, 400));  // random seeks
+  check_frames(*clip, ctx, curves, frames, check);
+  const auto boundaries = boundary_frames(curves);
+  check_frames(*clip, ctx, curves, boundaries, check);
+  // Far from the keys: large frames forwards and backwards (one-frame folds beyond 2^23 cycles),
+  // the float extremes and ±inf (as the largest finite float), NaN (the first key's value).
+  frames.clear();
+  for (const float big : {1e3f, 1e4f, 1e5f, 1e6f, 1e7f, 1e8f, 1e12f, 1e20f, 3.4e38f, INFINITY})
+    for (const float sign : {1.0f, -1.0f})
+      for (int s = -2; s <= 2; ++s) frames.push_back(sign * big + float(s) * 0.37f);
+  for (float t = 1e6f; t < 1e6f + 64; t += 0.0625f) frames.push_back(t);  // 16 frames per frame ulp there
+  frames.push_back(std::numeric_limits<float>::quiet_NaN());
+  check_frames(*clip, ctx, curves, frames, check);
+  std::cout << "[ measured ] cycling curves (" << (integral ? "whole-frame keys" : "random keys") << ", "
+            << clip->cycling_channels() << " of " << curves.size() << " cycling) vs FCurve::sample: " << check.worst
+            << " of the value scale beyond 1 ulp, over " << check.samples << " samples (" << check.exact
+            << " bit-identical)\n";
+}
+
+TEST(FCurveClipCycles, AgreesWithFCurveSampleOnRandomCyclingCurves) { cycling_agreement(1210, false); }
+
+TEST(FCurveClipCycles, AgreesWithFCurveSampleOnWholeFrameCycles) { cycling_agreement(1211, true); }
+
+TEST(FCurveClipCycles, BlendersRecordedMirrorAndOffsetExample) {
+  // Measured in Blender 3.4.1 (docs: ../shared/guide/blender-fcurves.md §13): LINEAR keys (0, 0),
+  // (10, 10), (20, 4), Cycles before MIRROR, after REPEAT_OFFSET.
+  RawFCurve raw;
+  const std::pair<double, double> keys[] = {{0.0, 0.0}, {10.0, 10.0}, {20.0, 4.0}};
+  for (const auto& [x, y] : keys)
+    raw.keys.push_back(FCurveKey{.frame = x, .value = y, .interpolation = Interpolation::linear});
+  raw.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset};
+  const std::vector<FCurve> curves{build_fcurve(raw).value()};
+  const auto clip = build_fcurve_clip(curves);
+  ASSERT_TRUE(clip);
+  auto ctx = make_fcurve_context(*clip);
+  float v = 0;
+  const float scale = scale_of(curves[0]);  // 10: the keys' value range
+  const std::pair<float, float> recorded[] = {{-25.0f, 7.0f}, {-15.0f, 7.0f}, {-5.0f, 5.0f}, {20.0f, 4.0f},
+                                              {25.0f, 9.0f},  {30.0f, 14.0f}, {40.0f, 8.0f}, {45.0f, 13.0f}};
+  for (const auto& [frame, blender] : recorded) {
+    sample_fcurves(*clip, frame, ctx, std::span<float>(&v, 1));
+    EXPECT_NEAR(v, blender, fcurve_runtime_tolerance * scale) << "frame " << frame;
+  }
+}
+
+TEST(FCurveClipCycles, WalkCycleRigAgreesAndNormalises) {
+  // A rig whose 10 curves per joint all repeat (walk cycles): sample_fcurve_rig reads the same
+  // values as sample_fcurves, which agree with FCurve::sample, over several copies both ways.
+  test::Random rng(test::seed_for(1212));
+  SCOPED_TRACE(rng.trace());
+  std::vector<FCurve> curves;
+  for (int j = 0; j < 3; ++j) {
+    for (int k = 0; k < 10; ++k) {
+      RawFCurve raw;
+      for (int i = 0; i <= 24; i += 6) raw.keys.push_back(FCurveKey{.frame = double(i), .value = rng.uniform<double>(-1, 1)});
+      raw.keys.back().value = raw.keys.front().value;  // a closed loop
+      raw.cycles = FCurveCycles{.before = CycleMode::repeat, .after = k < 3 ? CycleMode::repeat_offset : CycleMode::repeat};
+      curves.push_back(build_fcurve(raw).value());
+    }
+  }
+  const auto clip = build_fcurve_rig(curves);
+  ASSERT_TRUE(clip) << clip.error().describe();
+  EXPECT_EQ(clip->cycling_channels(), curves.size());
+  // Keys on the same frames, two Cycles settings (location repeats with offset): two classes,
+  // each with one local frame and one piece stream for its channels of all joints.
+  EXPECT_EQ(clip->cycle_classes(), 2u);
+  EXPECT_EQ(clip->pieces(), curves.size() * 6);  // 4 segments (one piece each) + 2 lines: nothing unrolled
+  auto ctx = make_fcurve_context(*clip);
+  std::vector<float> out(curves.size());
+  std::vector<JointPose<float>> pose(3);
+  for (float t = -60; t < 100; t += 0.53f) {
+    sample_fcurves(*clip, t, ctx, std::span<float>(out));
+    for (std::size_t c = 0; c < curves.size(); ++c)
+      EXPECT_TRUE(fcurve_runtime_agrees(out[c], curves[c].sample(t), scale_of(curves[c]))) << c << " " << t;
+    sample_fcurve_rig(*clip, t, ctx, std::span<JointPose<float>>(pose));
+    for (std::size_t j = 0; j < 3; ++j) {
+      EXPECT_EQ(pose[j].translation.x, out[10 * j]);
+      EXPECT_EQ(pose[j].scale.z, out[10 * j + 9]);
+    }
+  }
 }
 
 }  // namespace

@@ -103,6 +103,36 @@ TEST(HotPath, FCurveClipSamplingNeverAllocates) {
   EXPECT_EQ(values[10], 0.0f);
 }
 
+TEST(HotPath, CyclingFCurveClipSamplingNeverAllocates) {
+  // The Cycles fold (windows, pieces refreshed on the scalar path, one-frame folds at cycle
+  // boundaries and far frames) runs on the context's storage too.
+  RawFCurve raw;
+  for (int i = 0; i < 6; ++i) {
+    FCurveKey k;
+    k.frame = 4.0 * i;
+    k.value = double((i * 7) % 5);
+    raw.keys.push_back(k);
+  }
+  raw.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset};
+  std::vector<FCurve> curves(20, *build_fcurve(raw));
+  raw.cycles = FCurveCycles{.before = CycleMode::repeat, .after = CycleMode::mirror, .count_before = 2};
+  curves[3] = *build_fcurve(raw);
+  const auto clip = build_fcurve_rig(curves);
+  ASSERT_TRUE(clip);
+  auto ctx = make_fcurve_context(*clip);
+  std::vector<float> values(clip->channels());
+  std::vector<JointPose<float>> pose(clip->joints());
+  EXPECT_EQ(allocations_in([&] {
+              for (float f = -90; f < 140; f += 0.3f) sample_fcurves(*clip, f, ctx, std::span<float>(values));
+              for (float f = 140; f > -90; f -= 1.7f) sample_fcurve_rig(*clip, f, ctx, std::span<JointPose<float>>(pose));
+              for (const float f : {40.0f, -60.0f, 1e7f, -3e38f, 20.0f}) sample_fcurves(*clip, f, ctx, std::span<float>(values));
+            }),
+            0);
+  sample_fcurves(*clip, 40.0f, ctx, std::span<float>(values));
+  // Frame 40 = last key + 2 periods of 20: the last key's value 0 plus 2 offsets of (0 − 0) = 0.
+  EXPECT_EQ(values[0], 0.0f);
+}
+
 template <class T>
 class HotPathTyped : public ::testing::Test {};
 using Scalars = ::testing::Types<float, double>;

@@ -17,14 +17,34 @@
 /// sets u to −1 or +1, where the polynomial interpolates the key (segments shorter than 1e-3 frames
 /// keep constant band pieces).  Constant segments are one piece (key a's value, key b's in b's
 /// band).  Outside the keys a line through the end key with FCurve::derivative's extrapolation
-/// slope (Blender snaps only between the keys).  Curves with a Cycles modifier are refused
-/// (Unsupported): sample those with FCurve::sample, the scalar path.
+/// slope (Blender snaps only between the keys).
+///
+/// Cycles modifier (repeat, repeat with offset, mirror, either side, with or without a count): a
+/// cycling channel keeps the pieces of its keyed range and extrapolation — nothing is unrolled, so
+/// a cycling curve costs no more memory than a plain one and any frame, however far out, is
+/// answered — and folds each frame into the keyed range as Blender's fcm_cycles_time does, in
+/// float and in its order of operations (the code FCurve::sample runs, fcurve_detail::decide_cycles).
+/// The fold is an affine map valid on a window of frames (one cycle copy: local = base ±
+/// ((frame − end key) − n·period) + wrap, exact there with n·period stored as two floats, plus the
+/// copy's value offset), found at the copy's boundary and kept in the context.  Cycling channels
+/// with the same end-key frames and Cycles settings form a cycle class (a character's walk cycle:
+/// all its curves) with one local frame and one piece stream in local time, consumed as the main
+/// stream is; the SIMD loop applies the class's map to each of its channels (identical float
+/// operations, so the same local frame) and adds the channel's offset.  Frames where Blender's
+/// float arithmetic is irregular (a cycle boundary exactly, a float cycle number that rounds to an
+/// integer, 2^23 cycles and beyond) get a one-frame window whose map is decide_cycles' own answer:
+/// exact, slower (a scalar fold per sample).  Memory: no copies (the context holds 9 floats per
+/// channel and 16 per class).  docs/runtime.md has the design and the measured cost.
+/// Cycle-aware auto handles (Blender recomputes the end keys' handles as if the curve wrapped) are
+/// already in the built FCurve's keys, so the pieces include them.
 ///
 /// sample_fcurve_rig reads 10 curves per joint — location x, y, z, rotation_quaternion w, x, y, z,
 /// scale x, y, z, the order of Blender's bone channels — and normalises the quaternion, as Blender
 /// does before it builds the bone matrix.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -51,9 +71,24 @@ struct FCurveClipOptions {
 /// Agreement of FCurveClip sampling with FCurve::sample at any frame, relative to the curve's value
 /// scale, with the default options: 2× the fit tolerance (the fit is checked at about 100 frames
 /// per piece; frames between them may exceed the check a little).  Measured 9.9e-6 at most over
-/// 3.7 million samples of the 262 non-cycling Blender-agreement curves
-/// (tests/io/fcurve_clip_blender_test.cpp) and 7.8e-6 on random curves (tests/tracks/fcurve_clip_test.cpp).
+/// 9.2 million samples of the 294 Blender-agreement curves, the 32 with a Cycles modifier included
+/// (tests/io/fcurve_clip_blender_test.cpp), 7.8e-6 on random curves and 9.4e-6 (beyond one ulp) on random
+/// cycling ones (tests/tracks/fcurve_clip_test.cpp).
+/// Cycling curves fold the frame exactly as FCurve::sample does, so the same bound holds for the
+/// keyed-range value; with repeat_offset both add the copy's offset in float, which can add one
+/// float ulp of the result (fcurve_runtime_agrees).
 inline constexpr float fcurve_runtime_tolerance = 2e-5f;
+
+/// True when a runtime value agrees with FCurve::sample's `reference` for a curve of value scale
+/// `scale`: |value − reference| ≤ fcurve_runtime_tolerance·scale + one float ulp of the reference
+/// (the rounding of a repeat_offset copy's offset added in float by both); both infinite and equal
+/// (a repeat_offset offset that overflowed float at a far frame) also agrees.
+[[nodiscard]] inline bool fcurve_runtime_agrees(float value, float reference, float scale) noexcept {
+  if (value == reference) return true;
+  const float big = std::max(std::abs(value), std::abs(reference));
+  const double ulp = double(std::nextafter(big, std::numeric_limits<float>::infinity())) - double(big);
+  return std::abs(double(value) - double(reference)) <= double(fcurve_runtime_tolerance) * double(scale) + ulp;
+}
 
 /// A compiled, immutable set of F-curves (build it with build_fcurve_clip or build_fcurve_rig).
 class FCurveClip {
@@ -63,7 +98,16 @@ class FCurveClip {
   /// Joints for a clip made by build_fcurve_rig (channels / 10), 0 otherwise.
   [[nodiscard]] std::size_t joints() const noexcept { return joints_; }
   /// Number of pieces over all channels (the clip's size: block floats each).
-  [[nodiscard]] std::size_t pieces() const noexcept { return data_.owner.size(); }
+  [[nodiscard]] std::size_t pieces() const noexcept {
+    std::size_t n = data_.owner.size();
+    for (const auto& k : classes_) n += k.pieces.owner.size();
+    return n;
+  }
+  /// Number of channels with a Cycles modifier (folded into their keyed range at sampling).
+  [[nodiscard]] std::size_t cycling_channels() const noexcept { return cycling_; }
+  /// Number of cycle classes: cycling channels with the same end-key frames and Cycles settings
+  /// share one folded local frame and one piece stream.
+  [[nodiscard]] std::size_t cycle_classes() const noexcept { return classes_.size(); }
   /// Largest |piece − FCurve::sample| / scale measured at the check frames while building.
   [[nodiscard]] float max_fit_error() const noexcept { return max_fit_error_; }
 
@@ -79,6 +123,17 @@ class FCurveClip {
     std::vector<std::uint32_t> segment;  ///< per channel: current piece in the channel
     std::vector<float> cache;            ///< padded channels × block fields, in SIMD-register order
     std::vector<float> values;           ///< per channel (curve c, for a rig too): the last sampled value
+    /// Per channel, field-major (fold[k·stride + c]), its cycle class's fold in force: k = 0, 1 the
+    /// window [lo, hi] of frames it is valid on, 2 end key, 3 and 4 n·period (cycle number times
+    /// period) as a sum of two floats, 5 sign ±1, 6 base, 7 wrap (0 or the period), 8 the channel's
+    /// value offset: local = base + sign·(((frame − end) − nd_hi) − nd_lo) + wrap.  Channels
+    /// without cycles: the identity on (−∞, +∞).
+    std::vector<float> fold;
+    /// Per cycle class, 16 floats: its fold (fields 0–7 as in `fold`), 8 the last local frame,
+    /// 9 the lo of the next piece of its stream (+∞ past the last).
+    std::vector<float> class_fold;
+    std::vector<std::size_t> class_next;  ///< per cycle class: first piece of its stream not yet consumed
+    std::vector<std::uint8_t> folding;   ///< per SIMD group of channels: 1 if one of them cycles
     std::size_t stride = 0;              ///< padded channel count (a multiple of 16)
     std::size_t next = 0;                ///< first stream piece not yet consumed
     float time = -std::numeric_limits<float>::infinity();  ///< last sampled frame (clamped)
@@ -91,31 +146,44 @@ class FCurveClip {
   friend void evaluate_channels(const FCurveClip&, float, Context&) noexcept;
   friend void sample_fcurves(const FCurveClip&, float, Context&, std::span<float>) noexcept;
   friend void sample_fcurve_rig(const FCurveClip&, float, Context&, std::span<JointPose<float>>) noexcept;
+  friend struct FCurveClipAccess;  // the cycle fold in fcurve_clip.cpp
   FCurveClip() = default;
 
   struct Channels {  // as RigClip's: pieces of every channel in stream order
     std::vector<std::uint32_t> begin, count, where, owner, local;
     std::vector<float> data;
   };
-  Channels data_;
+  Channels data_;  // channels without cycling; a cycling channel has no piece in the stream
+  struct CycleClass {  // cycling channels with the same end-key frames and Cycles settings: one local frame
+    FCurveCycles cycles;
+    float first_x = 0, last_x = 0;
+    std::vector<std::uint32_t> members;  // their channels
+    std::vector<float> first_y, last_y;  // per member: the end keys' values (repeat_offset's step)
+    Channels pieces;  // the members' pieces in local-frame stream order (owner: the channel)
+  };
+  std::vector<CycleClass> classes_;
+  std::vector<std::int32_t> class_of_;     // per channel: its cycle class, −1 for none
+  std::vector<std::uint32_t> member_of_;   // per channel: its index in the class's members
+  std::size_t cycling_ = 0;
   std::size_t channels_ = 0, joints_ = 0;
   float max_fit_error_ = 0;
 };
 
-/// Compiles curves (any number) into a clip; channel c is curves[c].  Errors: a curve with a
-/// Cycles modifier (Unsupported, place {"curves", c}).
+/// Compiles curves (any number) into a clip; channel c is curves[c].  Curves with a Cycles modifier
+/// are folded at sampling (see the file comment).  No errors today (the Expected leaves room).
 [[nodiscard]] Expected<FCurveClip> build_fcurve_clip(std::span<const FCurve> curves, FCurveClipOptions options = {});
 
 /// Compiles 10 curves per joint (curves[10·j + k], k: location x y z, rotation_quaternion w x y z,
-/// scale x y z) into a rig clip for sample_fcurve_rig.  Errors: as build_fcurve_clip, and a count
-/// that is not a multiple of 10 (InvalidArgument).
+/// scale x y z) into a rig clip for sample_fcurve_rig.  Errors: a count that is not a multiple of
+/// 10 (InvalidArgument).
 [[nodiscard]] Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClipOptions options = {});
 
 /// A context before the clip's start.
 [[nodiscard]] FCurveClip::Context make_fcurve_context(const FCurveClip& clip);
 
 /// Fills out[c] with channel c at `frame` (out.size() == clip.channels()).  Any frame is valid (NaN
-/// gives each curve's first key value as FCurve::sample does, ±inf acts as the largest finite float); noexcept, no allocation.
+/// gives each curve's first key value as FCurve::sample does, ±inf acts as the largest finite float;
+/// cycling curves as FCurve::sample cycles them, at any distance from the keys); noexcept, no allocation.
 void sample_fcurves(const FCurveClip& clip, float frame, FCurveClip::Context& context, std::span<float> out) noexcept;
 
 /// Fills every joint's pose at `frame` (clip from build_fcurve_rig, out.size() == clip.joints()):

@@ -291,6 +291,7 @@ inline void advance(const Channels& ch, std::size_t joints, T frame, T previous,
     }
   }
   for (std::size_t j = 0; j < joints; ++j) {
+    if (ch.count[j] == 0) continue;  // a channel kept out of the stream (FCurveClip's cycling ones)
     const T* col = cache + (j / G) * B * G + j % G;
     if (frame >= col[0] && frame < col[G]) continue;  // cached [lo, hi) still holds frame
     const std::uint32_t k = find_segment<T, B>(data, ch.where.data() + ch.begin[j], ch.count[j], frame, segment[j]);
