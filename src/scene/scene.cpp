@@ -281,8 +281,10 @@ Expected<Scene> build_scene(const RawScene& raw) {
                         "top of the path frame is path.orientation.local_rotation)",
                         {"objects", i, "rotation"});
       }
-      if (o.camera && o.rotation) {
-        return error_at(ErrorCode::InvalidArgument, "a camera's rotation comes from its view: remove \"rotation\"",
+      if (o.camera && o.rotation && !std::holds_alternative<RawOwnRotation<double>>(o.camera->coi)) {
+        return error_at(ErrorCode::InvalidArgument,
+                        "a camera's rotation comes from its view: remove \"rotation\" (or view along it with "
+                        "\"own_rotation\")",
                         {"objects", i, "rotation"});
       }
       auto local = build_local(o);
@@ -605,6 +607,7 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
       in.world_from_path = world_T_parent;
       in.targets = std::span<const Vec3d>(targets.data(), x.camera_targets.size());
       in.tilt_track_deg = x.tilt_column ? base[*x.tilt_column] : 0.0;
+      in.world_rotation = world.rotation;
       const CameraViewSample<double> view = x.camera->evaluate(in);
       world.rotation = view.pose.rotation();
       coi = view.target;

@@ -9,6 +9,7 @@
 
 #include "inbetween/scene/raw_scene.hpp"
 #include "inbetween/scene/scene.hpp"
+#include "support/tolerances.hpp"
 
 namespace inbetween {
 namespace {
@@ -257,6 +258,54 @@ TEST(SceneSample, ObjectsEqualTheHierarchySampledDirectly) {
       for (int k = 0; k < 10; ++k) ASSERT_EQ(c[k], expected[k]) << "object " << i << " column " << k << " frame " << frame;
     }
   }
+}
+
+// A camera viewing along its own rotation (own_rotation, what a glTF camera node imports as):
+// its world rotation columns are the hierarchy's world rotation of the object (parent ∘ keyed
+// local), as for any object — compared by the view (−Z) and up (+Y) axes, since the camera's
+// quaternion passes through its pose's matrix (a few roundings) — and its target is the eye +
+// forward · distance.  A rotation on a camera of another mode is still refused at its member.
+TEST(SceneSample, OwnRotationCameraKeepsTheObjectsWorldRotation) {
+  RawScene raw;
+  RawObject parent = object("rig");
+  RawQuatKeys pr;
+  pr.keys = {QuatKey<double>{.frame = 0}, QuatKey<double>{.frame = 10, .value = Quatd::from_axis_angle(Vec3d{0, 1, 0}, 1.2)}};
+  parent.rotation = pr;
+  parent.translation = Vec3d{1, 2, 3};
+  RawObject cam = object("cam", "rig");
+  RawQuatKeys cr;
+  cr.keys = {QuatKey<double>{.frame = 0, .value = Quatd::from_axis_angle(Vec3d{1, 0, 0}, -0.4)},
+             QuatKey<double>{.frame = 10, .value = Quatd::from_axis_angle(Vec3d{0.2, 1, 0.5}, 2.0)}};
+  cam.rotation = cr;
+  cam.translation = Vec3d{0, 1, 4};
+  cam.camera = RawCameraViewd{.yfov_deg = 35, .coi = RawOwnRotation<double>{.distance = 3}};
+  raw.objects = {parent, cam};
+  auto scene = build_scene(raw);
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  ASSERT_EQ(scene->columns().size(), 23u);  // 10 + 10 + cam.target.x y z
+  EXPECT_EQ(scene->columns()[20].name, "cam.target.x");
+  std::vector<HierarchyNode<double>> nodes(scene->objects().begin(), scene->objects().end());
+  auto reference = build_transform_hierarchy(std::move(nodes));
+  ASSERT_TRUE(reference.has_value());
+  std::vector<double> out(scene->columns().size());
+  std::vector<Transform<double>> world(2);
+  // A unit quaternion through a rotation matrix and back, then rotating unit vectors: 64 ulp.
+  constexpr double kAxisTol = test::roundtrip_tol<double>;
+  for (double frame : {-1.0, 0.0, 2.5, 6.75, 10.0, 14.0}) {
+    scene->sample(frame, out);
+    reference->sample_world(frame, std::span<Transform<double>>(world));
+    const Quatd q = Quatd::from_wxyz(out[13], out[14], out[15], out[16]);
+    const Vec3d eye{out[10], out[11], out[12]};
+    for (const Vec3d axis : {Vec3d{0, 0, -1}, Vec3d{0, 1, 0}}) {
+      const Vec3d got = rotate(q, axis), want = rotate(world[1].rotation, axis);
+      EXPECT_LE(norm(got - want), kAxisTol) << "frame " << frame;
+    }
+    EXPECT_EQ(eye, world[1].translation);
+    const Vec3d target{out[20], out[21], out[22]};
+    EXPECT_LE(norm(target - (eye + rotate(world[1].rotation, Vec3d{0, 0, -1}) * 3.0)), 4 * kAxisTol) << "frame " << frame;
+  }
+  raw.objects[1].camera->coi = RawLookAt<double>{Vec3d{0, 0, 0}};
+  EXPECT_EQ(pointer_of(raw), "/objects/1/rotation");
 }
 
 }  // namespace
