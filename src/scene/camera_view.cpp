@@ -2,6 +2,7 @@
 #include "inbetween/scene/camera_view.hpp"
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <utility>
 
@@ -50,8 +51,10 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
   view.up_path_name_ = raw.up_path;
   view.tilt_track_name_ = raw.tilt_track;
 
-  // A target: a finite point, or an object name given one slot in target_names_ (once per name).
-  auto make_target = [&view](const RawTarget<T>& raw_target, const Loc& where)
+  // A target: a finite point, or an object name given one slot in target_names_ (once per name;
+  // slot by name in a map, so that many hold segments cost O(n log n), not a search per segment).
+  std::map<std::string, std::size_t> slot_of;
+  auto make_target = [&view, &slot_of](const RawTarget<T>& raw_target, const Loc& where)
       -> Expected<typename CameraView<T>::Target> {
     typename CameraView<T>::Target t;
     if (const auto* p = std::get_if<Vec3<T>>(&raw_target)) {
@@ -61,10 +64,9 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
     }
     const std::string& name = std::get<std::string>(raw_target);
     if (name.empty()) return error_at(ErrorCode::InvalidArgument, "the target object name is empty", where);
-    std::size_t slot = 0;
-    while (slot < view.target_names_.size() && view.target_names_[slot] != name) ++slot;
-    if (slot == view.target_names_.size()) view.target_names_.push_back(name);
-    t.slot = std::ptrdiff_t(slot);
+    const auto [it, inserted] = slot_of.emplace(name, view.target_names_.size());
+    if (inserted) view.target_names_.push_back(name);
+    t.slot = std::ptrdiff_t(it->second);
     return t;
   };
 

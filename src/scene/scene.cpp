@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -205,14 +206,16 @@ Expected<Scene> build_scene(const RawScene& raw) {
 
   std::vector<SceneTrack> tracks;
   tracks.reserve(raw.tracks.size());
+  // Track names seen so far: one lookup per track (O(n log n) in all; each earlier track was
+  // compared pairwise before, quadratic).  The first repeated name in file order is the error,
+  // at the later track's name, as before.
+  std::set<std::string_view> track_names;
   for (std::size_t i = 0; i < raw.tracks.size(); ++i) {
     auto track = std::visit([](const auto& t) { return build_one(t); }, raw.tracks[i]);
     if (!track) return prepended(track.error(), {"tracks", i});
-    const std::string& name = std::visit([](const auto& t) -> const std::string& { return t.name; }, *track);
-    for (const SceneTrack& other : tracks) {
-      if (std::visit([](const auto& t) -> const std::string& { return t.name; }, other) == name) {
-        return error_at(ErrorCode::InvalidArgument, "duplicate track name \"" + name + "\"", {"tracks", i, "name"});
-      }
+    const std::string& name = std::visit([](const auto& t) -> const std::string& { return t.name; }, raw.tracks[i]);
+    if (!track_names.insert(name).second) {
+      return error_at(ErrorCode::InvalidArgument, "duplicate track name \"" + name + "\"", {"tracks", i, "name"});
     }
     // One letter per component column; none for a scalar or vec1 track (only F-curves are single precision).
     const std::string suffixes = std::visit(Overloaded{[](const SceneScalarTrack&) { return std::string(); },

@@ -177,7 +177,8 @@ class Scene {
 };
 
 /// Checks everything and builds the scene: fps finite and > 0; range first ≤ last; track, path
-/// and object names non-empty and unique among tracks, among paths and among objects; no two
+/// and object names non-empty and unique among tracks, among paths and among objects (one ordered
+/// lookup per name: O(n log n); the first repeat in file order is reported, at its name); no two
 /// tracks or objects writing the same output column; every track's keys (through build_fcurve,
 /// build_track, build_quat_track, build_euler_track); Euler conventions; object rest rotations
 /// non-zero; parents that exist and form no cycle.  Version 2: every path leg (build_path_motion,
