@@ -632,7 +632,9 @@ Expected<std::optional<RawCameraViewd>> node_camera(const tg::Model& model, std:
   }
   const tg::PerspectiveCamera& p = camera.perspective;
   constexpr double kPi = 3.14159265358979323846;
-  if (!std::isfinite(p.yfov) || !(p.yfov > 0) || !(p.yfov < kPi)) {
+  // Checked in degrees, as the scene camera holds it: a yfov a hair below π can round to 180°.
+  const double yfov_deg = p.yfov * (180 / kPi);
+  if (!std::isfinite(p.yfov) || !(yfov_deg > 0) || !(yfov_deg < 180)) {
     return error_at(ErrorCode::InvalidArgument,
                     which + ": yfov " + shortest_text(p.yfov) + " is not an angle in (0, pi) radians",
                     {"cameras", c, "perspective", "yfov"});
@@ -650,7 +652,7 @@ Expected<std::optional<RawCameraViewd>> node_camera(const tg::Model& model, std:
                      " not kept (a scene camera keeps yfov only; export writes znear 0.1, zfar 1000, no aspectRatio)");
   }
   RawCameraViewd view;
-  view.yfov_deg = p.yfov * (180 / kPi);
+  view.yfov_deg = yfov_deg;
   view.coi = RawOwnRotation<double>{};
   return std::optional<RawCameraViewd>{view};
 }

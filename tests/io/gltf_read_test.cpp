@@ -464,7 +464,8 @@ TEST(GltfRead, CameraNotesAndErrors) {
   // Without a notes vector the same file reads the same.
   EXPECT_TRUE(read_gltf(std::as_bytes(std::span<const char>(text.data(), text.size())), "", {}).has_value());
 
-  for (double yfov : {0.0, -0.5, 3.2, 1e300}) {
+  // π itself (180°) is refused here, so that build_scene() never sees a field of view it refuses.
+  for (double yfov : {0.0, -0.5, 3.2, 1e300, 3.14159265358979323846}) {
     GltfBuilder b;
     b.add_node({{"name", "c"}, {"camera", 0}});
     b.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", yfov}, {"znear", 0.1}}}}};
