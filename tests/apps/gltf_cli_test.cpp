@@ -117,6 +117,17 @@ TEST(GltfCli, CameraNodesBecomeSceneCamerasWithNotes) {
   ASSERT_EQ(from_json.exit_code, 0) << from_json.err;
   EXPECT_EQ(from_json.out, b.out);
   EXPECT_TRUE(from_json.err.empty()) << from_json.err;
+  // Back to glTF: the camera's rotation is its node's keys, written back as they are (not
+  // resampled from the view), and the file bakes the same.
+  const fs::path glb = inbetween::test::test_dir() / "cameras.glb";
+  const auto g = run_cli("convert '" + gltf.string() + "' '" + glb.string() + "'");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  EXPECT_NE(g.err.find("lens.rotation: LINEAR, 3 keys -> 3"), std::string::npos) << g.err;
+  EXPECT_NE(g.err.find("(keys kept)"), std::string::npos) << g.err;
+  EXPECT_EQ(g.err.find("camera view"), std::string::npos) << g.err;
+  const auto from_glb = run_cli("bake '" + glb.string() + "' --frames 0:24:0.5");
+  ASSERT_EQ(from_glb.exit_code, 0) << from_glb.err;
+  EXPECT_EQ(from_glb.out, b.out);
 }
 
 TEST(GltfCli, MalformedGltfExitsTwoWithTheIndexAndNoOutput) {
