@@ -3,7 +3,8 @@
 // URI never touches the file system); a file that reads must build (the reader checks everything
 // build_scene() would refuse), and is then baked at a few frames, every value finite.  An error is
 // a fine answer.  Seeds: fuzz/corpus/gltf/ (files written by tests/support/gltf_builder.hpp: every
-// sampler × path, sparse and normalised accessors, a hierarchy, a morph mesh).
+// sampler × path, sparse and normalised accessors, a hierarchy, a morph mesh; perspective and
+// orthographic cameras under a turned parent).
 // To enable: add `gltf` to INBETWEEN_FUZZ_TARGETS in fuzz/CMakeLists.txt.
 #include <cmath>
 #include <cstddef>

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <vector>
 
 #include "command.hpp"
 #include "inbetween/io/gltf.hpp"
@@ -25,7 +27,10 @@ RawScene load_gltf_raw(const std::string& path, const std::string& animation, do
   GltfReadOptions options;
   options.animation = animation;
   if (fps > 0) options.fps = fps;
+  std::vector<std::string> notes;
+  options.notes = &notes;
   auto raw = read_gltf_file(path, options);
+  for (const std::string& note : notes) std::cerr << "note: " << path << ": " << note << '\n';
   if (!raw) {
     Error e = raw.error();
     if (!e.location.empty()) e.where = json_pointer(e.location);

@@ -829,21 +829,9 @@ class Plotter {
       }
       return cur;
     };
-    // PathMotion gives d²s/dframe² of every form but a track (0 there): a track leg's acceleration
-    // is the central difference of its analytic speed over ±kTrackDiffFrames about the frame
-    // rounded to single precision (the F-curve's frames are floats; f ± 1/64 is then exact for
-    // |f| < 2^17, so the difference is not quantised), said in the legend.
-    constexpr double kTrackDiffFrames = 1.0 / 64;
-    bool any_track = false;
     auto acceleration = [&](double f) {
-      const std::size_t k = leg_index(f);
-      const PathMotion& m = legs[k].motion;
-      const double fps = m.fps();
-      const bool track = raw && k < raw->path.size() && raw->path[k].speed.kind == SpeedKind::track;
-      if (!track) return m.distance_at(f).acceleration * fps * fps;
-      any_track = true;
-      const double h = kTrackDiffFrames, fr = double(float(f));
-      return (m.distance_at(fr + h).velocity - m.distance_at(fr - h).velocity) / (2 * h) * fps * fps;
+      const PathMotion& m = legs[leg_index(f)].motion;
+      return m.distance_at(f).acceleration * m.fps() * m.fps();
     };
     Pieces pieces{breaks, true, {}, "held (path start)", "held (path end)"};
     pieces.labels.assign(breaks.size() > 0 ? breaks.size() - 1 : 0, "");
@@ -900,7 +888,6 @@ class Plotter {
       panel.end_data(doc);
       std::vector<LegendEntry> legend{{"acceleration d²s/dt²", "#d62728", "", false},
                                       {"phase boundary", "#999999", "2 3", false}};
-      if (any_track) legend.push_back({"(track legs: central difference of the speed, ±1/64 frame)", "#ffffff", "", false});
       panel.end(doc, legend);
     }
     add_file("paths", name + "-speed", title, doc);

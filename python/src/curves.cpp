@@ -234,7 +234,7 @@ void bind_curves(py::module_& m) {
       .def("acceleration", [](const SpeedHolder& h, const Array& frames) {
              const PathMotion& pm = motion_of(h);
              return map_scalars(frames, [&](double f) { return pm.distance_at(f).acceleration; });
-           }, py::arg("frames"), "d^2s/dframe^2 (0 for a track).");
+           }, py::arg("frames"), "d^2s/dframe^2 (one-sided at the ends of frame_range, 0 outside).");
 
   py::class_<TrackHolder>(m, "Track", "A named-less track from a scene-file track dictionary (docs/scene-format.md): a "
                                       "scalar Blender F-curve (the default kind), vec2/vec3/vec4/color, quaternion or euler.")

@@ -34,8 +34,8 @@ namespace tg = tinygltf;
 // allocating without limit.
 constexpr std::size_t kMaxUnbackedElements = std::size_t(1) << 24;
 // Weights columns (nodes × their mesh's morph targets): many nodes sharing a mesh with many targets
-// would multiply two small numbers of the file into an unbounded number of tracks (and
-// build_scene()'s pairwise track-name check is quadratic: 2^16 columns took 16 s, 2^14 take 1 s).
+// would multiply two small numbers of the file into an unbounded number of tracks (memory and
+// time of a file that is small itself; build_scene()'s track-name check is O(n log n)).
 constexpr std::size_t kMaxWeightColumns = std::size_t(1) << 14;
 
 Error error_at(ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
@@ -605,6 +605,58 @@ RawVectorTrack weight_track(const std::string& name, const Channel& ch, std::siz
   return out;
 }
 
+// The scene camera of a node with a glTF camera (docs/gltf.md, "Cameras"): a perspective camera
+// views along the node's own rotation (RawOwnRotation: glTF cameras look down local −Z with +Y up,
+// as scene cameras do) with its yfov; none (and a note) for an orthographic one, which a scene
+// camera cannot express.  znear, zfar and aspectRatio have no place in a scene camera: a note
+// names those that differ from what the exporter writes back (0.1, 1000, none).
+Expected<std::optional<RawCameraViewd>> node_camera(const tg::Model& model, std::size_t i, const std::string& name,
+                                                    std::vector<std::string>* notes) {
+  const tg::Node& node = model.nodes[i];
+  if (node.camera < 0) return std::optional<RawCameraViewd>{};
+  const std::size_t c = std::size_t(node.camera);
+  if (c >= model.cameras.size()) {
+    return error_at(ErrorCode::InvalidArgument,
+                    "node " + std::to_string(i) + ": camera " + std::to_string(c) + " does not exist (" +
+                        std::to_string(model.cameras.size()) + " cameras)",
+                    {"nodes", i, "camera"});
+  }
+  const tg::Camera& camera = model.cameras[c];
+  const std::string which = "node " + std::to_string(i) + " \"" + name + "\": camera " + std::to_string(c) + quoted(camera.name);
+  if (camera.type != "perspective") {
+    if (notes) {
+      notes->push_back(which + " is " + (camera.type.empty() ? std::string("of no type") : camera.type) +
+                       ": imported as a plain object (scene cameras are perspective only)");
+    }
+    return std::optional<RawCameraViewd>{};
+  }
+  const tg::PerspectiveCamera& p = camera.perspective;
+  constexpr double kPi = 3.14159265358979323846;
+  // Checked in degrees, as the scene camera holds it: a yfov a hair below π can round to 180°.
+  const double yfov_deg = p.yfov * (180 / kPi);
+  if (!std::isfinite(p.yfov) || !(yfov_deg > 0) || !(yfov_deg < 180)) {
+    return error_at(ErrorCode::InvalidArgument,
+                    which + ": yfov " + shortest_text(p.yfov) + " is not an angle in (0, pi) radians",
+                    {"cameras", c, "perspective", "yfov"});
+  }
+  std::string dropped;
+  auto drop = [&dropped](const char* member, double value) {
+    dropped += (dropped.empty() ? "" : ", ") + std::string(member) + " " + shortest_text(value);
+  };
+  if (p.znear != 0.1) drop("znear", p.znear);
+  if (p.zfar != 1000 && p.zfar != 0) drop("zfar", p.zfar);
+  if (p.zfar == 0) dropped += std::string(dropped.empty() ? "" : ", ") + "zfar infinite";
+  if (p.aspectRatio != 0) drop("aspectRatio", p.aspectRatio);
+  if (notes && !dropped.empty()) {
+    notes->push_back(which + ": " + dropped +
+                     " not kept (a scene camera keeps yfov only; export writes znear 0.1, zfar 1000, no aspectRatio)");
+  }
+  RawCameraViewd view;
+  view.yfov_deg = yfov_deg;
+  view.coi = RawOwnRotation<double>{};
+  return std::optional<RawCameraViewd>{view};
+}
+
 Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& options) {
   if (!(options.fps > 0) || !std::isfinite(options.fps)) {
     return Error{ErrorCode::InvalidArgument, "fps " + shortest_text(options.fps) + " is not finite and positive", ""};
@@ -692,6 +744,9 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
     if (auto it = channels.find({i, "translation"}); it != channels.end()) object.translation = vec3_channel(it->second, fps);
     if (auto it = channels.find({i, "scale"}); it != channels.end()) object.scale = vec3_channel(it->second, fps);
     if (auto it = channels.find({i, "rotation"}); it != channels.end()) object.rotation = rotation_channel(it->second, fps);
+    auto camera = node_camera(model, i, names[i], options.notes);
+    if (!camera) return camera.error();
+    object.camera = std::move(*camera);
     scene.objects.push_back(std::move(object));
 
     const std::size_t targets = morph_targets(model, node);

@@ -176,7 +176,15 @@ struct Builder {
 
 // Whether object i's translation / rotation comes from the built scene rather than a keyed channel.
 bool translation_sampled(const Scene& scene, std::size_t i) { return !scene.path_legs(i).empty(); }
-bool rotation_sampled(const Scene& scene, std::size_t i) { return translation_sampled(scene, i) || scene.camera(i) != nullptr; }
+// A camera viewing along its own rotation (a glTF camera node read back) without tilt keeps that
+// rotation: its keys are written as any object's, not resampled from the view.
+bool keeps_own_rotation(const CameraView<double>& view) {
+  return view.coi_mode() == CoiMode::OwnRotation && view.tilt_rad() == 0 && view.tilt_track_name().empty();
+}
+bool rotation_sampled(const Scene& scene, std::size_t i) {
+  const CameraView<double>* view = scene.camera(i);
+  return translation_sampled(scene, i) || (view != nullptr && !keeps_own_rotation(*view));
+}
 
 // The local transform that glTF's node must hold so that parent ∘ local is the scene's world
 // transform `world`: the inverse of compose() (translation R_p⁻¹(t − t_p) / s_p, an axis of zero

@@ -465,10 +465,10 @@ Expected<RawCameraViewd> read_camera(const json& cj, const Loc& loc) {
   if (!yfov) return yfov.error();
   cam.yfov_deg = *yfov;
   int modes = 0;
-  for (const char* m : {"look_at", "ahead", "coi_path", "hold"}) modes += cj.contains(m) ? 1 : 0;
+  for (const char* m : {"look_at", "ahead", "coi_path", "hold", "own_rotation"}) modes += cj.contains(m) ? 1 : 0;
   if (modes != 1) {
     return error_at(ErrorCode::InvalidArgument,
-                    "a camera needs exactly one of \"look_at\", \"ahead\", \"coi_path\", \"hold\" (got " +
+                    "a camera needs exactly one of \"look_at\", \"ahead\", \"coi_path\", \"hold\", \"own_rotation\" (got " +
                         std::to_string(modes) + ")",
                     loc);
   }
@@ -494,6 +494,14 @@ Expected<RawCameraViewd> read_camera(const json& cj, const Loc& loc) {
     a.count = int(*count);
     a.spread = *spread;
     cam.coi = a;
+  } else if (cj.contains("own_rotation")) {
+    auto own = object_member(cj, loc, "own_rotation", {"distance"});
+    if (!own) return own.error();
+    RawOwnRotation<double> r;
+    auto distance = number_member(**own, at(loc, "own_rotation"), "distance", r.distance);
+    if (!distance) return distance.error();
+    r.distance = *distance;
+    cam.coi = r;
   } else if (cj.contains("coi_path")) {
     auto path = string_member(cj, loc, "coi_path");
     if (!path) return path.error();
@@ -589,8 +597,8 @@ Expected<void> read_path_and_camera(const json& oj, const Loc& p, const Context&
   if (auto cj = oj.find("camera"); cj != oj.end()) {
     const Loc cp = at(p, "camera");
     if (!cj->is_object()) return error_at(ErrorCode::InvalidArgument, "expected an object, found " + type_name(*cj), cp);
-    if (auto ok = only_members(*cj, cp, {"yfov_deg", "look_at", "ahead", "coi_path", "hold", "up", "up_path", "tilt_deg",
-                                         "tilt_track"});
+    if (auto ok = only_members(*cj, cp, {"yfov_deg", "look_at", "ahead", "coi_path", "hold", "own_rotation", "up", "up_path",
+                                         "tilt_deg", "tilt_track"});
         !ok) {
       return ok.error();
     }

@@ -360,6 +360,12 @@ class Writer {
       j["ahead"] = std::move(aj);
     } else if (const auto* coi = std::get_if<RawCoiPath>(&c.coi)) {
       j["coi_path"] = coi->path;
+    } else if (const auto* own = std::get_if<RawOwnRotation<double>>(&c.coi)) {
+      json oj = json::object();
+      if (own->distance != RawOwnRotation<double>{}.distance) {
+        oj["distance"] = number(own->distance, at(at(loc, "own_rotation"), "distance"));
+      }
+      j["own_rotation"] = std::move(oj);
     } else {
       const auto& hold = std::get<RawHoldThenMove<double>>(c.coi);
       json hj = json::array();

@@ -2,6 +2,7 @@
 #include "inbetween/scene/camera_view.hpp"
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <utility>
 
@@ -50,8 +51,10 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
   view.up_path_name_ = raw.up_path;
   view.tilt_track_name_ = raw.tilt_track;
 
-  // A target: a finite point, or an object name given one slot in target_names_ (once per name).
-  auto make_target = [&view](const RawTarget<T>& raw_target, const Loc& where)
+  // A target: a finite point, or an object name given one slot in target_names_ (once per name;
+  // slot by name in a map, so that many hold segments cost O(n log n), not a search per segment).
+  std::map<std::string, std::size_t> slot_of;
+  auto make_target = [&view, &slot_of](const RawTarget<T>& raw_target, const Loc& where)
       -> Expected<typename CameraView<T>::Target> {
     typename CameraView<T>::Target t;
     if (const auto* p = std::get_if<Vec3<T>>(&raw_target)) {
@@ -61,10 +64,9 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
     }
     const std::string& name = std::get<std::string>(raw_target);
     if (name.empty()) return error_at(ErrorCode::InvalidArgument, "the target object name is empty", where);
-    std::size_t slot = 0;
-    while (slot < view.target_names_.size() && view.target_names_[slot] != name) ++slot;
-    if (slot == view.target_names_.size()) view.target_names_.push_back(name);
-    t.slot = std::ptrdiff_t(slot);
+    const auto [it, inserted] = slot_of.emplace(name, view.target_names_.size());
+    if (inserted) view.target_names_.push_back(name);
+    t.slot = std::ptrdiff_t(it->second);
     return t;
   };
 
@@ -96,6 +98,24 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
     if (path->path.empty()) return error_at(ErrorCode::InvalidArgument, "the COI path name is empty", Loc{"coi_path"});
     view.mode_ = CoiMode::Path;
     view.coi_path_name_ = path->path;
+  } else if (const auto* own = std::get_if<RawOwnRotation<T>>(&raw.coi)) {
+    if (!std::isfinite(own->distance) || !(own->distance > T(0))) {
+      return error_at(ErrorCode::InvalidArgument,
+                      "the distance of the centre of interest must be finite and > 0, got " + shortest_text(own->distance),
+                      Loc{"own_rotation", "distance"});
+    }
+    if (!raw.up_path.empty()) {
+      return error_at(ErrorCode::InvalidArgument,
+                      "a camera viewing along its own rotation takes its up from that rotation: remove \"up_path\"",
+                      Loc{"up_path"});
+    }
+    if (raw.up != RawCameraView<T>{}.up) {
+      return error_at(ErrorCode::InvalidArgument,
+                      "a camera viewing along its own rotation takes its up from that rotation: remove \"up\"",
+                      Loc{"up"});
+    }
+    view.mode_ = CoiMode::OwnRotation;
+    view.own_distance_ = own->distance;
   } else {
     const auto& hold = std::get<RawHoldThenMove<T>>(raw.coi);
     if (hold.segments.empty()) {
@@ -174,6 +194,8 @@ Vec3<T> CameraView<T>::centre_of_interest(const CameraInputs<T>& in) const noexc
       const T f = L > T(0) && !std::isnan(in.s) ? clamp(in.s / L, T(0), T(1)) : T(0);
       return in.world_from_path.apply_to_point(in.coi_path.point_at_length(f * in.coi_path.length()));
     }
+    case CoiMode::OwnRotation:
+      return in.eye + own_forward(in) * own_distance_;
     case CoiMode::HoldThenMove: {
       const std::size_t m = segments_.size();
       if (std::isnan(in.frame)) return position(segments_.front().target, in.targets);
@@ -195,9 +217,35 @@ Vec3<T> CameraView<T>::centre_of_interest(const CameraInputs<T>& in) const noexc
 }
 
 template <Real T>
+Quat<T> CameraView<T>::own_rotation(const CameraInputs<T>& in) const noexcept {
+  // The object's world rotation, tilted about its view axis; identity for a zero or non-finite one.
+  const Quat<T>& q = in.world_rotation;
+  const T n = norm(q);
+  const Quat<T> r = std::isfinite(n) && n > T(0) ? normalized(q) : Quat<T>{};
+  const T tilt = tilt_rad_ + (std::isfinite(in.tilt_track_deg) ? deg_to_rad(in.tilt_track_deg) : T(0));
+  if (tilt == T(0)) return r;
+  // + rolls up towards right: a right-handed turn about forward = −Z of the camera, i.e. about the
+  // camera's local −Z applied before r.
+  return r * Quat<T>::from_axis_angle(Vec3<T>{T(0), T(0), T(-1)}, tilt);
+}
+
+template <Real T>
+Vec3<T> CameraView<T>::own_forward(const CameraInputs<T>& in) const noexcept {
+  return rotate(own_rotation(in), Vec3<T>{T(0), T(0), T(-1)});
+}
+
+template <Real T>
 CameraViewSample<T> CameraView<T>::evaluate(const CameraInputs<T>& in) const noexcept {
   CameraViewSample<T> out;
   out.target = centre_of_interest(in);
+  if (mode_ == CoiMode::OwnRotation) {
+    const Quat<T> r = own_rotation(in);
+    out.pose.eye = in.eye;
+    out.pose.right = rotate(r, Vec3<T>{T(1), T(0), T(0)});
+    out.pose.up = rotate(r, Vec3<T>{T(0), T(1), T(0)});
+    out.pose.forward = rotate(r, Vec3<T>{T(0), T(0), T(-1)});
+    return out;
+  }
 
   LookAtOptions<T> look;
   look.tilt_rad = tilt_rad_ + (std::isfinite(in.tilt_track_deg) ? deg_to_rad(in.tilt_track_deg) : T(0));

@@ -413,7 +413,8 @@ EaseSample<double> PathMotion::distance_at(double frame) const noexcept {
     out = {n.s, inside ? n.velocity : 0.0, inside ? n.acceleration : 0.0};
   } else {
     const auto& t = std::get<TrackSpeed>(speed_);
-    out = {double(t.track.sample(float(frame))) * t.scale, t.track.derivative(float(frame)) * t.scale, 0.0};
+    out = {double(t.track.sample(float(frame))) * t.scale, t.track.derivative(float(frame)) * t.scale,
+           t.track.second_derivative(float(frame)) * t.scale};
   }
   const double L = length();
   if (!(out.s >= 0)) out = {0.0, 0.0, 0.0};  // also a NaN distance (cannot happen for built specs)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -205,14 +206,16 @@ Expected<Scene> build_scene(const RawScene& raw) {
 
   std::vector<SceneTrack> tracks;
   tracks.reserve(raw.tracks.size());
+  // Track names seen so far: one lookup per track (O(n log n) in all; each earlier track was
+  // compared pairwise before, quadratic).  The first repeated name in file order is the error,
+  // at the later track's name, as before.
+  std::set<std::string_view> track_names;
   for (std::size_t i = 0; i < raw.tracks.size(); ++i) {
     auto track = std::visit([](const auto& t) { return build_one(t); }, raw.tracks[i]);
     if (!track) return prepended(track.error(), {"tracks", i});
-    const std::string& name = std::visit([](const auto& t) -> const std::string& { return t.name; }, *track);
-    for (const SceneTrack& other : tracks) {
-      if (std::visit([](const auto& t) -> const std::string& { return t.name; }, other) == name) {
-        return error_at(ErrorCode::InvalidArgument, "duplicate track name \"" + name + "\"", {"tracks", i, "name"});
-      }
+    const std::string& name = std::visit([](const auto& t) -> const std::string& { return t.name; }, raw.tracks[i]);
+    if (!track_names.insert(name).second) {
+      return error_at(ErrorCode::InvalidArgument, "duplicate track name \"" + name + "\"", {"tracks", i, "name"});
     }
     // One letter per component column; none for a scalar or vec1 track (only F-curves are single precision).
     const std::string suffixes = std::visit(Overloaded{[](const SceneScalarTrack&) { return std::string(); },
@@ -281,8 +284,10 @@ Expected<Scene> build_scene(const RawScene& raw) {
                         "top of the path frame is path.orientation.local_rotation)",
                         {"objects", i, "rotation"});
       }
-      if (o.camera && o.rotation) {
-        return error_at(ErrorCode::InvalidArgument, "a camera's rotation comes from its view: remove \"rotation\"",
+      if (o.camera && o.rotation && !std::holds_alternative<RawOwnRotation<double>>(o.camera->coi)) {
+        return error_at(ErrorCode::InvalidArgument,
+                        "a camera's rotation comes from its view: remove \"rotation\" (or view along it with "
+                        "\"own_rotation\")",
                         {"objects", i, "rotation"});
       }
       auto local = build_local(o);
@@ -605,6 +610,7 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
       in.world_from_path = world_T_parent;
       in.targets = std::span<const Vec3d>(targets.data(), x.camera_targets.size());
       in.tilt_track_deg = x.tilt_column ? base[*x.tilt_column] : 0.0;
+      in.world_rotation = world.rotation;
       const CameraViewSample<double> view = x.camera->evaluate(in);
       world.rotation = view.pose.rotation();
       coi = view.target;

@@ -151,43 +151,78 @@ bool near_frame(float a, float b) noexcept {
 // dy/dx of the Bézier segment at frame t (in double): x(u) = t is solved on [0, 1] by Newton steps
 // kept inside a bisection bracket (x is monotone after the handle correction), then y′(u)/x′(u);
 // where x′ vanishes (a zero-length handle at an end) the ratio of second derivatives, the limit.
-double bezier_segment_slope(const Key& ka, const Key& kb, double t) noexcept {
+// The segment's control points (handles corrected) in double and the Bézier parameter u with
+// x(u) = t; `flat` when sample() returns the constant value there.
+struct BezierAt {
+  double x[4], y[4];
+  double u = 0;
+  bool flat = false;
+};
+
+double bezier_d1(const double* p, double u) noexcept {
+  const double w = 1 - u;
+  return 3 * (w * w * (p[1] - p[0]) + 2 * w * u * (p[2] - p[1]) + u * u * (p[3] - p[2]));
+}
+double bezier_d2(const double* p, double u) noexcept { return 6 * ((1 - u) * (p[2] - 2 * p[1] + p[0]) + u * (p[3] - 2 * p[2] + p[1])); }
+
+BezierAt solve_bezier(const Key& ka, const Key& kb, double t) noexcept {
+  BezierAt b;
   if (std::abs(ka.y - kb.y) < FLT_EPSILON && std::abs(ka.right.y - kb.left.y) < FLT_EPSILON &&
       std::abs(kb.left.y - kb.y) < FLT_EPSILON) {
-    return 0.0;  // sample() returns the constant value here
+    b.flat = true;  // sample() returns the constant value here
+    return b;
   }
   const auto [v2, v3] = corrected_handles(ka, kb);
-  const double x0 = ka.x, x1 = v2.x, x2 = v3.x, x3 = kb.x;
-  const double y0 = ka.y, y1 = v2.y, y2 = v3.y, y3 = kb.y;
-  const auto bez = [](double p0, double p1, double p2, double p3, double u) {
+  const double xs[4] = {ka.x, v2.x, v3.x, kb.x}, ys[4] = {ka.y, v2.y, v3.y, kb.y};
+  std::copy(xs, xs + 4, b.x);
+  std::copy(ys, ys + 4, b.y);
+  const double* x = b.x;
+  const auto bez = [](const double* p, double u) {
     const double w = 1 - u;
-    return w * w * w * p0 + 3 * w * w * u * p1 + 3 * w * u * u * p2 + u * u * u * p3;
-  };
-  const auto d1 = [](double p0, double p1, double p2, double p3, double u) {
-    const double w = 1 - u;
-    return 3 * (w * w * (p1 - p0) + 2 * w * u * (p2 - p1) + u * u * (p3 - p2));
-  };
-  const auto d2 = [](double p0, double p1, double p2, double p3, double u) {
-    return 6 * ((1 - u) * (p2 - 2 * p1 + p0) + u * (p3 - 2 * p2 + p1));
+    return w * w * w * p[0] + 3 * w * w * u * p[1] + 3 * w * u * u * p[2] + u * u * u * p[3];
   };
   double lo = 0, hi = 1;
-  double u = x3 > x0 ? std::clamp((t - x0) / (x3 - x0), 0.0, 1.0) : 0.0;
+  double u = x[3] > x[0] ? std::clamp((t - x[0]) / (x[3] - x[0]), 0.0, 1.0) : 0.0;
   for (int iter = 0; iter < 100; ++iter) {
-    const double f = bez(x0, x1, x2, x3, u) - t;
+    const double f = bez(x, u) - t;
     if (f == 0) break;
     if (f < 0) lo = u; else hi = u;
-    const double dx = d1(x0, x1, x2, x3, u);
+    const double dx = bezier_d1(x, u);
     double next = dx > 0 ? u - f / dx : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     if (next == u || hi - lo <= 4 * std::numeric_limits<double>::epsilon()) break;
     u = next;
   }
-  const double dx = d1(x0, x1, x2, x3, u), dy = d1(y0, y1, y2, y3, u);
-  const double scale = std::max(std::abs(x3 - x0), 1e-30);
-  if (std::abs(dx) > 1e-9 * scale) return dy / dx;
-  const double ddx = d2(x0, x1, x2, x3, u), ddy = d2(y0, y1, y2, y3, u);
+  b.u = u;
+  return b;
+}
+
+// |x′(u)| below this fraction of the segment's frame span counts as zero (a zero-length handle at
+// an end): the slope is then the limit y″/x″, the second derivative the documented fallback 0.
+constexpr double kVerticalX = 1e-9;
+
+double bezier_segment_slope(const Key& ka, const Key& kb, double t) noexcept {
+  const BezierAt b = solve_bezier(ka, kb, t);
+  if (b.flat) return 0.0;
+  const double dx = bezier_d1(b.x, b.u), dy = bezier_d1(b.y, b.u);
+  const double scale = std::max(std::abs(b.x[3] - b.x[0]), 1e-30);
+  if (std::abs(dx) > kVerticalX * scale) return dy / dx;
+  const double ddx = bezier_d2(b.x, b.u), ddy = bezier_d2(b.y, b.u);
   if (std::abs(ddx) > 0) return ddy / ddx;
   return 0.0;
+}
+
+// d²y/dx² of the Bézier segment at frame t: with x(u) = t solved as above,
+// (y″x′ − y′x″) / x′³ (the derivative of y′/x′ with respect to u, divided by dx/du); 0 where x′
+// vanishes (see kVerticalX).
+double bezier_segment_second(const Key& ka, const Key& kb, double t) noexcept {
+  const BezierAt b = solve_bezier(ka, kb, t);
+  if (b.flat) return 0.0;
+  const double dx = bezier_d1(b.x, b.u), dy = bezier_d1(b.y, b.u);
+  const double scale = std::max(std::abs(b.x[3] - b.x[0]), 1e-30);
+  if (!(std::abs(dx) > kVerticalX * scale)) return 0.0;
+  const double ddx = bezier_d2(b.x, b.u), ddy = bezier_d2(b.y, b.u);
+  return (ddy * dx - dy * ddx) / (dx * dx * dx);
 }
 
 }  // namespace
@@ -344,6 +379,41 @@ double FCurve::segment_derivative(int index, double t) const noexcept {
       return penner_ease_velocity(curve, dir, t - double(ka.x), double(kb.y) - double(ka.y), duration, params);
     }
   }
+}
+
+double FCurve::segment_second_derivative(int index, double t) const noexcept {
+  const Key& ka = keys_[index];
+  const Key& kb = keys_[index + 1];
+  const double duration = double(kb.x) - double(ka.x);
+  if (ka.interpolation == Interpolation::constant || duration == 0) return 0.0;
+  switch (ka.interpolation) {
+    case Interpolation::bezier: return bezier_segment_second(ka, kb, t);
+    case Interpolation::linear: return 0.0;
+    default: {
+      const EasingCurve curve = easing_curve(ka.interpolation);
+      EasingDirection dir = automatic_direction(curve);
+      if (ka.easing == KeyEasing::ease_in) dir = EasingDirection::in;
+      if (ka.easing == KeyEasing::ease_out) dir = EasingDirection::out;
+      if (ka.easing == KeyEasing::ease_in_out) dir = EasingDirection::in_out;
+      const PennerParams<double> params{.back = ka.back, .amplitude = ka.amplitude, .period = ka.period};
+      return penner_ease_acceleration(curve, dir, t - double(ka.x), double(kb.y) - double(ka.y), duration, params);
+    }
+  }
+}
+
+double FCurve::second_derivative(float frame) const noexcept {
+  if (keys_.empty() || std::isnan(frame)) return 0.0;
+  if (std::isinf(frame)) frame = std::copysign(std::numeric_limits<float>::max(), frame);
+  const CycleMap m = map_cycles(frame);
+  const float t = m.t;
+  const int n = int(keys_.size());
+  // Outside the keys the extrapolation is constant or linear: 0.  A mirrored copy (t = c − frame)
+  // keeps the sign of the second derivative: (−1)² = 1.
+  if (t < keys_.front().x || t > keys_.back().x || n < 2) return 0.0;
+  auto it = std::upper_bound(keys_.begin(), keys_.end(), t, [](float v, const Key& key) { return v < key.x; });
+  const int k = std::clamp(int(it - keys_.begin()) - 1, 0, n - 2);
+  const double out = segment_second_derivative(k, double(t));
+  return std::isfinite(out) ? out : 0.0;
 }
 
 double FCurve::derivative(float frame) const noexcept {

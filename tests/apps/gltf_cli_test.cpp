@@ -93,6 +93,43 @@ TEST(GltfCli, ConvertedSceneBakesTheSame) {
   }
 }
 
+// A perspective camera node is a scene camera (docs/gltf.md, "Cameras"): bake has its target
+// columns, convert writes it as an own_rotation camera that bakes the same, and what the scene
+// camera cannot keep (an orthographic camera, znear/aspectRatio) is a note on standard error.
+TEST(GltfCli, CameraNodesBecomeSceneCamerasWithNotes) {
+  const fs::path gltf = fs::path(INBETWEEN_SOURCE_DIR) / "fuzz/corpus/gltf/cameras-perspective-orthographic.gltf";
+  const auto b = run_cli("bake '" + gltf.string() + "' --frames 0:24:0.5");
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const std::string header = first_line(b.out);
+  EXPECT_NE(header.find("lens.scale.z,lens.target.x,lens.target.y,lens.target.z"), std::string::npos) << header;
+  EXPECT_NE(header.find("wide.target.x"), std::string::npos) << header;
+  EXPECT_EQ(header.find("flat.target.x"), std::string::npos) << "an orthographic camera is a plain object: " << header;
+  EXPECT_NE(b.err.find("note: "), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("\"flat\": camera 1 \"ortho\" is orthographic"), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("znear 0.01, zfar infinite, aspectRatio 1.5 not kept"), std::string::npos) << b.err;
+  const fs::path json = inbetween::test::test_dir() / "cameras.json";
+  const auto c = run_cli("convert '" + gltf.string() + "' '" + json.string() + "'");
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const std::string text = inbetween::test::slurp(json);
+  EXPECT_NE(text.find("\"camera\": {\"yfov_deg\": "), std::string::npos) << text;
+  EXPECT_NE(text.find("\"own_rotation\": {}"), std::string::npos) << text;
+  const auto from_json = run_cli("bake '" + json.string() + "' --frames 0:24:0.5");
+  ASSERT_EQ(from_json.exit_code, 0) << from_json.err;
+  EXPECT_EQ(from_json.out, b.out);
+  EXPECT_TRUE(from_json.err.empty()) << from_json.err;
+  // Back to glTF: the camera's rotation is its node's keys, written back as they are (not
+  // resampled from the view), and the file bakes the same.
+  const fs::path glb = inbetween::test::test_dir() / "cameras.glb";
+  const auto g = run_cli("convert '" + gltf.string() + "' '" + glb.string() + "'");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  EXPECT_NE(g.err.find("lens.rotation: LINEAR, 3 keys -> 3"), std::string::npos) << g.err;
+  EXPECT_NE(g.err.find("(keys kept)"), std::string::npos) << g.err;
+  EXPECT_EQ(g.err.find("camera view"), std::string::npos) << g.err;
+  const auto from_glb = run_cli("bake '" + glb.string() + "' --frames 0:24:0.5");
+  ASSERT_EQ(from_glb.exit_code, 0) << from_glb.err;
+  EXPECT_EQ(from_glb.out, b.out);
+}
+
 TEST(GltfCli, MalformedGltfExitsTwoWithTheIndexAndNoOutput) {
   const fs::path dir = inbetween::test::test_dir();
   struct Case {

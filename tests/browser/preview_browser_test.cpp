@@ -193,7 +193,8 @@ TEST(PreviewBrowser, Frame22ShowsTheBakedPositionsAndLooksThroughACamera) {
 TEST(PreviewBrowser, GltfFileShowsTheBakedNodes) {
   SKIP_WITHOUT_NODE();
   // A .glb made by `inbetween convert` from frame22.json (docs/gltf-export.md): its path objects and
-  // cameras become node animations, follow_cam stays a child of rig.
+  // cameras become node animations, follow_cam stays a child of rig; its two glTF cameras read back
+  // as scene cameras (viewing along their nodes' rotation), so the page can look through one.
   fs::create_directories(kOut);
   const fs::path glb = kOut / "frame22.glb";
   const auto r = run_cli("convert '" + (kSource / "examples/scenes/frame22.json").string() + "' '" + glb.string() + "'");
@@ -210,10 +211,10 @@ TEST(PreviewBrowser, GltfFileShowsTheBakedNodes) {
   auto middle = bake.rows.begin();
   std::advance(middle, bake.rows.size() / 2);
   const fs::path shot = kOut / "frame22_glb.png";
-  const Page page = check_page(glb, "frame22_glb", {first, middle->first, last}, nodes, "",
+  const Page page = check_page(glb, "frame22_glb", {first, middle->first, last}, nodes, "hold_cam",
                                "--overview '" + shot.string() + "'");
   if (page.skipped) GTEST_SKIP() << page.skip_reason;
-  EXPECT_TRUE(page.data["cameras"].empty()) << "glTF input has no scene cameras (its camera nodes are objects)";
+  EXPECT_EQ(page.data["cameras"], nlohmann::json({"follow_cam", "hold_cam"})) << "glTF camera nodes are scene cameras";
   EXPECT_EQ(slurp(shot).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << "no screenshot";
 }
 

@@ -363,6 +363,126 @@ TEST(GltfRead, SceneWrittenFromAGltfFileBakesTheSame) {
   }
 }
 
+// Cameras (docs/gltf.md, "Cameras"): a perspective camera node becomes a scene camera viewing
+// along its own animated rotation — glTF cameras look down local −Z with +Y up — so the view
+// direction and up at every frame are the node's world rotation applied to −Z and +Y, computed
+// here from the keys by Appendix C (spec_slerp of the LINEAR keys) and the parent's rest rotation,
+// independent of the scene's tracks.  yfov comes over (radians → degrees); the reported COI is one
+// unit ahead (RawOwnRotation's default distance).
+// Quaternions as Appendix C's helpers hold them (x y z w): the Hamilton product and v' = q v q*,
+// written from their formulas (not the library's Quat).
+std::vector<double> xyzw_multiply(const std::vector<double>& a, const std::vector<double>& b) {
+  return {a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1], a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
+          a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3], a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2]};
+}
+std::vector<double> xyzw_rotate(const std::vector<double>& q, const std::vector<double>& v) {
+  const std::vector<double> conj{-q[0], -q[1], -q[2], q[3]};
+  const std::vector<double> r = xyzw_multiply(xyzw_multiply(q, {v[0], v[1], v[2], 0}), conj);
+  return {r[0], r[1], r[2]};
+}
+
+TEST(GltfRead, PerspectiveCameraNodesBecomeSceneCamerasViewingAlongTheirRotation) {
+  GltfBuilder g;
+  // parent "rig" turned 90° about +Y (x y z w), its child the camera node, animated rotation.
+  const double h = std::sqrt(0.5);
+  g.add_node({{"name", "rig"}, {"rotation", {0.0, h, 0.0, h}}, {"translation", {1.0, 2.0, 3.0}}, {"children", {1}}});
+  g.add_node({{"name", "cam"}, {"camera", 0}, {"translation", {0.0, 0.0, 5.0}}}, false);
+  g.doc["cameras"] = {{{"type", "perspective"}, {"name", "lens"},
+                       {"perspective", {{"yfov", 0.7}, {"znear", 0.1}, {"zfar", 1000.0}}}}};
+  const std::vector<float> times{0.0f, 1.0f};
+  // keys: identity, then 120° about (1, 1, 1)/√3 (x y z w = 0.5 0.5 0.5 0.5)
+  const std::vector<float> keys{0, 0, 0, 1, 0.5f, 0.5f, 0.5f, 0.5f};
+  g.add_channel(0, 1, "rotation", g.add_times(times), g.add_accessor(keys, test::kFloat, "VEC4"), "LINEAR");
+  const std::string text = g.gltf_embedded();
+  std::vector<std::string> notes;
+  auto raw = read_gltf(std::as_bytes(std::span<const char>(text.data(), text.size())), "", {.fps = kFps, .notes = &notes});
+  ASSERT_TRUE(raw.has_value()) << raw.error().describe();
+  EXPECT_TRUE(notes.empty()) << notes.front();  // znear/zfar as the exporter writes them: nothing dropped
+  ASSERT_TRUE(raw->objects[1].camera.has_value());
+  EXPECT_FALSE(raw->objects[0].camera.has_value());
+  EXPECT_TRUE(std::holds_alternative<RawOwnRotation<double>>(raw->objects[1].camera->coi));
+  auto scene = build_scene(*raw);
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  ASSERT_NE(scene->camera(1), nullptr);
+  // 0.7 rad → degrees → radians: a few roundings of products, within a few ulp of 0.7.
+  EXPECT_NEAR(scene->camera(1)->yfov_rad(), 0.7, test::few_ulp<double>);
+  // Two implementations of the same slerp and products in double (the keys are exact floats):
+  // agreement to rounding, 64 ulp.
+  constexpr double kCameraAgreement = test::roundtrip_tol<double>;
+  const std::size_t c = column(*scene, "cam.translation.x");
+  const std::size_t tc = column(*scene, "cam.target.x");
+  const std::vector<double> parent_q{0, h, 0, h};
+  std::vector<double> row(scene->columns().size());
+  double worst = 0;
+  for (double f = -2; f <= 26; f += 0.5) {
+    scene->sample(f, row);
+    // Appendix C LINEAR rotation at time f / fps (clamped), composed with the parent's rotation.
+    const double t = std::clamp(f / kFps, 0.0, 1.0);
+    const std::vector<double> local = spec_slerp({0, 0, 0, 1}, {0.5, 0.5, 0.5, 0.5}, t);
+    const std::vector<double> world = xyzw_multiply(parent_q, local);
+    const std::vector<double> forward = xyzw_rotate(world, {0, 0, -1});
+    const std::vector<double> up = xyzw_rotate(world, {0, 1, 0});
+    const Quatd q = Quatd::from_wxyz(row[c + 3], row[c + 4], row[c + 5], row[c + 6]);
+    const Vec3d got_forward = rotate(q, Vec3d{0, 0, -1}), got_up = rotate(q, Vec3d{0, 1, 0});
+    for (int k = 0; k < 3; ++k) {
+      worst = std::max({worst, std::abs(got_forward[k] - forward[std::size_t(k)]), std::abs(got_up[k] - up[std::size_t(k)])});
+      // the target: eye + forward (distance 1)
+      EXPECT_NEAR(row[tc + std::size_t(k)] - row[c + std::size_t(k)], forward[std::size_t(k)], kCameraAgreement) << f;
+    }
+  }
+  std::printf("[ camera ] view and up vs Appendix C: %.3g\n", worst);
+  EXPECT_LE(worst, kCameraAgreement);
+  // The eye: rig's rest transform applied to the camera's translation (0, 0, 5): a 90° turn about
+  // +Y maps +Z to +X, so the eye is (1 + 5, 2, 3).
+  scene->sample(0, row);
+  EXPECT_NEAR(row[c + 0], 6, kCameraAgreement);
+  EXPECT_NEAR(row[c + 1], 2, kCameraAgreement);
+  EXPECT_NEAR(row[c + 2], 3, kCameraAgreement);
+}
+
+// What a scene camera cannot keep is said, once per camera, in a note; an orthographic camera
+// stays a plain object (with a note); a bad yfov or camera index is an error at its place.
+TEST(GltfRead, CameraNotesAndErrors) {
+  GltfBuilder g;
+  g.add_node({{"name", "wide"}, {"camera", 0}});
+  g.add_node({{"name", "flat"}, {"camera", 1}});
+  g.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 1.2}, {"znear", 0.01}, {"aspectRatio", 1.5}}}},
+                      {{"type", "orthographic"}, {"orthographic", {{"xmag", 2.0}, {"ymag", 2.0}, {"znear", 0.1}, {"zfar", 10.0}}}}};
+  const std::string text = g.gltf_embedded();
+  std::vector<std::string> notes;
+  auto raw = read_gltf(std::as_bytes(std::span<const char>(text.data(), text.size())), "", {.notes = &notes});
+  ASSERT_TRUE(raw.has_value()) << raw.error().describe();
+  EXPECT_TRUE(raw->objects[0].camera.has_value());
+  EXPECT_FALSE(raw->objects[1].camera.has_value());
+  ASSERT_EQ(notes.size(), 2u);
+  // znear 0.01, zfar absent (infinite), aspectRatio 1.5 are not kept
+  for (const char* w : {"node 0 \"wide\"", "znear 0.01", "zfar infinite", "aspectRatio 1.5", "not kept"})
+    EXPECT_NE(notes[0].find(w), std::string::npos) << w << " not in: " << notes[0];
+  for (const char* w : {"node 1 \"flat\"", "orthographic", "plain object"})
+    EXPECT_NE(notes[1].find(w), std::string::npos) << w << " not in: " << notes[1];
+  EXPECT_TRUE(build_scene(*raw).has_value());
+  // Without a notes vector the same file reads the same.
+  EXPECT_TRUE(read_gltf(std::as_bytes(std::span<const char>(text.data(), text.size())), "", {}).has_value());
+
+  // π itself (180°) is refused here, so that build_scene() never sees a field of view it refuses.
+  for (double yfov : {0.0, -0.5, 3.2, 1e300, 3.14159265358979323846}) {
+    GltfBuilder b;
+    b.add_node({{"name", "c"}, {"camera", 0}});
+    b.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", yfov}, {"znear", 0.1}}}}};
+    const std::string t = b.gltf_embedded();
+    auto r = read_gltf(std::as_bytes(std::span<const char>(t.data(), t.size())), "", {});
+    if (r) {
+      ADD_FAILURE() << "yfov " << yfov << " accepted";
+      continue;
+    }
+    // tinygltf itself may refuse a yfov ≤ 0 (a parse error); what it lets through is ours to refuse.
+    if (r.error().code != ErrorCode::Parse) {
+      EXPECT_EQ(json_pointer(r.error().location), "/cameras/0/perspective/yfov") << r.error().describe();
+      EXPECT_NE(r.error().message.find("yfov"), std::string::npos) << r.error().describe();
+    }
+  }
+}
+
 // ------------------------------------------------------------------ malformed input
 // A valid one-channel file to break in one place each.
 GltfBuilder valid_file() {

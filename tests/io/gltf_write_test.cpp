@@ -30,6 +30,7 @@
 #include "support/gltf_appendix_c.hpp"
 #include "support/gltf_builder.hpp"
 #include "support/random.hpp"
+#include "support/tolerances.hpp"
 
 namespace inbetween {
 namespace {
@@ -615,6 +616,91 @@ TEST(GltfWrite, Frame22PathsAndCamerasPlayAsBake) {
   }
 }
 
+
+// The other way: frame22 exported (cameras as glTF perspective cameras) and read back by the
+// library's own reader, where each camera node becomes a scene camera viewing along its node's
+// rotation (RawOwnRotation).  Its view direction (−Z) and up (+Y), from the re-read scene's
+// rotation columns, must match the original scene's bake — view against bake's target − eye,
+// up against bake's rotation applied to +Y — within the refit tolerance of the rotation channels
+// up the chain plus float storage (the bound of Frame22PathsAndCamerasPlayAsBake), the eye
+// within 1e-5 of the extent, and yfov must come back to a few ulp (written as a double in JSON;
+// two degree/radian conversions).
+TEST(GltfWrite, Frame22CamerasReadBackAsSceneCameras) {
+  const Loaded s = load(kSource / "examples/scenes/frame22.json");
+  const Scene& scene = s.scene;
+  const GltfExportOptions options{};
+  auto out = export_gltf(s.raw, scene, options);
+  ASSERT_TRUE(out) << out.error().describe();
+  std::map<std::string, GltfChannelReport> rep;
+  for (const auto& c : out->channels) rep[c.object + "." + c.path] = c;
+  std::vector<std::string> notes;
+  auto raw = read_gltf(std::as_bytes(std::span<const char>(out->bytes.data(), out->bytes.size())), "",
+                       {.fps = scene.fps(), .notes = &notes});
+  ASSERT_TRUE(raw) << raw.error().describe();
+  EXPECT_TRUE(notes.empty()) << notes.front();  // the exporter's znear/zfar: nothing dropped
+  auto back = build_scene(*raw);
+  ASSERT_TRUE(back) << back.error().describe();
+
+  auto column = [](const Scene& sc, const std::string& name) {
+    const auto cols = sc.columns();
+    for (std::size_t c = 0; c < cols.size(); ++c)
+      if (cols[c].name == name) return c;
+    ADD_FAILURE() << name;
+    return std::size_t(0);
+  };
+  const auto nodes = scene.objects();
+  ASSERT_EQ(back->objects().size(), nodes.size());
+  std::vector<double> a(scene.columns().size()), b(back->columns().size());
+  // The extent of all eyes and objects, for the position tolerance.
+  Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (double f = scene.range_start(); f <= scene.range_end(); f += 1) {
+    scene.sample(f, a);
+    for (const auto& obj : nodes) {
+      const std::size_t c = column(scene, obj.name + ".translation.x");
+      lo = Vec3d{std::min(lo.x, a[c]), std::min(lo.y, a[c + 1]), std::min(lo.z, a[c + 2])};
+      hi = Vec3d{std::max(hi.x, a[c]), std::max(hi.y, a[c + 1]), std::max(hi.z, a[c + 2])};
+    }
+  }
+  const double extent = norm(hi - lo);
+  int cameras = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (!scene.camera(i)) {
+      EXPECT_EQ(back->camera(i), nullptr) << nodes[i].name;
+      continue;
+    }
+    ++cameras;
+    ASSERT_NE(back->camera(i), nullptr) << nodes[i].name;
+    EXPECT_EQ(back->camera(i)->coi_mode(), CoiMode::OwnRotation);
+    EXPECT_NEAR(back->camera(i)->yfov_rad(), scene.camera(i)->yfov_rad(), test::few_ulp<double>) << nodes[i].name;
+    double bound = 0;  // as in Frame22PathsAndCamerasPlayAsBake
+    for (std::optional<std::size_t> k = i; k; k = nodes[*k].parent) {
+      const std::string key = nodes[*k].name + ".rotation";
+      if (rep.count(key)) bound += (rep.at(key).refitted ? rep.at(key).tolerance : 0) + 1e-6;
+    }
+    const std::size_t ca = column(scene, nodes[i].name + ".translation.x");
+    const std::size_t ta = column(scene, nodes[i].name + ".target.x");
+    const std::size_t cb = column(*back, nodes[i].name + ".translation.x");
+    double view = 0, up = 0, eye = 0;
+    for (double f = scene.range_start(); f <= scene.range_end(); f += 1) {
+      scene.sample(f, a);
+      back->sample(f - scene.range_start(), b);  // glTF time = (frame − first) / fps, read back at frame = time · fps
+      const Vec3d to_target{a[ta] - a[ca], a[ta + 1] - a[ca + 1], a[ta + 2] - a[ca + 2]};
+      const Quatd qa = Quatd::from_wxyz(a[ca + 3], a[ca + 4], a[ca + 5], a[ca + 6]);
+      const Quatd qb = Quatd::from_wxyz(b[cb + 3], b[cb + 4], b[cb + 5], b[cb + 6]);
+      const Vec3d forward_b = rotate(qb, Vec3d{0, 0, -1});
+      view = std::max(view, std::atan2(norm(cross(forward_b, to_target)), dot(forward_b, to_target)));
+      const Vec3d up_a = rotate(qa, Vec3d{0, 1, 0}), up_b = rotate(qb, Vec3d{0, 1, 0});
+      up = std::max(up, std::atan2(norm(cross(up_a, up_b)), dot(up_a, up_b)));
+      for (int k = 0; k < 3; ++k) eye = std::max(eye, std::abs(a[ca + std::size_t(k)] - b[cb + std::size_t(k)]));
+    }
+    std::printf("[ frame22 read back ] %-10s view vs bake's target %.3g rad, up %.3g rad (bound %.3g), eye %.3g (%.3g of extent)\n",
+                nodes[i].name.c_str(), view, up, bound, eye, eye / extent);
+    EXPECT_LE(view, bound + 1e-9) << nodes[i].name;
+    EXPECT_LE(up, bound + 1e-9) << nodes[i].name;
+    EXPECT_LE(eye, 1e-5 * extent) << nodes[i].name;
+  }
+  EXPECT_EQ(cameras, 2);  // follow_cam, hold_cam
+}
 
 // Issue 10: "import and re-export of a glTF file round-trips its keys unchanged (byte-for-byte in
 // the accessors where nothing was resampled)" — through the real reader this time: random files

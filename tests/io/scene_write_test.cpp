@@ -235,7 +235,9 @@ TEST(SceneWrite, Version2PathsAndCamerasSurviveWriteThenRead) {
         // shape and start speed, the RMF closing.
         "\"kind\": \"constraints\"", "\"acceleration\": -0.25", "\"kind\": \"acceleration_keys\"", "\"accelerations\"",
         "\"acceleration\": -0.5", "\"shape\": \"linear\"", "\"start_speed\": 0.5", "\"from\": 0.25", "\"to\": 3.0",
-        "\"closing\": \"none\""}) {
+        "\"closing\": \"none\"",
+        // own_rotation (a glTF camera node's view): the camera keeps its keyed rotation.
+        "\"own_rotation\": {\"distance\": 4.0}", "\"yfov_deg\": 35.0"}) {
     EXPECT_NE(text->find(member), std::string::npos) << member << "\n" << *text;
   }
 }

@@ -419,6 +419,64 @@ TYPED_TEST(CameraViewTyped, MuseumPathsGiveFiniteAimedCameras) {
   for (const auto& ex : test::museum_curve_points<T>()) run(ex.name, ex.points);
 }
 
+// own_rotation (a glTF camera node): the view is the object's world rotation R; forward is R's
+// image of −Z and up of +Y, checked against the rotation-matrix columns written from the unit
+// quaternion formula (not the library's rotate); the tilt rolls about forward by the signed
+// angle; the COI is eye + forward·distance; a zero or NaN rotation reads as identity.
+TYPED_TEST(CameraViewTyped, OwnRotationViewsAlongTheObjectsRotation) {
+  using T = TypeParam;
+  test::Random rng(test::seed_for(86));
+  SCOPED_TRACE(rng.trace());
+  const T distance = T(2.5);
+  const CameraView<T> view = build_ok(RawCameraView<T>{.coi = RawOwnRotation<T>{.distance = distance}});
+  EXPECT_EQ(view.coi_mode(), CoiMode::OwnRotation);
+  EXPECT_FALSE(view.needs_camera_path());
+  EXPECT_TRUE(view.target_names().empty());
+  for (int k = 0; k < 200; ++k) {
+    const Quat<T> q = rng.template rotation<T>();
+    const Vec3<T> eye = rng.vec3(T(-10), T(10));
+    // Columns of the rotation matrix of a unit quaternion (w, x, y, z): Y = (2(xy − wz), 1 − 2(x² + z²),
+    // 2(yz + wx)), Z = (2(xz + wy), 2(yz − wx), 1 − 2(x² + y²)).
+    const T w = q.w, x = q.x, y = q.y, z = q.z;
+    const Vec3<T> col_y{T(2) * (x * y - w * z), T(1) - T(2) * (x * x + z * z), T(2) * (y * z + w * x)};
+    const Vec3<T> col_z{T(2) * (x * z + w * y), T(2) * (y * z - w * x), T(1) - T(2) * (x * x + y * y)};
+    // The world rotation need not be unit (a keyed quaternion is normalised when built; here any scale).
+    const T scale = rng.uniform(T(0.5), T(2));
+    const CameraViewSample<T> v = view.evaluate({.eye = eye, .world_rotation = q * scale});
+    expect_axes(v.pose);
+    expect_vec_near(v.pose.forward, Vec3<T>(-col_z), axis_tol<T>);
+    expect_vec_near(v.pose.up, col_y, axis_tol<T>);
+    expect_vec_near(v.target, Vec3<T>(eye - col_z * distance), axis_tol<T> * T(16));
+    expect_aims(v);
+    EXPECT_EQ(v.pose.eye, eye);
+  }
+  // Tilt (constant + keyed): forward unchanged, up turned about forward by the signed angle.
+  const CameraView<T> tilted = build_ok(RawCameraView<T>{.coi = RawOwnRotation<T>{}, .tilt_deg = T(30), .tilt_track = "roll"});
+  for (int k = 0; k < 50; ++k) {
+    const Quat<T> q = rng.template rotation<T>();
+    const T keyed = rng.uniform(T(-100), T(100));
+    const CameraViewSample<T> plain = view.evaluate({.world_rotation = q});
+    const CameraViewSample<T> v = tilted.evaluate({.tilt_track_deg = keyed, .world_rotation = q});
+    expect_vec_near(v.pose.forward, plain.pose.forward, axis_tol<T>);
+    const double signed_angle = std::atan2(double(dot(cross(plain.pose.up, v.pose.up), plain.pose.forward)),
+                                           double(dot(plain.pose.up, v.pose.up)));
+    const double expected = std::remainder(double(30 + keyed) * pi_v<double> / 180, 2 * pi_v<double>);
+    EXPECT_NEAR(signed_angle, expected, 4 * aim_tol<T>);
+    // + rolls up towards right: for a small positive tilt, up moves towards the untilted right.
+  }
+  const CameraView<T> small = build_ok(RawCameraView<T>{.coi = RawOwnRotation<T>{}, .tilt_deg = T(10)});
+  const CameraViewSample<T> rolled = small.evaluate({});
+  EXPECT_GT(rolled.pose.up.x, T(0));  // identity: right = +X
+  // Degenerate rotations read as identity: forward −Z, up +Y, never NaN.
+  const T nan = std::numeric_limits<T>::quiet_NaN();
+  for (const Quat<T> bad : {Quat<T>::from_wxyz(0, 0, 0, 0), Quat<T>::from_wxyz(nan, 0, 0, 0)}) {
+    const CameraViewSample<T> v = view.evaluate({.world_rotation = bad});
+    EXPECT_EQ(v.pose.forward, (Vec3<T>{0, 0, -1}));
+    EXPECT_EQ(v.pose.up, (Vec3<T>{0, 1, 0}));
+    EXPECT_EQ(v.target, (Vec3<T>{0, 0, -distance}));
+  }
+}
+
 TEST(CameraView, BadRawViewsNameTheMember) {
   using R = RawCameraViewd;
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -453,6 +511,10 @@ TEST(CameraView, BadRawViewsNameTheMember) {
       {"empty target name in a segment",
        R{.coi = RawHoldThenMove<double>{{{.hold_until = 1}, {.target = std::string(), .hold_until = 5}}}},
        "hold/1/target"},
+      {"zero own-rotation distance", R{.coi = RawOwnRotation<double>{.distance = 0}}, "own_rotation/distance"},
+      {"NaN own-rotation distance", R{.coi = RawOwnRotation<double>{.distance = nan}}, "own_rotation/distance"},
+      {"own rotation with an up path", R{.coi = RawOwnRotation<double>{}, .up_path = "u"}, "up_path"},
+      {"own rotation with an up", R{.coi = RawOwnRotation<double>{}, .up = Vec3d{0, 0, 1}}, "up"},
   };
   for (const auto& b : bad) {
     SCOPED_TRACE(b.name);

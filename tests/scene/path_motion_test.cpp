@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <string>
@@ -24,6 +25,7 @@
 #include "inbetween/math/rotation.hpp"
 #include "inbetween/paths/banking.hpp"
 #include "inbetween/tracks/quat_track.hpp"
+#include "support/museum_tracks.hpp"
 #include "support/museum_curves.hpp"
 #include "support/museum_paths.hpp"
 #include "support/random.hpp"
@@ -668,6 +670,41 @@ TEST(PathMotion, TrackGivesTheDistanceAndItsDerivative) {
     EXPECT_NEAR(m.sample(f).speed, 0.75 / 45 * L * kFps, 1e-12 * L * kFps);
   }
   EXPECT_EQ(m.sample(80).speed, 0.0);  // constant extrapolation after the last key
+}
+
+// A track-driven leg's acceleration is the track's analytic second derivative × the scale:
+// against the closed form of a Bézier distance key pair whose frame is linear in the Bézier
+// parameter (handles a third of the way in x: y(x) is a cubic, y″ its Bernstein second
+// derivative), and against the central difference of the leg's own analytic velocity.
+TEST(PathMotion, TrackLegsHaveTheTracksSecondDerivative) {
+  const AnyCurve path = test_path();
+  RawFCurve rf;
+  // frames 10 … 40, distance fraction 0 → 0.9 with handles at frames 20 and 30 (values 0.1, 0.5)
+  rf.keys = {test::museum_detail::free_key(10, 0, {0, -0.1}, {20, 0.1}), test::museum_detail::free_key(40, 0.9, {30, 0.5}, {50, 1.3})};
+  auto track = build_fcurve(rf);
+  ASSERT_TRUE(track.has_value());
+  RawPathMotion raw{.path = path};
+  raw.speed = RawSpeed{.kind = SpeedKind::track, .fraction = true, .track = *track};
+  const PathMotion m = build(raw);
+  const double L = m.length();
+  // Control values in float, as the F-curve stores them.
+  const double y0 = 0, y1 = double(0.1f), y2 = double(0.5f), y3 = double(0.9f);
+  double worst = 0;
+  for (double f = 10.5; f < 40; f += 1.25) {
+    const double u = (f - 10) / 30;
+    const double closed = 6 * ((1 - u) * (y2 - 2 * y1 + y0) + u * (y3 - 2 * y2 + y1)) / (30.0 * 30.0) * L;
+    const EaseSample<double> s = m.distance_at(f);
+    EXPECT_NEAR(s.acceleration, closed, 1e-12 * L) << f;  // Newton's u to a few ulp
+    // Central difference of the analytic velocity: the distance is a cubic in the frame here, so
+    // the velocity is quadratic and its central difference exact up to rounding.
+    const double h = 1.0 / 64;
+    const double cd = (m.distance_at(f + h).velocity - m.distance_at(f - h).velocity) / (2 * h);
+    EXPECT_NEAR(s.acceleration, cd, 1e-10 * L) << f;
+    worst = std::max(worst, std::abs(s.acceleration - closed) / L);
+  }
+  std::printf("[ track leg acceleration ] worst |a - closed form| / L = %.3g\n", worst);
+  EXPECT_EQ(m.distance_at(5).acceleration, 0.0);   // constant extrapolation before the keys
+  EXPECT_EQ(m.distance_at(45).acceleration, 0.0);  // and after
 }
 
 // ---- errors

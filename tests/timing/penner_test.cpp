@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "support/random.hpp"
@@ -152,6 +154,78 @@ TEST(PennerVelocity, MatchesCentralDifferenceEverywhere) {
       }
     }
   }
+}
+
+// ------------------------------------------------------------------ penner_ease_acceleration
+// Against the central difference of the analytic velocity, with its error estimated by Richardson:
+// D(h) = a + h²·v‴/6 + O(h⁴), so |D(h/2) − a| ≈ |D(h) − D(h/2)|/3.  The check |a − D(h/2)| ≤
+// |D(h) − D(h/2)| + rounding (64ε·max(1, |v|)/h, the velocity's rounding over the step) can only
+// pass for a formula right to the difference's own accuracy; a wrong factor or sign is off by
+// O(|a|).  h = 1e-4 (truncation ≈ 1.7e-9·|v‴| even for elastic's |v‴| ~ 1e6: ≈ 2e-3 ≪ |a| ~ 400).
+// Points where D(h) and D(h/2) disagree by more than 1e-2·max(1, |a|) straddle a branch join
+// (bounce arcs, elastic's blend edge, the in-out midpoint) and are skipped (this does not look at
+// a), as is circ within 2e-2 of its vertical.
+TEST(PennerAcceleration, MatchesCentralDifferenceOfTheVelocity) {
+  constexpr double h = 1e-4;
+  const PennerParams<double> params[] = {{.back = 1.70158, .amplitude = 1, .period = 0.3},
+                                         {.back = 0.8, .amplitude = 0.4, .period = 0.45}};
+  const auto acc = [](EasingCurve c, EasingDirection d, double u, const PennerParams<double>& p) {
+    return penner_ease_acceleration(c, d, u, 1.0, 1.0, p);
+  };
+  double worst = 0;
+  for (const auto& p : params) {
+    for (EasingCurve c : kAll) {
+      for (EasingDirection d : kDirs) {
+        SCOPED_TRACE(int(c) * 10 + int(d));
+        int checked = 0;
+        for (int i = 0; i < 997; ++i) {
+          const double u = (i + 0.37) / 997.0;
+          if (c == EasingCurve::circ) {
+            const double vertical = d == EasingDirection::in ? 1.0 : d == EasingDirection::out ? 0.0 : 0.5;
+            if (std::abs(u - vertical) < 2e-2) continue;
+          }
+          const auto v = [&](double x) { return ease_unit_velocity(c, d, x, p); };
+          const double a = acc(c, d, u, p);
+          const double d1 = (v(u + h) - v(u - h)) / (2 * h), d2 = (v(u + h / 2) - v(u - h / 2)) / h;
+          const double rounding = 64 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(v(u))) / h;
+          const bool near_join = std::abs(d1 - d2) > 1e-2 * std::max(1.0, std::abs(a));
+          if (near_join) continue;  // a join within h: the difference straddles two branches
+          EXPECT_LE(std::abs(a - d2), std::abs(d1 - d2) + rounding) << "u = " << u << ": a " << a << ", D(h/2) " << d2;
+          worst = std::max(worst, std::abs(a - d2) / std::max(1.0, std::abs(a)));
+          ++checked;
+        }
+        EXPECT_GE(checked, 940);  // only points next to a join or circ's vertical are skipped
+      }
+    }
+  }
+  std::printf("[ penner acceleration ] worst |a − D(h/2)| / max(1, |a|) = %.3g\n", worst);
+}
+
+TEST(PennerAcceleration, ClosedForms) {
+  const double pi = 3.14159265358979323846;
+  // sine in 1 − cos(πu/2) → (π/2)²·cos(πu/2); out sin(πu/2) → −(π/2)²·sin(πu/2); in-out
+  // (1 − cos πu)/2 → (π²/2)·cos πu.
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::sine, EasingDirection::in, 0.3, 1.0, 1.0), pi * pi / 4 * std::cos(pi * 0.15), 1e-14);
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::sine, EasingDirection::out, 0.3, 1.0, 1.0), -pi * pi / 4 * std::sin(pi * 0.15), 1e-14);
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::sine, EasingDirection::in_out, 0.3, 1.0, 1.0), pi * pi / 2 * std::cos(pi * 0.3), 1e-14);
+  // quad in u² → 2; cubic out 1 − (1 − u)³ → −6(1 − u); quint in-out 16u⁵ → 320u³ on the first half.
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::quad, EasingDirection::in, 0.3, 1.0, 1.0), 2.0, 1e-15);
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::cubic, EasingDirection::out, 0.3, 1.0, 1.0), -6 * 0.7, 1e-14);
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::quint, EasingDirection::in_out, 0.25, 1.0, 1.0), 320 * std::pow(0.25, 3), 1e-13);
+  // back in u²((s + 1)u − s) → 6(s + 1)u − 2s.
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::back, EasingDirection::in, 0.2, 1.0, 1.0, PennerParams<double>{}),
+              6 * 2.70158 * 0.2 - 2 * 1.70158, 1e-14);
+  // bounce out: arcs 7.5625·(u − a)² + c → 15.125.
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::bounce, EasingDirection::out, 0.1, 1.0, 1.0), 15.125, 1e-13);
+  // expo in (2^(10(u−1)) − 2⁻¹⁰)/(1 − 2⁻¹⁰) → (10 ln 2)²·2^(10(u−1))/(1 − 2⁻¹⁰); at u = 1: (10 ln 2)²/(1 − 2⁻¹⁰).
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::expo, EasingDirection::in, 1.0, 1.0, 1.0),
+              100 * std::log(2.0) * std::log(2.0) / (1 - 1.0 / 1024), 1e-12);
+  // circ in 1 − √(1 − u²) → (1 − u²)^(−3/2).
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::circ, EasingDirection::in, 0.6, 1.0, 1.0), std::pow(0.64, -1.5), 1e-13);
+  // Change and duration scale it by change/duration².
+  EXPECT_NEAR(penner_ease_acceleration(EasingCurve::sine, EasingDirection::in_out, 3.0, 5.0, 10.0),
+              5.0 / 100.0 * pi * pi / 2 * std::cos(pi * 0.3), 1e-15);
+  EXPECT_TRUE(std::isfinite(penner_ease_acceleration(EasingCurve::circ, EasingDirection::in, 1.0, 1.0, 1.0)));
 }
 
 TEST(PennerVelocity, ClosedForms) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -569,6 +570,106 @@ TEST(FCurveDerivative, CyclesMirrorNegatesAndRepeatOffsetKeepsTheSlope) {
   for (float x : {-15.f, -5.f, 25.f, 36.f}) {
     EXPECT_NEAR(c.derivative(x), (double(c.sample(x + 0.1f)) - c.sample(x - 0.1f)) / (double(x + 0.1f) - double(x - 0.1f)), 1e-5) << x;
   }
+}
+
+// ------------------------------------------------------------------ second derivative (ours)
+TEST(FCurveSecondDerivative, BezierWithLinearFrameIsTheCubicsClosedForm) {
+  // Free handles at x = 3 and 6 between keys at x = 0 and 9: x(u) = 9u is linear, so y(x) is the
+  // cubic Bernstein polynomial with y = 1, 5, 0, 7 and y″(x) = 6·((1 − u)(y2 − 2y1 + y0) +
+  // u(y3 − 2y2 + y1)) / 81 with u = x/9.  The keys are exact in float.
+  RawFCurve raw;
+  raw.keys = {test::museum_detail::free_key(0, 1, {-3, -3}, {3, 5}), test::museum_detail::free_key(9, 7, {6, 0}, {12, 14})};
+  const FCurve c = build(raw);
+  for (float x : {0.f, 0.5f, 2.f, 4.5f, 7.25f, 9.f}) {
+    const double u = double(x) / 9;
+    const double expected = 6 * ((1 - u) * (0 - 2 * 5 + 1) + u * (7 - 2 * 0 + 5)) / 81;
+    // the Bézier parameter solved by Newton steps to a few ulp: the result to 1e-12
+    EXPECT_NEAR(c.second_derivative(x), expected, 1e-12) << x;
+  }
+  // Linear and constant segments, constant and linear extrapolation, NaN: 0.
+  RawFCurve lin{.extrapolation = Extrapolation::linear};
+  for (auto [x, y] : {std::pair{0., 0.}, {10., 10.}, {20., 4.}}) {
+    FCurveKey k = inserted(x, y);
+    k.interpolation = Interpolation::linear;
+    lin.keys.push_back(k);
+  }
+  const FCurve l = build(lin);
+  for (float x : {-7.f, 0.f, 5.f, 10.f, 15.f, 31.f}) EXPECT_EQ(l.second_derivative(x), 0.0) << x;
+  EXPECT_EQ(c.second_derivative(-3.f), 0.0);  // constant extrapolation
+  EXPECT_EQ(c.second_derivative(std::numeric_limits<float>::quiet_NaN()), 0.0);
+}
+
+TEST(FCurveSecondDerivative, CyclesKeepTheSignOnAMirroredCopy) {
+  // d²/dframe² of y(c − frame) is y″: a mirrored copy keeps the second derivative's sign while
+  // the first derivative flips; repeat_offset adds a constant.
+  RawFCurve raw{.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}};
+  raw.keys = {test::museum_detail::free_key(0, 1, {-3, -3}, {3, 5}), test::museum_detail::free_key(9, 7, {6, 0}, {12, 14})};
+  const FCurve c = build(raw);
+  for (float x : {0.5f, 2.f, 4.5f, 7.25f}) {
+    EXPECT_EQ(c.second_derivative(-x), c.second_derivative(x)) << x;   // mirror about frame 0
+    EXPECT_EQ(c.second_derivative(9.f + x), c.second_derivative(x)) << x;  // repeat
+    EXPECT_EQ(c.derivative(-x), -c.derivative(x)) << x;
+  }
+}
+
+TEST(FCurveSecondDerivative, MatchesCentralDifferenceOfTheDerivative) {
+  // derivative() is analytic in double; its central difference D(h) = y″ + h²·y⁗/6 + O(h⁴).  With
+  // h = 1/64 and h/2 = 1/128 (exact in float, so t ± h are the frames asked for) Richardson's
+  // estimate |D(h) − D(h/2)| bounds |D(h/2) − y″| (it is ≈ 3 times that error), plus rounding of
+  // derivative() over the step (1e-12·max(1, |y′|)/h: it solves x(u) = frame to a few ulp).  Points
+  // within 2h of a key are skipped (y″ jumps there, as in the derivative test); where
+  // D(h) and D(h/2) disagree by more than 1e-2·max(1, |y″|) the step straddles a key, a branch
+  // join of an easing or a vertical handle: skipped (this does not look at second_derivative()).
+  constexpr float h = 1.f / 64;
+  std::vector<FCurve> curves;
+  for (const auto& ex : test::museum_fcurves()) {
+    auto built = build_fcurve(ex.curve);
+    if (built && std::abs(built->keys().front().x) < 1e4f && std::abs(built->keys().back().x) < 1e4f) curves.push_back(*built);
+  }
+  test::Random rng(test::seed_for(6007));
+  SCOPED_TRACE(rng.trace());
+  for (int trial = 0; trial < 100; ++trial) {
+    RawFCurve raw{.extrapolation = trial % 2 ? Extrapolation::linear : Extrapolation::constant};
+    double x = rng.uniform(-50.0, 50.0);
+    const int n = rng.integer(2, 6);
+    for (int i = 0; i < n; ++i) {
+      FCurveKey k = inserted(x, rng.uniform(-10.0, 10.0));
+      k.interpolation = Interpolation(rng.integer(0, 12));
+      k.handle_left_type = k.handle_right_type = HandleType(rng.integer(1, 4));
+      raw.keys.push_back(k);
+      x += rng.uniform(2.0, 10.0);
+    }
+    curves.push_back(build(raw));
+  }
+  int checked = 0, skipped = 0;
+  double worst = 0;
+  for (std::size_t ci = 0; ci < curves.size(); ++ci) {
+    const FCurve& c = curves[ci];
+    SCOPED_TRACE("curve " + std::to_string(ci));
+    const float lo = c.keys().front().x, hi = c.keys().back().x;
+    const float w = std::max(hi - lo, 1.f);
+    for (int i = -50; i <= 250; ++i) {
+      const float t = std::round((lo + w * (float(i) + 0.37f) / 200.f) * 64.f) / 64.f;
+      const double a = c.second_derivative(t);
+      ASSERT_TRUE(std::isfinite(a));
+      bool near_key = false;  // y″ jumps at a key (segments join with C¹ at most)
+      for (const auto& k : c.keys()) near_key = near_key || std::abs(k.x - t) <= 2 * h;
+      if (near_key) continue;
+      const double d1 = (c.derivative(t + h) - c.derivative(t - h)) / (2.0 * h);
+      const double d2 = (c.derivative(t + h / 2) - c.derivative(t - h / 2)) / double(h);
+      if (std::abs(d1 - d2) > 1e-2 * std::max(1.0, std::abs(d2))) {
+        ++skipped;
+        continue;
+      }
+      const double rounding = 1e-12 * std::max(1.0, std::abs(c.derivative(t))) / h;
+      EXPECT_LE(std::abs(a - d2), std::abs(d1 - d2) + rounding) << "frame " << t << ": " << a << " vs " << d2;
+      worst = std::max(worst, std::abs(a - d2) / std::max(1.0, std::abs(a)));
+      ++checked;
+    }
+  }
+  std::printf("[ fcurve second derivative ] %d points checked, %d skipped, worst |y'' - D(h/2)| / max(1, |y''|) = %.3g\n",
+              checked, skipped, worst);
+  EXPECT_GT(checked, 20 * skipped);
 }
 
 TEST(FCurveDerivative, MatchesCentralDifferenceOnMuseumAndRandomCurves) {

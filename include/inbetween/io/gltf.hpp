@@ -12,6 +12,9 @@
 ///                         CUBICSPLINE → gltf_cubic (4-D Hermite, normalised), tangents / fps
 ///   weights               one VectorKind::vec1 track "<node>.weights.<i>" per morph target,
 ///                         with the translation mapping
+///   camera (perspective)  the object becomes a scene camera viewing along its own rotation
+///                         (RawOwnRotation: local −Z forward, +Y up) with the camera's yfov;
+///                         an orthographic camera leaves a plain object and a note
 ///
 /// Every node becomes an object (name: the node's name, `node<index>` when it has none; a name
 /// already taken gets `#<index>` appended), its parent the node that lists it as a child, its rest
@@ -22,6 +25,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "inbetween/math/expected.hpp"
 #include "inbetween/scene/raw_scene.hpp"
@@ -35,6 +39,10 @@ struct GltfReadOptions {
   std::string animation;
   /// Frames per second: glTF keys are in seconds, the scene in frames (frame = time · fps); finite, > 0.
   double fps = 24;
+  /// When not null, the reader appends one line per thing it imports approximately or not at all
+  /// (an orthographic camera; a camera's znear, zfar or aspectRatio, which a scene camera does not
+  /// keep); the commands print them as `note:` lines.
+  std::vector<std::string>* notes = nullptr;
 };
 
 /// Reads a `.gltf` or `.glb` file (told apart by the glb magic "glTF", not by the extension) and

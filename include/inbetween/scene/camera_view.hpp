@@ -15,7 +15,10 @@
 ///     into the end tangent as s approaches L;
 ///   - coi_path: COI = C(f·L_C) on a second path with f = s / L_P, the camera's normalised distance;
 ///   - hold: the COI holds on one target until a frame, then moves to the next target by linear
-///     interpolation in space and the sine ease-in/ease-out (Eq. 3.18) in time, holds there, …
+///     interpolation in space and the sine ease-in/ease-out (Eq. 3.18) in time, holds there, …;
+///   - own_rotation: no COI is chosen: the camera object's own world rotation (keyed, or from its
+///     path, through its parent) is the view, looking down its −Z with +Y up (a glTF camera node);
+///     the COI is the point a distance ahead on that axis.
 /// Up direction: a fixed general up vector (default +Y, Eq. 3.33) or an up path, U(f·L_U) − eye
 /// (Eq. 3.34); then a tilt rolls the camera about its view direction: a constant, plus optionally
 /// a keyed value from a scalar track (the texts' "user-specified value (or interpolated set of
@@ -142,10 +145,20 @@ struct RawHoldThenMove {
   std::vector<RawHoldSegment<T>> segments;  ///< ≥ 1, hold_until[i] + move_frames[i] ≤ hold_until[i + 1]
 };
 
-/// The centre-of-interest mode: one of the four alternatives (JSON members `look_at`, `ahead`,
-/// `coi_path`, `hold`).
+/// Mode `own_rotation`: the view is the camera object's own world rotation (its keyed rotation or
+/// path orientation composed with its parent's), looking down its local −Z with +Y up, as a glTF
+/// camera node does.  `up` and `up_path` have no part in it (the builder refuses an up_path or a
+/// non-default up); the tilt still rolls the view.  The COI (bake's target columns) is the point
+/// `distance` ahead on the view axis.
 template <Real T>
-using RawCoi = std::variant<RawLookAt<T>, RawLookAhead<T>, RawCoiPath, RawHoldThenMove<T>>;
+struct RawOwnRotation {
+  T distance = T(1);  ///< > 0, finite, length units: how far ahead of the eye the reported COI lies
+};
+
+/// The centre-of-interest mode: one of the five alternatives (JSON members `look_at`, `ahead`,
+/// `coi_path`, `hold`, `own_rotation`).
+template <Real T>
+using RawCoi = std::variant<RawLookAt<T>, RawLookAhead<T>, RawCoiPath, RawHoldThenMove<T>, RawOwnRotation<T>>;
 
 /// A camera's view as authored: plain data, checked by build_camera_view().  Member names are the
 /// JSON members; errors name them as structured location steps relative to this object
@@ -178,6 +191,9 @@ struct CameraInputs {
   Transform<T> world_from_path{};      ///< maps path space to world (the camera parent's world transform)
   std::span<const Vec3<T>> targets{};  ///< world positions of target_names(), in that order
   T tilt_track_deg = T(0);             ///< value of the track tilt_track_name() at this frame (degrees), else 0
+  /// The camera object's own world rotation (parent ∘ local; keyed or from its path), read by mode
+  /// own_rotation only (normalised there; a zero or non-finite quaternion reads as identity).
+  Quat<T> world_rotation{};
 };
 
 /// The result of a view evaluation: the camera pose and the centre of interest it aims at.
@@ -194,6 +210,7 @@ enum class CoiMode {
   Ahead,         ///< ahead on the camera's own path
   Path,          ///< on a second path
   HoldThenMove,  ///< hold, then move, between targets
+  OwnRotation,   ///< the camera object's own rotation is the view (a glTF camera node)
 };
 
 template <Real T>
@@ -203,7 +220,8 @@ class CameraView;
 /// yfov_deg not in (0, 180) or not finite; tilt_deg or up not finite; up zero; ahead with
 /// distance or spread negative or not finite, or count < 1; an empty object or path name; a
 /// non-finite point; hold with no segment, a non-finite frame, move_frames < 0, a last segment
-/// with move_frames ≠ 0, or hold_until[i] + move_frames[i] > hold_until[i + 1].
+/// with move_frames ≠ 0, or hold_until[i] + move_frames[i] > hold_until[i + 1]; own_rotation with
+/// a distance not finite and > 0, with an up_path, or with an up other than the default +Y.
 template <Real T>
 Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw);
 
@@ -255,6 +273,8 @@ class CameraView {
 
   CameraView() = default;
   Vec3<T> position(const Target& t, std::span<const Vec3<T>> targets) const noexcept;
+  Quat<T> own_rotation(const CameraInputs<T>& in) const noexcept;  // OwnRotation: world rotation with tilt
+  Vec3<T> own_forward(const CameraInputs<T>& in) const noexcept;    // OwnRotation: its −Z in world
   friend Expected<CameraView<T>> build_camera_view<T>(const RawCameraView<T>& raw);
 
   T yfov_rad_ = T(0);
@@ -264,6 +284,7 @@ class CameraView {
   T ahead_distance_ = T(0);          // Ahead
   int ahead_count_ = 1;
   T ahead_spread_ = T(0);
+  T own_distance_ = T(1);            // OwnRotation
   std::vector<Segment> segments_;    // HoldThenMove
   Vec3<T> up_{T(0), T(1), T(0)};
   std::string coi_path_name_;

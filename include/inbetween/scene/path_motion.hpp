@@ -221,12 +221,14 @@ class PathMotion {
   /// the first and last key of keys, the keyed range of a track.
   [[nodiscard]] Interval<double> frame_range() const noexcept { return range_; }
 
-  /// Distance s (length units, clamped into [0, L]), ds/dframe and d²s/dframe² (0 for a track) at
-  /// `frame`, as an EaseSample {s, velocity, acceleration}.  Outside
-  /// frame_range() an ease or keys hold their end distance with ds/dframe = 0; inside (ends
-  /// included) ds/dframe is the one-sided derivative of the speed form.  A track follows its own
-  /// extrapolation and cycles; where its value leaves [0, L] the distance is clamped and
-  /// ds/dframe = 0.  A NaN frame reads as the start of frame_range().
+  /// Distance s (length units, clamped into [0, L]), ds/dframe and d²s/dframe² at `frame`, as an
+  /// EaseSample {s, velocity, acceleration}, all analytic.  Outside frame_range() an ease or keys
+  /// hold their end distance with ds/dframe = d²s/dframe² = 0; inside (ends included) the
+  /// derivatives are the one-sided ones of the speed form.  A track follows its own extrapolation
+  /// and cycles (its derivatives FCurve::derivative and FCurve::second_derivative, at the frame
+  /// rounded to single precision like its value, × the scale); where its value leaves [0, L] the
+  /// distance is clamped and both derivatives are 0.  A NaN frame reads as the start of
+  /// frame_range().
   [[nodiscard]] EaseSample<double> distance_at(double frame) const noexcept;
 
   /// The sample at `frame` (see distance_at for frames outside the range).  `look_at_point`, when

@@ -141,8 +141,8 @@ class Scene {
   /// range starts at or before `frame`, else the first), world = parent ∘ local; the distance
   /// column is the leg's distance_before + its distance, the speed column its analytic speed (0
   /// while held).  Cameras: the eye is the world translation (keyed or from the path, through the
-  /// parent), the world rotation is the view's world_from_camera (looking down −Z), the target
-  /// columns the COI.  Objects looked at are read back from their columns like parents.
+  /// parent), the world rotation is the view's world_from_camera (looking down −Z; with own_rotation the
+  /// object's own world rotation, tilted), the target columns the COI.  Objects looked at are read back from their columns like parents.
   /// Quaternions are canonical (w ≥ 0) for path objects and cameras; see SceneCursor.
   void sample(double frame, std::span<double> out) const noexcept;
 
@@ -177,7 +177,8 @@ class Scene {
 };
 
 /// Checks everything and builds the scene: fps finite and > 0; range first ≤ last; track, path
-/// and object names non-empty and unique among tracks, among paths and among objects; no two
+/// and object names non-empty and unique among tracks, among paths and among objects (one ordered
+/// lookup per name: O(n log n); the first repeat in file order is reported, at its name); no two
 /// tracks or objects writing the same output column; every track's keys (through build_fcurve,
 /// build_track, build_quat_track, build_euler_track); Euler conventions; object rest rotations
 /// non-zero; parents that exist and form no cycle.  Version 2: every path leg (build_path_motion,
@@ -185,7 +186,7 @@ class Scene {
 /// names resolved (paths for a leg's curve and a camera's coi_path/up_path, scalar tracks for
 /// speed.track and tilt_track, objects for look_at and hold targets); legs in increasing,
 /// non-overlapping frame ranges (a track speed only on a single leg); no translation or rotation
-/// with a path, no rotation on a camera; ahead/coi_path/up_path only on a camera on a path; at
+/// with a path, no rotation on a camera (unless it views along it, own_rotation); ahead/coi_path/up_path only on a camera on a path; at
 /// most kMaxCameraTargets target objects per camera; no cycle through parents, look-ats and
 /// camera targets (the error names the member that closes it).  The Error's structured `location` names the offending
 /// member of `raw` ({"tracks", 2, "keys", 3, "frame"}), which, since RawScene mirrors the file, is

@@ -427,6 +427,136 @@ T penner_ease_velocity(EasingCurve curve, EasingDirection direction, T time, T c
   return T(0);
 }
 
+/// d²/dtime² of penner_ease(curve, direction, time, begin, change, duration, params): the
+/// closed-form second derivative of each formula, branch for branch like penner_ease_velocity
+/// (exact inside a branch; at a boundary that of the branch penner_ease takes).  quad … quint,
+/// back, sine, expo: derivatives of their polynomials and exponentials; bounce: each arc is a
+/// parabola, change·2·7.5625/duration² (sign by direction); circ: ±change·(1 − x²)^(−3/2)/duration²
+/// with 1 − x² floored at ε² as for the slope (large, finite where the circle is vertical);
+/// elastic: the product rule on gain(x)·wave(x) with the blend's gain piecewise linear (its second
+/// derivative 0 away from x = 0) and wave″ = A·2^(10y)·((k² − (dω)²)·sin φ + 2k·dω·cos φ), k = 10 ln 2.
+/// duration must be non-zero.
+template <Real T>
+T penner_ease_acceleration(EasingCurve curve, EasingDirection direction, T time, T change, T duration,
+                           const PennerParams<T>& params = {}) noexcept {
+  constexpr T half_pi = T(1.57079632679489661923);
+  constexpr T pi = T(3.14159265358979323846);
+  const T d = duration;
+  const T d2 = d * d;
+  switch (curve) {
+    case EasingCurve::back: {
+      T s = params.back;
+      if (direction == EasingDirection::in) return change * (T(6) * (s + T(1)) * (time / d) - T(2) * s) / d2;
+      if (direction == EasingDirection::out) return change * (T(6) * (s + T(1)) * (time / d - T(1)) + T(2) * s) / d2;
+      s *= T(1.525);
+      T x = time / (d / T(2));
+      if (x < T(1)) return change / T(2) * (T(6) * (s + T(1)) * x - T(2) * s) * T(4) / d2;
+      x -= T(2);
+      return change / T(2) * (T(6) * (s + T(1)) * x + T(2) * s) * T(4) / d2;
+    }
+    case EasingCurve::bounce: {
+      // bounce_out's arcs: change·(7.5625·(u − a)² + c): second derivative change·2·7.5625/d².
+      const T arc = change * T(2) * T(7.5625) / d2;
+      if (direction == EasingDirection::in) return -arc;   // change − bounce_out(d − time)
+      if (direction == EasingDirection::out) return arc;
+      return time < d / T(2) ? -T(2) * arc : T(2) * arc;  // halves at double speed, half the change
+    }
+    case EasingCurve::circ: {
+      const T eps = std::numeric_limits<T>::epsilon();
+      // d/dx of x/√(1 − x²) = (1 − x²)^(−3/2), with the slope's floor.
+      const auto curvature = [eps](T x) {
+        const T q = std::max(T(1) - x * x, eps * eps);
+        return T(1) / (q * std::sqrt(q));
+      };
+      if (direction == EasingDirection::in) return change * curvature(time / d) / d2;
+      if (direction == EasingDirection::out) return -change * curvature(time / d - T(1)) / d2;
+      T x = time / (d / T(2));
+      if (x < T(1)) return change / T(2) * curvature(x) * T(4) / d2;
+      x -= T(2);
+      return -change / T(2) * curvature(x) * T(4) / d2;
+    }
+    case EasingCurve::cubic:
+    case EasingCurve::quad:
+    case EasingCurve::quart:
+    case EasingCurve::quint: {
+      const int n = curve == EasingCurve::quad ? 2 : curve == EasingCurve::cubic ? 3 : curve == EasingCurve::quart ? 4 : 5;
+      const auto ipow = [](T v, int k) { T r = T(1); for (int i = 0; i < k; ++i) r *= v; return r; };
+      const T nn = T(n * (n - 1));
+      if (direction == EasingDirection::in) return change * nn * ipow(time / d, n - 2) / d2;
+      if (direction == EasingDirection::out) return -change * nn * ipow(T(1) - time / d, n - 2) / d2;
+      const T x = time / (d / T(2));
+      if (x < T(1)) return change / T(2) * nn * ipow(x, n - 2) * T(4) / d2;
+      return -change / T(2) * nn * ipow(T(2) - x, n - 2) * T(4) / d2;
+    }
+    case EasingCurve::elastic: {
+      // As penner_ease_velocity, one derivative further.
+      T gain = T(1), dgain = T(0);
+      T amplitude = params.amplitude;
+      T period = params.period;
+      T x, dx_dtime;
+      if (direction == EasingDirection::in_out) {
+        x = time / (d / T(2)) - T(1);
+        dx_dtime = T(2) / d;
+        if (period == T(0)) period = d * (T(0.3) * T(1.5));
+      } else {
+        x = time / d;
+        x = direction == EasingDirection::in ? x - T(1) : -x;
+        dx_dtime = (direction == EasingDirection::in ? T(1) : T(-1)) / d;
+        if (period == T(0)) period = d * T(0.3);
+      }
+      T s;
+      if (amplitude == T(0) || amplitude < std::abs(change)) {
+        s = period / T(4);
+        if (change != T(0)) {
+          const T g = amplitude != T(0) ? amplitude / std::abs(change) : T(0);
+          gain = g;
+          const T t = std::abs(s);
+          if (std::abs(x * d) < t) {
+            const T l = std::abs(x * d) / t;
+            gain = g * l + (T(1) - l);
+            dgain = (g - T(1)) * (x < T(0) ? T(-1) : T(1)) * d / t;
+          }
+        }
+        amplitude = change;
+      } else {
+        s = period / (T(2) * pi) * std::asin(change / amplitude);
+      }
+      const T w = T(2) * pi / period;
+      const T k = T(10) * std::log(T(2));
+      const T dw = d * w;
+      const auto dwave = [&](T y) {
+        const T phase = (y * d - s) * w;
+        return amplitude * std::pow(T(2), T(10) * y) * (k * std::sin(phase) + dw * std::cos(phase));
+      };
+      const auto ddwave = [&](T y) {
+        const T phase = (y * d - s) * w;
+        return amplitude * std::pow(T(2), T(10) * y) * ((k * k - dw * dw) * std::sin(phase) + T(2) * k * dw * std::cos(phase));
+      };
+      const T dx2 = dx_dtime * dx_dtime;
+      if (direction == EasingDirection::in_out) {
+        // x < 0: value = −0.5·gain(x)·wave(x); x ≥ 0: value = 0.5·gain(x)·wave(−x) (+ change).
+        if (x < T(0)) return T(-0.5) * (T(2) * dgain * dwave(x) + gain * ddwave(x)) * dx2;
+        return T(0.5) * (-T(2) * dgain * dwave(-x) + gain * ddwave(-x)) * dx2;
+      }
+      const T dv = T(2) * dgain * dwave(x) + gain * ddwave(x);
+      return (direction == EasingDirection::in ? -dv : dv) * dx2;
+    }
+    case EasingCurve::expo: {
+      const T k = T(10) * std::log(T(2));
+      if (direction == EasingDirection::in) return penner_detail::expo_in_velocity(time, change, d) * k / d;
+      if (direction == EasingDirection::out) return -penner_detail::expo_out_velocity(time, change, d) * k / d;
+      const T h = d * T(0.5);
+      if (time < h) return penner_detail::expo_in_velocity(time, change * T(0.5), h) * k / h;
+      return -penner_detail::expo_out_velocity(time - h, change * T(0.5), h) * k / h;
+    }
+    case EasingCurve::sine:
+      if (direction == EasingDirection::in) return change * half_pi * half_pi / d2 * std::cos(time / d * half_pi);
+      if (direction == EasingDirection::out) return -change * half_pi * half_pi / d2 * std::sin(time / d * half_pi);
+      return change / T(2) * pi * pi / d2 * std::cos(pi * time / d);
+  }
+  return T(0);
+}
+
 /// The normalised easing function e(u) for u in [0, 1]: e(0) = 0, e(1) = 1 (back and elastic
 /// overshoot in between).  Equal to penner_ease(curve, direction, u, 0, 1, 1, params); for elastic
 /// the period is then in units of the whole segment, so pass e.g. {.amplitude = 1, .period = 0.3}.

@@ -204,6 +204,16 @@ class FCurve {
   /// NaN gives 0; never NaN for a built curve.
   [[nodiscard]] double derivative(float frame) const noexcept;
 
+  /// d² value / d frame² at `frame`, analytic, in double from the stored keys like derivative():
+  /// a Bézier segment gives (y″x′ − y′x″)/x′³ at the Bézier parameter of the frame (0 where x′
+  /// vanishes: a zero-length handle at a segment's end, where the curvature in frames is
+  /// unbounded); linear and constant segments 0; the Penner easings their closed forms
+  /// (penner_ease_acceleration).  At an interior key the segment to the right counts, at the last
+  /// key the one to the left; outside the keys 0 (constant and linear extrapolation); with the
+  /// Cycles modifier that of the cycled copy (a mirrored copy keeps its sign).  NaN gives 0; never
+  /// NaN for a built curve.
+  [[nodiscard]] double second_derivative(float frame) const noexcept;
+
   /// The stored keys, with recomputed handles.
   [[nodiscard]] std::span<const Key> keys() const noexcept { return keys_; }
   /// Curve-level extrapolation.
@@ -224,6 +234,7 @@ class FCurve {
   };
   CycleMap map_cycles(float frame) const noexcept;
   double segment_derivative(int index, double t) const noexcept;
+  double segment_second_derivative(int index, double t) const noexcept;
   double extrapolation_slope(bool before) const noexcept;
   float evaluate_keys(float t, std::size_t* cursor) const noexcept;
   float extrapolate(float t, bool before) const noexcept;
