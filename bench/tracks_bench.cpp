@@ -380,8 +380,16 @@ void BM_RigFCurveRuntime(benchmark::State& state) {
 // group loop, AoS write), so BM_RigKernel / BM_RigRuntime is the kernel's effect per character.
 // Counter max_abs_diff: largest difference of any pose component from sample_rig over one pass
 // of the benchmark's frames (0 when bit-identical; FMA contraction makes a few ulp); the label
-// names the Highway target that ran.
-enum class RigKernel { xsimd, hwy_static, hwy_dynamic, hwy_dynamic_avx2 };
+// names the Highway target that ran.  RigKernel::none runs everything but the lane arithmetic
+// (its lanes write zeros): what no SIMD library can speed up, measured.
+enum class RigKernel { none, xsimd, hwy_static, hwy_dynamic, hwy_dynamic_avx2 };
+
+template <class T>
+struct ZeroLanes {
+  void operator()(const T*, const T*, const T*, T, std::size_t n, T (*res)[rig_group<T>]) const noexcept {
+    for (std::size_t r = 0; r < 10; ++r) std::fill_n(res[r], n, T(0));
+  }
+};
 
 template <class T, RigKernel K>
 void BM_RigKernel(benchmark::State& state) {
@@ -393,13 +401,14 @@ void BM_RigKernel(benchmark::State& state) {
   const double end = rig_end(rig), step = 1.0 / double(state.range(1));
   bench_rig::hwy_limit_to_avx2(K == RigKernel::hwy_dynamic_avx2);
   const auto sample = [&](T frame, RigContext<T>& ctx, std::span<JointPose<T>> out) {
-    if constexpr (K == RigKernel::xsimd) bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::XsimdLanes<T>{});
+    if constexpr (K == RigKernel::none) bench_rig::sample_rig_with(clip, frame, ctx, out, ZeroLanes<T>{});
+    else if constexpr (K == RigKernel::xsimd) bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::XsimdLanes<T>{});
     else if constexpr (K == RigKernel::hwy_static) bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::HwyStaticLanes<T>{});
     else bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::HwyDynamicLanes<T>{});
   };
   std::vector<JointPose<T>> pose(rig.size()), ref(rig.size());
   double diff = 0;
-  {
+  if (K != RigKernel::none) {
     RigContext ref_ctx = make_rig_context(clip), ctx = make_rig_context(clip);
     for (double frame = 0; frame <= end; frame += step) {
       sample_rig(clip, T(frame), ref_ctx, std::span<JointPose<T>>(ref));
@@ -420,8 +429,9 @@ void BM_RigKernel(benchmark::State& state) {
     frame += step;
     if (frame > end) frame = 0;
   }
-  state.counters["max_abs_diff"] = diff;
-  if constexpr (K == RigKernel::xsimd) state.SetLabel("xsimd");
+  if (K != RigKernel::none) state.counters["max_abs_diff"] = diff;
+  if constexpr (K == RigKernel::none) state.SetLabel("refresh and AoS write only");
+  else if constexpr (K == RigKernel::xsimd) state.SetLabel("xsimd");
   else if constexpr (K == RigKernel::hwy_static) state.SetLabel(bench_rig::hwy_static_target());
   else state.SetLabel(bench_rig::hwy_dynamic_target());
   bench_rig::hwy_limit_to_avx2(false);
@@ -436,10 +446,12 @@ BENCHMARK(BM_RigRuntime<float>) RIG_ARGS;
 BENCHMARK(BM_RigRuntime<double>) RIG_ARGS;
 BENCHMARK(BM_RigFCurvePerCurve) RIG_ARGS;
 BENCHMARK(BM_RigFCurveRuntime) RIG_ARGS;
+BENCHMARK(BM_RigKernel<float, RigKernel::none>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<float, RigKernel::xsimd>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<float, RigKernel::hwy_static>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<float, RigKernel::hwy_dynamic>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<float, RigKernel::hwy_dynamic_avx2>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<double, RigKernel::none>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<double, RigKernel::xsimd>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<double, RigKernel::hwy_static>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<double, RigKernel::hwy_dynamic>) RIG_ARGS;
