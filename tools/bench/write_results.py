@@ -241,6 +241,48 @@ def rig_section(r: Results) -> list[str]:
     return out
 
 
+# Issue 12, "SIMD where it pays — measure and say why": the runtime's lane kernel in other libraries.
+RIG_KERNELS = (("xsimd", "xsimd"), ("hwy_static", "Highway static"), ("hwy_dynamic", "Highway dynamic"),
+               ("hwy_dynamic_avx2", "Highway dynamic ≤ AVX2"))
+ADOPT_SPEEDUP = 1.3  # docs/runtime.md: Highway's dynamic dispatch is adopted only at ≥ 1.3× per character
+
+
+def rig_simd_section(r: Results) -> list[str]:
+    rows = []
+    for scalar in ("float", "double"):
+        for j in RIG_SIZES:
+            prod = r.time(f"BM_RigRuntime<{scalar}>/{j}/2")
+            kernels = {k: r.time(f"BM_RigKernel<{scalar}, RigKernel::{k}>/{j}/2") for k, _ in RIG_KERNELS}
+            rest = r.time(f"BM_RigKernel<{scalar}, RigKernel::none>/{j}/2")
+            if prod is None and all(v is None for v in kernels.values()):
+                continue
+            cells = [f"{scalar}, {j} joints", fmt_time(prod)]
+            for k, _ in RIG_KERNELS:
+                q = ratio(prod, kernels[k])
+                cells.append(fmt_time(kernels[k]) + ("" if q is None else f" ({q:.2f}×)"))
+            share = None if prod is None or rest is None else max(0.0, prod - rest) / prod
+            cells.append(fmt_time(rest))
+            cells.append("—" if share is None else f"{100 * share:.0f} %")
+            diffs = [r.counter(f"BM_RigKernel<{scalar}, RigKernel::{k}>/{j}/2", "max_abs_diff") for k, _ in RIG_KERNELS]
+            diffs = [d for d in diffs if d is not None]
+            cells.append(fmt_num(max(diffs) if diffs else None, 2))
+            cells.append(verdict(ratio(prod, kernels["hwy_dynamic"]), ADOPT_SPEEDUP, True))
+            rows.append(cells)
+    return (["### Which SIMD library: the rig kernel in std::experimental::simd, xsimd and Highway (`BM_RigKernel`)", "",
+             "The same clips as above, the same refresh, group loop and AoS write (`rig_detail::evaluate`); only "
+             "the lane arithmetic differs (`bench/rig_lanes/`).  Time per character, in parentheses the "
+             "production time / this one (above 1 = faster than production).  Highway static is the build's "
+             "baseline target (SCALAR under the default SSE2 flags: Highway 1.0.3 has no SSE2 target); dynamic "
+             "is `HWY_DYNAMIC_DISPATCH` to the best target of this CPU, or capped at AVX2.  \"refresh + write\" "
+             "runs everything but the lane arithmetic: what no SIMD library can speed up; \"kernel share\" = "
+             "(production − that) / production.  max abs diff: largest difference of any pose component from "
+             "`sample_rig` over the kernels.  Adoption rule (docs/runtime.md): Highway's dynamic dispatch "
+             f"replaces std::experimental::simd only at ≥ {ADOPT_SPEEDUP:g}× per character.", ""]
+            + table(["rig", "std::experimental::simd (production)"] + [name for _, name in RIG_KERNELS]
+                    + ["refresh + write", "kernel share", "max abs diff", f"Highway dynamic ≥ {ADOPT_SPEEDUP:g}×"],
+                    rows) + [""])
+
+
 # ----------------------------------------------------------------------------- machine
 def machine_lines(r: Results, command: str, when: str, load: str, build_dir: Path | None) -> list[str]:
     model, cores = "unknown CPU", str(os.cpu_count() or "?")
@@ -312,6 +354,7 @@ def render(r: Results, command: str, when: str, load: str, build_dir: Path | Non
              "targets and met/missed are computed from the numbers of this run.", ""]
     lines += machine_lines(r, command, when, load, build_dir)
     lines += slerp_section(r) + arclength_section(r) + curves_section(r) + rig_section(r)
+    lines += rig_simd_section(r)
     lines.append(END)
     return "\n".join(lines) + "\n"
 
