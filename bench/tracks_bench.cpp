@@ -373,21 +373,25 @@ void BM_RigFCurveRuntime(benchmark::State& state) {
 }
 
 // ---------------------------------------------------------------- which SIMD library (issue 12)
-// The runtime's lane arithmetic (rig_detail::StdSimdLanes, std::experimental::simd) against the
-// same kernel in xsimd and in Highway (bench/rig_lanes/): static target (the build's baseline) and
-// dynamic dispatch (the best target of this CPU; also limited to AVX2, a machine without
-// AVX-512), on the BM_RigRuntime clips.  Everything but the lane arithmetic is shared (refresh,
-// group loop, AoS write), so BM_RigKernel / BM_RigRuntime is the kernel's effect per character.
+// The runtime's lane arithmetic in std::experimental::simd (rig_detail::StdSimdLanes: sample_rig's
+// float kernel), in xsimd (bench/rig_lanes/) and in Highway (src/tracks/rig_lanes_hwy.cpp): static
+// target (the build's baseline) and dynamic dispatch (the best target of this CPU: sample_rig's
+// double kernel; also limited to AVX2, a machine without AVX-512), on the BM_RigRuntime clips.
+// Everything but the lane arithmetic is shared (refresh, group loop, AoS write), so the ratio of
+// two BM_RigKernel times is the kernels' difference per character.
 // Counter max_abs_diff: largest difference of any pose component from sample_rig over one pass
 // of the benchmark's frames (0 when bit-identical; FMA contraction makes a few ulp); the label
 // names the Highway target that ran.  RigKernel::none runs everything but the lane arithmetic
 // (its lanes write zeros): what no SIMD library can speed up, measured.
-enum class RigKernel { none, xsimd, hwy_static, hwy_dynamic, hwy_dynamic_avx2 };
+enum class RigKernel { none, std_simd, xsimd, hwy_static, hwy_dynamic, hwy_dynamic_avx2 };
 
+// (whole registers of zeros, as many stores into res as StdSimdLanes makes, no loads, no arithmetic).
 template <class T>
 struct ZeroLanes {
   void operator()(const T*, const T*, const T*, T, std::size_t n, T (*res)[rig_group<T>]) const noexcept {
-    for (std::size_t r = 0; r < 10; ++r) std::fill_n(res[r], n, T(0));
+    using V = std::experimental::native_simd<T>;
+    for (std::size_t s = 0; s < n; s += V::size())
+      for (std::size_t r = 0; r < 10; ++r) V(T(0)).copy_to(res[r] + s, std::experimental::vector_aligned);
   }
 };
 
@@ -402,6 +406,7 @@ void BM_RigKernel(benchmark::State& state) {
   bench_rig::hwy_limit_to_avx2(K == RigKernel::hwy_dynamic_avx2);
   const auto sample = [&](T frame, RigContext<T>& ctx, std::span<JointPose<T>> out) {
     if constexpr (K == RigKernel::none) bench_rig::sample_rig_with(clip, frame, ctx, out, ZeroLanes<T>{});
+    else if constexpr (K == RigKernel::std_simd) bench_rig::sample_rig_with(clip, frame, ctx, out, rig_detail::StdSimdLanes<T>{});
     else if constexpr (K == RigKernel::xsimd) bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::XsimdLanes<T>{});
     else if constexpr (K == RigKernel::hwy_static) bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::HwyStaticLanes<T>{});
     else bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::HwyDynamicLanes<T>{});
@@ -431,6 +436,7 @@ void BM_RigKernel(benchmark::State& state) {
   }
   if (K != RigKernel::none) state.counters["max_abs_diff"] = diff;
   if constexpr (K == RigKernel::none) state.SetLabel("refresh and AoS write only");
+  else if constexpr (K == RigKernel::std_simd) state.SetLabel("std::experimental::simd");
   else if constexpr (K == RigKernel::xsimd) state.SetLabel("xsimd");
   else if constexpr (K == RigKernel::hwy_static) state.SetLabel(bench_rig::hwy_static_target());
   else state.SetLabel(bench_rig::hwy_dynamic_target());
@@ -447,11 +453,13 @@ BENCHMARK(BM_RigRuntime<double>) RIG_ARGS;
 BENCHMARK(BM_RigFCurvePerCurve) RIG_ARGS;
 BENCHMARK(BM_RigFCurveRuntime) RIG_ARGS;
 BENCHMARK(BM_RigKernel<float, RigKernel::none>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<float, RigKernel::std_simd>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<float, RigKernel::xsimd>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<float, RigKernel::hwy_static>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<float, RigKernel::hwy_dynamic>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<float, RigKernel::hwy_dynamic_avx2>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<double, RigKernel::none>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<double, RigKernel::std_simd>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<double, RigKernel::xsimd>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<double, RigKernel::hwy_static>) RIG_ARGS;
 BENCHMARK(BM_RigKernel<double, RigKernel::hwy_dynamic>) RIG_ARGS;

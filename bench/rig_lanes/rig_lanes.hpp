@@ -1,11 +1,11 @@
 #pragma once
 // Benchmark-internal (issue 12, "SIMD where it pays: std::experimental::simd, Highway or xsimd —
 // measure and say why"): the lane arithmetic of sample_rig written with xsimd (Debian
-// libxsimd-dev) and with Highway (libhwy-dev; static target and dynamic dispatch, in
-// rig_lanes_hwy.cpp), each a drop-in for rig_detail::StdSimdLanes: the same cache layout
+// libxsimd-dev), a drop-in for rig_detail::StdSimdLanes and the library's Highway lanes
+// (src/tracks/rig_lanes_hwy.cpp, static target and dynamic dispatch): the same cache layout
 // (rig_group<T> joints per group, field f at p + f·G), the same operations in the same order,
 // the same refresh and AoS write (rig_detail::refresh / evaluate).  Only the benchmark
-// (BM_RigKernel in tracks_bench.cpp) and its agreement test (rig_lanes_test.cpp) use them; the
+// (BM_RigKernel in tracks_bench.cpp) and its agreement test (rig_lanes_test.cpp) use xsimd; the
 // library does not (docs/runtime.md, "Which SIMD").
 #include <cstddef>
 #include <cstdint>
@@ -54,38 +54,13 @@ struct XsimdLanes {
   }
 };
 
-/// Highway's kernel for one cache group (rig_lanes_hwy.cpp; res is res[0] of a [10][G] array).
-/// static: compiled for HWY_STATIC_TARGET, the best target the build's flags allow (Highway 1.0.3
-/// has no SSE2 target: the default build gets HWY_SCALAR, one lane); dynamic: HWY_DYNAMIC_DISPATCH
-/// over every target compiled in (foreach_target: SSSE3, SSE4, AVX2, AVX3, …), chosen at run time.
-void hwy_lanes_static(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) noexcept;
-void hwy_lanes_static(const double* tc, const double* rc, const double* sc, double frame, std::size_t n,
-                      double* res) noexcept;
-void hwy_lanes_dynamic(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) noexcept;
-void hwy_lanes_dynamic(const double* tc, const double* rc, const double* sc, double frame, std::size_t n,
-                       double* res) noexcept;
-/// Name of the static target and of the target dynamic dispatch currently picks ("AVX3", "EMU128", …).
-const char* hwy_static_target();
-const char* hwy_dynamic_target();
-/// Dynamic dispatch limited to AVX2 and below (a machine without AVX-512) when true; every target
-/// the CPU supports when false (Highway's SetSupportedTargetsForTest).
-void hwy_limit_to_avx2(bool limit);
-
-/// hwy_lanes_static as a lanes functor for rig_detail::evaluate.
-template <Real T>
-struct HwyStaticLanes {
-  void operator()(const T* tc, const T* rc, const T* sc, T frame, std::size_t n, T (*res)[rig_group<T>]) const noexcept {
-    hwy_lanes_static(tc, rc, sc, frame, n, res[0]);
-  }
-};
-
-/// hwy_lanes_dynamic as a lanes functor for rig_detail::evaluate.
-template <Real T>
-struct HwyDynamicLanes {
-  void operator()(const T* tc, const T* rc, const T* sc, T frame, std::size_t n, T (*res)[rig_group<T>]) const noexcept {
-    hwy_lanes_dynamic(tc, rc, sc, frame, n, res[0]);
-  }
-};
+/// Highway's kernels are the library's own (src/tracks/rig_lanes_hwy.cpp, rig_detail::HwyStaticLanes
+/// and HwyDynamicLanes), sample_rig<double>'s production path.
+using rig_detail::HwyDynamicLanes;
+using rig_detail::HwyStaticLanes;
+using rig_detail::hwy_dynamic_target;
+using rig_detail::hwy_limit_to_avx2;
+using rig_detail::hwy_static_target;
 
 /// sample_rig with another lane kernel: the same refresh, the same group loop and AoS write.
 template <Real T, class Lanes>

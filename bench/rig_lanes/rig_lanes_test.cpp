@@ -1,5 +1,6 @@
-// The benchmark's xsimd and Highway rig kernels (rig_lanes.hpp) against production sample_rig
-// (std::experimental::simd) and against the scalar per-track API, over seeded random rigs of every
+// Every rig lane kernel — std::experimental::simd, xsimd (rig_lanes.hpp), Highway static and
+// dynamic (the library's) — against production sample_rig (std::experimental::simd for float,
+// Highway's dynamic dispatch for double) and against the scalar per-track API, over seeded random rigs of every
 // Vec3 tangent kind and step/slerp rotations, played forwards, backwards and with jumps, in float
 // and double.  The kernels evaluate the same formula in the same order; the only licensed
 // difference is rounding where a target fuses a·b + c (FMA), so each must stay within the
@@ -133,6 +134,10 @@ template <class T>
 class RigLanesTyped : public ::testing::Test {};
 using Scalars = ::testing::Types<float, double>;
 TYPED_TEST_SUITE(RigLanesTyped, Scalars);
+
+TYPED_TEST(RigLanesTyped, StdSimdAgreesWithSampleRig) {
+  check_kernel<TypeParam>("std::experimental::simd", rig_detail::StdSimdLanes<TypeParam>{}, true);
+}
 
 TYPED_TEST(RigLanesTyped, XsimdAgreesWithSampleRig) {
   check_kernel<TypeParam>("xsimd", bench_rig::XsimdLanes<TypeParam>{}, true);

@@ -8,9 +8,11 @@
 /// the arc's Ω² and 1/sinc(Ω) precomputed).  A RigContext<T> keeps, per channel, the current
 /// segment and a copy of its block in structure-of-arrays order (one array per field over all
 /// joints, ozz-animation's "decompressed keys" cache); sample_rig() refreshes only the channels
-/// whose segment changed and then evaluates all joints with std::experimental::native_simd (4
-/// floats or 2 doubles per SSE2 register, 8/4 with AVX, 16/8 with AVX-512; docs/runtime.md says
-/// why not Highway or xsimd, measured).  Rotations are exact slerp
+/// whose segment changed and then evaluates all joints with SIMD: float with
+/// std::experimental::native_simd (4 per SSE2 register, 8 with AVX, 16 with AVX-512), double too
+/// when the flags give it 4 lanes or more, else (the default SSE2 build) with Highway's run-time
+/// dispatch (8 per AVX-512 register, 4 with AVX2); docs/runtime.md, "Which SIMD", has the
+/// measurements behind that split.  Rotations are exact slerp
 /// weights from an even polynomial: sin(uΩ)/sin(Ω) = u·sinc(uΩ)/sinc(Ω) with sinc's Taylor series
 /// in (uΩ)², Ω ≤ π/2 (no trigonometry, no root, no division, no normalisation per sample).
 ///
@@ -29,6 +31,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 #include <experimental/simd>
 
@@ -375,6 +378,37 @@ struct StdSimdLanes {
   }
 };
 
+// The same lane arithmetic in Highway (src/tracks/rig_lanes_hwy.cpp; res is res[0] of a [10][G]
+// array).  dynamic: HWY_DYNAMIC_DISPATCH over every x86 target compiled in (SSSE3 … AVX-512),
+// chosen at run time — sample_rig<double> uses it when the flags give double 2 lanes; static: the build's baseline target (SCALAR,
+// one lane, under the default SSE2 flags: Highway 1.0.3 has no SSE2 target), for the benchmarks.
+void hwy_lanes_dynamic(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) noexcept;
+void hwy_lanes_dynamic(const double* tc, const double* rc, const double* sc, double frame, std::size_t n,
+                       double* res) noexcept;
+void hwy_lanes_static(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) noexcept;
+void hwy_lanes_static(const double* tc, const double* rc, const double* sc, double frame, std::size_t n,
+                      double* res) noexcept;
+// Highway's name of the static target and of the one dynamic dispatch picks ("AVX3", "SCALAR", …).
+const char* hwy_static_target();
+const char* hwy_dynamic_target();
+// Tests and benchmarks: limit dynamic dispatch to AVX2 and below (a machine without AVX-512) when
+// true, every target the CPU supports when false (Highway's SetSupportedTargetsForTest; global).
+void hwy_limit_to_avx2(bool limit);
+
+// hwy_lanes_dynamic / hwy_lanes_static as lanes for evaluate().
+template <Real T>
+struct HwyDynamicLanes {
+  void operator()(const T* tc, const T* rc, const T* sc, T frame, std::size_t n, T (*res)[rig_group<T>]) const noexcept {
+    hwy_lanes_dynamic(tc, rc, sc, frame, n, res[0]);
+  }
+};
+template <Real T>
+struct HwyStaticLanes {
+  void operator()(const T* tc, const T* rc, const T* sc, T frame, std::size_t n, T (*res)[rig_group<T>]) const noexcept {
+    hwy_lanes_static(tc, rc, sc, frame, n, res[0]);
+  }
+};
+
 // sample_rig's first half: clamps frame to a finite value (NaN → −max; returned) and brings every
 // channel's cached segment to it.
 template <Real T>
@@ -495,7 +529,15 @@ template <Real T>
 void sample_rig(const RigClip<T>& clip, T frame, RigContext<T>& context, std::span<JointPose<T>> out) noexcept {
   INBETWEEN_ASSERT(out.size() == clip.joints());
   frame = rig_detail::refresh(clip, frame, context);
-  rig_detail::evaluate(context, frame, out, rig_detail::StdSimdLanes<T>{});
+  // Which SIMD (docs/runtime.md, measured per character): when the build's flags give double only
+  // 2 lanes (SSE2, the default), Highway's dynamic dispatch to AVX-512/AVX2 at run time (1.3–1.9×
+  // std::experimental::simd there); with AVX or wider flags std::experimental::simd, inlined (the
+  // out-of-line Highway call per group then lost up to 20 %).  Float stays std::experimental::simd
+  // (Highway gained 1.1–1.3× in the default build: the float kernel is bound by its stores).
+  if constexpr (std::is_same_v<T, double> && rig_detail::stdx::native_simd<double>::size() < 4)
+    rig_detail::evaluate(context, frame, out, rig_detail::HwyDynamicLanes<T>{});
+  else
+    rig_detail::evaluate(context, frame, out, rig_detail::StdSimdLanes<T>{});
 }
 
 }  // namespace inbetween

@@ -1,20 +1,24 @@
-// Highway (Debian libhwy-dev 1.0.3) version of sample_rig's lane arithmetic (rig_lanes.hpp):
-// compiled once per target by foreach_target.h; HWY_STATIC_DISPATCH calls the build's baseline
-// target, HWY_DYNAMIC_DISPATCH the best one the CPU supports.  Same operations in the same order
-// as rig_detail::StdSimdLanes (Mul and Add, not MulAdd; the compiler may still contract them
-// where the target has FMA, as it may in StdSimdLanes under -march=native).
+// sample_rig's lane arithmetic in Highway (Debian libhwy-dev 1.0.3; rig_clip.hpp, HwyDynamicLanes):
+// compiled once per x86 target by foreach_target.h; HWY_DYNAMIC_DISPATCH calls the best one the
+// CPU supports (AVX-512 or AVX2 in the default SSE2 build), HWY_STATIC_DISPATCH the build's
+// baseline (benchmarks only).  Same operations in the same order as rig_detail::StdSimdLanes (Mul
+// and Add, not MulAdd; the compiler contracts them to FMA where the target has it, as it does in
+// StdSimdLanes under -march=native: a few ulp, tests/tracks/rig_clip_test.cpp).  sample_rig<double>
+// uses the dynamic one when the flags give double 2 lanes (SSE2, the default build): 1.3–1.9× per
+// character over std::experimental::simd there
+// (docs/runtime.md, "Which SIMD").
 #include <cstddef>
 #include <cstdint>
 
-#include "rig_lanes.hpp"
+#include "inbetween/tracks/runtime/rig_clip.hpp"
 
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "rig_lanes_hwy.cpp"
+#define HWY_TARGET_INCLUDE "src/tracks/rig_lanes_hwy.cpp"  // relative to the project root (an include path)
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
 HWY_BEFORE_NAMESPACE();
-namespace inbetween::bench_rig {
+namespace inbetween::rig_detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
@@ -95,11 +99,11 @@ void LanesF64(const double* tc, const double* rc, const double* sc, double frame
 std::int64_t Target() { return HWY_TARGET; }
 
 }  // namespace HWY_NAMESPACE
-}  // namespace inbetween::bench_rig
+}  // namespace inbetween::rig_detail
 HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
-namespace inbetween::bench_rig {
+namespace inbetween::rig_detail {
 HWY_EXPORT(LanesF32);
 HWY_EXPORT(LanesF64);
 HWY_EXPORT(Target);
@@ -124,5 +128,5 @@ void hwy_limit_to_avx2(bool limit) {
   // SupportedTargets() & (AVX2 and every target below it: larger bit values are older targets).
   hwy::SetSupportedTargetsForTest(limit ? (hwy::SupportedTargets() & ~(std::int64_t(HWY_AVX2) - 1)) : 0);
 }
-}  // namespace inbetween::bench_rig
+}  // namespace inbetween::rig_detail
 #endif  // HWY_ONCE
