@@ -241,47 +241,46 @@ def rig_section(r: Results) -> list[str]:
     return out
 
 
-# Issue 12, "SIMD where it pays — measure and say why": the runtime's lane kernel in other libraries.
-RIG_KERNELS = (("xsimd", "xsimd"), ("hwy_static", "Highway static"), ("hwy_dynamic", "Highway dynamic"),
-               ("hwy_dynamic_avx2", "Highway dynamic ≤ AVX2"))
-ADOPT_SPEEDUP = 1.3  # docs/runtime.md: Highway's dynamic dispatch is adopted only at ≥ 1.3× per character
+# Issue 12, "SIMD where it pays — measure and say why": the runtime's lane kernel in each library.
+RIG_KERNELS = (("std_simd", "std::experimental::simd"), ("xsimd", "xsimd"), ("hwy_static", "Highway static"),
+               ("hwy_dynamic", "Highway dynamic"), ("hwy_dynamic_avx2", "Highway dynamic ≤ AVX2"))
+ADOPT_SPEEDUP = 1.3  # docs/runtime.md: Highway's dynamic dispatch replaces std::experimental::simd at ≥ 1.3×
 
 
 def rig_simd_section(r: Results) -> list[str]:
     rows = []
     for scalar in ("float", "double"):
         for j in RIG_SIZES:
+            def n(kernel: str) -> str:
+                return f"BM_RigKernel<{scalar}, RigKernel::{kernel}>/{j}/2"
             prod = r.time(f"BM_RigRuntime<{scalar}>/{j}/2")
-            kernels = {k: r.time(f"BM_RigKernel<{scalar}, RigKernel::{k}>/{j}/2") for k, _ in RIG_KERNELS}
-            rest = r.time(f"BM_RigKernel<{scalar}, RigKernel::none>/{j}/2")
-            if prod is None and all(v is None for v in kernels.values()):
+            base = r.time(n("std_simd"))
+            times = {k: r.time(n(k)) for k, _ in RIG_KERNELS}
+            if base is None and all(v is None for v in times.values()):
                 continue
-            cells = [f"{scalar}, {j} joints", fmt_time(prod)]
+            cells = [f"{scalar} kernels, {j} joints", fmt_time(prod)]
             for k, _ in RIG_KERNELS:
-                q = ratio(prod, kernels[k])
-                cells.append(fmt_time(kernels[k]) + ("" if q is None else f" ({q:.2f}×)"))
-            share = None if prod is None or rest is None else max(0.0, prod - rest) / prod
-            cells.append(fmt_time(rest))
-            cells.append("—" if share is None else f"{100 * share:.0f} %")
-            diffs = [r.counter(f"BM_RigKernel<{scalar}, RigKernel::{k}>/{j}/2", "max_abs_diff") for k, _ in RIG_KERNELS]
+                q = None if k == "std_simd" else ratio(base, times[k])
+                cells.append(fmt_time(times[k]) + ("" if q is None else f" ({q:.2f}×)"))
+            cells.append(fmt_time(r.time(n("none"))))
+            diffs = [r.counter(n(k), "max_abs_diff") for k, _ in RIG_KERNELS]
             diffs = [d for d in diffs if d is not None]
             cells.append(fmt_num(max(diffs) if diffs else None, 2))
-            cells.append(verdict(ratio(prod, kernels["hwy_dynamic"]), ADOPT_SPEEDUP, True))
+            cells.append(verdict(ratio(base, times["hwy_dynamic"]), ADOPT_SPEEDUP, True))
             rows.append(cells)
     return (["### Which SIMD library: the rig kernel in std::experimental::simd, xsimd and Highway (`BM_RigKernel`)", "",
-             "The same clips as above, the same refresh, group loop and AoS write (`rig_detail::evaluate`); only "
-             "the lane arithmetic differs (`bench/rig_lanes/`).  Time per character, in parentheses the "
-             "production time / this one (above 1 = faster than production).  Highway static is the build's "
-             "baseline target (SCALAR under the default SSE2 flags: Highway 1.0.3 has no SSE2 target); dynamic "
-             "is `HWY_DYNAMIC_DISPATCH` to the best target of this CPU, or capped at AVX2.  \"refresh + write\" "
-             "runs everything but the lane arithmetic: what no SIMD library can speed up; \"kernel share\" = "
-             "(production − that) / production.  max abs diff: largest difference of any pose component from "
-             "`sample_rig` over the kernels.  Adoption rule (docs/runtime.md): Highway's dynamic dispatch "
-             f"replaces std::experimental::simd only at ≥ {ADOPT_SPEEDUP:g}× per character.", ""]
-            + table(["rig", "std::experimental::simd (production)"] + [name for _, name in RIG_KERNELS]
-                    + ["refresh + write", "kernel share", "max abs diff", f"Highway dynamic ≥ {ADOPT_SPEEDUP:g}×"],
-                    rows) + [""])
-
+             "The clips above, the same refresh, group loop and AoS write (`rig_detail::evaluate`); only the "
+             "lane arithmetic differs (`rig_detail::StdSimdLanes`, `bench/rig_lanes/`, "
+             "`src/tracks/rig_lanes_hwy.cpp`).  Time per character, in parentheses the std::experimental::simd "
+             "kernel's time / this one (above 1 = faster).  Highway static is the build's baseline target "
+             "(SCALAR under the default SSE2 flags: Highway 1.0.3 has no SSE2 target); dynamic is "
+             "`HWY_DYNAMIC_DISPATCH` to the best target of this CPU, or capped at AVX2.  \"no lane arithmetic\": "
+             "the same loop storing zeros (native_simd registers) instead of loading and computing.  max abs "
+             "diff: largest difference of any pose component from `sample_rig`.  Production (`sample_rig`) "
+             "runs std::experimental::simd for float, and for double Highway's dynamic dispatch when the flags "
+             f"give double 2 lanes (docs/runtime.md: adopted where it gains ≥ {ADOPT_SPEEDUP:g}×).", ""]
+            + table(["rig", "production", "std::experimental::simd"] + [name for k, name in RIG_KERNELS[1:]]
+                    + ["no lane arithmetic", "max abs diff", f"Highway dynamic ≥ {ADOPT_SPEEDUP:g}×"], rows) + [""])
 
 # ----------------------------------------------------------------------------- machine
 def machine_lines(r: Results, command: str, when: str, load: str, build_dir: Path | None) -> list[str]:
