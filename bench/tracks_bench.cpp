@@ -16,6 +16,7 @@
 #include "inbetween/tracks/runtime/rig_clip.hpp"
 #include "inbetween/tracks/track.hpp"
 #include "rig_fixture.hpp"
+#include "rig_lanes.hpp"
 
 namespace {
 
@@ -386,6 +387,77 @@ void BM_RigFCurveRuntimeCyclic(benchmark::State& state) {
   state.counters["cycle_classes"] = double(clip.cycle_classes());
 }
 
+// ---------------------------------------------------------------- which SIMD library (issue 12)
+// The runtime's lane arithmetic in std::experimental::simd (rig_detail::StdSimdLanes: sample_rig's
+// float kernel), in xsimd (bench/rig_lanes/) and in Highway (src/tracks/rig_lanes_hwy.cpp): static
+// target (the build's baseline) and dynamic dispatch (the best target of this CPU: sample_rig's
+// double kernel; also limited to AVX2, a machine without AVX-512), on the BM_RigRuntime clips.
+// Everything but the lane arithmetic is shared (refresh, group loop, AoS write), so the ratio of
+// two BM_RigKernel times is the kernels' difference per character.
+// Counter max_abs_diff: largest difference of any pose component from sample_rig over one pass
+// of the benchmark's frames (0 when bit-identical; FMA contraction makes a few ulp); the label
+// names the Highway target that ran.  RigKernel::none runs everything but the lane arithmetic
+// (its lanes write zeros): what no SIMD library can speed up, measured.
+enum class RigKernel { none, std_simd, xsimd, hwy_static, hwy_dynamic, hwy_dynamic_avx2 };
+
+// (whole registers of zeros, as many stores into res as StdSimdLanes makes, no loads, no arithmetic).
+template <class T>
+struct ZeroLanes {
+  void operator()(const T*, const T*, const T*, T, std::size_t n, T (*res)[rig_group<T>]) const noexcept {
+    using V = std::experimental::native_simd<T>;
+    for (std::size_t s = 0; s < n; s += V::size())
+      for (std::size_t r = 0; r < 10; ++r) V(T(0)).copy_to(res[r] + s, std::experimental::vector_aligned);
+  }
+};
+
+template <class T, RigKernel K>
+void BM_RigKernel(benchmark::State& state) {
+  const auto rig = make_rig<T>(int(state.range(0)));
+  std::vector<Track<Vec3<T>>> tv, sv;
+  std::vector<QuatTrack<T>> rv;
+  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
+  const auto clip = build_rig_clip<T>(tv, rv, sv).value();
+  const double end = rig_end(rig), step = 1.0 / double(state.range(1));
+  bench_rig::hwy_limit_to_avx2(K == RigKernel::hwy_dynamic_avx2);
+  const auto sample = [&](T frame, RigContext<T>& ctx, std::span<JointPose<T>> out) {
+    if constexpr (K == RigKernel::none) bench_rig::sample_rig_with(clip, frame, ctx, out, ZeroLanes<T>{});
+    else if constexpr (K == RigKernel::std_simd) bench_rig::sample_rig_with(clip, frame, ctx, out, rig_detail::StdSimdLanes<T>{});
+    else if constexpr (K == RigKernel::xsimd) bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::XsimdLanes<T>{});
+    else if constexpr (K == RigKernel::hwy_static) bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::HwyStaticLanes<T>{});
+    else bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::HwyDynamicLanes<T>{});
+  };
+  std::vector<JointPose<T>> pose(rig.size()), ref(rig.size());
+  double diff = 0;
+  if (K != RigKernel::none) {
+    RigContext ref_ctx = make_rig_context(clip), ctx = make_rig_context(clip);
+    for (double frame = 0; frame <= end; frame += step) {
+      sample_rig(clip, T(frame), ref_ctx, std::span<JointPose<T>>(ref));
+      sample(T(frame), ctx, std::span<JointPose<T>>(pose));
+      for (std::size_t j = 0; j < pose.size(); ++j) {
+        const T* a = &pose[j].translation.x;
+        const T* b = &ref[j].translation.x;
+        for (std::size_t c = 0; c < sizeof(JointPose<T>) / sizeof(T); ++c) diff = std::max(diff, double(std::abs(a[c] - b[c])));
+      }
+    }
+  }
+  RigContext ctx = make_rig_context(clip);
+  double frame = 0;
+  for (auto _ : state) {
+    sample(T(frame), ctx, std::span<JointPose<T>>(pose));
+    benchmark::DoNotOptimize(pose.data());
+    benchmark::ClobberMemory();
+    frame += step;
+    if (frame > end) frame = 0;
+  }
+  if (K != RigKernel::none) state.counters["max_abs_diff"] = diff;
+  if constexpr (K == RigKernel::none) state.SetLabel("refresh and AoS write only");
+  else if constexpr (K == RigKernel::std_simd) state.SetLabel("std::experimental::simd");
+  else if constexpr (K == RigKernel::xsimd) state.SetLabel("xsimd");
+  else if constexpr (K == RigKernel::hwy_static) state.SetLabel(bench_rig::hwy_static_target());
+  else state.SetLabel(bench_rig::hwy_dynamic_target());
+  bench_rig::hwy_limit_to_avx2(false);
+}
+
 #define RIG_ARGS ->ArgsProduct({{25, 64, 71, 551, 1024}, {2, 8}})
 BENCHMARK(BM_RigPerTrack<float>) RIG_ARGS;
 BENCHMARK(BM_RigPerTrack<double>) RIG_ARGS;
@@ -396,6 +468,18 @@ BENCHMARK(BM_RigRuntime<double>) RIG_ARGS;
 BENCHMARK(BM_RigFCurvePerCurve) RIG_ARGS;
 BENCHMARK(BM_RigFCurveRuntime) RIG_ARGS;
 BENCHMARK(BM_RigFCurveRuntimeCyclic)->ArgsProduct({{25, 64, 71, 551, 1024}, {2, 8}, {0, 1}});
+BENCHMARK(BM_RigKernel<float, RigKernel::none>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<float, RigKernel::std_simd>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<float, RigKernel::xsimd>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<float, RigKernel::hwy_static>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<float, RigKernel::hwy_dynamic>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<float, RigKernel::hwy_dynamic_avx2>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<double, RigKernel::none>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<double, RigKernel::std_simd>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<double, RigKernel::xsimd>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<double, RigKernel::hwy_static>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<double, RigKernel::hwy_dynamic>) RIG_ARGS;
+BENCHMARK(BM_RigKernel<double, RigKernel::hwy_dynamic_avx2>) RIG_ARGS;
 }  // namespace
 
 BENCHMARK_MAIN();

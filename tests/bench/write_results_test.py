@@ -329,6 +329,38 @@ class Ozz(unittest.TestCase):
             self.assertEqual(wr.main(base + ["--ozz-json", str(DATA / "ozz_rig_bench.json")]), 0)
             self.assertIn("| 1024 joints, ½ key interval per call |", results.read_text(encoding="utf-8"))
 
+class RigSimdKernels(unittest.TestCase):
+    """rig_simd_section: each library's kernel against the std::experimental::simd kernel (issue 12)."""
+
+    def kernel(self, docs, scalar, kernel, joints):
+        return cpu(docs, "inbetween_bench_tracks", f"BM_RigKernel<{scalar}, RigKernel::{kernel}>/{joints}/2")
+
+    def test_ratio_is_std_simd_over_the_library(self):
+        docs = load_docs()
+        base = self.kernel(docs, "double", "std_simd", 64)
+        hwy = self.kernel(docs, "double", "hwy_dynamic", 64)
+        xs = self.kernel(docs, "double", "xsimd", 64)
+        cells = row(render(docs), "double kernels, 64 joints")
+        self.assertEqual(cells[2], wr.fmt_time(base))
+        self.assertEqual(cells[3], f"{wr.fmt_time(xs)} ({base / xs:.2f}×)")
+        self.assertEqual(cells[5], f"{wr.fmt_time(hwy)} ({base / hwy:.2f}×)")
+
+    def test_adoption_verdict_flips_at_1_3(self):
+        docs = load_docs()
+        base = self.kernel(docs, "float", "std_simd", 71)
+        name = "BM_RigKernel<float, RigKernel::hwy_dynamic>/71/2"
+        set_cpu(docs, "inbetween_bench_tracks", name, base / 1.35)
+        self.assertEqual(row(render(docs), "float kernels, 71 joints")[-1], "met")
+        set_cpu(docs, "inbetween_bench_tracks", name, base / 1.25)
+        self.assertTrue(row(render(docs), "float kernels, 71 joints")[-1].startswith("missed"))
+
+    def test_largest_difference_over_the_kernels(self):
+        docs = load_docs()
+        diffs = [b["max_abs_diff"] for b in docs["inbetween_bench_tracks"]["benchmarks"]
+                 if b["run_name"].startswith("BM_RigKernel<float") and b["run_name"].endswith("/551/2")
+                 and "max_abs_diff" in b]
+        self.assertTrue(diffs)
+        self.assertEqual(row(render(docs), "float kernels, 551 joints")[-2], f"{max(diffs):.2g}")
 
 class Splice(unittest.TestCase):
     def test_replaces_only_the_section(self):

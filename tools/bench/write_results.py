@@ -304,6 +304,46 @@ def ozz_section(ozz: Results | None) -> list[str]:
                      "ozz / ours double", "target ≥ 1× (float)", "max rotation error ozz / float / double",
                      "max translation error ozz / float / double"], rows) + [""])
 
+# Issue 12, "SIMD where it pays — measure and say why": the runtime's lane kernel in each library.
+RIG_KERNELS = (("std_simd", "std::experimental::simd"), ("xsimd", "xsimd"), ("hwy_static", "Highway static"),
+               ("hwy_dynamic", "Highway dynamic"), ("hwy_dynamic_avx2", "Highway dynamic ≤ AVX2"))
+ADOPT_SPEEDUP = 1.3  # docs/runtime.md: Highway's dynamic dispatch replaces std::experimental::simd at ≥ 1.3×
+
+
+def rig_simd_section(r: Results) -> list[str]:
+    rows = []
+    for scalar in ("float", "double"):
+        for j in RIG_SIZES:
+            def n(kernel: str) -> str:
+                return f"BM_RigKernel<{scalar}, RigKernel::{kernel}>/{j}/2"
+            prod = r.time(f"BM_RigRuntime<{scalar}>/{j}/2")
+            base = r.time(n("std_simd"))
+            times = {k: r.time(n(k)) for k, _ in RIG_KERNELS}
+            if base is None and all(v is None for v in times.values()):
+                continue
+            cells = [f"{scalar} kernels, {j} joints", fmt_time(prod)]
+            for k, _ in RIG_KERNELS:
+                q = None if k == "std_simd" else ratio(base, times[k])
+                cells.append(fmt_time(times[k]) + ("" if q is None else f" ({q:.2f}×)"))
+            cells.append(fmt_time(r.time(n("none"))))
+            diffs = [r.counter(n(k), "max_abs_diff") for k, _ in RIG_KERNELS]
+            diffs = [d for d in diffs if d is not None]
+            cells.append(fmt_num(max(diffs) if diffs else None, 2))
+            cells.append(verdict(ratio(base, times["hwy_dynamic"]), ADOPT_SPEEDUP, True))
+            rows.append(cells)
+    return (["### Which SIMD library: the rig kernel in std::experimental::simd, xsimd and Highway (`BM_RigKernel`)", "",
+             "The clips above, the same refresh, group loop and AoS write (`rig_detail::evaluate`); only the "
+             "lane arithmetic differs (`rig_detail::StdSimdLanes`, `bench/rig_lanes/`, "
+             "`src/tracks/rig_lanes_hwy.cpp`).  Time per character, in parentheses the std::experimental::simd "
+             "kernel's time / this one (above 1 = faster).  Highway static is the build's baseline target "
+             "(SCALAR under the default SSE2 flags: Highway 1.0.3 has no SSE2 target); dynamic is "
+             "`HWY_DYNAMIC_DISPATCH` to the best target of this CPU, or capped at AVX2.  \"no lane arithmetic\": "
+             "the same loop storing zeros (native_simd registers) instead of loading and computing.  max abs "
+             "diff: largest difference of any pose component from `sample_rig`.  Production (`sample_rig`) "
+             "runs std::experimental::simd for float, and for double Highway's dynamic dispatch when the flags "
+             f"give double 2 lanes (docs/runtime.md: adopted where it gains ≥ {ADOPT_SPEEDUP:g}×).", ""]
+            + table(["rig", "production", "std::experimental::simd"] + [name for k, name in RIG_KERNELS[1:]]
+                    + ["no lane arithmetic", "max abs diff", f"Highway dynamic ≥ {ADOPT_SPEEDUP:g}×"], rows) + [""])
 
 # ----------------------------------------------------------------------------- machine
 def machine_lines(r: Results, command: str, when: str, load: str, build_dir: Path | None) -> list[str]:
@@ -378,6 +418,7 @@ def render(r: Results, command: str, when: str, load: str, build_dir: Path | Non
     lines += machine_lines(r, command, when, load, build_dir)
     lines += slerp_section(r) + arclength_section(r) + curves_section(r) + rig_section(r)
     lines += ozz_section(ozz)
+    lines += rig_simd_section(r)
     lines.append(END)
     return "\n".join(lines) + "\n"
 

@@ -8,8 +8,11 @@
 /// the arc's Ω² and 1/sinc(Ω) precomputed).  A RigContext<T> keeps, per channel, the current
 /// segment and a copy of its block in structure-of-arrays order (one array per field over all
 /// joints, ozz-animation's "decompressed keys" cache); sample_rig() refreshes only the channels
-/// whose segment changed and then evaluates all joints with straight-line loops the compiler
-/// vectorises (4 floats or 2 doubles per SSE2 register, 8/4 with AVX).  Rotations are exact slerp
+/// whose segment changed and then evaluates all joints with SIMD: float with
+/// std::experimental::native_simd (4 per SSE2 register, 8 with AVX, 16 with AVX-512), double too
+/// when the flags give it 4 lanes or more, else (the default SSE2 build) with Highway's run-time
+/// dispatch (8 per AVX-512 register, 4 with AVX2); docs/runtime.md, "Which SIMD", has the
+/// measurements behind that split.  Rotations are exact slerp
 /// weights from an even polynomial: sin(uΩ)/sin(Ω) = u·sinc(uΩ)/sinc(Ω) with sinc's Taylor series
 /// in (uΩ)², Ω ≤ π/2 (no trigonometry, no root, no division, no normalisation per sample).
 ///
@@ -28,6 +31,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 #include <experimental/simd>
 
@@ -68,10 +72,22 @@ inline constexpr T rig_runtime_rotation_tolerance = T(2) * rig_slerp_series_erro
 
 template <Real T>
 class RigClip;
+template <Real T>
+struct RigContext;
+
+/// Joints per group of a RigContext's cache: one 64-byte line of a field (16 floats, 8 doubles),
+/// the widest register (AVX-512) a sampling kernel loads at once, whatever the build's flags.
+template <Real T>
+inline constexpr std::size_t rig_group = 64 / sizeof(T);
+
+namespace rig_detail {
+template <Real T>
+T refresh(const RigClip<T>& clip, T frame, RigContext<T>& context) noexcept;
+}  // namespace rig_detail
 
 /// One playback stream of a RigClip (make it with make_rig_context): per channel its current
-/// segment, and a copy of that segment's block in SIMD-register order (groups of
-/// native_simd<T>::size() joints, field by field: ozz-animation's "decompressed keys" cache);
+/// segment, and a copy of that segment's block in SIMD-register order (groups of rig_group<T>
+/// joints, field by field: ozz-animation's "decompressed keys" cache);
 /// per channel kind the position in the clip's time-sorted block stream.  Reusable, copyable;
 /// one per character instance that plays the clip.
 template <Real T>
@@ -101,7 +117,7 @@ class RigClip {
   friend Expected<RigClip<U>> build_rig_clip(std::span<const Track<Vec3<U>>>, std::span<const QuatTrack<U>>,
                                              std::span<const Track<Vec3<U>>>);
   template <Real U>
-  friend void sample_rig(const RigClip<U>&, U, RigContext<U>&, std::span<JointPose<U>>) noexcept;
+  friend U rig_detail::refresh(const RigClip<U>&, U, RigContext<U>&) noexcept;
   template <Real U>
   friend RigContext<U> make_rig_context(const RigClip<U>&);
 
@@ -307,24 +323,136 @@ inline void advance(const Channels& ch, std::size_t joints, T frame, T previous,
   }
   next = lo;
 }
-// SIMD helpers of sample_rig over one group of V::size() joints' cached fields (field f at c + f·W).
+// SIMD helpers over V::size() joints' cached fields (field f at c + f·G, G joints per group).
 template <class V>
 [[gnu::always_inline]] inline V load(const typename V::value_type* p) noexcept {
   return V(p, stdx::element_aligned);
 }
 // u = clamp((frame − origin)·inv_length, 0, 1); finite because sample_rig keeps frame finite.
-template <class V>
+template <class V, std::size_t G>
 [[gnu::always_inline]] inline V param(const typename V::value_type* c, V frame) noexcept {
   using T = typename V::value_type;
-  constexpr std::size_t W = V::size();
-  return stdx::max(V(T(0)), stdx::min((frame - load<V>(c + 2 * W)) * load<V>(c + 3 * W), V(T(1))));
+  return stdx::max(V(T(0)), stdx::min((frame - load<V>(c + 2 * G)) * load<V>(c + 3 * G), V(T(1))));
 }
 // ((c3·u + c2)·u + c1)·u + c0 for one axis.
-template <class V>
+template <class V, std::size_t G>
 [[gnu::always_inline]] inline V cubic(const typename V::value_type* c, std::size_t axis, V u) noexcept {
-  constexpr std::size_t W = V::size();
-  return ((load<V>(c + (13 + axis) * W) * u + load<V>(c + (10 + axis) * W)) * u + load<V>(c + (7 + axis) * W)) * u +
-         load<V>(c + (4 + axis) * W);
+  return ((load<V>(c + (13 + axis) * G) * u + load<V>(c + (10 + axis) * G)) * u + load<V>(c + (7 + axis) * G)) * u +
+         load<V>(c + (4 + axis) * G);
+}
+
+// The lane arithmetic of sample_rig, std::experimental::native_simd<T>: for one cache group (the
+// translation, rotation and scale fields of G = rig_group<T> joints, field f at t/r/s + f·G) and
+// its first n ≤ G joints, writes res[0..2] translation xyz, res[3..6] rotation xyzw, res[7..9]
+// scale xyz.  The benchmarks' xsimd and Highway kernels (bench/rig_lanes.hpp) implement the same
+// call with the same operations in the same order, and evaluate() runs any of them.
+template <Real T>
+struct StdSimdLanes {
+  [[gnu::always_inline]] inline void operator()(const T* tc, const T* rc, const T* sc, T frame, std::size_t n,
+                                                T (*res)[rig_group<T>]) const noexcept {
+    using V = stdx::native_simd<T>;
+    constexpr std::size_t W = V::size(), G = rig_group<T>;
+    static_assert(G % W == 0, "a cache group holds whole registers");
+    const V f(frame), one(T(1));
+    for (std::size_t s = 0; s < n; s += W) {
+      {
+        const V u = param<V, G>(tc + s, f);
+        for (std::size_t axis = 0; axis < 3; ++axis) cubic<V, G>(tc + s, axis, u).copy_to(res[axis] + s, stdx::vector_aligned);
+      }
+      {
+        const V u = param<V, G>(sc + s, f);
+        for (std::size_t axis = 0; axis < 3; ++axis)
+          cubic<V, G>(sc + s, axis, u).copy_to(res[7 + axis] + s, stdx::vector_aligned);
+      }
+      {
+        const V u = param<V, G>(rc + s, f);
+        const V v = one - u;
+        const V omega2 = load<V>(rc + s + 12 * G), k = load<V>(rc + s + 13 * G);
+        // slerp weights sin(vΩ)/sin Ω and sin(uΩ)/sin Ω = v·sinc(vΩ)/sinc Ω, u·sinc(uΩ)/sinc Ω.
+        const V w0 = v * sinc_series<T>(v * v * omega2) * k;
+        const V w1 = u * sinc_series<T>(u * u * omega2) * k;
+        for (std::size_t c = 0; c < 4; ++c)
+          (w0 * load<V>(rc + s + (4 + c) * G) + w1 * load<V>(rc + s + (8 + c) * G))
+              .copy_to(res[3 + c] + s, stdx::vector_aligned);
+      }
+    }
+  }
+};
+
+// The same lane arithmetic in Highway (src/tracks/rig_lanes_hwy.cpp; res is res[0] of a [10][G]
+// array).  dynamic: HWY_DYNAMIC_DISPATCH over every x86 target compiled in (SSSE3 … AVX-512),
+// chosen at run time — sample_rig<double> uses it when the flags give double 2 lanes; static: the build's baseline target (SCALAR,
+// one lane, under the default SSE2 flags: Highway 1.0.3 has no SSE2 target), for the benchmarks.
+void hwy_lanes_dynamic(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) noexcept;
+void hwy_lanes_dynamic(const double* tc, const double* rc, const double* sc, double frame, std::size_t n,
+                       double* res) noexcept;
+void hwy_lanes_static(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) noexcept;
+void hwy_lanes_static(const double* tc, const double* rc, const double* sc, double frame, std::size_t n,
+                      double* res) noexcept;
+// Highway's name of the static target and of the one dynamic dispatch picks ("AVX3", "SCALAR", …).
+const char* hwy_static_target();
+const char* hwy_dynamic_target();
+// Tests and benchmarks: limit dynamic dispatch to AVX2 and below (a machine without AVX-512) when
+// true, every target the CPU supports when false (Highway's SetSupportedTargetsForTest; global).
+void hwy_limit_to_avx2(bool limit);
+
+// hwy_lanes_dynamic / hwy_lanes_static as lanes for evaluate().
+template <Real T>
+struct HwyDynamicLanes {
+  void operator()(const T* tc, const T* rc, const T* sc, T frame, std::size_t n, T (*res)[rig_group<T>]) const noexcept {
+    hwy_lanes_dynamic(tc, rc, sc, frame, n, res[0]);
+  }
+};
+template <Real T>
+struct HwyStaticLanes {
+  void operator()(const T* tc, const T* rc, const T* sc, T frame, std::size_t n, T (*res)[rig_group<T>]) const noexcept {
+    hwy_lanes_static(tc, rc, sc, frame, n, res[0]);
+  }
+};
+
+// sample_rig's first half: clamps frame to a finite value (NaN → −max; returned) and brings every
+// channel's cached segment to it.
+template <Real T>
+T refresh(const RigClip<T>& clip, T frame, RigContext<T>& context) noexcept {
+  constexpr std::size_t B = RigClip<T>::block, G = rig_group<T>;
+  const std::size_t J = clip.joints_;
+  const std::size_t S = context.stride;
+  static_assert(16 % G == 0, "the padded joint count is a multiple of 16");
+  INBETWEEN_ASSERT(context.segment.size() == 3 * J && context.cache.size() == 3 * B * S);
+  // A finite frame keeps u = (frame − origin)·0 finite on the constant end segments.
+  const T big = std::numeric_limits<T>::max();
+  frame = frame > -big ? (frame < big ? frame : big) : -big;  // NaN → −big
+  for (std::size_t kind = 0; kind < 3; ++kind) {
+    advance<T, G, B>(clip.kind_[kind], J, frame, context.time, context.next[kind], context.segment.data() + kind * J,
+                     context.cache.data() + kind * B * S);
+  }
+  context.time = frame;
+  return frame;
+}
+
+// sample_rig's second half: evaluates the refreshed cache at the (finite) frame group by group
+// with `lanes` (StdSimdLanes or a benchmark's kernel) and writes the AoS poses.
+template <Real T, class Lanes>
+void evaluate(const RigContext<T>& context, T frame, std::span<JointPose<T>> out, const Lanes& lanes) noexcept {
+  constexpr std::size_t B = RigClip<T>::block, G = rig_group<T>;
+  const std::size_t J = out.size();
+  const std::size_t S = context.stride;
+  INBETWEEN_ASSERT(J <= S && context.cache.size() == 3 * B * S);
+  const T* tc = context.cache.data();
+  const T* rc = tc + B * S;
+  const T* sc = rc + B * S;
+  for (std::size_t j0 = 0; j0 < J; j0 += G) {
+    alignas(64) T res[10][G];
+    const std::size_t g = j0 * B;  // this group's fields start at cache + (j0 / G)·B·G
+    const std::size_t n = std::min(G, J - j0);
+    lanes(tc + g, rc + g, sc + g, frame, n, res);
+    for (std::size_t i = 0; i < n; ++i) {
+      JointPose<T>& p = out[j0 + i];
+      p.translation = Vec3<T>{res[0][i], res[1][i], res[2][i]};
+      p.rotation = Quat<T>::from_xyzw(res[3][i], res[4][i], res[5][i], res[6][i]);
+      p.scale = Vec3<T>{res[7][i], res[8][i], res[9][i]};
+    }
+  }
 }
 }  // namespace rig_detail
 
@@ -400,61 +528,17 @@ Expected<RigClip<T>> build_rig_clip(const std::vector<Track<Vec3<T>>>& translati
 /// is held; NaN reads as −∞ (the first value), ±∞ as the end values.  noexcept, no allocation.
 template <Real T>
 void sample_rig(const RigClip<T>& clip, T frame, RigContext<T>& context, std::span<JointPose<T>> out) noexcept {
-  constexpr std::size_t B = RigClip<T>::block;
-  const std::size_t J = clip.joints_;
-  const std::size_t S = context.stride;
-  namespace stdx = rig_detail::stdx;
-  using V = stdx::native_simd<T>;
-  constexpr std::size_t W = V::size();
-  static_assert(16 % W == 0, "the padded joint count is a multiple of 16");
-  INBETWEEN_ASSERT(out.size() == J && context.segment.size() == 3 * J && context.cache.size() == 3 * B * S);
-  // A finite frame keeps u = (frame − origin)·0 finite on the constant end segments.
-  const T big = std::numeric_limits<T>::max();
-  frame = frame > -big ? (frame < big ? frame : big) : -big;  // NaN → −big
-  for (std::size_t kind = 0; kind < 3; ++kind) {
-    rig_detail::advance<T, W, B>(clip.kind_[kind], J, frame, context.time, context.next[kind],
-                              context.segment.data() + kind * J, context.cache.data() + kind * B * S);
-  }
-  context.time = frame;
-  // Evaluate W = native_simd<T>::size() joints at a time (4 floats / 2 doubles with SSE2, 8 / 4
-  // with AVX) from the cache (field f of joint group g at (g·16 + f)·W) into local arrays, then
-  // write the AoS poses.
-  const T* tc = context.cache.data();
-  const T* rc = tc + B * S;
-  const T* sc = rc + B * S;
-  const V f(frame), one(T(1));
-  const auto ld = [](const T* p) noexcept { return rig_detail::load<V>(p); };
-  const auto param = [&](const T* c) noexcept { return rig_detail::param<V>(c, f); };
-  const auto cubic = [&](const T* c, std::size_t axis, V u) noexcept { return rig_detail::cubic<V>(c, axis, u); };
-  for (std::size_t j0 = 0; j0 < J; j0 += W) {
-    alignas(64) T res[10][W];
-    const std::size_t g = j0 * B;  // this group's fields start at cache + (j0 / W)·B·W
-    {
-      const V u = param(tc + g);
-      for (std::size_t axis = 0; axis < 3; ++axis) cubic(tc + g, axis, u).copy_to(res[axis], stdx::vector_aligned);
-    }
-    {
-      const V u = param(sc + g);
-      for (std::size_t axis = 0; axis < 3; ++axis) cubic(sc + g, axis, u).copy_to(res[7 + axis], stdx::vector_aligned);
-    }
-    {
-      const V u = param(rc + g);
-      const V v = one - u;
-      const V omega2 = ld(rc + g + 12 * W), k = ld(rc + g + 13 * W);
-      // slerp weights sin(vΩ)/sin Ω and sin(uΩ)/sin Ω = v·sinc(vΩ)/sinc Ω, u·sinc(uΩ)/sinc Ω.
-      const V w0 = v * rig_detail::sinc_series<T>(v * v * omega2) * k;
-      const V w1 = u * rig_detail::sinc_series<T>(u * u * omega2) * k;
-      for (std::size_t c = 0; c < 4; ++c)
-        (w0 * ld(rc + g + (4 + c) * W) + w1 * ld(rc + g + (8 + c) * W)).copy_to(res[3 + c], stdx::vector_aligned);
-    }
-    const std::size_t n = std::min(W, J - j0);
-    for (std::size_t i = 0; i < n; ++i) {
-      JointPose<T>& p = out[j0 + i];
-      p.translation = Vec3<T>{res[0][i], res[1][i], res[2][i]};
-      p.rotation = Quat<T>::from_xyzw(res[3][i], res[4][i], res[5][i], res[6][i]);
-      p.scale = Vec3<T>{res[7][i], res[8][i], res[9][i]};
-    }
-  }
+  INBETWEEN_ASSERT(out.size() == clip.joints());
+  frame = rig_detail::refresh(clip, frame, context);
+  // Which SIMD (docs/runtime.md, measured per character): when the build's flags give double only
+  // 2 lanes (SSE2, the default), Highway's dynamic dispatch to AVX-512/AVX2 at run time (1.3–1.9×
+  // std::experimental::simd there); with AVX or wider flags std::experimental::simd, inlined (the
+  // out-of-line Highway call per group then lost up to 20 %).  Float stays std::experimental::simd
+  // (Highway gained 1.1–1.3× in the default build: the float kernel is bound by its stores).
+  if constexpr (std::is_same_v<T, double> && rig_detail::stdx::native_simd<double>::size() < 4)
+    rig_detail::evaluate(context, frame, out, rig_detail::HwyDynamicLanes<T>{});
+  else
+    rig_detail::evaluate(context, frame, out, rig_detail::StdSimdLanes<T>{});
 }
 
 }  // namespace inbetween
