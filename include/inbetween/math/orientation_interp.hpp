@@ -343,11 +343,12 @@ template <Real T>
 }  // namespace detail
 
 /// Largest rotation-angle error (radians) of fast_slerp() against slerp() evaluated in long double
-/// on the same inputs, over unit inputs and u in [0, 1]: 1.6× (float) and 2.4× (double) the measured
-/// maximum (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.5e-7 in float with
-/// the weights computed in float, 6.2e-16 in double, over random, nearly identical, nearly opposite
-/// and museum pairs).  On the benchmark's pairs fast_slerp measures 1.7e-7 (float) and 3.1e-16
-/// (double), glm and Eigen slerp 1.9e-7 to 2.3e-7 and 3.2e-16 to 3.8e-16 (bench/RESULTS.md).
+/// on the same inputs, over unit inputs and u in [0, 1]: 1.4× (float) and 2.3× (double) the measured
+/// maximum (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.8e-7 in float with
+/// the weights computed in float, 6.4e-16 in double, over random, nearly identical (both signs of
+/// a·b), nearly opposite and museum pairs).  On the benchmark's random pairs fast_slerp measures 1.8e-7 (float) and
+/// 3.3e-16 (double), glm and Eigen slerp 1.9e-7 to 2.3e-7 and 3.2e-16 to 3.8e-16; at this level the
+/// final blend's rounding dominates (see docs/orientation.md for the spread over many such sets).
 template <Real T>
 inline constexpr T fast_slerp_max_error_rad = sizeof(T) <= 4 ? T(4e-7) : T(1.5e-15);
 
@@ -356,8 +357,8 @@ inline constexpr T fast_slerp_max_error_rad = sizeof(T) <= 4 ? T(4e-7) : T(1.5e-
 /// (cos(θ/2) = √((1 + cos θ)/2), then cos(θ/4)) and Eberly's series in cos(θ/4) − 1 with a
 /// minimax-fitted last term (see detail::fast_slerp_fit_terms), truncated below the scalar's
 /// rounding; float inputs are weighted in float (four SSE lanes), double in two SSE2 lanes.
-/// Branch-free apart from the sign flip and the nearly-identical paths; two square roots and one
-/// (packed) division.
+/// Branch-free apart from the two nearly-identical paths (the shortest-arc flip is an xor of a·b's
+/// sign bit into b); two packed square roots and two packed divisions side by side.
 /// Accuracy: rotation angle within fast_slerp_max_error_rad<T> of the exact great arc (so endpoints
 /// are reproduced within that bound, not bit-exactly as slerp() does); slerp() stays the reference.
 /// When a·b is within rounding of 0 the two arcs are equally long and either may be taken.
@@ -413,6 +414,23 @@ template <Real T>
   // pays the jump instead (measured: nearly identical float pairs 1.42 → 1.21 ns).
   if (x[0] > T(1) - T(detail::fast_slerp_lerp_cut<T>)) [[likely]] {
     // Ends within rounding of each other: the plain blend a + u(b − a), see fast_slerp_lerp_cut.
+#if defined(__AVX__)
+    if constexpr (nv == 2) {
+      // With AVX the double blend takes one 32-byte vector instead of two 16-byte ones (the
+      // -march=native build: nearly identical double pairs 1.26 → 1.22 ns, 2.07 → 2.36× Eigen).
+      using W4 [[gnu::vector_size(32)]] = T;
+      using J4 [[gnu::vector_size(32)]] = std::int64_t;
+      W4 qa, qb;
+      std::memcpy(&qa, &a, sizeof qa);
+      std::memcpy(&qb, &b, sizeof qb);
+      const J4 sign4 = __builtin_shufflevector(sign, sign, 0, 1, 0, 1);
+      const W4 qbs = reinterpret_cast<W4>(reinterpret_cast<J4>(qb) ^ sign4);
+      const W4 r4 = qa + (qbs - qa) * W4{u, u, u, u};
+      Quat<T> q;
+      std::memcpy(&q, &r4, sizeof q);
+      return q;
+    }
+#endif
     const V uu = detail::fast_slerp_splat(u);
     each([&](V va, V vb) { return va + (vb - va) * uu; });
   } else if (x[0] > T(1) - T(detail::fast_slerp_near_cut<T>)) [[unlikely]] {
