@@ -389,9 +389,12 @@ template <Real T>
   // 3.50e-16 for the other pairing (glm 3.93e-16, Eigen 3.85e-16).
   V d;
   if constexpr (nv == 1) {
+    // The lane swaps as integer shuffles (pshufd writes a new register; shufps would need a copy).
     const V p = a0 * b0;
-    const V h = p + __builtin_shufflevector(p, p, 1, 0, 3, 2);
-    d = h + __builtin_shufflevector(h, h, 2, 3, 0, 1);
+    const I pi = reinterpret_cast<I>(p);
+    const V h = p + reinterpret_cast<V>(__builtin_shufflevector(pi, pi, 1, 0, 3, 2));
+    const I hi = reinterpret_cast<I>(h);
+    d = h + reinterpret_cast<V>(__builtin_shufflevector(hi, hi, 2, 3, 0, 1));
   } else {
     const V p0 = a0 * b0, p1 = a1 * b1;
     const V h = p0 + p1;
@@ -443,13 +446,18 @@ template <Real T>
     // product in T (about 2ε) moves y, hence c_a and c_b, which changes the result mostly along a
     // (its norm, by ≤ 2ε/3) and along the arc by O(ε·θ).
     const T y = std::min(x[0], T(1)) - T(1);  // cos θ − 1 in [−cut, 0]
-    const auto c = [y](T s) {                 // b₁(1 + b₂), b_i = (s²/(i(2i+1)) − i/(2i+1))·y
-      const T s2 = s * s;
-      return ((s2 - T(1)) * T(1.0 / 3.0) * y) * (T(1) + (s2 * T(0.1) - T(0.4)) * y);
-    };
-    const T sa = T(1) - u, sb = u;
+    // c = b₁(1 + b₂) with b_i = (s²/(i(2i+1)) − i/(2i+1))·y, for s = 1 − u and u in the lanes
+    // (computed from the vector u alone, so the scalar u need not stay live beside it).
     const V uu = detail::fast_slerp_splat(u);
-    const T ka = sa * c(sa), kb = sb * c(sb);
+    V sq;
+    if constexpr (nv == 1) {
+      sq = uu * V{-1, 1, -1, 1} + V{1, 0, 1, 0};
+    } else {
+      sq = uu * V{-1, 1} + V{1, 0};
+    }
+    const V s2 = sq * sq;
+    const V kv = sq * (((s2 - T(1)) * T(1.0 / 3.0) * y) * (T(1) + (s2 * T(0.1) - T(0.4)) * y));
+    const T ka = kv[0], kb = kv[1];
     each([&](V va, V vb) { return va + ((vb - va) * uu + (va * ka + vb * kb)); });
   } else {
     // Random pairs: the weights of a and b in lanes (1 − u, u[, 1 − u, u]), see fast_slerp_weights.
