@@ -193,6 +193,10 @@ TYPED_TEST(OrientationInterp, FastSlerpWithinStatedBound) {
       const Quat<T> a = rng.rotation<T>();
       const Quat<T> b = normalized(a * Quat<T>::from_axis_angle(rng.unit_vec3<T>(), angle));
       for (const T u : us()) check(a, b, u);
+      // The same rotation pair with the far end's sign flipped (a·b near −1): every path (the plain
+      // blend, the nearly-identical correction, the series) must take the shortest arc through the
+      // sign-bit flip of b.
+      for (const T u : us()) check(a, -b, u);
       // Nearly opposite rotations: rotation angle π − angle, the far end of the shortest arc.
       const Quat<T> c = normalized(a * Quat<T>::from_axis_angle(rng.unit_vec3<T>(), pi_v<T> - angle));
       for (const T u : us()) check(a, c, u);
