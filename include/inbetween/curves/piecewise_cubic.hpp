@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "inbetween/curves/curve.hpp"
+#include "inbetween/curves/segment_index.hpp"
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/format.hpp"
@@ -44,7 +45,9 @@ inline constexpr T piecewise_cursor_tolerance = T(24) * std::numeric_limits<T>::
 
 /// A C⁰ chain of cubic segments with the queries of the Curve, PiecewiseCubicCurve,
 /// ControlledCurve and SegmentedCurve concepts.  A default-constructed object is the constant zero
-/// curve on [0, 1] with one control point.
+/// curve on [0, 1] with one control point.  The segment that holds a parameter is found through a
+/// SegmentIndex built with the curve (O(1) expected, one int per segment), so point(u) without a
+/// cursor costs no binary search over the breakpoints even when they are unevenly spaced.
 template <Point P>
 class PiecewiseCubic {
  public:
@@ -92,6 +95,7 @@ class PiecewiseCubic {
       c.influence_.push_back(c.segments_range(i - 1, i));
     }
     c.interpolates_ = true;
+    c.index_ = SegmentIndex<T>(c.breaks_);
     return c;
   }
 
@@ -107,13 +111,18 @@ class PiecewiseCubic {
   /// The breakpoints u_0 < … < u_n.
   std::span<const T> breakpoints() const noexcept { return breaks_; }
   /// The segment whose half-open domain [u_i, u_{i+1}) holds u (the last segment at the end);
-  /// u is clamped into the domain first.
-  int segment_at(T u) const noexcept {
-    const auto it = std::upper_bound(breaks_.begin() + 1, breaks_.end() - 1, u);
-    return int(it - breaks_.begin()) - 1;
+  /// u is clamped into the domain first (−inf gives the first segment; +inf and NaN the last).
+  /// A bucket lookup (SegmentIndex): O(1) expected, O(log n) worst case, the same segment as a
+  /// binary search over the breakpoints for every u (tested).
+  int segment_at(T u) const noexcept { return index_.find(breaks_, u); }
+  /// P(u), u clamped into domain(); equal to derivative(u, 0), bit for bit.  No knot search beyond
+  /// one bucket of the SegmentIndex; for sweeps, point(u, cursor) also skips the division.
+  P point(T u) const noexcept {
+    u = domain().clamp(u);
+    const int i = segment_at(u);
+    const T lo = breaks_[i], h = breaks_[i + 1] - breaks_[i];
+    return segments_[i].point(std::clamp((u - lo) / h, T(0), T(1)));
   }
-  /// P(u), u clamped into domain().
-  P point(T u) const noexcept { return derivative(u, 0); }
   /// P(u) for sequential sweeps, u clamped into domain(): while u stays in the cursor's segment,
   /// no knot search and a multiplication by the cached 1/span instead of point(u)'s division, so
   /// the result may differ from point(u) by rounding: within piecewise_cursor_tolerance<T>·
@@ -171,7 +180,7 @@ class PiecewiseCubic {
   }
 
  protected:
-  /// The cursor's slow path: clamp, binary search, refill, evaluate as the fast path does.
+  /// The cursor's slow path: clamp, segment lookup, refill, evaluate as the fast path does.
   P point_refill(T u, PiecewiseCursor<T>& cursor) const noexcept {
     // NaN compares false everywhere and clamps to itself: evaluate it without caching (the
     // result is NaN, as point(NaN) is).
@@ -184,6 +193,14 @@ class PiecewiseCubic {
     cursor.hi = breaks_[i + 1];
     cursor.inv_span = T(1) / (cursor.hi - cursor.lo);
     return segments_[i].point(std::clamp((u - cursor.lo) * cursor.inv_span, T(0), T(1)));
+  }
+
+  /// The last step of every family's builder, once breaks_ and segments_ are filled: check_built,
+  /// then index the breakpoints for segment_at.  Errors as check_built.
+  Expected<void> finish_build(const char* family) {
+    if (auto ok = check_built(family); !ok) return ok;
+    index_ = SegmentIndex<T>(breaks_);
+    return {};
   }
 
   /// Checks a freshly built chain: breakpoints finite and strictly increasing, and every segment
@@ -231,6 +248,7 @@ class PiecewiseCubic {
   std::vector<P> controls_{P{}};
   std::vector<Interval<T>> influence_{Interval<T>{T(0), T(1)}};
   bool interpolates_ = true;
+  SegmentIndex<T> index_{};  ///< bucket table over breaks_ (rebuilt by finish_build, from_power_forms)
 };
 
 namespace detail {
