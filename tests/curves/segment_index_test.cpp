@@ -182,21 +182,41 @@ TYPED_TEST(SegmentIndexTest, BucketCountIsTheSegmentCount) {
   EXPECT_EQ(SegmentIndex<T>(std::vector<T>{-m, T(0), m}).bucket_count(), 1);
 }
 
-/// Checks segment_at of a built curve against the binary search over its breakpoints, and that
-/// the cursor-free point(u) is derivative(u, 0) bit for bit (its former definition).
+/// Checks segment_at of a built curve against the binary search over its breakpoints; that the
+/// cursor-free point(u) equals point(u, cursor) from an empty cursor (the same v = (u − u_i)·(1/h_i)),
+/// and agrees with derivative(u, 0) (which divides) within piecewise_cursor_tolerance, the bound
+/// derived in piecewise_cubic.hpp for those two roundings of v; and NaN in gives NaN out.
 template <class C>
 void expect_curve_lookup_unchanged(const Expected<C>& built, test::Random& rng, const std::string& family) {
   SCOPED_TRACE(family);
   if (!built) return;  // a clear error (tested in museum_curves_test.cpp)
   const C& c = built.value();
   using T = typename C::scalar_type;
+  using P = typename C::point_type;
   const std::vector<T> b(c.breakpoints().begin(), c.breakpoints().end());
   for (const T u : probes(b, rng)) {
     ASSERT_EQ(c.segment_at(u), binary_search_segment(b, u)) << "u=" << u;
-    const auto p = c.point(u), q = c.derivative(u, 0);
-    if (is_finite(q)) ASSERT_EQ(p, q) << "u=" << u;
-    else ASSERT_FALSE(is_finite(p)) << "u=" << u;  // NaN in, NaN out, as before
+    const P p = c.point(u);
+    PiecewiseCursor<T> fresh;
+    const P q = c.point(u, fresh);
+    if (std::isnan(u)) {
+      ASSERT_FALSE(is_finite(p));
+      ASSERT_FALSE(is_finite(q));
+      continue;
+    }
+    ASSERT_EQ(p, q) << "u=" << u;
+    const P want = c.derivative(u, 0);
+    const PowerCubic<P> g = c.segment_power_form(c.segment_at(c.domain().clamp(u)));
+    for (int k = 0; k < PointTraits<P>::dim; ++k) {
+      using Tr = PointTraits<P>;
+      const T scale = std::abs(Tr::get(g.a, k)) + std::abs(Tr::get(g.b, k)) + std::abs(Tr::get(g.c, k)) +
+                      std::abs(Tr::get(g.d, k));
+      ASSERT_LE(std::abs(Tr::get(p, k) - Tr::get(want, k)), piecewise_cursor_tolerance<T> * scale)
+          << "u=" << u << " component " << k;
+    }
   }
+  // At a breakpoint v is exactly 0: the joint value is the segment's constant term, bit for bit.
+  for (int i = 0; i < c.segment_count(); ++i) ASSERT_EQ(c.point(b[std::size_t(i)]), c.segment_power_form(i).d) << i;
 }
 
 TYPED_TEST(SegmentIndexTest, EveryPiecewiseFamilyOnEveryMuseumExhibit) {
@@ -228,6 +248,47 @@ TYPED_TEST(SegmentIndexTest, EveryPiecewiseFamilyOnEveryMuseumExhibit) {
     const auto bezier = build_bezier(p);
     if (bezier && p.size() <= 4) expect_curve_lookup_unchanged(to_piecewise_cubic(bezier.value()), rng, "bezier");
   }
+}
+
+TYPED_TEST(SegmentIndexTest, PowerFormsOnAdversarialBreakpoints) {
+  // from_power_forms (the B-spline and Bézier conversions) on the adversarial knot vectors: the
+  // lookup and point(u) through the public PiecewiseCubic, with random cubic segments.
+  using T = TypeParam;
+  using P = Vec3<T>;
+  test::Random rng(test::seed_for(1214));
+  SCOPED_TRACE(rng.trace());
+  std::vector<std::vector<double>> spacings{{1.0}, {1.0, 1e-6}, {1e6, 1e-3, 1e-3, 1e-3}};
+  {
+    std::vector<double> h(40, 1e-3);
+    h.insert(h.begin() + 20, 1e6);
+    spacings.push_back(h);
+    std::vector<double> g;
+    for (int e = -12; e <= 6; ++e) g.push_back(std::pow(10.0, e));
+    std::shuffle(g.begin(), g.end(), rng.engine());
+    spacings.push_back(g);
+  }
+  for (const auto& h : spacings) {
+    const std::vector<T> b = knots_from_spacings<T>(T(rng.uniform(-10.0, 10.0)), h);
+    std::vector<PowerCubic<P>> segs;
+    for (std::size_t i = 0; i + 1 < b.size(); ++i) segs.push_back({rng.vec3<T>(), rng.vec3<T>(), rng.vec3<T>(), rng.vec3<T>()});
+    expect_curve_lookup_unchanged(PiecewiseCubic<P>::from_power_forms(b, segs), rng,
+                                  std::to_string(b.size() - 1) + " power-form segments");
+  }
+}
+
+TYPED_TEST(SegmentIndexTest, SubnormalSpacingIsRejectedNotNaN) {
+  // A spacing whose reciprocal overflows would give v = 0·inf = NaN at its breakpoint.
+  using T = TypeParam;
+  using P = Vec3<T>;
+  const T d = std::numeric_limits<T>::denorm_min();
+  const auto built = PiecewiseCubic<P>::from_power_forms({T(0), d, T(1)}, std::vector<PowerCubic<P>>(2));
+  ASSERT_FALSE(built);
+  EXPECT_EQ(built.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(json_pointer(built.error().location), "/breakpoints/1");
+  const auto hermite = build_hermite_spline(std::vector<P>{P{}, P{1, 0, 0}, P{2, 0, 0}},
+                                            std::vector<P>(3), std::vector<T>{T(0), d, T(1)});
+  ASSERT_FALSE(hermite);
+  EXPECT_EQ(hermite.error().code, ErrorCode::NotFinite);
 }
 
 TYPED_TEST(SegmentIndexTest, CentripetalAndChordalCatmullRomThroughRandomPoints) {
