@@ -1,6 +1,7 @@
-// SegmentIndex (issue 12): the bucket lookup gives exactly the segment of the binary search it
-// replaced — std::upper_bound over the inner breakpoints u_1 … u_{n−1}, minus one, the independent
-// reference here — for every u tried: every breakpoint, its neighbours one ulp either side,
+// SegmentIndex (issue 12): the bucket lookup (find, and find_in_domain / locate_in_domain for
+// clamped u) gives exactly the segment of the binary search it replaced — std::upper_bound over
+// the inner breakpoints u_1 … u_{n−1}, minus one, the independent reference here — for every u
+// tried: every breakpoint, its neighbours one ulp either side,
 // midpoints, seeded random u inside and outside the domain, ±inf, NaN, ±max; on seeded random
 // knot vectors in float and double and on adversarial ones (one huge segment among tiny ones,
 // spacings from 1e-12 to 1e6, geometric growth, clusters, a domain far from 0, ranges that
@@ -75,6 +76,17 @@ void expect_same_as_binary_search(const std::vector<T>& b, test::Random& rng, co
   for (const T u : probes(b, rng)) {
     const int want = binary_search_segment(b, u);
     ASSERT_EQ(index.find(b, u), want) << "u=" << u;
+    if (std::isnan(u)) continue;
+    // The in-domain forms, on u clamped as PiecewiseCubic clamps it; the located frame is the
+    // segment's start and T(1)/(its length), as the cursor computes them.
+    const T uc = std::clamp(u, b.front(), b.back());
+    const int want_clamped = binary_search_segment(b, uc);
+    ASSERT_EQ(index.find_in_domain(b, uc), want_clamped) << "u=" << uc;
+    const auto at = index.locate_in_domain(b, uc);
+    ASSERT_EQ(at.segment, want_clamped) << "u=" << uc;
+    const std::size_t i = std::size_t(want_clamped);
+    ASSERT_EQ(at.lo, b[i]) << "u=" << uc;
+    ASSERT_EQ(at.inv_span, T(1) / (b[i + 1] - b[i])) << "u=" << uc;
   }
 }
 

@@ -158,8 +158,9 @@ class PiecewiseCubic {
   }
   /// d^kP/du^k (k = 0..3; zero beyond), right limit at joints, u clamped into domain().
   P derivative(T u, int k) const noexcept {
+    if (std::isnan(u)) [[unlikely]] return segment_derivative(segment_count() - 1, u, k);  // as segment_at(NaN)
     u = domain().clamp(u);
-    return segment_derivative(segment_at(u), u, k);
+    return segment_derivative(index_.find_in_domain(breaks_, u), u, k);
   }
   /// d^kP/du^k of segment i's cubic at u clamped into segment_domain(i) (left limit at its end).
   P segment_derivative(int i, T u, int k) const noexcept {
