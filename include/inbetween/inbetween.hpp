@@ -31,6 +31,7 @@
 #include "inbetween/curves/lagrange.hpp"
 #include "inbetween/curves/parabolic_blend.hpp"
 #include "inbetween/curves/piecewise_cubic.hpp"
+#include "inbetween/curves/segment_index.hpp"
 
 // arclength
 #include "inbetween/arclength/accuracy.hpp"

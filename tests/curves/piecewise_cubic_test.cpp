@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "curve_test_util.hpp"
 #include "inbetween/curves/catmull_rom.hpp"
+#include "inbetween/curves/hermite_spline.hpp"
 #include "support/counting_new.hpp"
 #include "support/museum_curves.hpp"
 #include "support/tolerances.hpp"
@@ -117,6 +119,37 @@ TYPED_TEST(PiecewiseCursorTest, BatchEqualsSingleFormAndNeverAllocates) {
     }
     EXPECT_EQ(allocations, 0);
   }
+}
+
+TYPED_TEST(PiecewiseCursorTest, CursorFreeQueriesNeverAllocate) {
+  // point(u), segment_at(u) and derivative(u, k) read the SegmentIndex built with the curve: no
+  // allocation per query, also in a crowded bucket (many tiny segments next to a huge one) and
+  // for u outside the domain, ±inf and NaN.
+  using P = TypeParam;
+  using T = scalar_of<P>;
+  test::Random rng(test::seed_for(1205));
+  SCOPED_TRACE(rng.trace());
+  std::vector<T> params{T(0)};
+  for (int i = 0; i < 20; ++i) params.push_back(params.back() + T(1e-3));
+  params.push_back(params.back() + T(1e3));
+  const std::vector<P> points = test::random_points<P>(rng, int(params.size()));
+  const std::vector<P> tangents = test::random_points<P>(rng, int(params.size()));
+  const auto c = build_hermite_spline(points, tangents, params).value();
+  const Interval<T> dom = c.domain();
+  std::vector<T> u{std::numeric_limits<T>::infinity(), -std::numeric_limits<T>::infinity(),
+                   std::numeric_limits<T>::quiet_NaN()};
+  for (int k = 0; k < 500; ++k) u.push_back(rng.uniform<T>(dom.lo - T(1), dom.lo + T(0.05)));
+  for (int k = 0; k < 500; ++k) u.push_back(rng.uniform<T>(dom.lo, dom.hi + T(1)));
+  long allocations = 0;
+  P sink{};
+  for (const T x : u) {
+    allocations += test::allocations_in([&] {
+      sink = sink + c.point(x) * T(0);
+      sink = sink + c.derivative(x, 1) * T(0);
+      (void)c.segment_at(x);
+    });
+  }
+  EXPECT_EQ(allocations, 0);
 }
 
 }  // namespace

@@ -46,7 +46,7 @@ class BezierPath : public PiecewiseCubic<P> {
       s.influence_.push_back(j % 3 == 0 ? s.segments_range(seg - 1, seg) : s.segments_range(seg, seg));
     }
     s.interpolates_ = false;
-    if (auto ok = s.check_built("bezier-path"); !ok) return ok.error();
+    if (auto ok = s.finish_build("bezier-path"); !ok) return ok.error();
     return s;
   }
 

@@ -103,7 +103,7 @@ class CatmullRomSpline : public PiecewiseCubic<P> {
       }
     }
     s.interpolates_ = true;
-    if (auto ok = s.check_built("catmull-rom"); !ok) return ok.error();
+    if (auto ok = s.finish_build("catmull-rom"); !ok) return ok.error();
     return s;
   }
 

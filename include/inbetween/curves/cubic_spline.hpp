@@ -93,7 +93,7 @@ class CubicSpline : public PiecewiseCubic<P> {
     s.tangents_ = d;
     s.influence_.assign(n, s.domain());
     s.interpolates_ = true;
-    if (auto ok = s.check_built(family); !ok) return ok.error();
+    if (auto ok = s.finish_build(family); !ok) return ok.error();
     return s;
   }
 
@@ -196,7 +196,7 @@ class CubicSpline : public PiecewiseCubic<P> {
     s.tangents_ = d;
     s.influence_.assign(n, s.domain());
     s.interpolates_ = true;
-    if (auto ok = s.check_built("closed natural"); !ok) return ok.error();
+    if (auto ok = s.finish_build("closed natural"); !ok) return ok.error();
     return s;
   }
 

@@ -51,7 +51,7 @@ class HermiteSpline : public PiecewiseCubic<P> {
     s.influence_.clear();
     for (int i = 0; i < n; ++i) s.influence_.push_back(s.segments_range(i - 1, i));
     s.interpolates_ = true;
-    if (auto ok = s.check_built("hermite"); !ok) return ok.error();
+    if (auto ok = s.finish_build("hermite"); !ok) return ok.error();
     return s;
   }
 

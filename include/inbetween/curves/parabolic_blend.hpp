@@ -88,7 +88,7 @@ class ParabolicBlendSpline : public PiecewiseCubic<P> {
     s.influence_.clear();
     for (int i = 0; i < n; ++i) s.influence_.push_back(s.segments_range(i - 2, i + 1));
     s.interpolates_ = true;
-    if (auto ok = s.check_built("parabolic"); !ok) return ok.error();
+    if (auto ok = s.finish_build("parabolic"); !ok) return ok.error();
     return s;
   }
 };

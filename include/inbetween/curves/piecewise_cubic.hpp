@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "inbetween/curves/curve.hpp"
+#include "inbetween/curves/segment_index.hpp"
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/format.hpp"
@@ -35,8 +36,10 @@ struct PiecewiseCursor {
   T inv_span{};                 ///< 1/(hi − lo)
 };
 
-/// Relative bound of |point(u, cursor) − point(u)| per component, in units of the segment's
-/// |a| + |b| + |c| + |d|: v = (u − lo)·(1/h) and (u − lo)/h differ by at most 3 roundings (3ε·v),
+/// Relative bound, per component and in units of the segment's |a| + |b| + |c| + |d|, of the
+/// difference between the two ways a PiecewiseCubic rounds the local parameter: v = (u − lo)·(1/h)
+/// (point(u) and point(u, cursor), clamped to ≤ 1 where it rounds above) and v = (u − lo)/h
+/// (derivative(u, 0) and segment_derivative).  The two v differ by at most 3 roundings (3ε·v),
 /// which moves P by at most (3|a| + 2|b| + |c|)·3ε, and the two Horner evaluations each round by at
 /// most 6ε·Σ|coefficient| (Higham, Accuracy and Stability, §5.1): 9ε + 12ε < 24ε.
 template <Real T>
@@ -44,7 +47,9 @@ inline constexpr T piecewise_cursor_tolerance = T(24) * std::numeric_limits<T>::
 
 /// A C⁰ chain of cubic segments with the queries of the Curve, PiecewiseCubicCurve,
 /// ControlledCurve and SegmentedCurve concepts.  A default-constructed object is the constant zero
-/// curve on [0, 1] with one control point.
+/// curve on [0, 1] with one control point.  The segment that holds a parameter is found through a
+/// SegmentIndex built with the curve (O(1) expected, one int per segment), so point(u) without a
+/// cursor costs no binary search over the breakpoints even when they are unevenly spaced.
 template <Point P>
 class PiecewiseCubic {
  public:
@@ -74,6 +79,10 @@ class PiecewiseCubic {
         return Error{ErrorCode::KeysNotIncreasing, "breakpoint " + std::to_string(i) + " is not after breakpoint " +
                                                        std::to_string(i - 1),
                      "", {"breakpoints", std::size_t(i)}};
+      if (i > 0 && !std::isfinite(T(1) / (breakpoints[i] - breakpoints[i - 1])))
+        return Error{ErrorCode::NotFinite, "the spacing between breakpoints " + std::to_string(i - 1) + " and " +
+                                               std::to_string(i) + " is too small for this scalar type (subnormal)",
+                     "", {"breakpoints", std::size_t(i)}};
     }
     for (std::size_t i = 0; i < segments.size(); ++i) {
       const auto& g = segments[i];
@@ -92,6 +101,7 @@ class PiecewiseCubic {
       c.influence_.push_back(c.segments_range(i - 1, i));
     }
     c.interpolates_ = true;
+    c.index_ = SegmentIndex<T>(c.breaks_);
     return c;
   }
 
@@ -107,17 +117,25 @@ class PiecewiseCubic {
   /// The breakpoints u_0 < … < u_n.
   std::span<const T> breakpoints() const noexcept { return breaks_; }
   /// The segment whose half-open domain [u_i, u_{i+1}) holds u (the last segment at the end);
-  /// u is clamped into the domain first.
-  int segment_at(T u) const noexcept {
-    const auto it = std::upper_bound(breaks_.begin() + 1, breaks_.end() - 1, u);
-    return int(it - breaks_.begin()) - 1;
+  /// u is clamped into the domain first (−inf gives the first segment; +inf and NaN the last).
+  /// A bucket lookup (SegmentIndex): O(1) expected, O(log n) worst case, the same segment as a
+  /// binary search over the breakpoints for every u (tested).
+  int segment_at(T u) const noexcept { return index_.find(breaks_, u); }
+  /// P(u), u clamped into domain().  The segment and its start and reciprocal length come from
+  /// one bucket of the SegmentIndex (no knot search, no division), and v = (u − u_i)·(1/h_i) is
+  /// rounded as in point(u, cursor): the two agree bit for bit (but where the product rounds just
+  /// above 1 at a segment's end, which point(u) clamps), and differ from derivative(u, 0)
+  /// (which divides) by at most piecewise_cursor_tolerance<T>·(|a| + |b| + |c| + |d|) per
+  /// component.  Never allocates.
+  P point(T u) const noexcept {
+    u = domain().clamp(u);
+    return point_located(u, index_.locate_in_domain(breaks_, u));
   }
-  /// P(u), u clamped into domain().
-  P point(T u) const noexcept { return derivative(u, 0); }
   /// P(u) for sequential sweeps, u clamped into domain(): while u stays in the cursor's segment,
-  /// no knot search and a multiplication by the cached 1/span instead of point(u)'s division, so
-  /// the result may differ from point(u) by rounding: within piecewise_cursor_tolerance<T>·
-  /// (|a| + |b| + |c| + |d|) per component of the segment's power form (tested).  Never allocates.
+  /// no segment lookup at all.  The same v = (u − u_i)·(1/h_i) as point(u), so the same result
+  /// except where that product rounds above 1 just below a breakpoint (point(u) clamps it): within
+  /// piecewise_cursor_tolerance<T>·(|a| + |b| + |c| + |d|) per component of the segment's power
+  /// form either way (tested).  Never allocates.
   P point(T u, PiecewiseCursor<T>& cursor) const noexcept {
     if (cursor.curve == this && u >= cursor.lo && u < cursor.hi) [[likely]]
       return segments_[cursor.segment].point((u - cursor.lo) * cursor.inv_span);
@@ -140,8 +158,9 @@ class PiecewiseCubic {
   }
   /// d^kP/du^k (k = 0..3; zero beyond), right limit at joints, u clamped into domain().
   P derivative(T u, int k) const noexcept {
+    if (std::isnan(u)) [[unlikely]] return segment_derivative(segment_count() - 1, u, k);  // as segment_at(NaN)
     u = domain().clamp(u);
-    return segment_derivative(segment_at(u), u, k);
+    return segment_derivative(index_.find_in_domain(breaks_, u), u, k);
   }
   /// d^kP/du^k of segment i's cubic at u clamped into segment_domain(i) (left limit at its end).
   P segment_derivative(int i, T u, int k) const noexcept {
@@ -171,29 +190,46 @@ class PiecewiseCubic {
   }
 
  protected:
-  /// The cursor's slow path: clamp, binary search, refill, evaluate as the fast path does.
+  /// The cursor's slow path: clamp, segment lookup, refill, evaluate as point(u) does.
   P point_refill(T u, PiecewiseCursor<T>& cursor) const noexcept {
     // NaN compares false everywhere and clamps to itself: evaluate it without caching (the
     // result is NaN, as point(NaN) is).
     if (std::isnan(u)) return point(u);
     u = domain().clamp(u);
-    const int i = segment_at(u);
+    const auto at = index_.locate_in_domain(breaks_, u);
     cursor.curve = this;
-    cursor.segment = i;
-    cursor.lo = breaks_[i];
-    cursor.hi = breaks_[i + 1];
-    cursor.inv_span = T(1) / (cursor.hi - cursor.lo);
-    return segments_[i].point(std::clamp((u - cursor.lo) * cursor.inv_span, T(0), T(1)));
+    cursor.segment = at.segment;
+    cursor.lo = at.lo;
+    cursor.hi = breaks_[std::size_t(at.segment) + 1];
+    cursor.inv_span = at.inv_span;
+    return point_located(u, at);
   }
 
-  /// Checks a freshly built chain: breakpoints finite and strictly increasing, and every segment
-  /// bounded on v ∈ [0, 1] (|a| + |b| + |c| + |d| finite per component, which bounds every Horner
-  /// step).  Finite inputs can still fail (coordinates or tangents near the largest value, or
+  /// Segment `at` evaluated at u ∈ [at.lo, u_{segment+1}] (or NaN): v = (u − lo)·(1/h) is ≥ 0
+  /// and at most one rounding above 1, which the clamp removes; NaN stays NaN.
+  P point_located(T u, const typename SegmentIndex<T>::Located& at) const noexcept {
+    return segments_[std::size_t(at.segment)].point(std::min((u - at.lo) * at.inv_span, T(1)));
+  }
+
+  /// The last step of every family's builder, once breaks_ and segments_ are filled: check_built,
+  /// then index the breakpoints for segment_at.  Errors as check_built.
+  Expected<void> finish_build(const char* family) {
+    if (auto ok = check_built(family); !ok) return ok;
+    index_ = SegmentIndex<T>(breaks_);
+    return {};
+  }
+
+  /// Checks a freshly built chain: breakpoints finite and strictly increasing (with spacings whose
+  /// reciprocal is finite), and every segment bounded on v ∈ [0, 1] (|a| + |b| + |c| + |d| finite
+  /// per component, which bounds every Horner step).  Finite inputs can still fail (coordinates or tangents near the largest value, or
   /// points so close together that a knot spacing underflows); the error is NotFinite at {"points"}
   /// and names the family, so no built curve evaluates to inf or NaN.
   Expected<void> check_built(const char* family) const {
     for (std::size_t i = 0; i < breaks_.size(); ++i) {
-      if (!std::isfinite(breaks_[i]) || (i > 0 && !(breaks_[i] > breaks_[i - 1]))) {
+      // Also a spacing so small that its reciprocal overflows (subnormal): v = (u − u_i)·(1/h)
+      // in point(u) and in the cursor would be 0·inf = NaN at the breakpoint.
+      if (!std::isfinite(breaks_[i]) || (i > 0 && !(breaks_[i] > breaks_[i - 1])) ||
+          (i > 0 && !std::isfinite(T(1) / (breaks_[i] - breaks_[i - 1])))) {
         return Error{ErrorCode::NotFinite,
                      std::string(family) + ": the parameter spacing at joint " + std::to_string(i) +
                          " underflows or overflows (points too close together or too far apart for this "
@@ -231,6 +267,7 @@ class PiecewiseCubic {
   std::vector<P> controls_{P{}};
   std::vector<Interval<T>> influence_{Interval<T>{T(0), T(1)}};
   bool interpolates_ = true;
+  SegmentIndex<T> index_{};  ///< bucket table over breaks_ (rebuilt by finish_build, from_power_forms)
 };
 
 namespace detail {
