@@ -183,7 +183,7 @@ class MetOrMissed(unittest.TestCase):
 TARGETS = {
     "### slerp against glm and Eigen": ([4, 5], 6, "≥", 1.5, 4),
     "### u(s) at 1e-9·L": ([3], 4, "≤", 3.0, 2),
-    "### Catmull-Rom and Hermite against Boost.Math": ([3], 4, "≥", 2.0, 4),
+    "### Catmull-Rom and Hermite against Boost.Math": ([3], 4, "≥", 2.0, 6),
     "### Batch cubic against the 9-FMA floor": ([3], 4, "≤", 3.0, 1),
     "### Rig runtime against the memory floor": ([4], 5, "≤", 3.0, 10),
     "### F-curve rig against the linear-key rig": ([3], 4, "≤", 3.0, 5),
@@ -193,8 +193,6 @@ TARGETS = {
 # issue sets no target for (64 and 1024 joints have one).
 REFERENCE_ROWS = {
     "u(s), Newton on the Gauss table (`ArcLength::u_at`, reference)",
-    "Catmull-Rom 3-D, 16 points, point, random access (reference)",
-    "Catmull-Rom 3-D, 1024 points, point, random access (reference)",
 }
 NO_TARGET_SIZE = {f"{j} joints, {s} key interval per call" for j in (25, 71, 551) for s in ("½", "⅛")}
 
@@ -276,8 +274,10 @@ class TargetsAndReferences(unittest.TestCase):
         self.assertGreater(newton / point, 3.0)  # the recorded reference is slower than the target: not "missed"
         text = render(load_docs())
         self.assertNotIn("missed (", row(text, label)[4])
-        self.assertEqual(row(text, "Catmull-Rom 3-D, 1024 points, point, random access (reference)")[4],
-                         "reference, no target")
+        # The cursor-free Catmull-Rom point(u) carries the 2× target (SegmentIndex); check_targets
+        # checks its verdict against its ratio.
+        self.assertNotEqual(row(text, "Catmull-Rom 3-D, 1024 points, point without cursor")[4],
+                            "reference, no target")
 
     def test_target_row_missed_is_never_met(self):
         docs = load_docs()

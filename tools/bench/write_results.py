@@ -14,8 +14,8 @@ running anything; `--comparisons-only` runs only the benchmarks the tables use.
 
 The benchmark names below are the ones registered in bench/*.cpp (BENCHMARK(...)->Arg(...)); a
 benchmark missing from the JSON shows as "—" and its target as "not measured", never as met.  Rows
-that measure a reference or another form of the API next to the one a target is about (the Newton
-u(s), Catmull-Rom without a cursor) say so ("reference, no target") instead of met/missed.
+that measure a reference next to the form a target is about (the Newton u(s)) say so ("reference,
+no target") instead of met/missed.
 
 ozz-animation is not packaged in Debian: `make bench-ozz OZZ_SRC=…` (tools/bench/bench_ozz.sh) runs
 tools/bench/ozz_rig_bench.cpp out of tree and writes build/ozz/ozz_rig_bench.json; when that file
@@ -189,10 +189,10 @@ def arclength_section(r: Results) -> list[str]:
 
 def curves_section(r: Results) -> list[str]:
     rows = []
-    # (suffix, label, has a target): the sequential target is about the cursor forms; `point(u)`
-    # without a cursor is the random-access form (a binary search per call, as Boost's upper_bound).
+    # (suffix, label, has a target): the sequential sweep, with a cursor and without one (`point(u)`
+    # finds its segment through the curve's SegmentIndex, O(1); Boost binary-searches per call).
     for kind, variants, peer in (("Catmull-Rom 3-D", (("OursCursor", "point with cursor", True),
-                                                      ("Ours", "point, random access (reference)", False)),
+                                                      ("Ours", "point without cursor", True)),
                                   "BM_CatmullRomSequential_Boost"),
                                  ("Hermite scalar", (("Ours", "Track with cursor", True),),
                                   "BM_HermiteSequential_Boost")):
@@ -209,9 +209,9 @@ def curves_section(r: Results) -> list[str]:
     batch, floor = r.per_item_ns("BM_BatchCubic_Track"), r.per_item_ns("BM_BatchCubic_NineFmaFloor")
     q = ratio(batch, floor)
     out = (["### Catmull-Rom and Hermite against Boost.Math (`inbetween_bench_curves`)", "",
-            "Target: at least 2× Boost.Math in a sequential sweep (ratio = Boost time / ours), for the "
-            "cursor forms, which are what sequential playback uses.  `point(u)` without a cursor is the "
-            "random-access form (a binary search per call, as Boost's): shown for comparison, no target.  "
+            "Target: at least 2× Boost.Math in a sequential sweep (ratio = Boost time / ours), with a "
+            "cursor (what sequential playback uses) and without one (`point(u)`: the segment from the "
+            "curve's `SegmentIndex`, a bucket lookup; Boost binary-searches per call).  "
             "`max_diff` is the largest coordinate difference between the two on the compared segments.", ""]
            + table(["sweep", "ours", "Boost.Math", "Boost / ours", "target ≥ 2×", "max_diff"], rows) + [""])
     out += (["### Batch cubic against the 9-FMA floor (`BM_BatchCubic_*`)", "",
