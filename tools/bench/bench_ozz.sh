@@ -47,14 +47,15 @@ cmake -S "$OZZ_SRC" -B "$OUT/build" -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAG
   || { cat "$OUT/configure.log"; exit 1; }
 cmake --build "$OUT/build" -j "$JOBS" --target ozz_animation_offline ozz_animation ozz_base
 
-# libinbetween.a only builds the clip (build_rig_clip); sample_rig is a header template compiled
-# into the benchmark with the flags below, as ozz's headers are.
+# libinbetween.a only builds the clip (build_rig_clip) and holds the Highway kernels that
+# sample_rig<double> dispatches to (hence -lhwy); sample_rig is a header template compiled into the
+# benchmark with the flags below, as ozz's headers are.
 cmake --build --preset "$PRESET" -j "$JOBS" --target inbetween_core
 flags=$(echo "-std=c++20 -O3 -DNDEBUG $OZZ_CXXFLAGS" | sed "s/ *$//")
 # shellcheck disable=SC2086  # flags are words on purpose
 "$CXX" $flags -Iinclude -Ibench -I"$OZZ_SRC/include" tools/bench/ozz_rig_bench.cpp -o "$OUT/ozz_rig_bench" \
   "$OUT/build/src/animation/offline/libozz_animation_offline.a" "$OUT/build/src/animation/runtime/libozz_animation.a" \
-  "$OUT/build/src/base/libozz_base.a" "$BUILD/libinbetween.a" -lbenchmark -lpthread
+  "$OUT/build/src/base/libozz_base.a" "$BUILD/libinbetween.a" $(pkg-config --libs libhwy) -lbenchmark -lpthread
 
 "$OUT/ozz_rig_bench" "--benchmark_min_time=$BENCH_MIN_TIME" --benchmark_repetitions=3 \
   --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true \
