@@ -655,20 +655,36 @@ void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context&
   const std::size_t J = clip.joints_;
   INBETWEEN_ASSERT(out.size() == J);
   evaluate_channels(clip, frame, context);
+  // The quaternion's 1/|q| for a block of joints at a time, W lanes at once (std::sqrt and the
+  // division are correctly rounded in both, so the same bits as the scalar 1/sqrt per joint),
+  // then the AoS write.
+  namespace stdx = rig_detail::stdx;
+  using V = stdx::native_simd<float>;
+  constexpr std::size_t W = V::size();
+  constexpr std::size_t kBlock = 64;  // joints per block (a multiple of W)
+  static_assert(kBlock % W == 0);
   const float* v = context.values.data();
-  for (std::size_t j = 0; j < J; ++j) {
-    JointPose<float>& p = out[j];
-    const float* q = v + 10 * j;
-    p.translation = Vec3f{q[0], q[1], q[2]};
-    const float w = q[3], x = q[4], y = q[5], z = q[6];
-    const float n2 = w * w + x * x + y * y + z * z;
-    if (n2 > 0) {
-      const float inv = 1.0f / std::sqrt(n2);
-      p.rotation = Quatf::from_wxyz(w * inv, x * inv, y * inv, z * inv);
-    } else {
-      p.rotation = Quatf{};
+  alignas(64) float n2[kBlock], inv[kBlock];
+  for (std::size_t j0 = 0; j0 < J; j0 += kBlock) {
+    const std::size_t n = std::min(kBlock, J - j0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const float* q = v + 10 * (j0 + i);
+      n2[i] = q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6];
     }
-    p.scale = Vec3f{q[7], q[8], q[9]};
+    for (std::size_t i = n; i < (n + W - 1) / W * W; ++i) n2[i] = 1.0f;  // lanes past the last joint
+    for (std::size_t i = 0; i < n; i += W) {
+      const V m(n2 + i, stdx::vector_aligned);
+      const V r = V(1.0f) / stdx::sqrt(m);  // used where n2 > 0 only
+      r.copy_to(inv + i, stdx::vector_aligned);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      JointPose<float>& p = out[j0 + i];
+      const float* q = v + 10 * (j0 + i);
+      p.translation = Vec3f{q[0], q[1], q[2]};
+      const float s = inv[i];
+      p.rotation = n2[i] > 0 ? Quatf::from_wxyz(q[3] * s, q[4] * s, q[5] * s, q[6] * s) : Quatf{};
+      p.scale = Vec3f{q[7], q[8], q[9]};
+    }
   }
 }
 
