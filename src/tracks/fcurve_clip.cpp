@@ -619,6 +619,19 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   }
   const float big = std::numeric_limits<float>::max();
   frame = frame > -big ? (frame < big ? frame : big) : -big;
+  if (frame < context.time) {
+    // A seek back to a frame near the stream's start (a looping playback's wrap to its first
+    // frame): replaying the stream from its start (every channel's first piece begins at −∞, so
+    // each channel's cached piece ends as the one holding the frame, with its cursor) is a
+    // sequential read of at most 4 pieces per channel, where advance's per-channel search makes
+    // a few dependent reads each, scattered over the whole clip.  Same pieces and cursors either way.
+    const auto& ch = clip.data_;
+    const std::size_t replay = std::min(ch.owner.size(), 4 * C);  // pieces a replay may consume
+    if (replay == ch.owner.size() || ch.data[replay * B] > frame) {
+      context.next = 0;
+      context.time = -kInf;
+    }
+  }
   rig_detail::advance<float, W, B>(clip.data_, C, frame, context.time, context.next, context.segment.data(),
                                    context.cache.data());
   context.time = frame;
