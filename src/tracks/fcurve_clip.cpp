@@ -21,20 +21,44 @@ constexpr std::size_t D = FCurveClip::degree;
 constexpr float kBand = 0.0001f;  // Blender's snap band around a key, in frames
 constexpr float kNoBand = -1.0f;  // a band width no |frame − key| ≤ it
 
-// Pushes a block: lo, hi, origin, inv_length, band_lo, band_hi, c0 … cD.
+// Fields of a piece the cache holds (the SIMD loop's): origin, inv_length, the two band
+// thresholds, c0 … cD — the block without lo and hi, which only the stream and the searches read.
+constexpr std::size_t CB = FCurveClip::cached_fields;
+constexpr std::size_t kCachedFrom = B - CB;  // first cached field of a block
+
+// Blender's snap band at a piece's lo as a frame threshold: the largest float t with
+// t − lo ≤ band in float (t − lo is monotone in t, so the band is exactly the frames t ≤ it);
+// −∞ for no band (band < 0: no t ≥ lo has t − lo ≤ band).
+float band_threshold_lo(float lo, float band) {
+  if (band < 0 || !std::isfinite(lo)) return -kInf;
+  float t = float(double(lo) + double(band));
+  while (t - lo > band) t = std::nextafter(t, -kInf);
+  while (std::nextafter(t, kInf) - lo <= band) t = std::nextafter(t, kInf);
+  return t;
+}
+// At hi: the smallest float t with hi − t ≤ band (+∞ for no band).
+float band_threshold_hi(float hi, float band) {
+  if (band < 0 || !std::isfinite(hi)) return kInf;
+  float t = float(double(hi) - double(band));
+  while (hi - t > band) t = std::nextafter(t, kInf);
+  while (hi - std::nextafter(t, -kInf) <= band) t = std::nextafter(t, -kInf);
+  return t;
+}
+
+// Pushes a block: lo, hi, origin, inv_length, the band thresholds at lo and hi, c0 … cD.
 void push_piece(std::vector<float>& data, float lo, float hi, float origin, float inv_length, float band_lo,
                 float band_hi, const std::array<float, D + 1>& c) {
-  data.insert(data.end(), {lo, hi, origin, inv_length, band_lo, band_hi});
+  data.insert(data.end(), {lo, hi, origin, inv_length, band_threshold_lo(lo, band_lo), band_threshold_hi(hi, band_hi)});
   data.insert(data.end(), c.begin(), c.end());
 }
 
 // The runtime's evaluation of a block at `frame`, in float, in the operations evaluate_channels
-// does: u = (frame − origin)·inv_length, u = +1 inside the band at hi, −1 inside the band at lo
-// (that one wins), then Horner.
+// does: u = (frame − origin)·inv_length, u = +1 inside the band at hi (frame ≥ its threshold),
+// −1 inside the band at lo (frame ≤ its threshold; that one wins), then Horner.
 float piece_value(const float* blk, float frame) {
   float u = (frame - blk[2]) * blk[3];
-  if (blk[1] - frame <= blk[5]) u = 1.0f;
-  if (frame - blk[0] <= blk[4]) u = -1.0f;
+  if (frame >= blk[5]) u = 1.0f;
+  if (frame <= blk[4]) u = -1.0f;
   float v = blk[6 + D];
   for (std::size_t k = D; k-- > 0;) v = v * u + blk[6 + k];
   return v;
@@ -97,7 +121,7 @@ struct Fitter {
       for (std::size_t q = D; q > 0; --q) c[q] = c[q - 1] - u[k] * c[q];
       c[0] = -u[k] * c[0] + d[k];
     }
-    blk = {a, b, org, iv, band_lo, band_hi};
+    blk = {a, b, org, iv, band_threshold_lo(a, band_lo), band_threshold_hi(b, band_hi)};
     for (std::size_t k = 0; k <= D; ++k) blk[6 + k] = float(c[k]);
     float err = 0;
     const auto check = [&](float x) {
@@ -468,7 +492,7 @@ struct FCurveClipAccess {
       for (; p < limit && data[p * B] <= t; ++p) {
         const std::uint32_t c = ch.owner[p];
         ctx.segment[c] = ch.local[p];
-        rig_detail::put_block<float, W, B>(data + p * B, cache, c);
+        rig_detail::put_block<float, W, CB>(data + p * B + kCachedFrom, cache, c);
       }
       if (p == n || data[p * B] > t) {
         next = p;
@@ -478,12 +502,12 @@ struct FCurveClipAccess {
     }
     for (std::size_t i = 0; i < cy.members.size(); ++i) {
       const std::size_t c = cy.members[i];
-      const float* col = cache + (c / W) * B * W + c % W;
-      if (t >= col[0] && t < col[W]) continue;  // cached [lo, hi) still holds t
+      const float* cur = data + std::size_t(ch.where[ch.begin[i] + ctx.segment[c]]) * B;  // the cached piece
+      if (t >= cur[0] && t < cur[1]) continue;  // its [lo, hi) still holds t
       const std::uint32_t k = rig_detail::find_segment<float, B>(data, ch.where.data() + ch.begin[i], ch.count[i], t,
                                                                  ctx.segment[c]);
       ctx.segment[c] = k;
-      rig_detail::put_block<float, W, B>(data + std::size_t(ch.where[ch.begin[i] + k]) * B, cache, c);
+      rig_detail::put_block<float, W, CB>(data + std::size_t(ch.where[ch.begin[i] + k]) * B + kCachedFrom, cache, c);
     }
     std::size_t lo = 0, hi = n;  // first piece whose lo > t
     while (lo < hi) {
@@ -535,7 +559,7 @@ FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
   FCurveClip::Context ctx;
   ctx.stride = (clip.channels() + 15) / 16 * 16;
   ctx.segment.assign(clip.channels(), 0);
-  ctx.cache.assign(B * ctx.stride, 0.0f);
+  ctx.cache.assign(CB * ctx.stride, 0.0f);
   ctx.values.assign(ctx.stride, 0.0f);
   // The identity fold on (−∞, +∞) for every channel; a cycling channel's fields are its class's,
   // written when the class's fold is first set (the first sample).
@@ -558,6 +582,49 @@ FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
 
 namespace {
 
+// Brings the cache of the channels in the main stream to `frame`: rig_detail::advance, with the
+// cache holding a piece's cached fields only (CB of B, without lo and hi): forward playback
+// consumes the stream's next pieces; a seek back, or a forward jump past more than 16 pieces
+// per channel, finds each stale channel's piece from its cursor (the cached piece's [lo, hi) read
+// from the stream through the cursor) and repositions the stream.
+template <class Channels>
+void advance_main(const Channels& ch, std::size_t C, float frame, FCurveClip::Context& context) noexcept {
+  constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
+  const float* data = ch.data.data();
+  const std::size_t n = ch.owner.size();
+  float* cache = context.cache.data();
+  std::uint32_t* segment = context.segment.data();
+  if (frame >= context.time) {
+    const std::size_t limit = std::min(n, context.next + 16 * C);
+    std::size_t p = context.next;
+    for (; p < limit && data[p * B] <= frame; ++p) {
+      const std::uint32_t c = ch.owner[p];
+      segment[c] = ch.local[p];
+      rig_detail::put_block<float, W, CB>(data + p * B + kCachedFrom, cache, c);
+    }
+    if (p == n || data[p * B] > frame) {
+      context.next = p;
+      return;
+    }
+  }
+  for (std::size_t c = 0; c < C; ++c) {
+    if (ch.count[c] == 0) continue;  // a cycling channel (not in the main stream)
+    const std::uint32_t* where = ch.where.data() + ch.begin[c];
+    const float* cur = data + std::size_t(where[segment[c]]) * B;
+    if (frame >= cur[0] && frame < cur[1]) continue;  // the cached piece's [lo, hi) still holds frame
+    const std::uint32_t k = rig_detail::find_segment<float, B>(data, where, ch.count[c], frame, segment[c]);
+    segment[c] = k;
+    rig_detail::put_block<float, W, CB>(data + std::size_t(where[k]) * B + kCachedFrom, cache, c);
+  }
+  std::size_t lo = 0, hi = n;  // first piece whose lo > frame
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (data[mid * B] <= frame) lo = mid + 1;
+    else hi = mid;
+  }
+  context.next = lo;
+}
+
 // evaluate_channels' SIMD loop over groups of native_simd<float>::size() channels from the cache;
 // Folding: some channel cycles (apply each group's cycle fold where one of its channels does).
 template <bool Folding>
@@ -569,7 +636,7 @@ void evaluate_groups(FCurveClip::Context& context, std::size_t C, float frame) n
   const float* cache = context.cache.data();
   float* values = context.values.data();
   for (std::size_t c0 = 0; c0 < C; c0 += W) {
-    const float* g = cache + c0 * B;  // this group's fields: field k at g + k·W
+    const float* g = cache + c0 * CB;  // this group's cached fields: field k at g + k·W
     const auto ld = [g](std::size_t k) noexcept { return rig_detail::load<V>(g + k * W); };
     V t = f;  // the frame each channel's piece is evaluated at
     V offset = V(0.0f);
@@ -586,12 +653,12 @@ void evaluate_groups(FCurveClip::Context& context, std::size_t C, float frame) n
         offset = fl(8);
       }
     }
-    V u = (t - ld(2)) * ld(3);
-    // Blender's snap bands: u = +1 within band_hi of hi, −1 within band_lo of lo (that one wins).
-    stdx::where(ld(1) - t <= ld(5), u) = V(1.0f);
-    stdx::where(t - ld(0) <= ld(4), u) = V(-1.0f);
-    V v = ld(6 + D);
-    for (std::size_t k = D; k-- > 0;) v = v * u + ld(6 + k);
+    V u = (t - ld(0)) * ld(1);
+    // Blender's snap bands: u = +1 from the threshold at hi on, −1 up to the one at lo (that one wins).
+    stdx::where(t >= ld(3), u) = V(1.0f);
+    stdx::where(t <= ld(2), u) = V(-1.0f);
+    V v = ld(4 + D);
+    for (std::size_t k = D; k-- > 0;) v = v * u + ld(4 + k);
     if constexpr (Folding) v += offset;
     v.copy_to(values + c0, stdx::element_aligned);
   }
@@ -600,11 +667,8 @@ void evaluate_groups(FCurveClip::Context& context, std::size_t C, float frame) n
 }  // namespace
 
 void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context& context) noexcept {
-  namespace stdx = rig_detail::stdx;
-  using V = stdx::native_simd<float>;
-  constexpr std::size_t W = V::size();
   const std::size_t C = clip.channels_;
-  INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == B * context.stride &&
+  INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == CB * context.stride &&
                    context.fold.size() == FCurveClipAccess::kFold * context.stride);
   if (std::isnan(frame)) {
     // As FCurve::sample: the first key's value, each channel's second piece at its start (it
@@ -632,8 +696,7 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
       context.time = -kInf;
     }
   }
-  rig_detail::advance<float, W, B>(clip.data_, C, frame, context.time, context.next, context.segment.data(),
-                                   context.cache.data());
+  advance_main(clip.data_, C, frame, context);
   context.time = frame;
   for (std::size_t q = 0; q < clip.classes_.size(); ++q) {
     // The common case inline: the class's fold still holds and its local frame moved on within
