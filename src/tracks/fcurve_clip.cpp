@@ -486,7 +486,14 @@ struct FCurveClipAccess {
     std::size_t& next = ctx.class_next[q];
     const float previous = S[8];
     S[8] = t;
-    if (t >= previous) {
+    bool forward = t >= previous;
+    if (!forward) {
+      // A local frame back near the stream's start (the wrap to the next copy of a repeat):
+      // replay the stream from its start, as evaluate_channels does for the main stream.
+      const std::size_t replay = std::min(n, 4 * cy.members.size());
+      if (replay == n || data[replay * B] > t) next = 0, forward = true;
+    }
+    if (forward) {
       const std::size_t limit = std::min(n, next + 16 * cy.members.size());
       std::size_t p = next;
       for (; p < limit && data[p * B] <= t; ++p) {
