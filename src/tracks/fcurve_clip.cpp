@@ -21,20 +21,44 @@ constexpr std::size_t D = FCurveClip::degree;
 constexpr float kBand = 0.0001f;  // Blender's snap band around a key, in frames
 constexpr float kNoBand = -1.0f;  // a band width no |frame − key| ≤ it
 
-// Pushes a block: lo, hi, origin, inv_length, band_lo, band_hi, c0 … cD.
+// Fields of a piece the cache holds (the SIMD loop's): origin, inv_length, the two band
+// thresholds, c0 … cD — the block without lo and hi, which only the stream and the searches read.
+constexpr std::size_t CB = FCurveClip::cached_fields;
+constexpr std::size_t kCachedFrom = B - CB;  // first cached field of a block
+
+// Blender's snap band at a piece's lo as a frame threshold: the largest float t with
+// t − lo ≤ band in float (t − lo is monotone in t, so the band is exactly the frames t ≤ it);
+// −∞ for no band (band < 0: no t ≥ lo has t − lo ≤ band).
+float band_threshold_lo(float lo, float band) {
+  if (band < 0 || !std::isfinite(lo)) return -kInf;
+  float t = float(double(lo) + double(band));
+  while (t - lo > band) t = std::nextafter(t, -kInf);
+  while (std::nextafter(t, kInf) - lo <= band) t = std::nextafter(t, kInf);
+  return t;
+}
+// At hi: the smallest float t with hi − t ≤ band (+∞ for no band).
+float band_threshold_hi(float hi, float band) {
+  if (band < 0 || !std::isfinite(hi)) return kInf;
+  float t = float(double(hi) - double(band));
+  while (hi - t > band) t = std::nextafter(t, kInf);
+  while (hi - std::nextafter(t, -kInf) <= band) t = std::nextafter(t, -kInf);
+  return t;
+}
+
+// Pushes a block: lo, hi, origin, inv_length, the band thresholds at lo and hi, c0 … cD.
 void push_piece(std::vector<float>& data, float lo, float hi, float origin, float inv_length, float band_lo,
                 float band_hi, const std::array<float, D + 1>& c) {
-  data.insert(data.end(), {lo, hi, origin, inv_length, band_lo, band_hi});
+  data.insert(data.end(), {lo, hi, origin, inv_length, band_threshold_lo(lo, band_lo), band_threshold_hi(hi, band_hi)});
   data.insert(data.end(), c.begin(), c.end());
 }
 
 // The runtime's evaluation of a block at `frame`, in float, in the operations evaluate_channels
-// does: u = (frame − origin)·inv_length, u = +1 inside the band at hi, −1 inside the band at lo
-// (that one wins), then Horner.
+// does: u = (frame − origin)·inv_length, u = +1 inside the band at hi (frame ≥ its threshold),
+// −1 inside the band at lo (frame ≤ its threshold; that one wins), then Horner.
 float piece_value(const float* blk, float frame) {
   float u = (frame - blk[2]) * blk[3];
-  if (blk[1] - frame <= blk[5]) u = 1.0f;
-  if (frame - blk[0] <= blk[4]) u = -1.0f;
+  if (frame >= blk[5]) u = 1.0f;
+  if (frame <= blk[4]) u = -1.0f;
   float v = blk[6 + D];
   for (std::size_t k = D; k-- > 0;) v = v * u + blk[6 + k];
   return v;
@@ -97,7 +121,7 @@ struct Fitter {
       for (std::size_t q = D; q > 0; --q) c[q] = c[q - 1] - u[k] * c[q];
       c[0] = -u[k] * c[0] + d[k];
     }
-    blk = {a, b, org, iv, band_lo, band_hi};
+    blk = {a, b, org, iv, band_threshold_lo(a, band_lo), band_threshold_hi(b, band_hi)};
     for (std::size_t k = 0; k <= D; ++k) blk[6 + k] = float(c[k]);
     float err = 0;
     const auto check = [&](float x) {
@@ -462,13 +486,20 @@ struct FCurveClipAccess {
     std::size_t& next = ctx.class_next[q];
     const float previous = S[8];
     S[8] = t;
-    if (t >= previous) {
+    bool forward = t >= previous;
+    if (!forward) {
+      // A local frame back near the stream's start (the wrap to the next copy of a repeat):
+      // replay the stream from its start, as evaluate_channels does for the main stream.
+      const std::size_t replay = std::min(n, 4 * cy.members.size());
+      if (replay == n || data[replay * B] > t) next = 0, forward = true;
+    }
+    if (forward) {
       const std::size_t limit = std::min(n, next + 16 * cy.members.size());
       std::size_t p = next;
       for (; p < limit && data[p * B] <= t; ++p) {
         const std::uint32_t c = ch.owner[p];
         ctx.segment[c] = ch.local[p];
-        rig_detail::put_block<float, W, B>(data + p * B, cache, c);
+        rig_detail::put_block<float, W, CB>(data + p * B + kCachedFrom, cache, c);
       }
       if (p == n || data[p * B] > t) {
         next = p;
@@ -478,12 +509,12 @@ struct FCurveClipAccess {
     }
     for (std::size_t i = 0; i < cy.members.size(); ++i) {
       const std::size_t c = cy.members[i];
-      const float* col = cache + (c / W) * B * W + c % W;
-      if (t >= col[0] && t < col[W]) continue;  // cached [lo, hi) still holds t
+      const float* cur = data + std::size_t(ch.where[ch.begin[i] + ctx.segment[c]]) * B;  // the cached piece
+      if (t >= cur[0] && t < cur[1]) continue;  // its [lo, hi) still holds t
       const std::uint32_t k = rig_detail::find_segment<float, B>(data, ch.where.data() + ch.begin[i], ch.count[i], t,
                                                                  ctx.segment[c]);
       ctx.segment[c] = k;
-      rig_detail::put_block<float, W, B>(data + std::size_t(ch.where[ch.begin[i] + k]) * B, cache, c);
+      rig_detail::put_block<float, W, CB>(data + std::size_t(ch.where[ch.begin[i] + k]) * B + kCachedFrom, cache, c);
     }
     std::size_t lo = 0, hi = n;  // first piece whose lo > t
     while (lo < hi) {
@@ -535,7 +566,7 @@ FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
   FCurveClip::Context ctx;
   ctx.stride = (clip.channels() + 15) / 16 * 16;
   ctx.segment.assign(clip.channels(), 0);
-  ctx.cache.assign(B * ctx.stride, 0.0f);
+  ctx.cache.assign(CB * ctx.stride, 0.0f);
   ctx.values.assign(ctx.stride, 0.0f);
   // The identity fold on (−∞, +∞) for every channel; a cycling channel's fields are its class's,
   // written when the class's fold is first set (the first sample).
@@ -556,12 +587,95 @@ FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
   return ctx;
 }
 
-void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context& context) noexcept {
+namespace {
+
+// Brings the cache of the channels in the main stream to `frame`: rig_detail::advance, with the
+// cache holding a piece's cached fields only (CB of B, without lo and hi): forward playback
+// consumes the stream's next pieces; a seek back, or a forward jump past more than 16 pieces
+// per channel, finds each stale channel's piece from its cursor (the cached piece's [lo, hi) read
+// from the stream through the cursor) and repositions the stream.
+template <class Channels>
+void advance_main(const Channels& ch, std::size_t C, float frame, FCurveClip::Context& context) noexcept {
+  constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
+  const float* data = ch.data.data();
+  const std::size_t n = ch.owner.size();
+  float* cache = context.cache.data();
+  std::uint32_t* segment = context.segment.data();
+  if (frame >= context.time) {
+    const std::size_t limit = std::min(n, context.next + 16 * C);
+    std::size_t p = context.next;
+    for (; p < limit && data[p * B] <= frame; ++p) {
+      const std::uint32_t c = ch.owner[p];
+      segment[c] = ch.local[p];
+      rig_detail::put_block<float, W, CB>(data + p * B + kCachedFrom, cache, c);
+    }
+    if (p == n || data[p * B] > frame) {
+      context.next = p;
+      return;
+    }
+  }
+  for (std::size_t c = 0; c < C; ++c) {
+    if (ch.count[c] == 0) continue;  // a cycling channel (not in the main stream)
+    const std::uint32_t* where = ch.where.data() + ch.begin[c];
+    const float* cur = data + std::size_t(where[segment[c]]) * B;
+    if (frame >= cur[0] && frame < cur[1]) continue;  // the cached piece's [lo, hi) still holds frame
+    const std::uint32_t k = rig_detail::find_segment<float, B>(data, where, ch.count[c], frame, segment[c]);
+    segment[c] = k;
+    rig_detail::put_block<float, W, CB>(data + std::size_t(where[k]) * B + kCachedFrom, cache, c);
+  }
+  std::size_t lo = 0, hi = n;  // first piece whose lo > frame
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (data[mid * B] <= frame) lo = mid + 1;
+    else hi = mid;
+  }
+  context.next = lo;
+}
+
+// evaluate_channels' SIMD loop over groups of native_simd<float>::size() channels from the cache;
+// Folding: some channel cycles (apply each group's cycle fold where one of its channels does).
+template <bool Folding>
+void evaluate_groups(FCurveClip::Context& context, std::size_t C, float frame) noexcept {
   namespace stdx = rig_detail::stdx;
   using V = stdx::native_simd<float>;
   constexpr std::size_t W = V::size();
+  const V f(frame);
+  const float* cache = context.cache.data();
+  float* values = context.values.data();
+  for (std::size_t c0 = 0; c0 < C; c0 += W) {
+    const float* g = cache + c0 * CB;  // this group's cached fields: field k at g + k·W
+    const auto ld = [g](std::size_t k) noexcept { return rig_detail::load<V>(g + k * W); };
+    V t = f;  // the frame each channel's piece is evaluated at
+    V offset = V(0.0f);
+    if constexpr (Folding) {
+      if (context.folding[c0 / W]) {
+        const float* fold = context.fold.data();
+        const std::size_t s = context.stride;
+        // The cycle fold: local = base + sign·((frame − end) − n·period) + wrap, the class's local
+        // frame bit for bit (the same float operations; the identity for channels that do not
+        // cycle), and the channel's value offset.
+        const auto fl = [fold, s, c0](std::size_t k) noexcept { return rig_detail::load<V>(fold + k * s + c0); };
+        const V r = ((f - fl(2)) - fl(3)) - fl(4);
+        t = (fl(6) + fl(5) * r) + fl(7);
+        offset = fl(8);
+      }
+    }
+    V u = (t - ld(0)) * ld(1);
+    // Blender's snap bands: u = +1 from the threshold at hi on, −1 up to the one at lo (that one wins).
+    stdx::where(t >= ld(3), u) = V(1.0f);
+    stdx::where(t <= ld(2), u) = V(-1.0f);
+    V v = ld(4 + D);
+    for (std::size_t k = D; k-- > 0;) v = v * u + ld(4 + k);
+    if constexpr (Folding) v += offset;
+    v.copy_to(values + c0, stdx::element_aligned);
+  }
+}
+
+}  // namespace
+
+void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context& context) noexcept {
   const std::size_t C = clip.channels_;
-  INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == B * context.stride &&
+  INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == CB * context.stride &&
                    context.fold.size() == FCurveClipAccess::kFold * context.stride);
   if (std::isnan(frame)) {
     // As FCurve::sample: the first key's value, each channel's second piece at its start (it
@@ -576,8 +690,20 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   }
   const float big = std::numeric_limits<float>::max();
   frame = frame > -big ? (frame < big ? frame : big) : -big;
-  rig_detail::advance<float, W, B>(clip.data_, C, frame, context.time, context.next, context.segment.data(),
-                                   context.cache.data());
+  if (frame < context.time) {
+    // A seek back to a frame near the stream's start (a looping playback's wrap to its first
+    // frame): replaying the stream from its start (every channel's first piece begins at −∞, so
+    // each channel's cached piece ends as the one holding the frame, with its cursor) is a
+    // sequential read of at most 4 pieces per channel, where advance's per-channel search makes
+    // a few dependent reads each, scattered over the whole clip.  Same pieces and cursors either way.
+    const auto& ch = clip.data_;
+    const std::size_t replay = std::min(ch.owner.size(), 4 * C);  // pieces a replay may consume
+    if (replay == ch.owner.size() || ch.data[replay * B] > frame) {
+      context.next = 0;
+      context.time = -kInf;
+    }
+  }
+  advance_main(clip.data_, C, frame, context);
   context.time = frame;
   for (std::size_t q = 0; q < clip.classes_.size(); ++q) {
     // The common case inline: the class's fold still holds and its local frame moved on within
@@ -592,33 +718,12 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
     }
     FCurveClipAccess::advance_class(clip, context, q, frame);
   }
-  const V f(frame);
-  const float* cache = context.cache.data();
-  const float* fold = context.fold.data();
-  const std::size_t s = context.stride;
-  float* values = context.values.data();
-  for (std::size_t c0 = 0; c0 < C; c0 += W) {
-    const float* g = cache + c0 * B;  // this group's fields: field k at g + k·W
-    const auto ld = [g](std::size_t k) noexcept { return rig_detail::load<V>(g + k * W); };
-    V t = f;  // the frame each channel's piece is evaluated at
-    V offset = V(0.0f);
-    if (context.folding[c0 / W]) {
-      // The cycle fold: local = base + sign·((frame − end) − n·period) + wrap, the class's local
-      // frame bit for bit (the same float operations; the identity for channels that do not
-      // cycle), and the channel's value offset.
-      const auto fl = [fold, s, c0](std::size_t k) noexcept { return rig_detail::load<V>(fold + k * s + c0); };
-      const V r = ((f - fl(2)) - fl(3)) - fl(4);
-      t = (fl(6) + fl(5) * r) + fl(7);
-      offset = fl(8);
-    }
-    V u = (t - ld(2)) * ld(3);
-    // Blender's snap bands: u = +1 within band_hi of hi, −1 within band_lo of lo (that one wins).
-    stdx::where(ld(1) - t <= ld(5), u) = V(1.0f);
-    stdx::where(t - ld(0) <= ld(4), u) = V(-1.0f);
-    V v = ld(6 + D);
-    for (std::size_t k = D; k-- > 0;) v = v * u + ld(6 + k);
-    v += offset;
-    v.copy_to(values + c0, stdx::element_aligned);
+  // The SIMD loop, without the cycle fold when no channel cycles (chosen once per call: a
+  // non-cycling clip pays neither the per-group branch nor the offset add).
+  if (clip.classes_.empty()) {
+    evaluate_groups<false>(context, C, frame);
+  } else {
+    evaluate_groups<true>(context, C, frame);
   }
 }
 
@@ -633,20 +738,36 @@ void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context&
   const std::size_t J = clip.joints_;
   INBETWEEN_ASSERT(out.size() == J);
   evaluate_channels(clip, frame, context);
+  // The quaternion's 1/|q| for a block of joints at a time, W lanes at once (std::sqrt and the
+  // division are correctly rounded in both, so the same bits as the scalar 1/sqrt per joint),
+  // then the AoS write.
+  namespace stdx = rig_detail::stdx;
+  using V = stdx::native_simd<float>;
+  constexpr std::size_t W = V::size();
+  constexpr std::size_t kBlock = 64;  // joints per block (a multiple of W)
+  static_assert(kBlock % W == 0);
   const float* v = context.values.data();
-  for (std::size_t j = 0; j < J; ++j) {
-    JointPose<float>& p = out[j];
-    const float* q = v + 10 * j;
-    p.translation = Vec3f{q[0], q[1], q[2]};
-    const float w = q[3], x = q[4], y = q[5], z = q[6];
-    const float n2 = w * w + x * x + y * y + z * z;
-    if (n2 > 0) {
-      const float inv = 1.0f / std::sqrt(n2);
-      p.rotation = Quatf::from_wxyz(w * inv, x * inv, y * inv, z * inv);
-    } else {
-      p.rotation = Quatf{};
+  alignas(64) float n2[kBlock], inv[kBlock];
+  for (std::size_t j0 = 0; j0 < J; j0 += kBlock) {
+    const std::size_t n = std::min(kBlock, J - j0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const float* q = v + 10 * (j0 + i);
+      n2[i] = q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6];
     }
-    p.scale = Vec3f{q[7], q[8], q[9]};
+    for (std::size_t i = n; i < (n + W - 1) / W * W; ++i) n2[i] = 1.0f;  // lanes past the last joint
+    for (std::size_t i = 0; i < n; i += W) {
+      const V m(n2 + i, stdx::vector_aligned);
+      const V r = V(1.0f) / stdx::sqrt(m);  // used where n2 > 0 only
+      r.copy_to(inv + i, stdx::vector_aligned);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      JointPose<float>& p = out[j0 + i];
+      const float* q = v + 10 * (j0 + i);
+      p.translation = Vec3f{q[0], q[1], q[2]};
+      const float s = inv[i];
+      p.rotation = n2[i] > 0 ? Quatf::from_wxyz(q[3] * s, q[4] * s, q[5] * s, q[6] * s) : Quatf{};
+      p.scale = Vec3f{q[7], q[8], q[9]};
+    }
   }
 }
 

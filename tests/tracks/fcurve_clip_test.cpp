@@ -72,6 +72,32 @@ TEST(FCurveClip, AgreesWithFCurveSampleOnRandomCurves) {
             << clip->pieces() << " pieces\n";
 }
 
+// A looping playback (frames −15 … 60, then back to −15, three times) takes each seek back to
+// the start by replaying the stream from its beginning, other seeks back by searching each
+// channel's pieces; both must leave the cache as a fresh context's forward consumption does, so
+// every value is bit-identical to a fresh context's at the same frame (an independent path:
+// consumption from −∞).
+TEST(FCurveClip, LoopingPlaybackMatchesAFreshContextBitForBit) {
+  test::Random rng(test::seed_for(1213));
+  SCOPED_TRACE(rng.trace());
+  std::vector<FCurve> curves;
+  for (int i = 0; i < 30; ++i) curves.push_back(random_curve(rng));
+  const auto clip = build_fcurve_clip(curves);
+  ASSERT_TRUE(clip) << clip.error().describe();
+  auto ctx = make_fcurve_context(*clip);
+  std::vector<float> out(curves.size()), fresh_out(curves.size());
+  std::vector<float> frames;
+  for (int loop = 0; loop < 3; ++loop)
+    for (float t = -15; t < 60; t += 0.5f) frames.push_back(t);
+  for (int i = 0; i < 50; ++i) frames.push_back(rng.uniform<float>(-20, 70));  // seeks either way
+  for (const float t : frames) {
+    sample_fcurves(*clip, t, ctx, std::span<float>(out));
+    auto fresh = make_fcurve_context(*clip);
+    sample_fcurves(*clip, t, fresh, std::span<float>(fresh_out));
+    for (std::size_t c = 0; c < curves.size(); ++c) EXPECT_EQ(out[c], fresh_out[c]) << "curve " << c << " frame " << t;
+  }
+}
+
 TEST(FCurveClip, AgreesAtBlendersSnapBandEdges) {
   // Blender answers a key's own value within 1e-4 frames of it (|t − x| ≤ 1e-4 in float); the
   // runtime folds those bands into its pieces (u clamped to ∓1), so the frames just inside and

@@ -5,7 +5,8 @@
 /// FCurve::sample (Blender's root-finding evaluation) to a tolerance checked at build time, so
 /// sampling runs no root finder: one polynomial per channel, evaluated native_simd<float>::size()
 /// channels at a time from a cache kept in the context, with the pieces in a time-sorted stream
-/// (the RigClip machinery, rig_clip.hpp).  A piece is 16 floats, one 64-byte cache line.
+/// (the RigClip machinery, rig_clip.hpp).  A piece is 16 floats, one 64-byte cache line; the
+/// context caches 14 of them per channel (not lo and hi).
 ///
 /// Pieces: Bézier and easing segments are fitted adaptively (the polynomial through the curve's
 /// values at the ten Chebyshev–Lobatto nodes u = −cos(πk/9), the keys' values at the ends; checked
@@ -13,7 +14,7 @@
 /// halved until the check passes); linear segments are the same fit (exact up to rounding).  The
 /// smooth Bézier composite y(x(t)) converges fast: the benchmark rig's segments (auto-clamped
 /// handles) take one piece each.  Blender's 1e-4-frame snap bands around every key (where it
-/// answers the key's value) are not pieces but two band widths per piece: within them the runtime
+/// answers the key's value) are not pieces but two band thresholds per piece: within them the runtime
 /// sets u to −1 or +1, where the polynomial interpolates the key (segments shorter than 1e-3 frames
 /// keep constant band pieces).  Constant segments are one piece (key a's value, key b's in b's
 /// band).  Outside the keys a line through the end key with FCurve::derivative's extrapolation
@@ -114,14 +115,18 @@ class FCurveClip {
   /// Degree of a piece's polynomial.
   static constexpr std::size_t degree = 9;
   /// Floats per piece: lo, hi (the frame interval [lo, hi) the piece answers), origin, 2/length
-  /// (0 for a constant piece), band_lo, band_hi (Blender's snap band widths at lo and hi, −1 for
-  /// none: within them u is −1 or +1), then c0 … c7 of the polynomial in u = (frame − origin)·2/length.
+  /// (0 for a constant piece), the snap-band thresholds at lo and hi (Blender's 1e-4-frame bands as
+  /// frames: u is −1 for frame ≤ the first, +1 for frame ≥ the second; ∓∞ for no band), then
+  /// c0 … c9 of the polynomial in u = (frame − origin)·2/length.
   static constexpr std::size_t block = 6 + degree + 1;
+  /// Floats of a piece the context's cache holds: the block without lo and hi (the sampling loop
+  /// reads only these; the stream and the searches read lo and hi from the clip).
+  static constexpr std::size_t cached_fields = block - 2;
 
   /// The channels' cursors and cache for one playback stream (make it with make_fcurve_context).
   struct Context {
     std::vector<std::uint32_t> segment;  ///< per channel: current piece in the channel
-    std::vector<float> cache;            ///< padded channels × block fields, in SIMD-register order
+    std::vector<float> cache;            ///< padded channels × cached_fields, in SIMD-register order
     std::vector<float> values;           ///< per channel (curve c, for a rig too): the last sampled value
     /// Per channel, field-major (fold[k·stride + c]), its cycle class's fold in force: k = 0, 1 the
     /// window [lo, hi] of frames it is valid on, 2 end key, 3 and 4 n·period (cycle number times
