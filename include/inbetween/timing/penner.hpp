@@ -308,6 +308,52 @@ T circ_slope(T x) noexcept {
   return x / std::sqrt(std::max(T(1) - x * x, eps * eps));
 }
 
+/// The elastic curve's set-up shared by its derivatives: Blender's amplitude blend near the start
+/// (gain(x), piecewise linear, and its slope dgain), the amplitude and period in force, the wave's
+/// variable x with dx/dtime, and the phase shift s.
+template <Real T>
+struct ElasticSetup {
+  T gain, dgain, amplitude, period, x, dx_dtime, s;
+};
+
+/// ElasticSetup for penner_ease_velocity / penner_ease_acceleration (d = duration ≠ 0).
+template <Real T>
+ElasticSetup<T> elastic_setup(EasingDirection direction, T time, T change, T d, const PennerParams<T>& params) noexcept {
+  constexpr T pi = T(3.14159265358979323846);
+  T gain = T(1), dgain = T(0);  // gain and d gain / d x
+  T amplitude = params.amplitude;
+  T period = params.period;
+  T x, dx_dtime;
+  if (direction == EasingDirection::in_out) {
+    x = time / (d / T(2)) - T(1);
+    dx_dtime = T(2) / d;
+    if (period == T(0)) period = d * (T(0.3) * T(1.5));
+  } else {
+    x = time / d;
+    x = direction == EasingDirection::in ? x - T(1) : -x;
+    dx_dtime = (direction == EasingDirection::in ? T(1) : T(-1)) / d;
+    if (period == T(0)) period = d * T(0.3);
+  }
+  T s;
+  if (amplitude == T(0) || amplitude < std::abs(change)) {
+    s = period / T(4);
+    if (change != T(0)) {
+      const T g = amplitude != T(0) ? amplitude / std::abs(change) : T(0);
+      gain = g;
+      const T t = std::abs(s);
+      if (std::abs(x * d) < t) {
+        const T l = std::abs(x * d) / t;
+        gain = g * l + (T(1) - l);
+        dgain = (g - T(1)) * (x < T(0) ? T(-1) : T(1)) * d / t;
+      }
+    }
+    amplitude = change;
+  } else {
+    s = period / (T(2) * pi) * std::asin(change / amplitude);
+  }
+  return {gain, dgain, amplitude, period, x, dx_dtime, s};
+}
+
 }  // namespace penner_detail
 
 /// d/dtime of penner_ease(curve, direction, time, begin, change, duration, params): the closed-form
@@ -369,37 +415,9 @@ T penner_ease_velocity(EasingCurve curve, EasingDirection direction, T time, T c
       return change / T(2) * T(n) * ipow(T(2) - x, n - 1) * T(2) / d;
     }
     case EasingCurve::elastic: {
-      T gain = T(1), dgain = T(0);  // gain and d gain / d x
-      T amplitude = params.amplitude;
-      T period = params.period;
-      T x, dx_dtime;
-      if (direction == EasingDirection::in_out) {
-        x = time / (d / T(2)) - T(1);
-        dx_dtime = T(2) / d;
-        if (period == T(0)) period = d * (T(0.3) * T(1.5));
-      } else {
-        x = time / d;
-        x = direction == EasingDirection::in ? x - T(1) : -x;
-        dx_dtime = (direction == EasingDirection::in ? T(1) : T(-1)) / d;
-        if (period == T(0)) period = d * T(0.3);
-      }
-      T s;
-      if (amplitude == T(0) || amplitude < std::abs(change)) {
-        s = period / T(4);
-        if (change != T(0)) {
-          const T g = amplitude != T(0) ? amplitude / std::abs(change) : T(0);
-          gain = g;
-          const T t = std::abs(s);
-          if (std::abs(x * d) < t) {
-            const T l = std::abs(x * d) / t;
-            gain = g * l + (T(1) - l);
-            dgain = (g - T(1)) * (x < T(0) ? T(-1) : T(1)) * d / t;
-          }
-        }
-        amplitude = change;
-      } else {
-        s = period / (T(2) * pi) * std::asin(change / amplitude);
-      }
+      const penner_detail::ElasticSetup<T> e = penner_detail::elastic_setup(direction, time, change, d, params);
+      const T gain = e.gain, dgain = e.dgain, amplitude = e.amplitude, period = e.period, x = e.x,
+              dx_dtime = e.dx_dtime, s = e.s;
       const T w = T(2) * pi / period;
       const auto wave = [&](T y) { return amplitude * std::pow(T(2), T(10) * y) * std::sin((y * d - s) * w); };
       const auto dwave = [&](T y) {
@@ -490,37 +508,9 @@ T penner_ease_acceleration(EasingCurve curve, EasingDirection direction, T time,
     }
     case EasingCurve::elastic: {
       // As penner_ease_velocity, one derivative further.
-      T gain = T(1), dgain = T(0);
-      T amplitude = params.amplitude;
-      T period = params.period;
-      T x, dx_dtime;
-      if (direction == EasingDirection::in_out) {
-        x = time / (d / T(2)) - T(1);
-        dx_dtime = T(2) / d;
-        if (period == T(0)) period = d * (T(0.3) * T(1.5));
-      } else {
-        x = time / d;
-        x = direction == EasingDirection::in ? x - T(1) : -x;
-        dx_dtime = (direction == EasingDirection::in ? T(1) : T(-1)) / d;
-        if (period == T(0)) period = d * T(0.3);
-      }
-      T s;
-      if (amplitude == T(0) || amplitude < std::abs(change)) {
-        s = period / T(4);
-        if (change != T(0)) {
-          const T g = amplitude != T(0) ? amplitude / std::abs(change) : T(0);
-          gain = g;
-          const T t = std::abs(s);
-          if (std::abs(x * d) < t) {
-            const T l = std::abs(x * d) / t;
-            gain = g * l + (T(1) - l);
-            dgain = (g - T(1)) * (x < T(0) ? T(-1) : T(1)) * d / t;
-          }
-        }
-        amplitude = change;
-      } else {
-        s = period / (T(2) * pi) * std::asin(change / amplitude);
-      }
+      const penner_detail::ElasticSetup<T> e = penner_detail::elastic_setup(direction, time, change, d, params);
+      const T gain = e.gain, dgain = e.dgain, amplitude = e.amplitude, period = e.period, x = e.x,
+              dx_dtime = e.dx_dtime, s = e.s;
       const T w = T(2) * pi / period;
       const T k = T(10) * std::log(T(2));
       const T dw = d * w;
