@@ -312,12 +312,11 @@ const FCurveClip& fcurve_rig_clip(int joints) {
   return it->second;
 }
 
-void BM_RigFCurveRuntime(benchmark::State& state) {
-  const int joints = int(state.range(0));
-  const FCurveClip& clip = fcurve_rig_clip(joints);
-  const double end = rig_end(make_rig<float>(joints)), step = 1.0 / double(state.range(1));
+// Sequential playback of an F-curve rig clip from frame 0 to `end` in `step`s, wrapping to 0 (one
+// sample_fcurve_rig per iteration); counter pieces_per_curve.
+void play_fcurve_rig(benchmark::State& state, const FCurveClip& clip, double end, double step) {
   auto ctx = make_fcurve_context(clip);
-  std::vector<JointPose<float>> pose(static_cast<std::size_t>(joints));
+  std::vector<JointPose<float>> pose(clip.joints());
   double frame = 0;
   for (auto _ : state) {
     sample_fcurve_rig(clip, float(frame), ctx, std::span<JointPose<float>>(pose));
@@ -327,6 +326,13 @@ void BM_RigFCurveRuntime(benchmark::State& state) {
     if (frame > end) frame = 0;
   }
   state.counters["pieces_per_curve"] = double(clip.pieces()) / double(clip.channels());
+}
+
+void BM_RigFCurveRuntime(benchmark::State& state) {
+  const int joints = int(state.range(0));
+  const FCurveClip& clip = fcurve_rig_clip(joints);
+  const double end = rig_end(make_rig<float>(joints)), step = 1.0 / double(state.range(1));
+  play_fcurve_rig(state, clip, end, step);
   state.counters["max_fit_error"] = double(clip.max_fit_error());
 }
 
@@ -373,17 +379,7 @@ void BM_RigFCurveRuntimeCyclic(benchmark::State& state) {
     it = clips.emplace(std::pair{joints, shared}, build_fcurve_rig(make_cycling_fcurve_rig(joints, shared)).value()).first;
   const FCurveClip& clip = it->second;
   const double end = 4 * rig_end(make_rig<float>(joints)), step = 1.0 / double(state.range(1));
-  auto ctx = make_fcurve_context(clip);
-  std::vector<JointPose<float>> pose(static_cast<std::size_t>(joints));
-  double frame = 0;
-  for (auto _ : state) {
-    sample_fcurve_rig(clip, float(frame), ctx, std::span<JointPose<float>>(pose));
-    benchmark::DoNotOptimize(pose.data());
-    benchmark::ClobberMemory();
-    frame += step;
-    if (frame > end) frame = 0;
-  }
-  state.counters["pieces_per_curve"] = double(clip.pieces()) / double(clip.channels());
+  play_fcurve_rig(state, clip, end, step);
   state.counters["cycle_classes"] = double(clip.cycle_classes());
 }
 
