@@ -225,6 +225,18 @@ double bezier_segment_second(const Key& ka, const Key& kb, double t) noexcept {
   return (ddy * dx - dy * ddx) / (dx * dx * dx);
 }
 
+// The easing direction of a Penner segment: the key's own, or the curve's automatic one (as
+// Blender's BEZT_IPO_EASE_AUTO).
+EasingDirection easing_direction(const Key& ka, EasingCurve curve) noexcept {
+  switch (ka.easing) {
+    case KeyEasing::ease_in: return EasingDirection::in;
+    case KeyEasing::ease_out: return EasingDirection::out;
+    case KeyEasing::ease_in_out: return EasingDirection::in_out;
+    case KeyEasing::automatic: break;
+  }
+  return automatic_direction(curve);
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------ FCurve evaluation
@@ -314,10 +326,7 @@ float FCurve::segment_value(int index, float t) const noexcept {
     case Interpolation::linear: return change * time / duration + begin;
     default: {
       const EasingCurve curve = easing_curve(ka.interpolation);
-      EasingDirection dir = automatic_direction(curve);
-      if (ka.easing == KeyEasing::ease_in) dir = EasingDirection::in;
-      if (ka.easing == KeyEasing::ease_out) dir = EasingDirection::out;
-      if (ka.easing == KeyEasing::ease_in_out) dir = EasingDirection::in_out;
+      const EasingDirection dir = easing_direction(ka, curve);
       const PennerParams<float> params{.back = ka.back, .amplitude = ka.amplitude, .period = ka.period};
       return penner_ease(curve, dir, time, begin, change, duration, params);
     }
@@ -371,10 +380,7 @@ double FCurve::segment_derivative(int index, double t) const noexcept {
     case Interpolation::linear: return (double(kb.y) - double(ka.y)) / duration;
     default: {
       const EasingCurve curve = easing_curve(ka.interpolation);
-      EasingDirection dir = automatic_direction(curve);
-      if (ka.easing == KeyEasing::ease_in) dir = EasingDirection::in;
-      if (ka.easing == KeyEasing::ease_out) dir = EasingDirection::out;
-      if (ka.easing == KeyEasing::ease_in_out) dir = EasingDirection::in_out;
+      const EasingDirection dir = easing_direction(ka, curve);
       const PennerParams<double> params{.back = ka.back, .amplitude = ka.amplitude, .period = ka.period};
       return penner_ease_velocity(curve, dir, t - double(ka.x), double(kb.y) - double(ka.y), duration, params);
     }
@@ -391,10 +397,7 @@ double FCurve::segment_second_derivative(int index, double t) const noexcept {
     case Interpolation::linear: return 0.0;
     default: {
       const EasingCurve curve = easing_curve(ka.interpolation);
-      EasingDirection dir = automatic_direction(curve);
-      if (ka.easing == KeyEasing::ease_in) dir = EasingDirection::in;
-      if (ka.easing == KeyEasing::ease_out) dir = EasingDirection::out;
-      if (ka.easing == KeyEasing::ease_in_out) dir = EasingDirection::in_out;
+      const EasingDirection dir = easing_direction(ka, curve);
       const PennerParams<double> params{.back = ka.back, .amplitude = ka.amplitude, .period = ka.period};
       return penner_ease_acceleration(curve, dir, t - double(ka.x), double(kb.y) - double(ka.y), duration, params);
     }
