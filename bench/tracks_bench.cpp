@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <utility>
 #include <random>
 #include <span>
@@ -258,7 +259,10 @@ void BM_RigRuntime(benchmark::State& state) {
 // wxyz, scale xyz) through the same keys (auto-clamped handles, Blender's default).  Per-curve: one
 // FCurve::sample(frame, cursor) per curve (Blender's root-finding evaluation, with a cursor) and
 // the quaternion normalised, as Blender does; runtime: build_fcurve_rig + sample_fcurve_rig.
-std::vector<FCurve> make_fcurve_rig(int joints) {
+// The rig's keys as 10 F-curves per joint; `frame_of(joint's key frames, i)` places key i, and
+// `cycles_of(k)` gives curve k of a joint its Cycles modifier (none when it returns nullopt).
+template <class FrameOf, class CyclesOf>
+std::vector<FCurve> rig_fcurves(int joints, FrameOf frame_of, CyclesOf cycles_of) {
   const auto rig = make_rig<float>(joints);
   std::vector<FCurve> curves;
   for (const auto& j : rig) {
@@ -270,14 +274,21 @@ std::vector<FCurve> make_fcurve_rig(int joints) {
         const Quatf q = j.rotation.keys()[i];
         const float v[10] = {t.x, t.y, t.z, q.w, q.x, q.y, q.z, s.x, s.y, s.z};
         FCurveKey key;
-        key.frame = f[i];
+        key.frame = frame_of(f, i);
         key.value = v[k];
         raw.keys.push_back(key);
       }
+      raw.cycles = cycles_of(k);
       curves.push_back(build_fcurve(raw).value());
     }
   }
   return curves;
+}
+
+std::vector<FCurve> make_fcurve_rig(int joints) {
+  return rig_fcurves(
+      joints, [](auto f, std::size_t i) { return double(f[i]); },
+      [](int) { return std::optional<FCurveCycles>{}; });
 }
 
 void BM_RigFCurvePerCurve(benchmark::State& state) {
@@ -346,28 +357,17 @@ void BM_RigFCurveRuntime(benchmark::State& state) {
 // piece stream per class); 1: each joint's key frames scaled to end at the rig's last frame, so
 // all joints share one cycle, as a character's walk cycle keyed over one frame range does.
 std::vector<FCurve> make_cycling_fcurve_rig(int joints, bool shared) {
-  const auto rig = make_rig<float>(joints);
-  const double end = rig_end(rig);
-  std::vector<FCurve> curves;
-  for (const auto& j : rig) {
-    const auto f = j.translation.frames();
-    const double stretch = shared ? end / double(f.back()) : 1.0;
-    for (int k = 0; k < 10; ++k) {
-      RawFCurve raw;
-      for (std::size_t i = 0; i < f.size(); ++i) {
-        const Vec3f t = j.translation.values()[i], s = j.scale.values()[i];
-        const Quatf q = j.rotation.keys()[i];
-        const float v[10] = {t.x, t.y, t.z, q.w, q.x, q.y, q.z, s.x, s.y, s.z};
-        FCurveKey key;
-        key.frame = i + 1 == f.size() && shared ? end : double(f[i]) * stretch;
-        key.value = v[k];
-        raw.keys.push_back(key);
-      }
-      raw.cycles = FCurveCycles{.before = CycleMode::repeat, .after = k < 3 ? CycleMode::repeat_offset : CycleMode::repeat};
-      curves.push_back(build_fcurve(raw).value());
-    }
-  }
-  return curves;
+  const double end = rig_end(make_rig<float>(joints));
+  return rig_fcurves(
+      joints,
+      [&](auto f, std::size_t i) {
+        const double stretch = shared ? end / double(f.back()) : 1.0;
+        return i + 1 == f.size() && shared ? end : double(f[i]) * stretch;
+      },
+      [](int k) {
+        return std::optional<FCurveCycles>{
+            FCurveCycles{.before = CycleMode::repeat, .after = k < 3 ? CycleMode::repeat_offset : CycleMode::repeat}};
+      });
 }
 
 void BM_RigFCurveRuntimeCyclic(benchmark::State& state) {
