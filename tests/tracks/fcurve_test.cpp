@@ -612,22 +612,16 @@ TEST(FCurveSecondDerivative, CyclesKeepTheSignOnAMirroredCopy) {
   }
 }
 
-TEST(FCurveSecondDerivative, MatchesCentralDifferenceOfTheDerivative) {
-  // derivative() is analytic in double; its central difference D(h) = y″ + h²·y⁗/6 + O(h⁴).  With
-  // h = 1/64 and h/2 = 1/128 (exact in float, so t ± h are the frames asked for) Richardson's
-  // estimate |D(h) − D(h/2)| bounds |D(h/2) − y″| (it is ≈ 3 times that error), plus rounding of
-  // derivative() over the step (1e-12·max(1, |y′|)/h: it solves x(u) = frame to a few ulp).  Points
-  // within 2h of a key are skipped (y″ jumps there, as in the derivative test); where
-  // D(h) and D(h/2) disagree by more than 1e-2·max(1, |y″|) the step straddles a key, a branch
-  // join of an easing or a vertical handle: skipped (this does not look at second_derivative()).
-  constexpr float h = 1.f / 64;
+// The curves the derivative tests difference: every museum curve keyed within |frame| < 1e4
+// (beyond, float spacing ≥ 1/1024 leaves no room for the 1/64 step) and 100 random ones of 2–6
+// keys of every interpolation and handle type, linear or constant extrapolation.
+std::vector<FCurve> difference_check_curves(test::Random& rng) {
   std::vector<FCurve> curves;
   for (const auto& ex : test::museum_fcurves()) {
     auto built = build_fcurve(ex.curve);
-    if (built && std::abs(built->keys().front().x) < 1e4f && std::abs(built->keys().back().x) < 1e4f) curves.push_back(*built);
+    if (built && std::abs(built->keys().front().x) < 1e4f && std::abs(built->keys().back().x) < 1e4f)
+      curves.push_back(*built);
   }
-  test::Random rng(test::seed_for(6007));
-  SCOPED_TRACE(rng.trace());
   for (int trial = 0; trial < 100; ++trial) {
     RawFCurve raw{.extrapolation = trial % 2 ? Extrapolation::linear : Extrapolation::constant};
     double x = rng.uniform(-50.0, 50.0);
@@ -641,6 +635,21 @@ TEST(FCurveSecondDerivative, MatchesCentralDifferenceOfTheDerivative) {
     }
     curves.push_back(build(raw));
   }
+  return curves;
+}
+
+TEST(FCurveSecondDerivative, MatchesCentralDifferenceOfTheDerivative) {
+  // derivative() is analytic in double; its central difference D(h) = y″ + h²·y⁗/6 + O(h⁴).  With
+  // h = 1/64 and h/2 = 1/128 (exact in float, so t ± h are the frames asked for) Richardson's
+  // estimate |D(h) − D(h/2)| bounds |D(h/2) − y″| (it is ≈ 3 times that error), plus rounding of
+  // derivative() over the step (1e-12·max(1, |y′|)/h: it solves x(u) = frame to a few ulp).  Points
+  // within 2h of a key are skipped (y″ jumps there, as in the derivative test); where
+  // D(h) and D(h/2) disagree by more than 1e-2·max(1, |y″|) the step straddles a key, a branch
+  // join of an easing or a vertical handle: skipped (this does not look at second_derivative()).
+  constexpr float h = 1.f / 64;
+  test::Random rng(test::seed_for(6007));
+  SCOPED_TRACE(rng.trace());
+  const std::vector<FCurve> curves = difference_check_curves(rng);
   int checked = 0, skipped = 0;
   double worst = 0;
   for (std::size_t ci = 0; ci < curves.size(); ++ci) {
@@ -679,28 +688,9 @@ TEST(FCurveDerivative, MatchesCentralDifferenceOnMuseumAndRandomCurves) {
   // while a wrong formula (a missing dx/du, a wrong sign) is off by O(|y′|).  Points within 2h of a key are
   // skipped (the slope may jump there, and Blender snaps values within 1e-4 of a key).
   constexpr float h = 1.f / 64;
-  std::vector<FCurve> curves;
-  for (const auto& ex : test::museum_fcurves()) {
-    auto built = build_fcurve(ex.curve);
-    // Frames beyond 1e4 have float spacing ≥ 1/1024: no room for a step that small (skipped).
-    if (built && std::abs(built->keys().front().x) < 1e4f && std::abs(built->keys().back().x) < 1e4f)
-      curves.push_back(*built);
-  }
   test::Random rng(test::seed_for(6006));
   SCOPED_TRACE(rng.trace());
-  for (int trial = 0; trial < 100; ++trial) {
-    RawFCurve raw{.extrapolation = trial % 2 ? Extrapolation::linear : Extrapolation::constant};
-    double x = rng.uniform(-50.0, 50.0);
-    const int n = rng.integer(2, 6);
-    for (int i = 0; i < n; ++i) {
-      FCurveKey k = inserted(x, rng.uniform(-10.0, 10.0));
-      k.interpolation = Interpolation(rng.integer(0, 12));
-      k.handle_left_type = k.handle_right_type = HandleType(rng.integer(1, 4));
-      raw.keys.push_back(k);
-      x += rng.uniform(2.0, 10.0);
-    }
-    curves.push_back(build(raw));
-  }
+  const std::vector<FCurve> curves = difference_check_curves(rng);
   int checked = 0;
   for (std::size_t ci = 0; ci < curves.size(); ++ci) {
     const FCurve& c = curves[ci];
