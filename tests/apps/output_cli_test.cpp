@@ -230,11 +230,20 @@ TEST(OutputCli, ReadOnlyFolderReportsPermissionDenied) {
     if (std::system("command -v setpriv > /dev/null 2>&1") != 0) GTEST_SKIP() << "root without setpriv";
     prefix = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
   }
-  const fs::path dir = test_dir() / "read-only";
+  // As root the command runs as nobody, who must reach the files: the build folder may sit under
+  // a directory only root can enter (a `mktemp -d` clone is 0700), so the files go to a folder of
+  // their own under the system temporary directory (sticky, world-enterable), opened to all.
+  fs::path base = test_dir();
+  if (!prefix.empty()) {
+    base = fs::temp_directory_path() / ("inbetween-read-only-" + std::to_string(::getpid()));
+    fs::create_directories(base);
+    ::chmod(base.c_str(), 0755);
+  }
+  const fs::path dir = base / "read-only";
   fs::create_directories(dir);
   std::ofstream(dir / "out.csv") << "old";
   ASSERT_EQ(::chmod(dir.c_str(), 0555), 0);
-  const fs::path scene = test_dir() / "scene.json";
+  const fs::path scene = base / "scene.json";
   fs::copy_file(kScene, scene, fs::copy_options::overwrite_existing);
   ::chmod(scene.c_str(), 0644);
   const fs::path out_file = test_dir() / "stdout.txt", err_file = test_dir() / "stderr.txt";
@@ -250,6 +259,7 @@ TEST(OutputCli, ReadOnlyFolderReportsPermissionDenied) {
       << err;
   EXPECT_EQ(slurp(dir / "out.csv"), "old");
   EXPECT_TRUE(temporaries(dir).empty());
+  if (!prefix.empty()) fs::remove_all(base);
 }
 
 }  // namespace
