@@ -350,9 +350,10 @@ class RigSimdKernels(unittest.TestCase):
         base = self.kernel(docs, "float", "std_simd", 71)
         name = "BM_RigKernel<float, RigKernel::hwy_dynamic>/71/2"
         set_cpu(docs, "inbetween_bench_tracks", name, base / 1.35)
-        self.assertEqual(row(render(docs), "float kernels, 71 joints")[-1], "met")
+        self.assertEqual(row(render(docs), "float kernels, 71 joints")[-1], "Highway pays (1.35× ≥ 1.3×)")
         set_cpu(docs, "inbetween_bench_tracks", name, base / 1.25)
-        self.assertTrue(row(render(docs), "float kernels, 71 joints")[-1].startswith("missed"))
+        self.assertEqual(row(render(docs), "float kernels, 71 joints")[-1],
+                         "std::experimental::simd enough (1.25× < 1.3×)")
 
     def test_largest_difference_over_the_kernels(self):
         docs = load_docs()
