@@ -337,16 +337,17 @@ Expected<Scene> build_scene(const RawScene& raw) {
           out.insert(out.end(), steps.begin(), steps.end());
           return out;
         };
-        RawPathMotion motion{.speed = leg.speed, .orientation = leg.orientation};
+        // The leg's curve: a named path of the scene or given inline.  Found first, so that the
+        // motion is built with every member initialised (no default AnyCurve assigned over later).
+        const AnyCurve* curve = std::get_if<AnyCurve>(&leg.curve);
         if (const auto* name = std::get_if<std::string>(&leg.curve)) {
           const auto it = path_index.find(*name);
           if (it == path_index.end()) {
             return Error{ErrorCode::InvalidArgument, "no path named \"" + *name + "\" in \"paths\"", "", at_member({"curve"})};
           }
-          motion.path = raw.paths[it->second].curve;
-        } else {
-          motion.path = std::get<AnyCurve>(leg.curve);
+          curve = &raw.paths[it->second].curve;
         }
+        RawPathMotion motion{.path = *curve, .speed = leg.speed, .orientation = leg.orientation};
         if (leg.speed.kind == SpeedKind::track) {
           if (o.path.size() > 1) {
             return Error{ErrorCode::InvalidArgument, "a track speed drives a single-leg path only", "",
