@@ -605,6 +605,7 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
       if (leg) {
         in.camera_path = PathView<double>::of(leg->motion.arc_length());
         in.s = on_path.distance;
+        if (leg + 1 != x.legs.data() + x.legs.size()) in.next_camera_path = PathView<double>::of(leg[1].motion.arc_length());
       }
       if (x.coi_path) in.coi_path = PathView<double>::of(paths_[*x.coi_path]);
       if (x.up_path) in.up_path = PathView<double>::of(paths_[*x.up_path]);

@@ -30,7 +30,7 @@ TEST(SceneHotPath, CounterSeesAnAllocation) {
 }
 
 // Version 2: path objects (two legs, a look_at object, banking, a keyed local rotation), a camera
-// on a path looking ahead, a camera with hold-then-move targets and a keyed tilt, a COI-path camera
+// on a two-leg path looking ahead (into the next leg), a camera with hold-then-move targets and a keyed tilt, a COI-path camera
 // parented to a path object: sample() and sample() through a SceneCursor never allocate.
 RawScene scene_with_paths_and_cameras(std::size_t copies) {
   RawScene raw;
@@ -69,7 +69,11 @@ RawScene scene_with_paths_and_cameras(std::size_t copies) {
     RawPathLeg leg = first;
     leg.orientation = RawOrientation{};
     leg.look_at_object.clear();
-    ahead.path = {leg};
+    RawPathLeg ahead_second = second;  // a second leg: look-ahead continues into its path
+    ahead_second.orientation = RawOrientation{};
+    ahead_second.local_rotation_keys.reset();
+    ahead.path = {leg, ahead_second};
+    ahead.path_is_array = true;
     ahead.camera = RawCameraViewd{.coi = RawLookAhead<double>{.distance = 1, .count = 3, .spread = 2}, .up_path = "p"};
     raw.objects.push_back(ahead);
     RawObject hold;

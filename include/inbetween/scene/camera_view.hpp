@@ -112,8 +112,10 @@ struct RawLookAt {
 };
 
 /// COI mode `ahead`: points ahead on the camera's own path.  The COI is the mean of P(s + d_k),
-/// d_k = distance + spread·k/(n − 1), k = 0 … n − 1 (n = 1: d_0 = distance), P continued along its
-/// end tangent past L.  (paths/camera.hpp's look_ahead_camera with ahead A and n points is
+/// d_k = distance + spread·k/(n − 1), k = 0 … n − 1 (n = 1: d_0 = distance).  Past L, P continues
+/// into the next leg's path when the camera has one (CameraInputs::next_camera_path, moved so that
+/// it starts at P(L): the COI and the view direction do not jump when the camera changes leg),
+/// else, and past that leg's end, along the end tangent.  (paths/camera.hpp's look_ahead_camera with ahead A and n points is
 /// distance = A/n, spread = A(n − 1)/n.)
 template <Real T>
 struct RawLookAhead {
@@ -185,6 +187,9 @@ struct CameraInputs {
   T frame = T(0);                      ///< scene frame (used by `hold`)
   Vec3<T> eye{};                       ///< the camera's world position
   PathView<T> camera_path{};           ///< the camera's own path, in path space; empty when not on a path
+  /// The path of the camera's next leg (same path space), or empty: look-ahead points past the end
+  /// of camera_path continue along it, attached at camera_path's end (see RawLookAhead).
+  PathView<T> next_camera_path{};
   T s = T(0);                          ///< arc length travelled on camera_path (clamped into [0, L])
   PathView<T> coi_path{};              ///< the path named by coi_path_name(), in path space, or empty
   PathView<T> up_path{};               ///< the path named by up_path_name(), in path space, or empty
