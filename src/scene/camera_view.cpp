@@ -159,7 +159,7 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
 }
 
 template <Real T>
-Vec3<T> CameraView<T>::position(const Target& t, std::span<const Vec3<T>> targets) const noexcept {
+Vec3<T> CameraView<T>::position(const Target& t, const TargetPositions<T>& targets) const noexcept {
   return t.slot < 0 ? t.point : targets[std::size_t(t.slot)];
 }
 

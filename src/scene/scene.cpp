@@ -433,12 +433,6 @@ Expected<Scene> build_scene(const RawScene& raw) {
           }
           return {"objects", i, "camera"};
         };
-        if (view->target_names().size() > kMaxCameraTargets) {
-          return error_at(ErrorCode::Unsupported,
-                          "a camera may name at most " + std::to_string(kMaxCameraTargets) + " target objects, got " +
-                              std::to_string(view->target_names().size()),
-                          {"objects", i, "camera"});
-        }
         for (const std::string& name : view->target_names()) {
           auto target = find_object(name, i, target_member(name));
           if (!target) return target.error();
@@ -522,6 +516,11 @@ Expected<Scene> build_scene(const RawScene& raw) {
       }
     }
   }
+  // Camera targets are read in place from their objects' translation columns (any number of them,
+  // without copying): object index → column.
+  for (Scene::ObjectExtra& x : scene.extras_) {
+    for (std::size_t& target : x.camera_targets) target = scene.extras_[target].column;
+  }
   scene.tracks_ = std::move(tracks);
   scene.columns_ = std::move(columns);
   return scene;
@@ -597,8 +596,6 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
     Transform<double> world = parent ? compose(world_T_parent, local) : local;
     Vec3d coi{};
     if (x.camera) {
-      std::array<Vec3d, kMaxCameraTargets> targets;
-      for (std::size_t t = 0; t < x.camera_targets.size(); ++t) targets[t] = get_point(base + extras_[x.camera_targets[t]].column);
       CameraInputs<double> in;
       in.frame = frame;
       in.eye = world.translation;
@@ -610,7 +607,7 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
       if (x.coi_path) in.coi_path = PathView<double>::of(paths_[*x.coi_path]);
       if (x.up_path) in.up_path = PathView<double>::of(paths_[*x.up_path]);
       in.world_from_path = world_T_parent;
-      in.targets = std::span<const Vec3d>(targets.data(), x.camera_targets.size());
+      in.targets = TargetPositions<double>::from_columns(base, x.camera_targets);
       in.tilt_track_deg = x.tilt_column ? base[*x.tilt_column] : 0.0;
       in.world_rotation = world.rotation;
       const CameraViewSample<double> view = x.camera->evaluate(in);

@@ -113,6 +113,42 @@ TEST(SceneHotPath, PathAndCameraScenesNeverAllocate) {
   }
 }
 
+TEST(SceneHotPath, CameraWithHundredsOfTargetsHoldsOnEachWithoutAllocating) {
+  // A hold-then-move tour of 300 objects (the scene refused more than 64 before; their positions
+  // are now read in place from the output row).  Target k sits at (k, 2k, −k) and is held over
+  // frames (2k − 2, 2k]; at frame 2k the COI is exactly target k (RawHoldThenMove: "the COI holds on
+  // target until hold_until"), cuts in between (move_frames 0).
+  constexpr std::size_t kTargets = 300;
+  RawScene raw;
+  RawHoldThenMove<double> hold;
+  for (std::size_t k = 0; k < kTargets; ++k) {
+    RawObject o;
+    o.name = "t" + std::to_string(k);
+    o.translation = Vec3d{double(k), 2.0 * double(k), -double(k)};
+    raw.objects.push_back(o);
+    hold.segments.push_back({.target = o.name, .hold_until = 2.0 * double(k)});
+  }
+  RawObject cam;
+  cam.name = "cam";
+  cam.translation = Vec3d{0, 50, 400};
+  cam.camera = RawCameraViewd{.coi = hold};
+  raw.objects.push_back(cam);
+  auto scene = build_scene(raw);
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  std::vector<double> out(scene->columns().size());
+  const std::size_t coi = out.size() - 3;  // cam.target.x y z are the last columns
+  ASSERT_EQ(scene->columns()[coi].name, "cam.target.x");
+  std::size_t wrong = 0;
+  const long n = allocations_in([&] {
+    for (std::size_t k = 0; k < kTargets; ++k) {
+      scene->sample(2.0 * double(k), out);
+      if (out[coi] != double(k) || out[coi + 1] != 2.0 * double(k) || out[coi + 2] != -double(k)) ++wrong;
+    }
+  });
+  EXPECT_EQ(n, 0);
+  EXPECT_EQ(wrong, 0u);
+}
+
 template <class T>
 class SceneHotPathTyped : public ::testing::Test {};
 using Scalars = ::testing::Types<float, double>;
