@@ -140,6 +140,10 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::from_velocity_curve(std::sp
   // room (e.g. two keys at rest) is spread evenly over time as the texts do (Eq. 3.20, Fig. 3.19).
   T room{};
   for (std::size_t i = 0; i + 1 < n; ++i) room += (keys[i + 1].t - keys[i].t) * std::fabs(keys[i + 1].v - keys[i].v) / T(6);
+  if (!std::isfinite(missing) || !std::isfinite(room)) {
+    return Error{ErrorCode::NotFinite,
+                 "the distance under the velocity keys overflows (speeds times frame spans beyond the number range)", ""};
+  }
   const bool within_room = std::fabs(missing) <= room;
   // Share of each interval's room used (|share| ≤ 1), and the even bump height beyond the room.
   const T share = within_room ? (room > T(0) ? std::clamp(missing / room, T(-1), T(1)) : T(0))

@@ -291,6 +291,12 @@ TYPED_TEST(VelocityKeysTyped, Museum) {
     EXPECT_EQ((*c)(base + 96), total);
     EXPECT_EQ((*c)(std::numeric_limits<T>::quiet_NaN()), T(0));  // NaN reads as the start
   }
+  {  // finite speeds whose area overflows: an error, never a NaN curve
+    const T big = std::numeric_limits<T>::max() / T(4);
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, big}, {100, big}}, VelocityFit::FixKeysAdjustInterior);
+    ASSERT_FALSE(c);
+    EXPECT_EQ(c.error().code, ErrorCode::NotFinite);
+  }
   {  // a NaN or infinite key: named
     auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {1, std::numeric_limits<T>::infinity()}},
                                                        VelocityFit::FixKeysAdjustInterior);
