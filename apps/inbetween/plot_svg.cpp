@@ -105,7 +105,14 @@ void SvgDocument::leaf(std::string_view tag, const std::vector<SvgAttr>& attrs) 
 void SvgDocument::text(std::string_view tag, const std::vector<SvgAttr>& attrs, std::string_view content) {
   out_ += std::string(2 * open_.size(), ' ') + "<" + std::string(tag);
   attrs_out(attrs);
-  out_ += ">" + xml_escape(content) + "</" + std::string(tag) + ">\n";
+  // Appended piece by piece: `">" + std::string&&` inserts at the front of the temporary, where
+  // GCC 12 reports a false -Wrestrict (a known libstdc++/GCC 12 false positive in the inlined
+  // basic_string::insert); appending also copies less.
+  out_ += '>';
+  out_ += xml_escape(content);
+  out_ += "</";
+  out_ += tag;
+  out_ += ">\n";
 }
 
 std::string SvgDocument::str() {

@@ -302,7 +302,8 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
     return wrap(r, CurveKind::BSpline, dim, build_bspline(pts, int(degree), knots));
   }
   if (type == "lagrange") {
-    std::vector<double> params;
+    // The "params" read above skips lagrange (here an empty array means the default 0, 1, …), so
+    // `params` is still empty: fill it from the member.
     if (doc.contains("params")) {
       auto k = read_numbers(r, doc, "params");
       if (!k) return k.error();

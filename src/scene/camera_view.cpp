@@ -159,7 +159,7 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
 }
 
 template <Real T>
-Vec3<T> CameraView<T>::position(const Target& t, std::span<const Vec3<T>> targets) const noexcept {
+Vec3<T> CameraView<T>::position(const Target& t, const TargetPositions<T>& targets) const noexcept {
   return t.slot < 0 ? t.point : targets[std::size_t(t.slot)];
 }
 
@@ -175,16 +175,25 @@ Vec3<T> CameraView<T>::centre_of_interest(const CameraInputs<T>& in) const noexc
       const PathView<T>& path = in.camera_path;
       const T L = path.length();
       const T s = std::isnan(in.s) ? T(0) : clamp(in.s, T(0), L);
-      // Past the end the path continues along its end tangent (texts: "the view direction can be
+      // Past the end the path continues into the next leg's path, moved to start at P(L), so that
+      // P(s + d) is the same point just before and just after the leg change; without a next leg,
+      // and past the next leg's end, along the end tangent (texts: "the view direction can be
       // interpolated to the end tangent vector as s approaches 1").
+      const PathView<T>& next = in.next_camera_path;
       const Vec3<T> end = path.point_at_length(L);
-      const Vec3<T> end_tangent = path.unit_tangent_at_length(L);
+      auto ahead_point = [&](T sk) -> Vec3<T> {
+        if (sk <= L) return path.point_at_length(sk);
+        if (next.empty()) return end + path.unit_tangent_at_length(L) * (sk - L);
+        const T x = sk - L, next_length = next.length();
+        const Vec3<T> shift = end - next.point_at_length(T(0));
+        if (x <= next_length) return next.point_at_length(x) + shift;
+        return next.point_at_length(next_length) + shift + next.unit_tangent_at_length(next_length) * (x - next_length);
+      };
       Vec3<T> sum{};
       for (int k = 0; k < ahead_count_; ++k) {
         const T d = ahead_count_ == 1 ? ahead_distance_
                                       : ahead_distance_ + ahead_spread_ * T(k) / T(ahead_count_ - 1);
-        const T sk = s + d;
-        sum += sk <= L ? path.point_at_length(sk) : Vec3<T>(end + end_tangent * (sk - L));
+        sum += ahead_point(s + d);
       }
       return in.world_from_path.apply_to_point(sum / T(ahead_count_));
     }

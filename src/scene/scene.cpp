@@ -337,16 +337,17 @@ Expected<Scene> build_scene(const RawScene& raw) {
           out.insert(out.end(), steps.begin(), steps.end());
           return out;
         };
-        RawPathMotion motion{.speed = leg.speed, .orientation = leg.orientation};
+        // The leg's curve: a named path of the scene or given inline.  Found first, so that the
+        // motion is built with every member initialised (no default AnyCurve assigned over later).
+        const AnyCurve* curve = std::get_if<AnyCurve>(&leg.curve);
         if (const auto* name = std::get_if<std::string>(&leg.curve)) {
           const auto it = path_index.find(*name);
           if (it == path_index.end()) {
             return Error{ErrorCode::InvalidArgument, "no path named \"" + *name + "\" in \"paths\"", "", at_member({"curve"})};
           }
-          motion.path = raw.paths[it->second].curve;
-        } else {
-          motion.path = std::get<AnyCurve>(leg.curve);
+          curve = &raw.paths[it->second].curve;
         }
+        RawPathMotion motion{.path = *curve, .speed = leg.speed, .orientation = leg.orientation};
         if (leg.speed.kind == SpeedKind::track) {
           if (o.path.size() > 1) {
             return Error{ErrorCode::InvalidArgument, "a track speed drives a single-leg path only", "",
@@ -432,12 +433,6 @@ Expected<Scene> build_scene(const RawScene& raw) {
           }
           return {"objects", i, "camera"};
         };
-        if (view->target_names().size() > kMaxCameraTargets) {
-          return error_at(ErrorCode::Unsupported,
-                          "a camera may name at most " + std::to_string(kMaxCameraTargets) + " target objects, got " +
-                              std::to_string(view->target_names().size()),
-                          {"objects", i, "camera"});
-        }
         for (const std::string& name : view->target_names()) {
           auto target = find_object(name, i, target_member(name));
           if (!target) return target.error();
@@ -521,6 +516,11 @@ Expected<Scene> build_scene(const RawScene& raw) {
       }
     }
   }
+  // Camera targets are read in place from their objects' translation columns (any number of them,
+  // without copying): object index → column.
+  for (Scene::ObjectExtra& x : scene.extras_) {
+    for (std::size_t& target : x.camera_targets) target = scene.extras_[target].column;
+  }
   scene.tracks_ = std::move(tracks);
   scene.columns_ = std::move(columns);
   return scene;
@@ -596,19 +596,18 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
     Transform<double> world = parent ? compose(world_T_parent, local) : local;
     Vec3d coi{};
     if (x.camera) {
-      std::array<Vec3d, kMaxCameraTargets> targets;
-      for (std::size_t t = 0; t < x.camera_targets.size(); ++t) targets[t] = get_point(base + extras_[x.camera_targets[t]].column);
       CameraInputs<double> in;
       in.frame = frame;
       in.eye = world.translation;
       if (leg) {
         in.camera_path = PathView<double>::of(leg->motion.arc_length());
         in.s = on_path.distance;
+        if (leg + 1 != x.legs.data() + x.legs.size()) in.next_camera_path = PathView<double>::of(leg[1].motion.arc_length());
       }
       if (x.coi_path) in.coi_path = PathView<double>::of(paths_[*x.coi_path]);
       if (x.up_path) in.up_path = PathView<double>::of(paths_[*x.up_path]);
       in.world_from_path = world_T_parent;
-      in.targets = std::span<const Vec3d>(targets.data(), x.camera_targets.size());
+      in.targets = TargetPositions<double>::from_columns(base, x.camera_targets);
       in.tilt_track_deg = x.tilt_column ? base[*x.tilt_column] : 0.0;
       in.world_rotation = world.rotation;
       const CameraViewSample<double> view = x.camera->evaluate(in);

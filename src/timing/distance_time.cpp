@@ -130,9 +130,27 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::from_velocity_curve(std::sp
   const T duration = keys[n - 1].t - keys[0].t;
   T area{};
   for (std::size_t i = 0; i + 1 < n; ++i) area += (keys[i + 1].t - keys[i].t) * (keys[i].v + keys[i + 1].v) / T(2);
-  // The constant added to the velocity (float) or the height of the per-interval bump (fixed keys);
-  // either way it contributes c·duration to the area.
-  const T c = (total_distance - area) / duration;
+  // The distance the straight velocity lines miss; the adjustment contributes exactly this much.
+  const T missing = total_distance - area;
+  // FixKeysAdjustInterior: interval i gets the bump b_i·6τ(1 − τ) (zero at both keys, area b_i per
+  // unit time).  v(τ) = v_i + Δv_i·τ + 6b_iτ(1 − τ) stays between v_i and v_{i+1} (monotone)
+  // exactly when |6b_i| ≤ |Δv_i|, so interval i can absorb up to h_i|Δv_i|/6 without leaving its
+  // keys' range; an interval between equal speeds can absorb nothing and stays flat.  The missing
+  // distance goes first to that room, shared in proportion to it; only what exceeds the whole
+  // room (e.g. two keys at rest) is spread evenly over time as the texts do (Eq. 3.20, Fig. 3.19).
+  T room{};
+  for (std::size_t i = 0; i + 1 < n; ++i) room += (keys[i + 1].t - keys[i].t) * std::fabs(keys[i + 1].v - keys[i].v) / T(6);
+  if (!std::isfinite(missing) || !std::isfinite(room)) {
+    return Error{ErrorCode::NotFinite,
+                 "the distance under the velocity keys overflows (speeds times frame spans beyond the number range)", ""};
+  }
+  const bool within_room = std::fabs(missing) <= room;
+  // Share of each interval's room used (|share| ≤ 1), and the even bump height beyond the room.
+  const T share = within_room ? (room > T(0) ? std::clamp(missing / room, T(-1), T(1)) : T(0))
+                              : std::copysign(T(1), missing);
+  const T even = within_room ? T(0) : (missing - std::copysign(room, missing)) / duration;
+  // FloatToKeepAverage: the constant added to every velocity (area c·duration).
+  const T c = missing / duration;
   DistanceTimeCurve out;
   T s_acc{};
   for (std::size_t i = 0; i < n; ++i) {
@@ -146,8 +164,9 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::from_velocity_curve(std::sp
       seg = {T(0), h * (v1 - v0) / T(2), h * v0, s_acc};  // ∫ linear velocity
     } else {
       const T v0 = keys[i].v, v1 = keys[i + 1].v;
-      // v(τ) = v0 + (v1 − v0)τ + 6cτ(1 − τ); s = s_i + h∫v dτ.
-      seg = {T(-2) * h * c, h * ((v1 - v0) / T(2) + T(3) * c), h * v0, s_acc};
+      const T b = share * std::fabs(v1 - v0) / T(6) + even;
+      // v(τ) = v0 + (v1 − v0)τ + 6bτ(1 − τ); s = s_i + h∫v dτ.
+      seg = {T(-2) * h * b, h * ((v1 - v0) / T(2) + T(3) * b), h * v0, s_acc};
     }
     out.seg_.push_back(seg);
     s_acc = seg.point(T(1));

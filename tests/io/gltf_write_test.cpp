@@ -503,8 +503,8 @@ TEST(GltfWrite, Frame22PathsAndCamerasPlayAsBake) {
   }
   // The report's error is measured on the grid (4 points per frame) with the key times as stored:
   // floats, which move a key by up to half an ulp of the time.  Where the motion is fast that adds
-  // rate × half-ulp: follow_cam's view cuts at frame 67 (the second leg's look-ahead starts on
-  // another curve) and turns by about 1 rad between two grid points.  The bound per channel: the
+  // rate × half-ulp (follow_cam's view turned by about 1 rad between two grid points at frame 67
+  // until its look-ahead continued into the next leg; now 55.9 rad/s at most).  The bound per channel: the
   // tolerance + 1e-6 (float values) + the largest rate between grid points × half an ulp of the
   // last time.
   const double last_time = (s.scene.range_end() - s.scene.range_start()) / s.scene.fps();

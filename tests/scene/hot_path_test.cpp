@@ -30,7 +30,7 @@ TEST(SceneHotPath, CounterSeesAnAllocation) {
 }
 
 // Version 2: path objects (two legs, a look_at object, banking, a keyed local rotation), a camera
-// on a path looking ahead, a camera with hold-then-move targets and a keyed tilt, a COI-path camera
+// on a two-leg path looking ahead (into the next leg), a camera with hold-then-move targets and a keyed tilt, a COI-path camera
 // parented to a path object: sample() and sample() through a SceneCursor never allocate.
 RawScene scene_with_paths_and_cameras(std::size_t copies) {
   RawScene raw;
@@ -69,7 +69,11 @@ RawScene scene_with_paths_and_cameras(std::size_t copies) {
     RawPathLeg leg = first;
     leg.orientation = RawOrientation{};
     leg.look_at_object.clear();
-    ahead.path = {leg};
+    RawPathLeg ahead_second = second;  // a second leg: look-ahead continues into its path
+    ahead_second.orientation = RawOrientation{};
+    ahead_second.local_rotation_keys.reset();
+    ahead.path = {leg, ahead_second};
+    ahead.path_is_array = true;
     ahead.camera = RawCameraViewd{.coi = RawLookAhead<double>{.distance = 1, .count = 3, .spread = 2}, .up_path = "p"};
     raw.objects.push_back(ahead);
     RawObject hold;
@@ -107,6 +111,42 @@ TEST(SceneHotPath, PathAndCameraScenesNeverAllocate) {
     EXPECT_EQ(n, 0);
     EXPECT_TRUE(std::isfinite(checksum));
   }
+}
+
+TEST(SceneHotPath, CameraWithHundredsOfTargetsHoldsOnEachWithoutAllocating) {
+  // A hold-then-move tour of 300 objects (the scene refused more than 64 before; their positions
+  // are now read in place from the output row).  Target k sits at (k, 2k, −k) and is held over
+  // frames (2k − 2, 2k]; at frame 2k the COI is exactly target k (RawHoldThenMove: "the COI holds on
+  // target until hold_until"), cuts in between (move_frames 0).
+  constexpr std::size_t kTargets = 300;
+  RawScene raw;
+  RawHoldThenMove<double> hold;
+  for (std::size_t k = 0; k < kTargets; ++k) {
+    RawObject o;
+    o.name = "t" + std::to_string(k);
+    o.translation = Vec3d{double(k), 2.0 * double(k), -double(k)};
+    raw.objects.push_back(o);
+    hold.segments.push_back({.target = o.name, .hold_until = 2.0 * double(k)});
+  }
+  RawObject cam;
+  cam.name = "cam";
+  cam.translation = Vec3d{0, 50, 400};
+  cam.camera = RawCameraViewd{.coi = hold};
+  raw.objects.push_back(cam);
+  auto scene = build_scene(raw);
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  std::vector<double> out(scene->columns().size());
+  const std::size_t coi = out.size() - 3;  // cam.target.x y z are the last columns
+  ASSERT_EQ(scene->columns()[coi].name, "cam.target.x");
+  std::size_t wrong = 0;
+  const long n = allocations_in([&] {
+    for (std::size_t k = 0; k < kTargets; ++k) {
+      scene->sample(2.0 * double(k), out);
+      if (out[coi] != double(k) || out[coi + 1] != 2.0 * double(k) || out[coi + 2] != -double(k)) ++wrong;
+    }
+  });
+  EXPECT_EQ(n, 0);
+  EXPECT_EQ(wrong, 0u);
 }
 
 template <class T>

@@ -531,6 +531,24 @@ TEST(PathMotion, VelocityKeysCoverTheDistance) {
   EXPECT_EQ(c.sample(0).speed, 0.0);
 }
 
+TEST(PathMotion, VelocityKeysKeyedTwiceStayFlat) {
+  // The plot scene's "velocity" leg (tests/data/scenes/plot_speed_forms.json): speeds 0, 0.8, 0.8, 0
+  // of the length per second at frames 4, 16, 30, 46 covering the whole length.  Between the two
+  // 0.8 keys the speed is 0.8·L per second, flat (the old even spread peaked at 0.857·L at frame 23:
+  // 0.8L + 24·6·(L/630)/4); nowhere above 0.8·L; the whole length is reached at frame 46.
+  const AnyCurve path = test_path();
+  RawPathMotion raw{.path = path};
+  raw.speed = RawSpeed{.kind = SpeedKind::velocity_keys, .fraction = true,
+                       .velocities = {{4, 0}, {16, 0.8}, {30, 0.8}, {46, 0}}};
+  const PathMotion m = build(raw);
+  const double L = m.length();
+  // Speeds per second are the per-frame derivative × fps: a few roundings of 0.8L.
+  const double speed_tol = 64 * std::numeric_limits<double>::epsilon() * L;
+  for (double f = 16; f <= 30; f += 0.25) EXPECT_NEAR(m.sample(f).speed, 0.8 * L, speed_tol) << f;
+  for (double f = 0; f <= 50; f += 0.25) EXPECT_LE(m.sample(f).speed, 0.8 * L + speed_tol) << f;
+  EXPECT_NEAR(m.sample(46).distance, L, kRelLength * L);
+}
+
 TEST(PathMotion, ConstraintTuplesAreMetInSceneUnits) {
   const AnyCurve path = test_path();
   RawPathMotion raw{.path = path};

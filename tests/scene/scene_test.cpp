@@ -2,11 +2,16 @@
 // column list, and Scene::sample() against the tracks and the hierarchy sampled directly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "inbetween/curves/bezier_path.hpp"
 #include "inbetween/scene/raw_scene.hpp"
 #include "inbetween/scene/scene.hpp"
 #include "support/tolerances.hpp"
@@ -348,6 +353,103 @@ TEST(BuildScene, ManyNamesAreChecked) {
   e = build_scene(dup);
   ASSERT_FALSE(e.has_value());
   EXPECT_EQ(json_pointer(e.error().location), "/tracks/3/name");
+}
+
+
+// ------------------------------------------------------- look-ahead across a leg change
+
+// The two Bézier paths of examples/scenes/frame22.json; `shift` moves the second (a leg that does
+// not start where the first ends).
+AnyCurve bezier_path_curve(const std::vector<Vec3d>& points) {
+  return AnyCurve{CurveKind::BezierPath, 3, AnyCurveVariant{build_bezier_path(points).value()}};
+}
+std::vector<Vec3d> arc_points() { return {{-5, 0, 0}, {-4, 2, 0}, {-2, 3, 0}, {0, 3, 0}, {2, 3, 0}, {4, 2, 0}, {5, 0, 0}}; }
+std::vector<Vec3d> climb_points(Vec3d shift) {
+  std::vector<Vec3d> p = {{5, 0, 0}, {6, -2, 0}, {9, 2, 4}, {8, 5, 4}, {7, 8, 4}, {5, 9, 0}, {5, 10, 0}};
+  for (Vec3d& q : p) q = q + shift;
+  return p;
+}
+
+// Largest curvature |B' × B''|/|B'|³ of a composite cubic Bézier, in closed form from its control
+// points, sampled at 20 000 parameters per segment (the curvature is smooth on these paths).
+double max_curvature(const std::vector<Vec3d>& p) {
+  double kappa = 0;
+  for (std::size_t i = 0; i + 3 < p.size(); i += 3) {
+    for (int j = 0; j <= 20000; ++j) {
+      const double u = j / 20000.0;
+      const Vec3d d1 = 3 * (1 - u) * (1 - u) * (p[i + 1] - p[i]) + 6 * (1 - u) * u * (p[i + 2] - p[i + 1]) +
+                       3 * u * u * (p[i + 3] - p[i + 2]);
+      const Vec3d d2 = 6 * (1 - u) * (p[i + 2] - 2.0 * p[i + 1] + p[i]) + 6 * u * (p[i + 3] - 2.0 * p[i + 2] + p[i + 1]);
+      kappa = std::max(kappa, norm(cross(d1, d2)) / std::pow(norm(d1), 3));
+    }
+  }
+  return kappa;
+}
+
+TEST(SceneSample, LookAheadCameraTurnsSmoothlyAcrossALegChange) {
+  // A camera on frame22.json's two legs looking 1 ahead; the second leg either joins the first
+  // (frame 67) or starts elsewhere after a pause (frames 70–85, moved by (0, 0, 2)).  The view
+  // direction w = COI − eye is the chord Q(σ + d) − Q(σ) of the camera's path continued into the
+  // next leg (the next leg moved to join, then its end tangent; C¹ here: the legs' end and start
+  // tangents are both along (1, −2, 0)), σ the distance column.  Schur's comparison theorem: for
+  // curvature ≤ κ and κd ≤ π the chord is ≥ (2/κ) sin(κd/2).  Per frame step both ends of the chord
+  // move ≤ Δσ, so |Δw| ≤ 2Δσ and the angle between the directions is ≤ π|Δw|/|w| ≤ 2πΔσ/chord_min
+  // (|â − b̂| ≤ 2|a − b|/|a|, θ ≤ (π/2)|â − b̂|).  At the leg change the camera is at rest (both eases
+  // stop there), so Δσ ≈ 0 and any jump of the COI fails the bound; before the fix it turned by
+  // several tenths of a radian there.
+  constexpr double kAhead = 1;  // κ_max ≈ 2.98 on "climb": κ·Δs must stay below π
+  constexpr double kStep = 0.25;  // frames
+  // Rounding of the directions themselves (unit vectors from differences of O(10) coordinates).
+  constexpr double kAngleRounding = 1e-12;
+  const double kappa = std::max(max_curvature(arc_points()), max_curvature(climb_points({0, 0, 0})));
+  ASSERT_LT(kappa * kAhead, std::numbers::pi);
+  const double chord_min = 2 / kappa * std::sin(kappa * kAhead / 2);
+  for (const bool joined : {true, false}) {
+    SCOPED_TRACE(joined ? "legs joined at frame 67" : "second leg moved, frames 70-85");
+    RawScene raw;
+    raw.paths = {{"arc", bezier_path_curve(arc_points())},
+                 {"climb", bezier_path_curve(climb_points(joined ? Vec3d{0, 0, 0} : Vec3d{0, 0, 2}))}};
+    RawObject cam = object("cam");
+    RawPathLeg first, second;
+    first.curve = std::string("arc");
+    first.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = 22, .end_frame = 67,
+                           .ease = {.kind = EaseKind::constant_acceleration, .accel_frames = 12, .decel_frames = 17}};
+    second.curve = std::string("climb");
+    second.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = joined ? 67.0 : 70.0, .end_frame = joined ? 80.0 : 85.0,
+                            .ease = {.kind = EaseKind::cubic}};
+    cam.path = {first, second};
+    cam.path_is_array = true;
+    cam.camera = RawCameraViewd{.yfov_deg = 45, .coi = RawLookAhead<double>{.distance = kAhead}};
+    raw.objects = {cam};
+    auto scene = build_scene(raw);
+    ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+    const auto column = [&](const std::string& name) {
+      for (std::size_t c = 0; c < scene->columns().size(); ++c) {
+        if (scene->columns()[c].name == name) return c;
+      }
+      ADD_FAILURE() << "no column " << name;
+      return std::size_t{0};
+    };
+    const std::size_t eye = column("cam.translation.x"), coi = column("cam.target.x"), distance = column("cam.distance");
+    std::vector<double> out(scene->columns().size());
+    Vec3d previous_w{};
+    double previous_distance = 0, worst_ratio = 0;
+    for (double f = 16; f <= 90; f += kStep) {
+      scene->sample(f, out);
+      const Vec3d w = Vec3d{out[coi], out[coi + 1], out[coi + 2]} - Vec3d{out[eye], out[eye + 1], out[eye + 2]};
+      ASSERT_TRUE(std::isfinite(norm(w))) << f;
+      if (f > 16) {
+        const double angle = std::atan2(norm(cross(previous_w, w)), dot(previous_w, w));
+        const double bound = 2 * std::numbers::pi * std::fabs(out[distance] - previous_distance) / chord_min;
+        EXPECT_LE(angle, bound + kAngleRounding) << "frame " << f - kStep << " → " << f;
+        if (bound > 0) worst_ratio = std::max(worst_ratio, angle / bound);
+      }
+      previous_w = w;
+      previous_distance = out[distance];
+    }
+    std::printf("look-ahead across legs (%s): κ_max %.4g, chord_min %.4g, worst turn / bound %.3g\n",
+                joined ? "joined" : "moved", kappa, chord_min, worst_ratio);
+  }
 }
 
 }  // namespace

@@ -2,10 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "inbetween/timing/ease.hpp"
+#include "support/random.hpp"
+#include "support/tolerances.hpp"
 
 namespace inbetween {
 namespace {
@@ -143,6 +147,163 @@ TEST(DistanceTime, VelocityCurveFixedKeysAdjustTheInterior) {
   auto dip = Curve::from_velocity_curve(fast, VelocityFit::FixKeysAdjustInterior);
   ASSERT_TRUE(dip);
   EXPECT_FALSE(dip->check_monotone());
+}
+
+
+// ------------------------------------------------- velocity keys: the speed stays between keys
+
+template <class T>
+class VelocityKeysTyped : public ::testing::Test {};
+using Precisions = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(VelocityKeysTyped, Precisions);
+
+// The velocity of interval i is v_i + Δv·τ + 6bτ(1 − τ), evaluated from the power form of s (three
+// products and sums in the derivative, one scaling by 1/h): a handful of roundings of terms no
+// larger than the keys' speeds.  16 ulp of the larger key speed leaves room for that and still
+// catches any bump of the old even spread (≥ 1e-3 of the speed in the cases below).
+template <class T>
+T speed_range_tol(T v0, T v1) {
+  return T(16) * test::eps<T> * std::max({std::fabs(v0), std::fabs(v1), T(1e-30)});
+}
+
+// Σ h_i(v_i + v_{i+1})/2 and Σ h_i|Δv_i|/6 in double (the room the keys leave, see VelocityFit).
+template <class T>
+std::pair<double, double> area_and_room(const std::vector<TimeVelocityKey<T>>& k) {
+  double area = 0, room = 0;
+  for (std::size_t i = 0; i + 1 < k.size(); ++i) {
+    const double h = double(k[i + 1].t) - double(k[i].t);
+    area += h * (double(k[i].v) + double(k[i + 1].v)) / 2;
+    room += h * std::fabs(double(k[i + 1].v) - double(k[i].v)) / 6;
+  }
+  return {area, room};
+}
+
+// Samples every interval at 33 points (τ = j/32, the last a left limit just before the next key)
+// and checks that the speed stays within [min, max] of the interval's two keys.
+template <class T>
+void expect_speed_between_keys(const DistanceTimeCurve<T>& c, const std::vector<TimeVelocityKey<T>>& k) {
+  for (std::size_t i = 0; i + 1 < k.size(); ++i) {
+    const T lo = std::min(k[i].v, k[i + 1].v), hi = std::max(k[i].v, k[i + 1].v);
+    const T tol = speed_range_tol(k[i].v, k[i + 1].v);
+    for (int j = 0; j <= 32; ++j) {
+      T t = k[i].t + (k[i + 1].t - k[i].t) * T(j) / T(32);
+      if (j == 32) t = std::nextafter(k[i + 1].t, k[i].t);
+      const EaseSample<T> e = c.sample(t);
+      ASSERT_TRUE(std::isfinite(e.s) && std::isfinite(e.velocity)) << "interval " << i << " t " << t;
+      EXPECT_GE(e.velocity, lo - tol) << "interval " << i << " t " << t;
+      EXPECT_LE(e.velocity, hi + tol) << "interval " << i << " t " << t;
+    }
+  }
+}
+
+TYPED_TEST(VelocityKeysTyped, SpeedStaysBetweenNeighbouringKeysOverRandomKeySets) {
+  using T = TypeParam;
+  test::Random rng(test::seed_for(2408));
+  SCOPED_TRACE(rng.trace());
+  int checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    const int n = rng.integer(2, 7);
+    std::vector<TimeVelocityKey<T>> k;
+    T t = rng.uniform<T>(T(-50), T(50));
+    for (int i = 0; i < n; ++i) {
+      // About one key in three repeats the previous speed (the flat pieces users key).
+      const T v = i > 0 && rng.integer(0, 2) == 0 ? k.back().v : rng.uniform<T>(T(0), T(3));
+      k.push_back({t, v});
+      t += rng.uniform<T>(T(0.25), T(20));
+    }
+    const auto [area, room] = area_and_room(k);
+    // Any total the keys can reach without leaving their range: area ± the room (a bit inside it
+    // so that float's rounding of the room cannot tip it over).
+    const T total = T(area + rng.uniform(-0.999, 0.999) * room);
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::FixKeysAdjustInterior, total);
+    ASSERT_TRUE(c) << c.error().describe();
+    expect_speed_between_keys(*c, k);
+    // The ends: 0 at the first key, exactly the total at the last; each key's speed is kept.
+    EXPECT_EQ((*c)(k.front().t), T(0));
+    EXPECT_EQ((*c)(k.back().t), total);
+    for (std::size_t i = 0; i + 1 < k.size(); ++i) EXPECT_NEAR(c->sample(k[i].t).velocity, k[i].v, speed_range_tol(k[i].v, k[i].v));
+    // Speeds ≥ 0 that stay between keys cannot back up.
+    EXPECT_TRUE(c->check_monotone());
+    ++checked;
+  }
+  EXPECT_EQ(checked, 400);
+}
+
+TYPED_TEST(VelocityKeysTyped, TwoEqualKeysGiveAFlatSpeed) {
+  using T = TypeParam;
+  // tests/data/scenes/plot_speed_forms.json's "velocity": 0, 0.8, 0.8, 0 (fraction per second) at
+  // frames 4, 16, 30, 46 and 24 fps → per frame 0, 1/30, 1/30, 0, covering the whole length 1.
+  const T v = T(0.8) / T(24);
+  const std::vector<TimeVelocityKey<T>> k = {{4, 0}, {16, v}, {30, v}, {46, 0}};
+  auto c = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::FixKeysAdjustInterior, T(1));
+  ASSERT_TRUE(c) << c.error().describe();
+  expect_speed_between_keys(*c, k);
+  // Between frames 16 and 30 the speed is the keys' 1/30 per frame, flat (the old even spread gave
+  // 1/30 + 6·(1/630)/4 = 0.0357 at frame 23).
+  for (T f = 16; f < 30; f += T(0.5)) EXPECT_NEAR(c->sample(f).velocity, v, speed_range_tol(v, v)) << f;
+  // Closed form: key lines cover 12v/2 + 14v + 16v/2 = 28v = 14/15; missing 1/15; room (12 + 16)v/6
+  // = 7/45; share 3/7; ramp bumps b = (3/7)·v/6 = 1/420.  s(16) = 12(v/2 + b) = 8/35; the ramp's
+  // middle speed v/2 + 6b/4 = 1/60 + 1/280.
+  const double tol = 64 * double(test::eps<T>);
+  EXPECT_NEAR(double((*c)(16)), 8.0 / 35, tol);
+  EXPECT_NEAR(double((*c)(30)), 8.0 / 35 + 14.0 / 30, tol);
+  EXPECT_EQ((*c)(46), T(1));
+  EXPECT_NEAR(double(c->sample(10).velocity), 1.0 / 60 + 1.0 / 280, tol);
+  EXPECT_NEAR(double(c->sample(38).velocity), 1.0 / 60 + 1.0 / 280, tol);
+  // Beyond the room (total 1.2: missing 4/15 > 7/45) the rest, 1/9, is spread evenly over the 42
+  // frames as the texts do: the flat piece gets 6·(1/378)·τ(1 − τ), 1/30 + 1/252 at frame 23.
+  auto over = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::FixKeysAdjustInterior, T(1.2));
+  ASSERT_TRUE(over);
+  EXPECT_NEAR(double(over->sample(23).velocity), 1.0 / 30 + 1.0 / 252, tol);
+  EXPECT_EQ((*over)(46), T(1.2));
+}
+
+TYPED_TEST(VelocityKeysTyped, Museum) {
+  using T = TypeParam;
+  using K = std::vector<TimeVelocityKey<T>>;
+  {  // a single key: too few, named
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{3, 1}}, VelocityFit::FixKeysAdjustInterior);
+    ASSERT_FALSE(c);
+    EXPECT_EQ(c.error().code, ErrorCode::TooFewPoints);
+  }
+  {  // zero speeds and no distance: the object rests, speed exactly 0
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {5, 0}, {9, 0}}, VelocityFit::FixKeysAdjustInterior, T(0));
+    ASSERT_TRUE(c);
+    for (T t : {T(0), T(2), T(5), T(7.5), T(9)}) {
+      EXPECT_EQ(c->sample(t).s, T(0));
+      EXPECT_EQ(c->sample(t).velocity, T(0));
+    }
+  }
+  {  // zero speeds that must cover a distance: no room, the texts' Eq. 3.20 on each interval
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {1, 0}}, VelocityFit::FixKeysAdjustInterior, T(1));
+    ASSERT_TRUE(c);
+    for (T t = 0; t <= 1; t += T(0.125)) EXPECT_NEAR((*c)(t), CubicEase<T>{}(t), test::roundtrip_tol<T>);
+  }
+  {  // huge frame numbers (2^40 in double, 2^20 in float: keys 24 frames apart are exact there)
+    const T base = std::is_same_v<T, double> ? T(1099511627776.0) : T(1048576);
+    const K k = {{base, 0}, {base + 24, 2}, {base + 48, 2}, {base + 96, 1}};
+    const auto [area, room] = area_and_room(k);
+    const T total = T(area + 0.5 * room);
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::FixKeysAdjustInterior, total);
+    ASSERT_TRUE(c) << c.error().describe();
+    expect_speed_between_keys(*c, k);
+    EXPECT_EQ((*c)(base + 96), total);
+    EXPECT_EQ((*c)(std::numeric_limits<T>::quiet_NaN()), T(0));  // NaN reads as the start
+  }
+  {  // finite speeds whose area overflows: an error, never a NaN curve
+    const T big = std::numeric_limits<T>::max() / T(4);
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, big}, {100, big}}, VelocityFit::FixKeysAdjustInterior);
+    ASSERT_FALSE(c);
+    EXPECT_EQ(c.error().code, ErrorCode::NotFinite);
+  }
+  {  // a NaN or infinite key: named
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {1, std::numeric_limits<T>::infinity()}},
+                                                       VelocityFit::FixKeysAdjustInterior);
+    ASSERT_FALSE(c);
+    EXPECT_EQ(c.error().code, ErrorCode::NotFinite);
+    EXPECT_EQ(json_pointer(c.error().location), "/1");
+  }
 }
 
 }  // namespace

@@ -32,13 +32,16 @@
 ///   - s outside [0, L] or NaN is clamped (NaN reads as 0); a path of length zero gives f = 0;
 ///   - a NaN frame reads as the first hold segment's target; a non-finite keyed tilt reads as 0.
 
+#include <concepts>
 #include <cstddef>
 #include <span>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
 #include "inbetween/arclength/arc_length.hpp"
+#include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/transform.hpp"
 #include "inbetween/paths/camera.hpp"
@@ -112,8 +115,10 @@ struct RawLookAt {
 };
 
 /// COI mode `ahead`: points ahead on the camera's own path.  The COI is the mean of P(s + d_k),
-/// d_k = distance + spread·k/(n − 1), k = 0 … n − 1 (n = 1: d_0 = distance), P continued along its
-/// end tangent past L.  (paths/camera.hpp's look_ahead_camera with ahead A and n points is
+/// d_k = distance + spread·k/(n − 1), k = 0 … n − 1 (n = 1: d_0 = distance).  Past L, P continues
+/// into the next leg's path when the camera has one (CameraInputs::next_camera_path, moved so that
+/// it starts at P(L): the COI and the view direction do not jump when the camera changes leg),
+/// else, and past that leg's end, along the end tangent.  (paths/camera.hpp's look_ahead_camera with ahead A and n points is
 /// distance = A/n, spread = A(n − 1)/n.)
 template <Real T>
 struct RawLookAhead {
@@ -180,16 +185,59 @@ using RawCameraViewd = RawCameraView<double>;  ///< double-precision raw camera 
 
 /// What the scene supplies per frame to CameraView::evaluate.  Nothing is owned; the spans and
 /// path views must stay valid during the call.
+/// The world positions of the objects a view names (CameraView::target_names()), by slot: either a
+/// span of points, or the translation columns of a scene's output row read in place (so a scene
+/// passes any number of targets without copying or allocating).  The viewed memory must outlive
+/// the view.  Caller bugs (a slot ≥ size()) are asserted.
+template <Real T>
+class TargetPositions {
+ public:
+  /// No targets.
+  TargetPositions() = default;
+  /// The points, slot k = points[k].  Implicit, so that `{.targets = points}` reads as before.
+  template <class R>
+    requires std::convertible_to<R&&, std::span<const Vec3<T>>>
+  TargetPositions(R&& points) noexcept  // NOLINT(google-explicit-constructor)
+      : points_(std::span<const Vec3<T>>(std::forward<R>(points))), size_(points_.size()) {}
+  /// Slot k = (row[columns[k]], row[columns[k] + 1], row[columns[k] + 2]): an object's world
+  /// translation in a scene's output row (Scene::sample).
+  static TargetPositions from_columns(const T* row, std::span<const std::size_t> columns) noexcept {
+    TargetPositions t;
+    t.row_ = row;
+    t.columns_ = columns;
+    t.size_ = columns.size();
+    return t;
+  }
+  /// The number of slots.
+  [[nodiscard]] std::size_t size() const noexcept { return size_; }
+  /// The position in slot k < size().
+  [[nodiscard]] Vec3<T> operator[](std::size_t k) const noexcept {
+    INBETWEEN_ASSERT(k < size_);
+    if (row_ == nullptr) return points_[k];
+    const T* p = row_ + columns_[k];
+    return {p[0], p[1], p[2]};
+  }
+
+ private:
+  std::span<const Vec3<T>> points_{};
+  const T* row_ = nullptr;
+  std::span<const std::size_t> columns_{};
+  std::size_t size_ = 0;
+};
+
 template <Real T>
 struct CameraInputs {
   T frame = T(0);                      ///< scene frame (used by `hold`)
   Vec3<T> eye{};                       ///< the camera's world position
   PathView<T> camera_path{};           ///< the camera's own path, in path space; empty when not on a path
+  /// The path of the camera's next leg (same path space), or empty: look-ahead points past the end
+  /// of camera_path continue along it, attached at camera_path's end (see RawLookAhead).
+  PathView<T> next_camera_path{};
   T s = T(0);                          ///< arc length travelled on camera_path (clamped into [0, L])
   PathView<T> coi_path{};              ///< the path named by coi_path_name(), in path space, or empty
   PathView<T> up_path{};               ///< the path named by up_path_name(), in path space, or empty
   Transform<T> world_from_path{};      ///< maps path space to world (the camera parent's world transform)
-  std::span<const Vec3<T>> targets{};  ///< world positions of target_names(), in that order
+  TargetPositions<T> targets{};        ///< world positions of target_names(), in that order
   T tilt_track_deg = T(0);             ///< value of the track tilt_track_name() at this frame (degrees), else 0
   /// The camera object's own world rotation (parent ∘ local; keyed or from its path), read by mode
   /// own_rotation only (normalised there; a zero or non-finite quaternion reads as identity).
@@ -272,7 +320,7 @@ class CameraView {
   };
 
   CameraView() = default;
-  Vec3<T> position(const Target& t, std::span<const Vec3<T>> targets) const noexcept;
+  Vec3<T> position(const Target& t, const TargetPositions<T>& targets) const noexcept;
   Quat<T> own_rotation(const CameraInputs<T>& in) const noexcept;  // OwnRotation: world rotation with tilt
   Vec3<T> own_forward(const CameraInputs<T>& in) const noexcept;    // OwnRotation: its −Z in world
   friend Expected<CameraView<T>> build_camera_view<T>(const RawCameraView<T>& raw);

@@ -68,10 +68,6 @@ struct ScenePathLeg {
   std::optional<std::size_t> look_at_object;   ///< object index looked at (orientation look_at an object)
 };
 
-/// Most objects one camera may name as targets (look_at or hold targets): their world positions
-/// are gathered on the stack when the camera is sampled, so that sampling never allocates.
-inline constexpr std::size_t kMaxCameraTargets = 64;
-
 class Scene;
 
 /// A sampling context for a sequence of frames (bake, a preview): it remembers the rotation each
@@ -157,7 +153,8 @@ class Scene {
     std::size_t column = 0;                      // first output column of the object
     std::vector<ScenePathLeg> legs;              // empty: not on a path
     std::optional<CameraView<double>> camera;    // a camera's view
-    std::vector<std::size_t> camera_targets;     // object index per CameraView::target_names() slot
+    std::vector<std::size_t> camera_targets;     // per CameraView::target_names() slot: the object index while
+                                                 // building, then its first output column (translation.x)
     std::optional<std::size_t> coi_path;         // index into paths_
     std::optional<std::size_t> up_path;          // index into paths_
     std::optional<std::size_t> tilt_column;      // output column of the tilt track
@@ -186,8 +183,7 @@ class Scene {
 /// names resolved (paths for a leg's curve and a camera's coi_path/up_path, scalar tracks for
 /// speed.track and tilt_track, objects for look_at and hold targets); legs in increasing,
 /// non-overlapping frame ranges (a track speed only on a single leg); no translation or rotation
-/// with a path, no rotation on a camera (unless it views along it, own_rotation); ahead/coi_path/up_path only on a camera on a path; at
-/// most kMaxCameraTargets target objects per camera; no cycle through parents, look-ats and
+/// with a path, no rotation on a camera (unless it views along it, own_rotation); ahead/coi_path/up_path only on a camera on a path; no cycle through parents, look-ats and
 /// camera targets (the error names the member that closes it).  The Error's structured `location` names the offending
 /// member of `raw` ({"tracks", 2, "keys", 3, "frame"}), which, since RawScene mirrors the file, is
 /// the JSON pointer of the value in a scene file.

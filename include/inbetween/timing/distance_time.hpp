@@ -47,7 +47,12 @@ enum class PositionInterpolation {
 /// How a user velocity-time curve is made to cover the total distance (texts 004 §3.2.4).
 enum class VelocityFit {
   FloatToKeepAverage,  ///< shift the whole curve up or down by a constant (keys' velocities change)
-  FixKeysAdjustInterior,  ///< keep the keys' velocities; add c·6τ(1 − τ) inside every interval
+  /// Keep the keys' velocities; add a bump b_i·6τ(1 − τ) inside interval i.  The bumps first use
+  /// the room each interval has between its two keys' speeds (|6b_i| ≤ |Δv_i|, shared in
+  /// proportion), so the speed never leaves [min, max] of an interval's keys and two equal keys
+  /// give a flat speed; only distance beyond all that room is spread evenly over time (the texts'
+  /// c·6τ(1 − τ), e.g. Eq. 3.20 from two keys at rest), and there the speed leaves the keys' range.
+  FixKeysAdjustInterior,
 };
 
 /// Where a distance-time function runs backwards: the first interval of negative velocity.
@@ -72,7 +77,9 @@ class DistanceTimeCurve {
   static Expected<DistanceTimeCurve> from_constraints(std::span<const TimeDistanceVelocityKey<T>> keys);
   /// From a piecewise-linear velocity-time curve: s(t_0) = 0 and s(t_n) = total_distance, the
   /// velocity adjusted by `fit` so that the area under it equals total_distance.  With
-  /// FloatToKeepAverage and FixKeysAdjustInterior the adjustment is spread evenly over time.
+  /// FloatToKeepAverage the adjustment is spread evenly over time; with FixKeysAdjustInterior it
+  /// goes first where keys differ (see VelocityFit), so the speed between two keys stays within
+  /// their speeds whenever |total − area of the key lines| ≤ Σ h_i|v_{i+1} − v_i|/6.
   /// A single interval with v = 0 at both ends and FixKeysAdjustInterior gives −2t³ + 3t² (Eq. 3.20).
   static Expected<DistanceTimeCurve> from_velocity_curve(std::span<const TimeVelocityKey<T>> keys, VelocityFit fit,
                                                          T total_distance = T(1));
