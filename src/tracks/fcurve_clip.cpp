@@ -733,6 +733,7 @@ void advance_main(const Channels& ch, std::size_t C, float frame, FCurveClip::Co
 
 // evaluate_channels' SIMD loop over groups of native_simd<float>::size() channels from the cache;
 // Folding: some channel cycles (apply each group's cycle fold where one of its channels does).
+constexpr std::size_t kPrefetchGroups = 8;
 // `data`: the main stream's runs (a group whose Context::direct names one reads it in place).
 template <bool Folding>
 void evaluate_groups(FCurveClip::Context& context, const float* data, std::size_t C, float frame) noexcept {
@@ -747,6 +748,14 @@ void evaluate_groups(FCurveClip::Context& context, const float* data, std::size_
     // This group's cached fields, field k at g + k·W: its part of the cache or a run in the clip.
     const std::uint32_t d = direct[c0 / W];
     const float* g = d == kNoRun ? cache + c0 * CB : data + std::size_t(d) * CB;
+    if (c0 + kPrefetchGroups * W < C) {
+      const std::uint32_t e = direct[c0 / W + kPrefetchGroups];
+      if (e != kNoRun) {
+        const char* run = reinterpret_cast<const char*>(data + std::size_t(e) * CB);
+        for (std::size_t off = 0; off < CB * W * sizeof(float); off += 64) __builtin_prefetch(run + off);
+        __builtin_prefetch(run + CB * W * sizeof(float) - 1);
+      }
+    }
     const auto ld = [g](std::size_t k) noexcept { return rig_detail::load<V>(g + k * W); };
     V t = f;  // the frame each channel's piece is evaluated at
     V offset = V(0.0f);
