@@ -107,6 +107,14 @@ class FCurveClip {
     for (const auto& k : classes_) n += k.pieces.owner.size();
     return n;
   }
+  /// Number of runs over all pieces: a run is the pieces of channels next to each other in one
+  /// SIMD group that start at the same frame (curves keyed together), stored side by side and
+  /// handed over at once; pieces() / runs() is the mean run size (1: no curves share keys).
+  [[nodiscard]] std::size_t runs() const noexcept {
+    std::size_t n = count_runs(data_);
+    for (const auto& k : classes_) n += count_runs(k.pieces);
+    return n;
+  }
   /// Number of channels with a Cycles modifier (folded into their keyed range at sampling).
   [[nodiscard]] std::size_t cycling_channels() const noexcept { return cycling_; }
   /// Number of cycle classes: cycling channels with the same end-key frames and Cycles settings
@@ -175,6 +183,9 @@ class FCurveClip {
     std::vector<float> bounds;  // per stream piece: lo, hi
     std::vector<std::uint8_t> run, lane;  // per stream piece: its run's size, its index in the run
   };
+  static std::size_t count_runs(const Channels& ch) noexcept {
+    return std::size_t(std::count(ch.lane.begin(), ch.lane.end(), std::uint8_t(0)));
+  }
   Channels data_;  // channels without cycling; a cycling channel has no piece in the stream
   struct CycleClass {  // cycling channels with the same end-key frames and Cycles settings: one local frame
     FCurveCycles cycles;
