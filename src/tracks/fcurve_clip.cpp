@@ -350,6 +350,7 @@ std::size_t take_run(const Channels& ch, std::size_t p, FCurveClip::Context& ctx
   switch (b) {
     case 1: copy_lanes<1>(src, dst); break;
     case 2: copy_lanes<2>(src, dst); break;
+    case 3: copy_lanes<3>(src, dst); break;
     case 4: copy_lanes<4>(src, dst); break;
     default:
       for (std::size_t k = 0; k < CB; ++k)
