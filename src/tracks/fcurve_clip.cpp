@@ -255,6 +255,110 @@ bool cycles_frames(const FCurve& curve) {
   return cy && curve.keys().size() >= 2 && (cy->before != CycleMode::none || cy->after != CycleMode::none);
 }
 
+// ---- Runs (fcurve_clip.hpp, FCurveClip::Channels) -----------------------------------------------
+
+constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();  // channels per SIMD group
+static_assert(W <= 255, "a run's size and lane are bytes");
+constexpr std::uint32_t kNoRun = FCurveClip::Context::no_run;
+
+// Turns a stream sorted by rig_detail::finish_stream (B floats per piece, owners final) into
+// bounds and runs: the pieces from p on with p's lo whose owners are p's owner + 1, + 2, … within
+// its SIMD group form one run, its cached fields field-major (those of the run's piece i, field k,
+// at data[p·CB + k·size + i]: for a run that fills a group, the cache's own group layout).
+template <class Channels>
+void finish_runs(Channels& ch) {
+  const std::size_t n = ch.owner.size();
+  ch.bounds.resize(2 * n);
+  ch.run.assign(n, 1);
+  ch.lane.assign(n, 0);
+  std::vector<float> out(n * CB);
+  for (std::size_t p = 0; p < n;) {
+    const float lo = ch.data[p * B];
+    const std::size_t c = ch.owner[p];
+    std::size_t b = 1;
+    while (p + b < n && (c + b) % W != 0 && ch.owner[p + b] == c + b && ch.data[(p + b) * B] == lo) ++b;
+    for (std::size_t i = 0; i < b; ++i) {
+      const float* blk = ch.data.data() + (p + i) * B;
+      ch.bounds[2 * (p + i)] = blk[0];
+      ch.bounds[2 * (p + i) + 1] = blk[1];
+      ch.run[p + i] = std::uint8_t(b);
+      ch.lane[p + i] = std::uint8_t(i);
+      for (std::size_t k = 0; k < CB; ++k) out[p * CB + k * b + i] = blk[kCachedFrom + k];
+    }
+    p += b;
+  }
+  ch.data = std::move(out);
+}
+
+// Stream piece p as a block of B floats (lo, hi, then the cached fields), for piece_value.
+template <class Channels>
+void block_of(const Channels& ch, std::size_t p, float* blk) noexcept {
+  const std::size_t i = ch.lane[p], b = ch.run[p];
+  const float* src = ch.data.data() + (p - i) * CB + i;
+  blk[0] = ch.bounds[2 * p];
+  blk[1] = ch.bounds[2 * p + 1];
+  for (std::size_t k = 0; k < CB; ++k) blk[kCachedFrom + k] = src[k * b];
+}
+
+// Copies stream piece p's cached fields into channel c's lane of the cache.
+template <class Channels>
+void put_piece(const Channels& ch, std::size_t p, float* cache, std::size_t c) noexcept {
+  const std::size_t i = ch.lane[p], b = ch.run[p];
+  const float* src = ch.data.data() + (p - i) * CB + i;
+  float* dst = cache + (c / W) * CB * W + c % W;
+  for (std::size_t k = 0; k < CB; ++k) dst[k * W] = src[k * b];
+}
+
+// Group g reads the cache from now on: a run it read in place (main stream data) is copied there
+// first (the same layout: one contiguous copy), so that a lane can be replaced.
+inline void unshare(FCurveClip::Context& ctx, const float* data, std::size_t g) noexcept {
+  std::uint32_t& d = ctx.direct[g];
+  if (d == kNoRun) return;
+  std::memcpy(ctx.cache.data() + g * CB * W, data + std::size_t(d) * CB, CB * W * sizeof(float));
+  d = kNoRun;
+}
+
+// Copies the Nb lanes of a run's fields (field k at src + k·Nb) to dst + k·W.
+template <std::size_t Nb>
+inline void copy_lanes(const float* src, float* dst) noexcept {
+  for (std::size_t k = 0; k < CB; ++k) std::memcpy(dst + k * W, src + k * Nb, Nb * sizeof(float));
+}
+
+// Hands the run starting at stream piece p over to its channels (their cursors and cache lanes;
+// Main: the clip's main stream, where a run that fills its group is read in place instead);
+// returns its size.
+template <bool Main, class Channels>
+std::size_t take_run(const Channels& ch, std::size_t p, FCurveClip::Context& ctx) noexcept {
+  const std::size_t b = ch.run[p];
+  const std::size_t c = ch.owner[p];
+  for (std::size_t i = 0; i < b; ++i) ctx.segment[c + i] = ch.local[p + i];
+  const std::size_t g = c / W;
+  if constexpr (Main) {
+    if (b == W) {
+      ctx.direct[g] = std::uint32_t(p);
+      // The evaluation reads the run in group order, not stream order: fetch it now, while the
+      // stream is read front to back (without this the reads wait on memory one group at a time).
+      const char* run = reinterpret_cast<const char*>(ch.data.data() + p * CB);
+      for (std::size_t off = 0; off < CB * W * sizeof(float); off += 64) __builtin_prefetch(run + off);
+      __builtin_prefetch(run + CB * W * sizeof(float) - 1);
+      return b;
+    }
+    unshare(ctx, ch.data.data(), g);
+  }
+  const float* src = ch.data.data() + p * CB;
+  float* dst = ctx.cache.data() + g * CB * W + c % W;
+  switch (b) {
+    case 1: copy_lanes<1>(src, dst); break;
+    case 2: copy_lanes<2>(src, dst); break;
+    case 3: copy_lanes<3>(src, dst); break;
+    case 4: copy_lanes<4>(src, dst); break;
+    default:
+      for (std::size_t k = 0; k < CB; ++k)
+        for (std::size_t i = 0; i < b; ++i) dst[k * W + i] = src[k * b + i];
+  }
+  return b;
+}
+
 }  // namespace
 
 // The cycle fold (see fcurve_clip.hpp): private parts of FCurveClip and its Context.
@@ -305,9 +409,11 @@ struct FCurveClipAccess {
       ch.count.push_back(std::uint32_t(ch.data.size() / B - ch.begin.back()));
     }
     rig_detail::finish_stream<float, B>(ch);
+    finish_runs(ch);
     for (CycleClass& k : clip.classes_) {
       rig_detail::finish_stream<float, B>(k.pieces);
       for (auto& o : k.pieces.owner) o = k.members[o];  // member index → channel (the cache column)
+      finish_runs(k.pieces);
     }
   }
 
@@ -462,7 +568,6 @@ struct FCurveClipAccess {
   // when the fold changes), its local frame, and its members' cached pieces, consumed from the
   // class's stream in local-frame order as the main stream is (rig_detail::advance).
   static void advance_class(const FCurveClip& clip, FCurveClip::Context& ctx, std::size_t q, float f) noexcept {
-    constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
     const CycleClass& cy = clip.classes_[q];
     float* S = ctx.class_fold.data() + q * kClass;
     const std::size_t s = ctx.stride;
@@ -480,7 +585,7 @@ struct FCurveClipAccess {
     }
     const float t = local(S, 1, f);
     const auto& ch = cy.pieces;
-    const float* data = ch.data.data();
+    const float* bounds = ch.bounds.data();
     const std::size_t n = ch.owner.size();
     float* cache = ctx.cache.data();
     std::size_t& next = ctx.class_next[q];
@@ -491,48 +596,47 @@ struct FCurveClipAccess {
       // A local frame back near the stream's start (the wrap to the next copy of a repeat):
       // replay the stream from its start, as evaluate_channels does for the main stream.
       const std::size_t replay = std::min(n, 4 * cy.members.size());
-      if (replay == n || data[replay * B] > t) next = 0, forward = true;
+      if (replay == n || bounds[2 * replay] > t) next = 0, forward = true;
     }
     if (forward) {
+      // A class's channels are never in a group read in place (a main-stream run fills its group).
       const std::size_t limit = std::min(n, next + 16 * cy.members.size());
       std::size_t p = next;
-      for (; p < limit && data[p * B] <= t; ++p) {
-        const std::uint32_t c = ch.owner[p];
-        ctx.segment[c] = ch.local[p];
-        rig_detail::put_block<float, W, CB>(data + p * B + kCachedFrom, cache, c);
-      }
-      if (p == n || data[p * B] > t) {
+      while (p < limit && bounds[2 * p] <= t) p += take_run<false>(ch, p, ctx);
+      if (p == n || bounds[2 * p] > t) {
         next = p;
-        S[9] = p < n ? data[p * B] : kInf;
+        S[9] = p < n ? bounds[2 * p] : kInf;
         return;
       }
     }
     for (std::size_t i = 0; i < cy.members.size(); ++i) {
       const std::size_t c = cy.members[i];
-      const float* cur = data + std::size_t(ch.where[ch.begin[i] + ctx.segment[c]]) * B;  // the cached piece
+      const float* cur = bounds + 2 * std::size_t(ch.where[ch.begin[i] + ctx.segment[c]]);  // the cached piece
       if (t >= cur[0] && t < cur[1]) continue;  // its [lo, hi) still holds t
-      const std::uint32_t k = rig_detail::find_segment<float, B>(data, ch.where.data() + ch.begin[i], ch.count[i], t,
+      const std::uint32_t k = rig_detail::find_segment<float, 2>(bounds, ch.where.data() + ch.begin[i], ch.count[i], t,
                                                                  ctx.segment[c]);
       ctx.segment[c] = k;
-      rig_detail::put_block<float, W, CB>(data + std::size_t(ch.where[ch.begin[i] + k]) * B + kCachedFrom, cache, c);
+      put_piece(ch, ch.where[ch.begin[i] + k], cache, c);
     }
     std::size_t lo = 0, hi = n;  // first piece whose lo > t
     while (lo < hi) {
       const std::size_t mid = (lo + hi) / 2;
-      if (data[mid * B] <= t) lo = mid + 1;
+      if (bounds[2 * mid] <= t) lo = mid + 1;
       else hi = mid;
     }
     next = lo;
-    S[9] = lo < n ? data[lo * B] : kInf;
+    S[9] = lo < n ? bounds[2 * lo] : kInf;
   }
 
-  static const float* nan_block(const FCurveClip& clip, std::size_t c) noexcept {
+  // Channel c's second piece (the one starting at its first key) as a block.
+  static void nan_block(const FCurveClip& clip, std::size_t c, float* blk) noexcept {
     const std::int32_t q = clip.class_of_[c];
     if (q >= 0) {
       const auto& ch = clip.classes_[std::size_t(q)].pieces;
-      return ch.data.data() + std::size_t(ch.where[ch.begin[clip.member_of_[c]] + 1]) * B;
+      block_of(ch, ch.where[ch.begin[clip.member_of_[c]] + 1], blk);
+      return;
     }
-    return clip.data_.data.data() + std::size_t(clip.data_.where[clip.data_.begin[c] + 1]) * B;
+    block_of(clip.data_, clip.data_.where[clip.data_.begin[c] + 1], blk);
   }
 };
 
@@ -562,7 +666,6 @@ Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClip
 }
 
 FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
-  constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
   FCurveClip::Context ctx;
   ctx.stride = (clip.channels() + 15) / 16 * 16;
   ctx.segment.assign(clip.channels(), 0);
@@ -573,6 +676,7 @@ FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
   const std::size_t s = ctx.stride;
   ctx.fold.assign(FCurveClipAccess::kFold * s, 0.0f);
   ctx.folding.assign(s / W, 0);
+  ctx.direct.assign(s / W, kNoRun);
   for (std::size_t c = 0; c < s; ++c) {
     ctx.fold[0 * s + c] = -kInf, ctx.fold[1 * s + c] = kInf, ctx.fold[5 * s + c] = 1.0f;
     if (c < clip.channels() && clip.class_of_[c] >= 0) ctx.folding[c / W] = 1;
@@ -590,26 +694,21 @@ FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
 namespace {
 
 // Brings the cache of the channels in the main stream to `frame`: rig_detail::advance, with the
-// cache holding a piece's cached fields only (CB of B, without lo and hi): forward playback
-// consumes the stream's next pieces; a seek back, or a forward jump past more than 16 pieces
-// per channel, finds each stale channel's piece from its cursor (the cached piece's [lo, hi) read
-// from the stream through the cursor) and repositions the stream.
+// stream's lo and hi in `bounds` and its cached fields in runs: forward playback consumes the
+// stream's next runs (a run that fills a SIMD group is read in place, Context::direct; others
+// are copied into the cache); a seek back, or a forward jump past more than 16 pieces per channel,
+// finds each stale channel's piece from its cursor (the current piece's [lo, hi) read from
+// `bounds` through the cursor), copies it into the cache, and repositions the stream.
 template <class Channels>
 void advance_main(const Channels& ch, std::size_t C, float frame, FCurveClip::Context& context) noexcept {
-  constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();
-  const float* data = ch.data.data();
+  const float* bounds = ch.bounds.data();
   const std::size_t n = ch.owner.size();
-  float* cache = context.cache.data();
   std::uint32_t* segment = context.segment.data();
   if (frame >= context.time) {
     const std::size_t limit = std::min(n, context.next + 16 * C);
     std::size_t p = context.next;
-    for (; p < limit && data[p * B] <= frame; ++p) {
-      const std::uint32_t c = ch.owner[p];
-      segment[c] = ch.local[p];
-      rig_detail::put_block<float, W, CB>(data + p * B + kCachedFrom, cache, c);
-    }
-    if (p == n || data[p * B] > frame) {
+    while (p < limit && bounds[2 * p] <= frame) p += take_run<true>(ch, p, context);
+    if (p == n || bounds[2 * p] > frame) {
       context.next = p;
       return;
     }
@@ -617,16 +716,17 @@ void advance_main(const Channels& ch, std::size_t C, float frame, FCurveClip::Co
   for (std::size_t c = 0; c < C; ++c) {
     if (ch.count[c] == 0) continue;  // a cycling channel (not in the main stream)
     const std::uint32_t* where = ch.where.data() + ch.begin[c];
-    const float* cur = data + std::size_t(where[segment[c]]) * B;
-    if (frame >= cur[0] && frame < cur[1]) continue;  // the cached piece's [lo, hi) still holds frame
-    const std::uint32_t k = rig_detail::find_segment<float, B>(data, where, ch.count[c], frame, segment[c]);
+    const float* cur = bounds + 2 * std::size_t(where[segment[c]]);
+    if (frame >= cur[0] && frame < cur[1]) continue;  // the current piece's [lo, hi) still holds frame
+    const std::uint32_t k = rig_detail::find_segment<float, 2>(bounds, where, ch.count[c], frame, segment[c]);
     segment[c] = k;
-    rig_detail::put_block<float, W, CB>(data + std::size_t(where[k]) * B + kCachedFrom, cache, c);
+    unshare(context, ch.data.data(), c / W);
+    put_piece(ch, where[k], context.cache.data(), c);
   }
   std::size_t lo = 0, hi = n;  // first piece whose lo > frame
   while (lo < hi) {
     const std::size_t mid = (lo + hi) / 2;
-    if (data[mid * B] <= frame) lo = mid + 1;
+    if (bounds[2 * mid] <= frame) lo = mid + 1;
     else hi = mid;
   }
   context.next = lo;
@@ -634,16 +734,29 @@ void advance_main(const Channels& ch, std::size_t C, float frame, FCurveClip::Co
 
 // evaluate_channels' SIMD loop over groups of native_simd<float>::size() channels from the cache;
 // Folding: some channel cycles (apply each group's cycle fold where one of its channels does).
+constexpr std::size_t kPrefetchGroups = 8;
+// `data`: the main stream's runs (a group whose Context::direct names one reads it in place).
 template <bool Folding>
-void evaluate_groups(FCurveClip::Context& context, std::size_t C, float frame) noexcept {
+void evaluate_groups(FCurveClip::Context& context, const float* data, std::size_t C, float frame) noexcept {
   namespace stdx = rig_detail::stdx;
   using V = stdx::native_simd<float>;
-  constexpr std::size_t W = V::size();
+  static_assert(V::size() == W);
   const V f(frame);
   const float* cache = context.cache.data();
+  const std::uint32_t* direct = context.direct.data();
   float* values = context.values.data();
   for (std::size_t c0 = 0; c0 < C; c0 += W) {
-    const float* g = cache + c0 * CB;  // this group's cached fields: field k at g + k·W
+    // This group's cached fields, field k at g + k·W: its part of the cache or a run in the clip.
+    const std::uint32_t d = direct[c0 / W];
+    const float* g = d == kNoRun ? cache + c0 * CB : data + std::size_t(d) * CB;
+    if (c0 + kPrefetchGroups * W < C) {
+      const std::uint32_t e = direct[c0 / W + kPrefetchGroups];
+      if (e != kNoRun) {
+        const char* run = reinterpret_cast<const char*>(data + std::size_t(e) * CB);
+        for (std::size_t off = 0; off < CB * W * sizeof(float); off += 64) __builtin_prefetch(run + off);
+        __builtin_prefetch(run + CB * W * sizeof(float) - 1);
+      }
+    }
     const auto ld = [g](std::size_t k) noexcept { return rig_detail::load<V>(g + k * W); };
     V t = f;  // the frame each channel's piece is evaluated at
     V offset = V(0.0f);
@@ -676,14 +789,16 @@ void evaluate_groups(FCurveClip::Context& context, std::size_t C, float frame) n
 void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context& context) noexcept {
   const std::size_t C = clip.channels_;
   INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == CB * context.stride &&
-                   context.fold.size() == FCurveClipAccess::kFold * context.stride);
+                   context.fold.size() == FCurveClipAccess::kFold * context.stride &&
+                   context.direct.size() == context.stride / W);
   if (std::isnan(frame)) {
     // As FCurve::sample: the first key's value, each channel's second piece at its start (it
     // starts at the first key: a fitted piece whose band there clamps u to −1, where it
     // interpolates the key, a constant piece, or, for one key, the held end).  Cache, folds and
     // stream are untouched.
     for (std::size_t i = 0; i < C; ++i) {
-      const float* blk = FCurveClipAccess::nan_block(clip, i);
+      float blk[B];
+      FCurveClipAccess::nan_block(clip, i, blk);
       context.values[i] = piece_value(blk, blk[0]);
     }
     return;
@@ -698,7 +813,7 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
     // a few dependent reads each, scattered over the whole clip.  Same pieces and cursors either way.
     const auto& ch = clip.data_;
     const std::size_t replay = std::min(ch.owner.size(), 4 * C);  // pieces a replay may consume
-    if (replay == ch.owner.size() || ch.data[replay * B] > frame) {
+    if (replay == ch.owner.size() || ch.bounds[2 * replay] > frame) {
       context.next = 0;
       context.time = -kInf;
     }
@@ -721,9 +836,9 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   // The SIMD loop, without the cycle fold when no channel cycles (chosen once per call: a
   // non-cycling clip pays neither the per-group branch nor the offset add).
   if (clip.classes_.empty()) {
-    evaluate_groups<false>(context, C, frame);
+    evaluate_groups<false>(context, clip.data_.data.data(), C, frame);
   } else {
-    evaluate_groups<true>(context, C, frame);
+    evaluate_groups<true>(context, clip.data_.data.data(), C, frame);
   }
 }
 
@@ -743,7 +858,6 @@ void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context&
   // then the AoS write.
   namespace stdx = rig_detail::stdx;
   using V = stdx::native_simd<float>;
-  constexpr std::size_t W = V::size();
   constexpr std::size_t kBlock = 64;  // joints per block (a multiple of W)
   static_assert(kBlock % W == 0);
   const float* v = context.values.data();

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/museum_tracks.hpp"
 #include "support/random.hpp"
 
 namespace inbetween {
@@ -393,6 +394,97 @@ TEST(FCurveClipCycles, WalkCycleRigAgreesAndNormalises) {
       EXPECT_EQ(pose[j].scale.z, out[10 * j + 9]);
     }
   }
+}
+
+// ---- Runs: channels keyed together --------------------------------------------------------------
+
+// A joint's ten curves on the same key frames (Blender keys a bone's channels together): `raw`'s
+// keys with their values (and handles) scaled by 1, 0.9, … 0.1 and moved by k — the fit's pieces
+// then start at the same frames, so the clip stores them as runs.
+void push_joint(const RawFCurve& raw, std::vector<FCurve>& curves) {
+  for (int k = 0; k < 10; ++k) {
+    RawFCurve r = raw;
+    const double s = 1.0 - 0.1 * k;
+    for (auto& key : r.keys) {
+      key.value = key.value * s + k;
+      if (key.handle_left) key.handle_left->y = key.handle_left->y * s + k;
+      if (key.handle_right) key.handle_right->y = key.handle_right->y * s + k;
+    }
+    curves.push_back(build_fcurve(r).value());
+  }
+}
+
+// The run layout (pieces of channels keyed together side by side, a run that fills a SIMD group
+// read in place by the evaluation, shorter ones copied lane by lane, a group read in place
+// copied into the cache when one of its channels moves on alone) changes no value: a rig whose
+// joints share their key frames — the museum's degenerate curves (single keys, keys 1e-4 and one
+// ulp apart, huge frames, vertical handles …) and seeded random joints, every third with a Cycles
+// modifier — gives, at every frame, forwards, looping back, seeking and far out, the same bits
+// as each curve compiled alone (a clip of one channel: runs of one piece, nothing read in place;
+// the SIMD lanes are independent, so the same float operations).
+TEST(FCurveClip, RunsOfChannelsKeyedTogetherChangeNoValue) {
+  test::Random rng(test::seed_for(1214));
+  SCOPED_TRACE(rng.trace());
+  std::vector<FCurve> curves;
+  for (const auto& ex : test::museum_fcurves()) push_joint(ex.curve, curves);
+  for (int j = 0; j < 12; ++j) {
+    RawFCurve raw;
+    raw.extrapolation = j % 2 ? Extrapolation::linear : Extrapolation::constant;
+    double f = rng.uniform<double>(-10, 10);
+    const int n = rng.integer(2, 8);
+    for (int i = 0; i < n; ++i) {
+      FCurveKey k;
+      k.frame = f;
+      k.value = rng.uniform<double>(-5, 5);
+      k.interpolation = rng.integer(0, 3) == 0 ? Interpolation(rng.integer(0, 12)) : Interpolation::bezier;
+      raw.keys.push_back(k);
+      f += rng.uniform<double>(0.3, 6);
+    }
+    if (j % 3 == 2) {
+      FCurveCycles cy;
+      cy.before = CycleMode(rng.integer(1, 3));
+      cy.after = CycleMode(rng.integer(1, 3));
+      raw.cycles = cy;
+    }
+    push_joint(raw, curves);
+  }
+  const auto clip = build_fcurve_rig(curves);
+  ASSERT_TRUE(clip) << clip.error().describe();
+  EXPECT_GT(clip->cycle_classes(), 0u);
+  // Curves keyed together share runs: at most about 3 per joint and key (4 + 4 + 2 lanes with SSE).
+  EXPECT_LE(2 * clip->runs(), clip->pieces());
+  std::vector<FCurveClip> alone;
+  std::vector<FCurveClip::Context> alone_ctx;
+  for (const FCurve& c : curves) {
+    alone.push_back(build_fcurve_clip(std::span<const FCurve>(&c, 1)).value());
+    alone_ctx.push_back(make_fcurve_context(alone.back()));
+  }
+  std::vector<float> frames;
+  for (int loop = 0; loop < 2; ++loop)
+    for (float t = -20; t < 80; t += 0.25f) frames.push_back(t);  // forwards, then back to the start
+  for (float t = 80; t > -20; t -= 0.9f) frames.push_back(t);      // backwards
+  for (int i = 0; i < 300; ++i) frames.push_back(rng.uniform<float>(-100, 200));  // seeks either way
+  for (const float big : {1e4f, 1e7f, 1e7f + 30, 3e38f, INFINITY, -1e6f}) frames.push_back(big);
+  frames.push_back(std::numeric_limits<float>::quiet_NaN());
+  auto ctx = make_fcurve_context(*clip);
+  std::vector<float> out(curves.size());
+  float one = 0;
+  std::size_t read_in_place = 0, compared = 0;
+  for (const float t : frames) {
+    sample_fcurves(*clip, t, ctx, std::span<float>(out));
+    read_in_place += std::size_t(std::count_if(ctx.direct.begin(), ctx.direct.end(),
+                                               [](std::uint32_t d) { return d != FCurveClip::Context::no_run; }));
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      sample_fcurves(alone[c], t, alone_ctx[c], std::span<float>(&one, 1));
+      ASSERT_FALSE(std::isnan(out[c])) << "curve " << c << " frame " << t;
+      EXPECT_EQ(out[c], one) << "curve " << c << " frame " << t;
+      ++compared;
+    }
+  }
+  EXPECT_GT(read_in_place, 0u);  // the in-place path was taken
+  std::cout << "[ measured ] runs: " << clip->pieces() << " pieces in " << clip->runs() << " runs, " << compared
+            << " values bit-identical to the curves compiled alone, " << read_in_place
+            << " SIMD groups read in place over " << frames.size() << " frames\n";
 }
 
 }  // namespace

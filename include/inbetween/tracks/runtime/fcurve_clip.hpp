@@ -5,8 +5,11 @@
 /// FCurve::sample (Blender's root-finding evaluation) to a tolerance checked at build time, so
 /// sampling runs no root finder: one polynomial per channel, evaluated native_simd<float>::size()
 /// channels at a time from a cache kept in the context, with the pieces in a time-sorted stream
-/// (the RigClip machinery, rig_clip.hpp).  A piece is 16 floats, one 64-byte cache line; the
-/// context caches 14 of them per channel (not lo and hi).
+/// (the RigClip machinery, rig_clip.hpp).  A piece is 16 floats (lo and hi kept apart from the
+/// other 14); the context caches the 14 per channel.  Pieces of channels that share their key
+/// frames (a rig's joint: its ten curves keyed together) are stored as runs in SIMD-register order:
+/// a run that fills a SIMD group is read where it is in the clip (no copy into the cache), a
+/// shorter one is copied lane-wise.
 ///
 /// Pieces: Bézier and easing segments are fitted adaptively (the polynomial through the curve's
 /// values at the ten Chebyshev–Lobatto nodes u = −cos(πk/9), the keys' values at the ends; checked
@@ -104,6 +107,14 @@ class FCurveClip {
     for (const auto& k : classes_) n += k.pieces.owner.size();
     return n;
   }
+  /// Number of runs over all pieces: a run is the pieces of channels next to each other in one
+  /// SIMD group that start at the same frame (curves keyed together), stored side by side and
+  /// handed over at once; pieces() / runs() is the mean run size (1: no curves share keys).
+  [[nodiscard]] std::size_t runs() const noexcept {
+    std::size_t n = count_runs(data_);
+    for (const auto& k : classes_) n += count_runs(k.pieces);
+    return n;
+  }
   /// Number of channels with a Cycles modifier (folded into their keyed range at sampling).
   [[nodiscard]] std::size_t cycling_channels() const noexcept { return cycling_; }
   /// Number of cycle classes: cycling channels with the same end-key frames and Cycles settings
@@ -139,6 +150,12 @@ class FCurveClip {
     std::vector<float> class_fold;
     std::vector<std::size_t> class_next;  ///< per cycle class: first piece of its stream not yet consumed
     std::vector<std::uint8_t> folding;   ///< per SIMD group of channels: 1 if one of them cycles
+    /// Per SIMD group of channels: the first stream piece of the run of the clip's main stream the
+    /// group's channels read in place (a run that fills the group), or no_run: the group's part of
+    /// `cache` holds their pieces.
+    std::vector<std::uint32_t> direct;
+    /// A `direct` entry for a group read from `cache`.
+    static constexpr std::uint32_t no_run = std::numeric_limits<std::uint32_t>::max();
     std::size_t stride = 0;              ///< padded channel count (a multiple of 16)
     std::size_t next = 0;                ///< first stream piece not yet consumed
     float time = -std::numeric_limits<float>::infinity();  ///< last sampled frame (clamped)
@@ -154,10 +171,21 @@ class FCurveClip {
   friend struct FCurveClipAccess;  // the cycle fold in fcurve_clip.cpp
   FCurveClip() = default;
 
-  struct Channels {  // as RigClip's: pieces of every channel in stream order
+  // As RigClip's: pieces of every channel in stream order, with lo and hi apart (bounds) and the
+  // cached fields in runs: consecutive stream pieces with the same lo whose channels are
+  // consecutive within one SIMD group (a joint's curves keyed together) are one run, stored
+  // field-major (field k of the run's piece i at data[first·cached_fields + k·size + i]), so
+  // handing a run over is a copy of whole lanes — or, for a run that fills a SIMD group, none:
+  // the group reads the run where it is (Context::direct).  A single piece is a run of 1.
+  struct Channels {
     std::vector<std::uint32_t> begin, count, where, owner, local;
-    std::vector<float> data;
+    std::vector<float> data;    // while compiling: block floats per piece; then cached_fields, in runs
+    std::vector<float> bounds;  // per stream piece: lo, hi
+    std::vector<std::uint8_t> run, lane;  // per stream piece: its run's size, its index in the run
   };
+  static std::size_t count_runs(const Channels& ch) noexcept {
+    return std::size_t(std::count(ch.lane.begin(), ch.lane.end(), std::uint8_t(0)));
+  }
   Channels data_;  // channels without cycling; a cycling channel has no piece in the stream
   struct CycleClass {  // cycling channels with the same end-key frames and Cycles settings: one local frame
     FCurveCycles cycles;
