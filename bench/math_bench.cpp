@@ -222,7 +222,7 @@ double slerp_max_error(const SlerpInputs<T>& in) {
   const auto widen = [](const Quat<T>& q) { return Quat<L>{L(q.w), L(q.x), L(q.y), L(q.z)}; };
   for (std::size_t i = 0; i < in.a.size(); ++i) {
     for (const T u : {in.u[i], T(0), T(1), T(0.5)}) {
-      const Quat<L> ref = slerp(widen(in.a[i]), widen(in.b[i]), L(u));
+      const Quat<L> ref = slerp(normalized(widen(in.a[i])), normalized(widen(in.b[i])), L(u));
       const Quat<T> got = slerp_by<T, side>(in.a[i], in.b[i], u);
       worst = std::max(worst, double(angle_between(normalized(widen(got)), ref)));
     }
