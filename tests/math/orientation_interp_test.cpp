@@ -10,6 +10,8 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "inbetween/math/orientation_interp.hpp"
 #include "inbetween/math/transform.hpp"
@@ -48,6 +50,19 @@ TYPED_TEST(OrientationInterp, SlerpContractOverRandomPairsAndTheMuseum) {
   SCOPED_TRACE(rng.trace());
   std::vector<test::QuatPairExhibit<T>> pairs = test::museum_quat_pairs<T>();
   for (int n = 0; n < 300; ++n) pairs.push_back({"random", rng.rotation<T>(), rng.rotation<T>()});
+  // Nearly identical and nearly antipodal pairs, rotation angle 3·2^-k down to below ε (and the
+  // same with b's sign flipped): with Longest/AsGiven the arc from a to a nearly antipodal b is
+  // almost a half circle of S³, where sin(uθ) is not small and the direction d̂ across a must be
+  // accurate.  The form b − (a·b)·a lost it to cancellation (its error is ε/|b + a| relative):
+  // unit norm failed here by more than 1e-6 in float in the default build, and with -march=native
+  // (fused multiply-adds) the museum's identical pair taken the long way (exactly antipodal ends)
+  // gave results of norm 0.79 down to 1e-17.
+  for (int k = 2; k <= std::numeric_limits<T>::digits + 4; k += 2) {
+    const Quat<T> a = rng.rotation<T>();
+    const Quat<T> b = normalized(a * Quat<T>::from_axis_angle(rng.unit_vec3<T>(), T(3) * std::ldexp(T(1), -k)));
+    pairs.push_back({"nearly identical, 3*2^-" + std::to_string(k) + " rad", a, b});
+    pairs.push_back({"nearly antipodal, 3*2^-" + std::to_string(k) + " rad", a, -b});
+  }
   for (const auto& pair : pairs) {
     SCOPED_TRACE(pair.name);
     for (const RotationPath path : {RotationPath::Shortest, RotationPath::Longest, RotationPath::AsGiven}) {
@@ -159,16 +174,22 @@ TYPED_TEST(OrientationInterp, FastSlerpWithinStatedBound) {
   test::Random rng(test::seed_for(303));
   SCOPED_TRACE(rng.trace());
   double worst = 0;
+  // The reference: the great arc between the rotations the inputs stand for, i.e. slerp() in long
+  // double on the inputs normalised in long double.  The rounded inputs' norms differ from 1 by up
+  // to about ε of T, and slerp()'s unit-input formula turns that into an error of the same order
+  // that depends on how it is written (the bench's max_err_rad uses the same reference).
+  const auto ref = [](const Quat<T>& a, const Quat<T>& b, T u, RotationPath path = RotationPath::Shortest) {
+    return slerp(normalized(a.template cast<L>()), normalized(b.template cast<L>()), L(u), {.path = path});
+  };
   const auto check = [&](const Quat<T>& a, const Quat<T>& b, T u) {
     const Quat<T> got = fast_slerp(a, b, u);
     ASSERT_TRUE(is_finite(got));
     const Quat<L> gotl = normalized(got.template cast<L>());
-    double err = double(angle_between(gotl, slerp(a.template cast<L>(), b.template cast<L>(), L(u))));
+    double err = double(angle_between(gotl, ref(a, b, u)));
     // a·b within rounding of 0 (ends a half turn apart): both arcs are shortest, either is right.
     if (std::abs(double(dot(a, b))) <= 4 * double(std::numeric_limits<T>::epsilon()))
       for (const Quat<T>& end : {b, -b})
-        err = std::min(err, double(angle_between(gotl, slerp(a.template cast<L>(), end.template cast<L>(), L(u),
-                                                               {.path = RotationPath::AsGiven}))));
+        err = std::min(err, double(angle_between(gotl, ref(a, end, u, RotationPath::AsGiven))));
     worst = std::max(worst, err);
     EXPECT_LE(err, double(fast_slerp_max_error_rad<T>)) << "u=" << u << " angle=" << angle_between(a, b);
     // Norm: a unit result within the same bound (no renormalisation inside).
@@ -176,9 +197,8 @@ TYPED_TEST(OrientationInterp, FastSlerpWithinStatedBound) {
     // The precomputed-arc form (a runtime's slerp segment) on the shortest-arc end, same bound.
     const Quat<T> b_short = dot(a, b) < T(0) ? -b : b;
     const Quat<T> on_arc = fast_slerp_on_arc(a, b_short, fast_slerp_arc(a, b_short), u);
-    const double err_arc = double(angle_between(normalized(on_arc.template cast<L>()),
-                                                slerp(a.template cast<L>(), b_short.template cast<L>(), L(u),
-                                                      {.path = RotationPath::AsGiven})));
+    const double err_arc =
+        double(angle_between(normalized(on_arc.template cast<L>()), ref(a, b_short, u, RotationPath::AsGiven)));
     EXPECT_LE(err_arc, double(fast_slerp_max_error_rad<T>)) << "on arc, u=" << u;
     worst = std::max(worst, err_arc);
   };
@@ -206,6 +226,32 @@ TYPED_TEST(OrientationInterp, FastSlerpWithinStatedBound) {
     for (const T u : us()) check(pair.a, pair.b, u);
   std::cout << "fast_slerp<" << (sizeof(T) == 4 ? "float" : "double") << "> worst angle error " << worst
             << " rad (bound " << fast_slerp_max_error_rad<T> << ")\n";
+}
+
+TYPED_TEST(OrientationInterp, FastSlerpPlainBlendSwitchOnTheBitsIsTheComparison) {
+  // fast_slerp decides on the plain blend with |a·b| > 1 − fast_slerp_lerp_cut<T> read from a·b's
+  // bits (detail::fast_slerp_plain_blend): the same decision as the comparison in T for both signs,
+  // at the switch itself and the 8 representable values on either side of it, at 0, the smallest
+  // subnormal and normal, ½, 1, just above 1 (a·b rounded up for identical inputs), 2 and infinity.
+  // Angles on both sides of this switch, through fast_slerp itself: FastSlerpWithinStatedBound.
+  using T = TypeParam;
+  const T cut = T(1) - T(detail::fast_slerp_lerp_cut<T>);
+  using Lim = std::numeric_limits<T>;
+  std::vector<T> values{T(0), Lim::denorm_min(), Lim::min(), T(0.5), T(1), std::nextafter(T(1), T(2)), T(2), Lim::infinity()};
+  T v = cut;
+  for (int k = 0; k < 8; ++k) v = std::nextafter(v, T(0));
+  for (int k = 0; k < 17; ++k, v = std::nextafter(v, T(2))) values.push_back(v);
+  int above = 0;
+  for (const T x : values) {
+    for (const T d : {x, -x}) {
+      const bool expected = std::abs(d) > cut;
+      above += expected ? 1 : 0;
+      EXPECT_EQ(detail::fast_slerp_plain_blend(d), expected) << "a·b = " << d;
+    }
+  }
+  EXPECT_EQ(above, 2 * (8 + 4));  // both signs of the 8 values above the switch, 1, next above 1, 2, ∞
+  // Non-finite inputs: a NaN dot product takes the plain blend (and gives NaN), as documented.
+  EXPECT_TRUE(detail::fast_slerp_plain_blend(Lim::quiet_NaN()));
 }
 
 TYPED_TEST(OrientationInterp, NlerpFollowsTheArcWithUnevenSpeed) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <type_traits>
 #include <cmath>
 #include <cstdint>
@@ -108,13 +109,19 @@ Quat<T> nlerp(const Quat<T>& a, const Quat<T>& b_in, T u, const SlerpOptions& op
 
 /// Spherical linear interpolation of unit quaternions: the great arc from a to the oriented b at
 /// constant angular speed.  Computed in an orthonormal basis of the arc's plane,
-///   q(u) = cos(uθ)·a + sin(uθ)·d̂,  d = b − (a·b)·a,  θ = 2·atan2(|b − a|, |b + a|),
-/// which needs no division by sin θ and hence no small-angle cut-off: for θ → 0 the error of d̂
-/// (relative eps/θ) is multiplied by sin(uθ) ≈ uθ, leaving an absolute error of a few ulp.  Only
-/// d = 0 is special: for identical inputs the result is a; for exactly antipodal inputs under
-/// Longest/AsGiven (no unique arc) the arc through a·i (a full turn about the body x axis) is
-/// taken.  Returns a at u = 0 and the oriented b at u = 1 exactly; unit norm within a few ulp;
-/// never NaN for finite unit inputs.
+///   q(u) = cos(uθ)·a + sin(uθ)·d̂,  θ = 2·atan2(|b − a|, |b + a|),
+/// with d the part of b across a, taken from the nearer of ±a: d = e − (a·e)·a with e = b − a when
+/// a·b ≥ 0 and e = b + a otherwise (both equal b − (a·b)·a).  e is exact where it matters (the
+/// difference of nearly equal components), so d has a relative error of a few ulp however close b is
+/// to ±a; in the plain b − (a·b)·a cancellation leaves a relative error of about ε/|b ∓ a|, which for
+/// b near −a (the long arc, θ → π, where sin(uθ) is not small) tilted d̂ towards a — with
+/// -march=native the compiler's fused multiply-adds turned exactly antipodal inputs into a d̂ = ±a
+/// and results of norm 0.79 down to 1e-17 (OrientationInterp.SlerpContractOverRandomPairsAndTheMuseum
+/// under the bench-native preset).  No division by sin θ and hence no small-angle cut-off.  Only d = 0 is special: for identical
+/// inputs the result is a; for exactly antipodal inputs under Longest/AsGiven (no unique arc) the arc
+/// through a·i (a full turn about the body x axis) is taken — both exact zeros under any
+/// floating-point contraction (e = 0 exactly).  Returns a at u = 0 and the oriented b at u = 1
+/// exactly; unit norm within a few ulp; never NaN for finite unit inputs.
 template <Real T>
 Quat<T> slerp(const Quat<T>& a, const Quat<T>& b_in, T u, const SlerpOptions& options = {}) noexcept {
   const Quat<T> b = detail::oriented_end(a, b_in, options.path);
@@ -122,8 +129,11 @@ Quat<T> slerp(const Quat<T>& a, const Quat<T>& b_in, T u, const SlerpOptions& op
   if (u == T(1)) return b;
   // Plain √(Σx²) suffices for unit-magnitude inputs (no overflow; an underflowing square only
   // affects differences below 1e-154, whose contribution is below any ulp of the result).
-  const T theta = T(2) * std::atan2(std::sqrt(squared_norm(b - a)), std::sqrt(squared_norm(b + a)));
-  Quat<T> d = b - a * dot(a, b);
+  const Quat<T> diff = b - a, sum = b + a;
+  const T diff2 = squared_norm(diff), sum2 = squared_norm(sum);
+  const T theta = T(2) * std::atan2(std::sqrt(diff2), std::sqrt(sum2));
+  const Quat<T> e = diff2 <= sum2 ? diff : sum;  // b ∓ a from the nearer of ±a (a·b ≥ 0 ⇔ |b − a| ≤ |b + a|)
+  Quat<T> d = e - a * dot(a, e);
   const T dn = std::sqrt(squared_norm(d));
   if (dn > T(0)) {
     d = d / dn;
@@ -216,6 +226,21 @@ inline constexpr double fast_slerp_near_cut = sizeof(T) <= 4 ? 0x1p-12 : 0x1p-20
 /// θ ≤ √(2.1c): 6e-11 rad in float, 5e-24 rad in double.  That leaves glm's blend a + u(b − a).
 template <Real T>
 inline constexpr double fast_slerp_lerp_cut = sizeof(T) <= 4 ? 0x1p-22 : 0x1p-50;
+/// Whether fast_slerp takes the plain blend for d = a·b: |d| > 1 − fast_slerp_lerp_cut<T>, tested on
+/// the bits of d shifted left once to drop the sign.  For non-negative IEEE numbers the order of the
+/// bit patterns is the order of the values, so this is the same test as comparing |d| in T, but it
+/// needs neither |d| nor a floating-point compare: one move to an integer register, an add and a
+/// compare-and-branch, where |d| in the SSE lanes took an and, an xor, a copy and comiss (the
+/// nearly-identical float path went from 31 to 29 instructions per call in the benchmark loop).  A NaN
+/// passes the test (its exponent is all ones) and gives NaN, as the other paths would.
+template <Real T>
+[[gnu::always_inline]] inline bool fast_slerp_plain_blend(T d) noexcept {
+  using U = std::conditional_t<sizeof(T) <= 4, std::uint32_t, std::uint64_t>;
+  static_assert(sizeof(U) == sizeof(T));
+  constexpr U key = U(std::bit_cast<U>(T(T(1) - T(fast_slerp_lerp_cut<T>))) << 1);  // 1 − cut is exact in T
+  return U(std::bit_cast<U>(d) << 1) > key;
+}
+
 /// fast_slerp's SSE lanes: one 16-byte vector of T (four floats or two doubles) and the integer
 /// vector of the same shape (for the sign bit).  GCC/Clang vector extensions: SSE2 on x86-64, the
 /// target's vectors (or scalar code) elsewhere.
@@ -343,12 +368,13 @@ template <Real T>
 }  // namespace detail
 
 /// Largest rotation-angle error (radians) of fast_slerp() against slerp() evaluated in long double
-/// on the same inputs, over unit inputs and u in [0, 1]: 1.4× (float) and 2.3× (double) the measured
-/// maximum (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.8e-7 in float with
-/// the weights computed in float, 6.4e-16 in double, over random, nearly identical (both signs of
-/// a·b), nearly opposite and museum pairs).  On the benchmark's random pairs fast_slerp measures 1.8e-7 (float) and
-/// 3.3e-16 (double), glm and Eigen slerp 1.9e-7 to 2.3e-7 and 3.2e-16 to 3.8e-16; at this level the
-/// final blend's rounding dominates (see docs/orientation.md for the spread over many such sets).
+/// on the same inputs normalised in long double (the exact arc between the rotations given), over
+/// unit inputs and u in [0, 1]: 1.5× (float) and 2.3× (double) the measured maximum
+/// (tests/math/orientation_interp_test.cpp, FastSlerpWithinStatedBound: 2.6e-7 in float with the
+/// weights computed in float, 6.5e-16 in double, over random, nearly identical (both signs of a·b),
+/// nearly opposite and museum pairs).  On the benchmark's 65 536 random pairs fast_slerp measures
+/// 2.5e-7 (float) and 5.1e-16 (double), glm and Eigen slerp 2.6e-7 to 2.9e-7 and 5.1e-16 to 5.5e-16
+/// (bench/RESULTS.md); at this level the final blend's rounding dominates (see docs/orientation.md).
 template <Real T>
 inline constexpr T fast_slerp_max_error_rad = sizeof(T) <= 4 ? T(4e-7) : T(1.5e-15);
 
@@ -400,23 +426,18 @@ template <Real T>
     const V h = p0 + p1;
     d = h + __builtin_shufflevector(h, h, 1, 0);
   }
-  // Shortest arc: b → −b when a·b < 0, the sign bit of a·b xor-ed into b (no multiply), and
-  // x = |a·b| = cos θ the same way.
+  // Shortest arc: b → −b when a·b < 0, the sign bit of a·b xor-ed into b (no multiply), and on
+  // the other paths x = |a·b| = cos θ the same way (the plain-blend test reads a·b's bits instead,
+  // see detail::fast_slerp_plain_blend).
   const detail::FastSlerpConstants<T>* k = detail::fast_slerp_constants<T>();
-  const I sign = reinterpret_cast<I>(d) & k->sign;
-  const V x = reinterpret_cast<V>(reinterpret_cast<I>(d) ^ sign);
-  const V bs0 = reinterpret_cast<V>(reinterpret_cast<I>(b0) ^ sign);
-  const V bs1 = reinterpret_cast<V>(reinterpret_cast<I>(b1) ^ sign);
+  const auto flip = [&](V v, I sign) { return reinterpret_cast<V>(reinterpret_cast<I>(v) ^ sign); };
   V r0, r1{};
-  const auto each = [&](auto f) {  // r = f(a, flipped b) for each of the nv vectors
-    r0 = f(a0, bs0);
-    if constexpr (nv == 2) r1 = f(a1, bs1);
-  };
   // [[likely]] only orders the code: the few instructions of the plain blend come first, straight
   // after the test (no taken jump there and back), while the random-pair path, forty times longer,
   // pays the jump instead (measured: nearly identical float pairs 1.42 → 1.21 ns).
-  if (x[0] > T(1) - T(detail::fast_slerp_lerp_cut<T>)) [[likely]] {
+  if (detail::fast_slerp_plain_blend(d[0])) [[likely]] {
     // Ends within rounding of each other: the plain blend a + u(b − a), see fast_slerp_lerp_cut.
+    const I sign = reinterpret_cast<I>(d) & k->sign;
 #if defined(__AVX__)
     if constexpr (nv == 2) {
       // With AVX the double blend takes one 32-byte vector instead of two 16-byte ones (the
@@ -435,8 +456,22 @@ template <Real T>
     }
 #endif
     const V uu = detail::fast_slerp_splat(u);
-    each([&](V va, V vb) { return va + (vb - va) * uu; });
-  } else if (x[0] > T(1) - T(detail::fast_slerp_near_cut<T>)) [[unlikely]] {
+    r0 = a0 + (flip(b0, sign) - a0) * uu;
+    if constexpr (nv == 2) r1 = a1 + (flip(b1, sign) - a1) * uu;
+    Quat<T> q;
+    std::memcpy(&q, &r0, sizeof(V));
+    if constexpr (nv == 2) std::memcpy(reinterpret_cast<char*>(&q) + sizeof(V), &r1, sizeof(V));
+    return q;
+  }
+  const I sign = reinterpret_cast<I>(d) & k->sign;
+  const V x = reinterpret_cast<V>(reinterpret_cast<I>(d) ^ sign);
+  const V bs0 = flip(b0, sign);
+  const V bs1 = flip(b1, sign);
+  const auto each = [&](auto f) {  // r = f(a, flipped b) for each of the nv vectors
+    r0 = f(a0, bs0);
+    if constexpr (nv == 2) r1 = f(a1, bs1);
+  };
+  if (x[0] > T(1) - T(detail::fast_slerp_near_cut<T>)) [[unlikely]] {
     // Nearly identical ends (cos θ within fast_slerp_near_cut of 1), in T: with y = cos θ − 1 the
     // weights are (1 − u)(1 + c_a) and u(1 + c_b) with c = b₁(1 + b₂) of the series (two terms,
     // see fast_slerp_near_cut), and the result is formed as
