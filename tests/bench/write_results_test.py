@@ -363,6 +363,18 @@ class RigSimdKernels(unittest.TestCase):
         self.assertTrue(diffs)
         self.assertEqual(row(render(docs), "float kernels, 551 joints")[-2], f"{max(diffs):.2g}")
 
+class FmtBeside(unittest.TestCase):
+    """A ratio just under its target never prints as the target ("missed (1.5× < 1.5×)" in an earlier run)."""
+
+    def test_more_digits_only_where_three_would_print_the_target(self):
+        self.assertEqual(wr.fmt_beside(1.297, 1.3), "1.297")
+        self.assertEqual(wr.fmt_beside(1.4996, 1.5), "1.4996")
+        self.assertEqual(wr.fmt_beside(1.234, 1.3), "1.23")
+        self.assertEqual(wr.fmt_beside(1.3, 1.3), "1.3")
+        self.assertEqual(wr.verdict(1.4996, 1.5, True), "missed (1.4996× < 1.5×)")
+        self.assertEqual(wr.verdict(3.001, 3.0, False), "missed (3.001× > 3×)")
+
+
 class Splice(unittest.TestCase):
     def test_replaces_only_the_section(self):
         old = f"intro\n{wr.BEGIN}\nold table\n{wr.END}\n## hand-written analysis\nkept\n"

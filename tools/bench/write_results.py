@@ -120,13 +120,22 @@ def ratio(num: float | None, den: float | None) -> float | None:
     return num / den
 
 
+def fmt_beside(value: float, target: float) -> str:
+    """value with 3 significant digits, more when those would print the target itself (1.297 next to 1.3)."""
+    for digits in range(3, 10):
+        text = f"{value:.{digits}g}"
+        if value == target or float(text) != target:
+            return text
+    return repr(value)
+
+
 def verdict(value: float | None, target: float, at_least: bool) -> str:
     """'met' / 'missed by …' for a ratio against a target (at_least: value ≥ target is good)."""
     if value is None:
         return "not measured"
     if at_least:
-        return "met" if value >= target else f"missed ({value:.3g}× < {target:g}×)"
-    return "met" if value <= target else f"missed ({value:.3g}× > {target:g}×)"
+        return "met" if value >= target else f"missed ({fmt_beside(value, target)}× < {target:g}×)"
+    return "met" if value <= target else f"missed ({fmt_beside(value, target)}× > {target:g}×)"
 
 
 REFERENCE = "reference, no target"  # a row measured for comparison only; no target applies to it
@@ -315,8 +324,8 @@ def adoption(gain: float | None) -> str:
     if gain is None:
         return "not measured"
     if gain >= ADOPT_SPEEDUP:
-        return f"Highway pays ({gain:.3g}× ≥ {ADOPT_SPEEDUP:g}×)"
-    return f"std::experimental::simd enough ({gain:.3g}× < {ADOPT_SPEEDUP:g}×)"
+        return f"Highway pays ({fmt_beside(gain, ADOPT_SPEEDUP)}× ≥ {ADOPT_SPEEDUP:g}×)"
+    return f"std::experimental::simd enough ({fmt_beside(gain, ADOPT_SPEEDUP)}× < {ADOPT_SPEEDUP:g}×)"
 
 
 def rig_simd_section(r: Results) -> list[str]:
