@@ -20,11 +20,13 @@
 namespace inbetween {
 namespace {
 
-FCurve random_curve(test::Random& rng) {
+// min_keys … 8 seeded keys 0.3 … 6 frames apart, values in [−5, 5], a quarter of them with a
+// random interpolation (the rest Bézier), auto-clamped handles.
+RawFCurve random_raw_curve(test::Random& rng, Extrapolation extrapolation, int min_keys) {
   RawFCurve raw;
-  raw.extrapolation = rng.integer(0, 1) ? Extrapolation::linear : Extrapolation::constant;
+  raw.extrapolation = extrapolation;
   double f = rng.uniform<double>(-10, 10);
-  const int n = rng.integer(1, 8);
+  const int n = rng.integer(min_keys, 8);
   for (int i = 0; i < n; ++i) {
     FCurveKey k;
     k.frame = f;
@@ -33,7 +35,12 @@ FCurve random_curve(test::Random& rng) {
     raw.keys.push_back(k);
     f += rng.uniform<double>(0.3, 6);
   }
-  return build_fcurve(raw).value();
+  return raw;
+}
+
+FCurve random_curve(test::Random& rng) {
+  const Extrapolation extrapolation = rng.integer(0, 1) ? Extrapolation::linear : Extrapolation::constant;
+  return build_fcurve(random_raw_curve(rng, extrapolation, 1)).value();
 }
 
 float scale_of(const FCurve& c) {
@@ -428,18 +435,7 @@ TEST(FCurveClip, RunsOfChannelsKeyedTogetherChangeNoValue) {
   std::vector<FCurve> curves;
   for (const auto& ex : test::museum_fcurves()) push_joint(ex.curve, curves);
   for (int j = 0; j < 12; ++j) {
-    RawFCurve raw;
-    raw.extrapolation = j % 2 ? Extrapolation::linear : Extrapolation::constant;
-    double f = rng.uniform<double>(-10, 10);
-    const int n = rng.integer(2, 8);
-    for (int i = 0; i < n; ++i) {
-      FCurveKey k;
-      k.frame = f;
-      k.value = rng.uniform<double>(-5, 5);
-      k.interpolation = rng.integer(0, 3) == 0 ? Interpolation(rng.integer(0, 12)) : Interpolation::bezier;
-      raw.keys.push_back(k);
-      f += rng.uniform<double>(0.3, 6);
-    }
+    RawFCurve raw = random_raw_curve(rng, j % 2 ? Extrapolation::linear : Extrapolation::constant, 2);
     if (j % 3 == 2) {
       FCurveCycles cy;
       cy.before = CycleMode(rng.integer(1, 3));
