@@ -309,6 +309,34 @@ void put_piece(const Channels& ch, std::size_t p, float* cache, std::size_t c) n
   for (std::size_t k = 0; k < CB; ++k) dst[k * W] = src[k * b];
 }
 
+// Fetches the run whose first piece is stream piece d (its CB·W cached floats) ahead of its use.
+inline void prefetch_run(const float* data, std::uint32_t d) noexcept {
+  const char* run = reinterpret_cast<const char*>(data + std::size_t(d) * CB);
+  for (std::size_t off = 0; off < CB * W * sizeof(float); off += 64) __builtin_prefetch(run + off);
+  __builtin_prefetch(run + CB * W * sizeof(float) - 1);
+}
+
+// The first of the n stream pieces whose lo (bounds[2p]) is after t: where the stream resumes.
+inline std::size_t first_piece_after(const float* bounds, std::size_t n, float t) noexcept {
+  std::size_t lo = 0, hi = n;
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (bounds[2 * mid] <= t) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
+// Whether a seek back to t is served by replaying the stream of n pieces over `channels` channels
+// from its start: t lies before the piece a replay of at most 4 pieces per channel would stop at
+// (every channel's first piece begins at −∞, so the replay leaves each channel's cached piece as
+// the one holding t): a sequential read, where the per-channel search makes a few dependent reads
+// each, scattered over the whole clip.  Same pieces and cursors either way.
+inline bool replays_from_start(const float* bounds, std::size_t n, std::size_t channels, float t) noexcept {
+  const std::size_t replay = std::min(n, 4 * channels);  // pieces a replay may consume
+  return replay == n || bounds[2 * replay] > t;
+}
+
 // Group g reads the cache from now on: a run it read in place (main stream data) is copied there
 // first (the same layout: one contiguous copy), so that a lane can be replaced.
 inline void unshare(FCurveClip::Context& ctx, const float* data, std::size_t g) noexcept {
@@ -338,9 +366,7 @@ std::size_t take_run(const Channels& ch, std::size_t p, FCurveClip::Context& ctx
       ctx.direct[g] = std::uint32_t(p);
       // The evaluation reads the run in group order, not stream order: fetch it now, while the
       // stream is read front to back (without this the reads wait on memory one group at a time).
-      const char* run = reinterpret_cast<const char*>(ch.data.data() + p * CB);
-      for (std::size_t off = 0; off < CB * W * sizeof(float); off += 64) __builtin_prefetch(run + off);
-      __builtin_prefetch(run + CB * W * sizeof(float) - 1);
+      prefetch_run(ch.data.data(), std::uint32_t(p));
       return b;
     }
     unshare(ctx, ch.data.data(), g);
@@ -595,8 +621,7 @@ struct FCurveClipAccess {
     if (!forward) {
       // A local frame back near the stream's start (the wrap to the next copy of a repeat):
       // replay the stream from its start, as evaluate_channels does for the main stream.
-      const std::size_t replay = std::min(n, 4 * cy.members.size());
-      if (replay == n || bounds[2 * replay] > t) next = 0, forward = true;
+      if (replays_from_start(bounds, n, cy.members.size(), t)) next = 0, forward = true;
     }
     if (forward) {
       // A class's channels are never in a group read in place (a main-stream run fills its group).
@@ -618,14 +643,8 @@ struct FCurveClipAccess {
       ctx.segment[c] = k;
       put_piece(ch, ch.where[ch.begin[i] + k], cache, c);
     }
-    std::size_t lo = 0, hi = n;  // first piece whose lo > t
-    while (lo < hi) {
-      const std::size_t mid = (lo + hi) / 2;
-      if (bounds[2 * mid] <= t) lo = mid + 1;
-      else hi = mid;
-    }
-    next = lo;
-    S[9] = lo < n ? bounds[2 * lo] : kInf;
+    next = first_piece_after(bounds, n, t);
+    S[9] = next < n ? bounds[2 * next] : kInf;
   }
 
   // Channel c's second piece (the one starting at its first key) as a block.
@@ -723,13 +742,7 @@ void advance_main(const Channels& ch, std::size_t C, float frame, FCurveClip::Co
     unshare(context, ch.data.data(), c / W);
     put_piece(ch, where[k], context.cache.data(), c);
   }
-  std::size_t lo = 0, hi = n;  // first piece whose lo > frame
-  while (lo < hi) {
-    const std::size_t mid = (lo + hi) / 2;
-    if (bounds[2 * mid] <= frame) lo = mid + 1;
-    else hi = mid;
-  }
-  context.next = lo;
+  context.next = first_piece_after(bounds, n, frame);
 }
 
 // evaluate_channels' SIMD loop over groups of native_simd<float>::size() channels from the cache;
@@ -751,11 +764,7 @@ void evaluate_groups(FCurveClip::Context& context, const float* data, std::size_
     const float* g = d == kNoRun ? cache + c0 * CB : data + std::size_t(d) * CB;
     if (c0 + kPrefetchGroups * W < C) {
       const std::uint32_t e = direct[c0 / W + kPrefetchGroups];
-      if (e != kNoRun) {
-        const char* run = reinterpret_cast<const char*>(data + std::size_t(e) * CB);
-        for (std::size_t off = 0; off < CB * W * sizeof(float); off += 64) __builtin_prefetch(run + off);
-        __builtin_prefetch(run + CB * W * sizeof(float) - 1);
-      }
+      if (e != kNoRun) prefetch_run(data, e);
     }
     const auto ld = [g](std::size_t k) noexcept { return rig_detail::load<V>(g + k * W); };
     V t = f;  // the frame each channel's piece is evaluated at
@@ -807,13 +816,9 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   frame = frame > -big ? (frame < big ? frame : big) : -big;
   if (frame < context.time) {
     // A seek back to a frame near the stream's start (a looping playback's wrap to its first
-    // frame): replaying the stream from its start (every channel's first piece begins at −∞, so
-    // each channel's cached piece ends as the one holding the frame, with its cursor) is a
-    // sequential read of at most 4 pieces per channel, where advance's per-channel search makes
-    // a few dependent reads each, scattered over the whole clip.  Same pieces and cursors either way.
+    // frame): replay the stream from its start (see replays_from_start).
     const auto& ch = clip.data_;
-    const std::size_t replay = std::min(ch.owner.size(), 4 * C);  // pieces a replay may consume
-    if (replay == ch.owner.size() || ch.bounds[2 * replay] > frame) {
+    if (replays_from_start(ch.bounds.data(), ch.owner.size(), C, frame)) {
       context.next = 0;
       context.time = -kInf;
     }
