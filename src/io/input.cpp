@@ -1,0 +1,72 @@
+// One entry for every reader (inbetween/io/input.hpp): format by name or magic, then the reader.
+#include "inbetween/io/input.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "inbetween/io/gltf.hpp"
+#include "inbetween/io/scene.hpp"
+
+namespace inbetween {
+namespace {
+
+std::string lower_extension(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+bool has_glb_magic(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char magic[4] = {};
+  return in.read(magic, 4) && std::memcmp(magic, "glTF", 4) == 0;
+}
+
+}  // namespace
+
+std::string_view to_string(InputFormat format) noexcept {
+  switch (format) {
+    case InputFormat::scene_json: return "scene";
+    case InputFormat::gltf: return "glTF";
+    case InputFormat::bvh: return "BVH";
+    case InputFormat::assimp: return "assimp";
+  }
+  return "scene";
+}
+
+InputFormat input_format(const std::filesystem::path& file) {
+  if (file.empty() || file == "-") return InputFormat::scene_json;
+  const std::string ext = lower_extension(file);
+  if (ext == ".gltf" || ext == ".glb") return InputFormat::gltf;
+  if (ext == ".bvh") return InputFormat::bvh;
+  if (ext == ".json") return InputFormat::scene_json;
+  if (has_glb_magic(file)) return InputFormat::gltf;
+  return InputFormat::scene_json;
+}
+
+Expected<RawScene> read_input_file(const std::filesystem::path& file, const InputOptions& options) {
+  switch (input_format(file)) {
+    case InputFormat::gltf: {
+      GltfReadOptions gltf;
+      gltf.animation = options.animation;
+      if (options.fps > 0) gltf.fps = options.fps;
+      gltf.notes = options.notes;
+      return read_gltf_file(file, gltf);
+    }
+    case InputFormat::bvh:
+    case InputFormat::assimp:
+      return Error{ErrorCode::Unsupported, "no reader for " + std::string(to_string(input_format(file))) + " files yet",
+                   file.string()};
+    case InputFormat::scene_json: break;
+  }
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return Error{ErrorCode::Io, "cannot open the file", file.string()};
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) return Error{ErrorCode::Io, "cannot read the file", file.string()};
+  return read_scene_json(text, file.string());
+}
+
+}  // namespace inbetween
