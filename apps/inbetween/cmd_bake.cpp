@@ -19,8 +19,7 @@
 #include "command.hpp"
 #include "csv.hpp"
 #include "frame_spec.hpp"
-#include "gltf_input.hpp"
-#include "inbetween/io/scene.hpp"
+#include "input.hpp"
 #include "output.hpp"
 #include "progress.hpp"
 
@@ -59,26 +58,18 @@ std::string csv_field(const std::string& text) {
 
 
 struct BakeOptions {
-  std::string scene_path;
-  std::string animation;
+  InputArgs input;
   std::string frames;
-  double fps = 0;
   std::string format = "csv";
   std::string output = "-";
   std::string progress = "auto";
 };
 
 void run_bake(const BakeOptions& opt) {
-  // A glTF file's keys are in seconds: --fps (default 24) sets frame = time · fps, and the scene
-  // read from it carries that fps.  A scene file's --fps only relabels the time column.
-  const bool gltf = is_gltf_input(opt.scene_path);
-  if (!gltf && !opt.animation.empty()) throw CommandError{"--animation: only for glTF input (.gltf, .glb)"};
-  auto scene = gltf ? load_gltf_scene(opt.scene_path, opt.animation, opt.fps) : [&] {
-    auto parsed = parse_scene(read_input(opt.scene_path), opt.scene_path);  // curve files relative to the scene's folder
-    if (!parsed) throw CommandError{opt.scene_path + ": " + parsed.error().describe()};
-    return std::move(*parsed);
-  }();
-  const double fps = opt.fps > 0 ? opt.fps : scene.fps();
+  // Keys in seconds (glTF, BVH, assimp): --fps sets frame = time · fps (default: the format's
+  // own), and the scene read carries that fps.  A scene file's --fps only relabels the time column.
+  const Scene scene = load_scene(opt.input);
+  const double fps = opt.input.fps > 0 ? opt.input.fps : scene.fps();
   const std::span<const SceneColumn> columns = scene.columns();
   const FrameRange frames = frame_range(opt.frames, scene.range_start(), scene.range_end());
   std::vector<double> row(columns.size());
@@ -150,12 +141,13 @@ void run_bake(const BakeOptions& opt) {
 const RegisterCommand kBake{{"bake", 40, [](CLI::App& root) {
   auto opt = std::make_shared<BakeOptions>();
   auto* cmd = root.add_subcommand("bake", "Evaluate every track of a scene file at every frame (CSV or JSON)");
-  cmd->add_option("scene", opt->scene_path,
-                  "Scene file (docs/scene-format.md; - for standard input) or glTF 2.0 file (.gltf, .glb; docs/gltf.md)")
-      ->required();
-  cmd->add_option("--animation", opt->animation, "glTF input: the animation's NAME or INDEX (default: the first)");
-  cmd->add_option("--frames", opt->frames, "A:B[:STEP] frames to evaluate (default: the scene's range, step 1; glTF: the animation's time range × fps)");
-  cmd->add_option("--fps", opt->fps, "Frames per second: of the time column (default: the scene's fps); glTF input: frame = time · fps (default 24)")
+  add_input_options(cmd, opt->input, "scene",
+                    "Scene file (docs/scene-format.md; - for standard input), glTF 2.0 (.gltf, .glb; docs/gltf.md), "
+                    "BVH (.bvh; docs/bvh.md) or a file assimp reads (.fbx, .dae, …; docs/assimp.md)");
+  cmd->add_option("--frames", opt->frames, "A:B[:STEP] frames to evaluate (default: the scene's range, step 1; glTF, BVH, assimp: the animation's time range × fps)");
+  cmd->add_option("--fps", opt->input.fps,
+                  "Frames per second: of the time column (default: the scene's fps); glTF, BVH, assimp input: "
+                  "frame = time · fps (default: glTF 24, BVH 1 / Frame Time, assimp the file's ticks per second)")
       ->check(finite_positive_number());
   cmd->add_option("--format", opt->format, "Output format")->check(CLI::IsMember({"csv", "json"}));
   cmd->add_option("-o,--output", opt->output,

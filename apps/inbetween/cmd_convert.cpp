@@ -14,7 +14,7 @@
 #include <string>
 
 #include "command.hpp"
-#include "gltf_input.hpp"
+#include "input.hpp"
 #include "inbetween/io/gltf_write.hpp"
 #include "inbetween/io/scene.hpp"
 #include "inbetween/io/scene_write.hpp"
@@ -23,9 +23,8 @@ namespace inbetween::cli {
 namespace {
 
 struct ConvertOptions {
-  std::string input, output;
-  std::string animation;  // glTF input: NAME or INDEX
-  double fps = 0;         // glTF input: frame = time · fps (0: 24)
+  InputArgs input;  // input.fps: keys in seconds, frame = time · fps (0: the format's own)
+  std::string output;
   double tolerance = 1e-5;
   double reduce = 0;  // 0: keep keys where glTF holds them exactly
   int substeps = 4;
@@ -37,14 +36,8 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-// The input as a raw scene: a glTF animation or a scene file.
-RawScene read_raw(const ConvertOptions& opt) {
-  if (is_gltf_input(opt.input)) return load_gltf_raw(opt.input, opt.animation, opt.fps);
-  // The path too: curve files named by "file" members are relative to the scene's folder.
-  auto raw = read_scene_json(read_input(opt.input), opt.input);
-  if (!raw) throw CommandError{opt.input + ": " + raw.error().describe()};
-  return std::move(*raw);
-}
+// The input as a raw scene: a scene file, glTF, BVH or an assimp file.
+RawScene read_raw(const ConvertOptions& opt) { return load_raw(opt.input); }
 
 void print_report(const GltfExport& out) {
   for (const std::string& note : out.notes) std::cerr << "note: " << note << '\n';
@@ -64,27 +57,27 @@ void print_report(const GltfExport& out) {
 }
 
 void run_convert(const ConvertOptions& opt) {
-  if (!std::isfinite(opt.fps)) throw CommandError{"--fps: not a finite positive number"};
+  if (!std::isfinite(opt.input.fps)) throw CommandError{"--fps: not a finite positive number"};
   const bool to_json = ends_with(opt.output, ".json");
   const bool glb = ends_with(opt.output, ".glb"), gltf = ends_with(opt.output, ".gltf");
   if (to_json) {
     // glTF → scene file, or scene file → scene file (the writer's form: version 2, defaults left
     // out, curve files inlined).
     const RawScene raw = read_raw(opt);
-    if (auto scene = build_scene(raw); !scene) throw CommandError{opt.input + ": " + scene.error().describe()};
+    if (auto scene = build_scene(raw); !scene) throw CommandError{opt.input.path + ": " + scene.error().describe()};
     auto text = write_scene_json(raw);
-    if (!text) throw CommandError{opt.input + ": " + text.error().describe()};
+    if (!text) throw CommandError{opt.input.path + ": " + text.error().describe()};
     write_output(opt.output, *text);
     return;
   }
   if (!glb && !gltf) {
-    throw CommandError{"convert: " + opt.input + " → " + opt.output +
+    throw CommandError{"convert: " + opt.input.path + " → " + opt.output +
                        " is not a supported conversion: the output must end in .gltf or .glb (export of a scene or glTF "
                        "file) or in .json (a scene file, from glTF or scene input)"};
   }
   const RawScene raw = read_raw(opt);
   auto scene = build_scene(raw);
-  if (!scene) throw CommandError{opt.input + ": " + scene.error().describe()};
+  if (!scene) throw CommandError{opt.input.path + ": " + scene.error().describe()};
   GltfExportOptions o;
   o.tolerance = opt.reduce > 0 ? opt.reduce : opt.tolerance;
   o.reduce = opt.reduce > 0;
@@ -92,7 +85,7 @@ void run_convert(const ConvertOptions& opt) {
   o.binary = glb;
   o.cubic = !opt.no_cubic;
   auto out = export_gltf(raw, *scene, o);
-  if (!out) throw CommandError{opt.input + ": " + out.error().describe()};
+  if (!out) throw CommandError{opt.input.path + ": " + out.error().describe()};
   write_output(opt.output, out->bytes);
   if (!opt.quiet) print_report(*out);
 }
@@ -100,11 +93,12 @@ void run_convert(const ConvertOptions& opt) {
 const RegisterCommand kConvert{{"convert", 45, [](CLI::App& root) {
   auto opt = std::make_shared<ConvertOptions>();
   auto* cmd = root.add_subcommand("convert", "Convert between glTF 2.0 and scene files (by extension), refitting what glTF cannot hold");
-  cmd->add_option("input", opt->input, "Scene file (docs/scene-format.md; - for standard input) or glTF 2.0 (.gltf, .glb)")
-      ->required();
+  add_input_options(cmd, opt->input, "input",
+                    "Scene file (docs/scene-format.md; - for standard input), glTF 2.0 (.gltf, .glb), BVH (.bvh) or a "
+                    "file assimp reads (.fbx, .dae, …)");
   cmd->add_option("output", opt->output, "Output: .gltf or .glb (export), or .json (scene file, from glTF or scene input)")->required();
-  cmd->add_option("--animation", opt->animation, "glTF input: the animation's NAME or INDEX (default: the first)");
-  cmd->add_option("--fps", opt->fps, "glTF input: frames per second, frame = time · fps (default 24)")
+  cmd->add_option("--fps", opt->input.fps,
+                  "glTF, BVH, assimp input: frames per second, frame = time · fps (default: the format's own)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--tolerance", opt->tolerance,
                   "Largest error of a refitted channel: fraction of its range (translation, scale), radians (rotation)")

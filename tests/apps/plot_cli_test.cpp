@@ -155,8 +155,8 @@ TEST(PlotCli, BadInputIsExitTwoWithThePlaceAndNothingWritten) {
       {qp(kFrame22) + " -o " + qp(file), file.string() + ": exists and is not a folder"},
       {qp(kFrame22) + " -o " + qp(out) + " --frames 10:5", "--frames: end 5 is not after start 10"},
       {qp(kFrame22) + " -o " + qp(out) + " --frames 0:1e9:0.5", "--frames: 2000000001 samples; at most 200000"},
-      {qp(kFrame22) + " -o " + qp(out) + " --animation 1", "--animation: only for glTF input"},
-      {qp(kFrame22) + " -o " + qp(out) + " --fps 30", "--fps: only for glTF input"},
+      {qp(kFrame22) + " -o " + qp(out) + " --animation 1", "--animation: only for glTF and assimp input"},
+      {qp(kFrame22) + " -o " + qp(out) + " --fps 30", "--fps: only for glTF, BVH and assimp input"},
       // Not writable: mkdtemp in /proc fails (also as root, where permissions would not stop it).
       {qp(kFrame22) + " -o /proc/inbetween-plots", "/proc: cannot create a folder here"},
   };

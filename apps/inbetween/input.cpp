@@ -1,0 +1,61 @@
+#include "input.hpp"
+
+#include <iostream>
+#include <vector>
+
+#include "command.hpp"
+#include "inbetween/io/scene.hpp"
+
+namespace inbetween::cli {
+
+void add_input_options(CLI::App* cmd, InputArgs& args, const std::string& name, const std::string& what) {
+  cmd->add_option(name, args.path, what)->required();
+  cmd->add_option("--animation", args.animation,
+                  "glTF and assimp input: the animation's NAME or INDEX (default: the first)");
+  cmd->add_option("--scale", args.scale, "BVH and assimp input: factor on every length (default 1: the file's units)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--axes", args.axes, "BVH and assimp input: axis conversion (default: the file's axes; docs/bvh.md)");
+}
+
+InputFormat input_format_of(const InputArgs& args) { return input_format(args.path); }
+
+RawScene load_raw(const InputArgs& args) {
+  const InputFormat format = input_format_of(args);
+  const bool keyed_in_time = format != InputFormat::scene_json;
+  if (!args.animation.empty() && format != InputFormat::gltf && format != InputFormat::assimp) {
+    throw CommandError{"--animation: only for glTF and assimp input (.gltf, .glb, .fbx, .dae, …)"};
+  }
+  if ((args.scale != 1 || !args.axes.empty()) && (format == InputFormat::scene_json || format == InputFormat::gltf)) {
+    throw CommandError{std::string(args.scale != 1 ? "--scale" : "--axes") + ": only for BVH and assimp input"};
+  }
+  if (!keyed_in_time) {
+    // The path too: curve files named by "file" members are relative to the scene's folder.
+    auto raw = read_scene_json(read_input(args.path), args.path);
+    if (!raw) throw CommandError{args.path + ": " + raw.error().describe()};
+    return std::move(*raw);
+  }
+  InputOptions options;
+  options.animation = args.animation;
+  options.fps = args.fps;
+  options.scale = args.scale;
+  options.axes = args.axes;
+  std::vector<std::string> notes;
+  options.notes = &notes;
+  auto raw = read_input_file(args.path, options);
+  for (const std::string& note : notes) std::cerr << "note: " << args.path << ": " << note << '\n';
+  if (!raw) {
+    Error e = raw.error();
+    if (!e.location.empty()) e.where = json_pointer(e.location);
+    throw CommandError{args.path + ": " + (e.where.empty() || e.where == args.path ? e.message : e.where + ": " + e.message)};
+  }
+  return std::move(*raw);
+}
+
+Scene load_scene(const InputArgs& args) {
+  RawScene raw = load_raw(args);
+  auto scene = build_scene(raw);
+  if (!scene) throw CommandError{args.path + ": " + scene.error().describe()};
+  return std::move(*scene);
+}
+
+}  // namespace inbetween::cli
