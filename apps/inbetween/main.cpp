@@ -13,7 +13,9 @@
 
 #include "command.hpp"
 #include "demo_files.hpp"
+#include "inbetween/io/read_file.hpp"
 #include "inbetween/math/format.hpp"
+#include "inbetween/math/quote.hpp"
 
 namespace inbetween::cli {
 
@@ -28,17 +30,9 @@ std::vector<DemoSection>& demo_registry() {
 }
 
 std::string read_input(const std::string& path) {
-  if (path == "-") {
-    return std::string(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
-  }
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw CommandError{path + ": is a directory, not a file"};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CommandError{path + ": cannot open file"};
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw CommandError{path + ": read failed"};
-  return ss.str();
+  auto text = path == "-" ? read_stream_bytes(std::cin, "standard input") : read_file_bytes(path);
+  if (!text) throw CommandError{text.error().describe()};
+  return std::move(*text);
 }
 
 std::string format_number(double v) {

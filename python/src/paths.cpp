@@ -11,6 +11,7 @@
 #include "inbetween/io/curve_file.hpp"
 #include "inbetween/io/environment_file.hpp"
 #include "inbetween/io/obj.hpp"
+#include "inbetween/io/read_file.hpp"
 #include "inbetween/paths/mesh_path.hpp"
 #include "inbetween/paths/path_planner.hpp"
 #include "inbetween/paths/smoothing.hpp"
@@ -60,11 +61,9 @@ std::string text_of(const py::object& source, std::string& name) {
     }
   }
   name = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
-  std::ifstream in(name, std::ios::binary);
-  if (!in) throw BindingError(Error{ErrorCode::Io, "cannot open " + name, ""});
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  auto text = read_file_bytes(name);
+  if (!text) throw BindingError(text.error());
+  return std::move(*text);
 }
 
 }  // namespace

@@ -12,8 +12,10 @@
 #include "common.hpp"
 #include "inbetween/io/gltf.hpp"
 #include "inbetween/io/gltf_write.hpp"
+#include "inbetween/io/read_file.hpp"
 #include "inbetween/io/scene.hpp"
 #include "inbetween/io/scene_write.hpp"
+#include "inbetween/math/format.hpp"
 
 namespace inbetween::python {
 namespace {
@@ -30,17 +32,17 @@ bool is_gltf_path(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext == ".gltf" || ext == ".glb") return true;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;  // a FIFO would block the open
   std::ifstream in(path, std::ios::binary);
   char magic[4] = {};
   return bool(in.read(magic, 4)) && std::string(magic, 4) == "glTF";
 }
 
 std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw BindingError(Error{ErrorCode::Io, "cannot open " + path, ""});
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  auto text = read_file_bytes(path);
+  if (!text) throw BindingError(text.error());
+  return std::move(*text);
 }
 
 /// Reads a scene from a path (scene file or glTF), a dict, or JSON text (a str starting with '{').

@@ -98,3 +98,9 @@ def test_downhill_path_equals_the_tools(source_dir, cli):
     rows = cli("path", "surface", mesh, "--downhill", 3, "--up", 0, 0, 1).stdout.split()
     theirs = np.array([[float(x) for x in r.split(",")] for r in rows[1:]])
     np.testing.assert_array_equal(pts, theirs)
+
+
+def test_a_device_mesh_is_refused_at_once():
+    # Issue 21: surface_path("/dev/zero") read the device until memory ran out.
+    with pytest.raises(inbetween.Error, match="not a regular file"):
+        inbetween.surface_path("/dev/zero", 0, 1)

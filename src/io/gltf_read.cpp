@@ -20,7 +20,9 @@
 #include <utility>
 #include <vector>
 
+#include "inbetween/io/read_file.hpp"
 #include "inbetween/math/format.hpp"
+#include "inbetween/math/quote.hpp"
 #include "inbetween/math/mat.hpp"
 #include "inbetween/math/transform.hpp"
 
@@ -55,12 +57,12 @@ bool fs_exists(const std::string& path, void*) {
 }
 std::string fs_expand(const std::string& path, void*) { return path; }
 bool fs_read(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (err) *err += "cannot open \"" + path + "\"\n";
+  auto bytes = read_file_bytes(path);
+  if (!bytes) {
+    if (err) *err += "cannot open \"" + path + "\": " + bytes.error().message + "\n";
     return false;
   }
-  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  out->assign(bytes->begin(), bytes->end());
   return true;
 }
 bool fs_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
@@ -812,13 +814,11 @@ Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesy
 }
 
 Expected<RawScene> read_gltf_file(const std::filesystem::path& file, const GltfReadOptions& options) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return Error{ErrorCode::Io, "cannot open the file", file.string()};
-  std::vector<char> text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return Error{ErrorCode::Io, "cannot read the file", file.string()};
+  auto text = read_file_bytes(file);
+  if (!text) return text.error();
   std::filesystem::path dir = file.parent_path();
   if (dir.empty()) dir = ".";
-  return read_gltf(std::as_bytes(std::span<const char>(text)), dir, options);
+  return read_gltf(std::as_bytes(std::span<const char>(*text)), dir, options);
 }
 
 }  // namespace inbetween

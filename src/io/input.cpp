@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "inbetween/io/gltf.hpp"
+#include "inbetween/io/read_file.hpp"
 #include "inbetween/io/scene.hpp"
 
 namespace inbetween {
@@ -20,6 +21,8 @@ std::string lower_extension(const std::filesystem::path& file) {
 }
 
 bool has_glb_magic(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return false;  // a FIFO would block the open
   std::ifstream in(file, std::ios::binary);
   char magic[4] = {};
   return in.read(magic, 4) && std::memcmp(magic, "glTF", 4) == 0;
@@ -62,11 +65,9 @@ Expected<RawScene> read_input_file(const std::filesystem::path& file, const Inpu
                    file.string()};
     case InputFormat::scene_json: break;
   }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return Error{ErrorCode::Io, "cannot open the file", file.string()};
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return Error{ErrorCode::Io, "cannot read the file", file.string()};
-  return read_scene_json(text, file.string());
+  auto text = read_file_bytes(file);
+  if (!text) return text.error();
+  return read_scene_json(*text, file.string());
 }
 
 }  // namespace inbetween

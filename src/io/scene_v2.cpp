@@ -17,6 +17,7 @@
 #include "inbetween/curves/catmull_rom.hpp"
 #include "inbetween/io/curve_file.hpp"
 #include "inbetween/io/obj.hpp"
+#include "inbetween/io/read_file.hpp"
 #include "inbetween/math/format.hpp"
 #include "inbetween/paths/mesh_path.hpp"
 #include "scene_json.hpp"
@@ -87,20 +88,9 @@ Expected<const json*> object_array(const json& obj, const Loc& loc, std::string_
 // in the included file after its name: "climb.json:/points/3: expected 3 numbers".
 Expected<AnyCurve> read_curve_file(const std::string& file, const Loc& loc, const Context& cx) {
   const std::filesystem::path resolved = cx.base_dir / std::filesystem::path(file);
-  std::error_code ec;
-  if (std::filesystem::is_directory(resolved, ec)) {
-    return error_at(ErrorCode::Io, "\"" + resolved.string() + "\" is a directory, not a curve file", loc);
-  }
-  std::ifstream in(resolved, std::ios::binary);
-  if (!in) {
-    const int err = errno;
-    return error_at(ErrorCode::Io,
-                    "cannot read the curve file \"" + resolved.string() + "\"" + (err ? ": " + std::string(std::strerror(err)) : ""),
-                    loc);
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  auto curve = parse_curve_json(text.str(), file);
+  auto text = read_file_bytes(resolved);
+  if (!text) return error_at(ErrorCode::Io, "curve file \"" + resolved.string() + "\" " + text.error().message, loc);
+  auto curve = parse_curve_json(*text, file);
   if (!curve) return error_at(curve.error().code, curve.error().describe(), loc);
   return curve;
 }
@@ -123,19 +113,9 @@ Expected<AnyCurve> read_surface_curve(const json& sj, const Loc& loc, const Cont
   if (!m->is_string()) return error_at(ErrorCode::InvalidArgument, "expected an OBJ file name", mesh_at);
   const std::string file = m->get<std::string>();
   const std::filesystem::path resolved = cx.base_dir / std::filesystem::path(file);
-  std::error_code ec;
-  if (std::filesystem::is_directory(resolved, ec))
-    return error_at(ErrorCode::Io, "\"" + resolved.string() + "\" is a directory, not an OBJ file", mesh_at);
-  std::ifstream in(resolved, std::ios::binary);
-  if (!in) {
-    const int err = errno;
-    return error_at(ErrorCode::Io,
-                    "cannot read the mesh \"" + resolved.string() + "\"" + (err ? ": " + std::string(std::strerror(err)) : ""),
-                    mesh_at);
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  auto mesh = parse_obj(text.str(), file);
+  auto text = read_file_bytes(resolved);
+  if (!text) return error_at(ErrorCode::Io, "mesh \"" + resolved.string() + "\" " + text.error().message, mesh_at);
+  auto mesh = parse_obj(*text, file);
   if (!mesh) return error_at(mesh.error().code, mesh.error().describe(), mesh_at);
   int ends[2] = {0, 0};
   for (int k = 0; k < 2; ++k) {

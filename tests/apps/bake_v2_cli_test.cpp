@@ -3,6 +3,7 @@
 // version-2 input is exit 2 with one message naming the JSON pointer, nothing written with -o.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -141,6 +142,30 @@ TEST(BakeV2Cli, BadVersionTwoInputIsOneMessageWithItsPointerAndWritesNothing) {
     EXPECT_TRUE(r.out.empty());
     EXPECT_FALSE(fs::exists(out));
   }
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 21: a scene whose mesh is /dev/zero was read to 4 GB and ended in exit 1 "internal error:
+// std::bad_alloc"; a curve file /dev/zero in exit 2 after the same 4 GB.  Now exit 2 at once
+// naming the member; the input itself as a device too.
+TEST(BakeV2Cli, ADeviceAsInputCurveFileOrMeshIsRefusedAtOnce) {
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path mesh = write_test_file("mesh.json", R"({"inbetween": 2, "paths": [{"name": "s", "surface": {"mesh": "/dev/zero", "from": 0, "to": 1}}],
+      "objects": [{"name": "o", "path": {"curve": "s", "speed": {"kind": "ease", "start_frame": 0, "end_frame": 1}}}]})");
+  const fs::path curve = write_test_file("curve.json", R"({"inbetween": 2, "paths": [{"name": "l", "file": "/dev/zero"}],
+      "objects": [{"name": "o", "path": {"curve": "l", "speed": {"kind": "ease", "start_frame": 0, "end_frame": 1}}}]})");
+  for (const auto& [in, where] : {std::pair{mesh.string(), std::string("/paths/0/surface/mesh")},
+                                  std::pair{curve.string(), std::string("/paths/0/file")},
+                                  std::pair{std::string("/dev/zero"), std::string()}}) {
+    const auto r = run_cli("bake '" + in + "'");
+    EXPECT_EQ(r.exit_code, 2) << in << ": " << r.err;
+    EXPECT_NE(r.err.find(where + (where.empty() ? "" : ": ")), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("is not a regular file"), std::string::npos) << r.err;
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
 }
 
 }  // namespace

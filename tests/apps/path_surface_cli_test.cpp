@@ -3,6 +3,7 @@
 // (tests/io/obj_test.cpp) for the Blender export in tests/data/obj/.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
@@ -141,6 +142,20 @@ TEST(PathSurfaceCli, BadInputExitsTwoNamingTheLineOrArgument) {
   EXPECT_EQ(loop.exit_code, 2);
   EXPECT_EQ(loop.out, "");
   EXPECT_NE(loop.err.find("vertex 2: the plane walk returns to vertex 2"), std::string::npos) << loop.err;
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 21: `path surface /dev/zero` read the device until 4 GB were allocated.  Now refused at
+// once: exit 2, one line naming the file.
+TEST(PathSurfaceCli, ADeviceIsRefusedAtOnce) {
+  const auto start = std::chrono::steady_clock::now();
+  const CliRun r = run_cli("path surface /dev/zero --from 0 --to 1");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("inbetween: /dev/zero: is not a regular file", 0), 0u) << r.err;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
 }
 
 }  // namespace

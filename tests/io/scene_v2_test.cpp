@@ -8,6 +8,7 @@
 
 #include "inbetween/io/obj.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -187,6 +188,22 @@ TEST(SceneV2, CurveFileRelativeToTheScene) {
   auto e = parse(test::slurp(bad), bad.string());
   ASSERT_FALSE(e.has_value());
   EXPECT_EQ(e.error().describe().rfind("/paths/0/file: bad.json:/points/1", 0), 0u) << e.error().describe();
+}
+
+// Issue 21: a curve file or mesh that is a device was read to 4 GB (then exit 2, or bad_alloc for a
+// mesh); now refused at once as every reader refuses non-regular files (io/read_file.hpp).
+TEST(SceneV2, CurveFileOrMeshThatIsADeviceIsRefusedAtOnce) {
+  const auto start = std::chrono::steady_clock::now();
+  for (const std::string& text :
+       {std::string(R"({"inbetween": 2, "paths": [{"name": "l", "file": "/dev/zero"}]})"),
+        std::string(R"({"inbetween": 2, "paths": [{"name": "s", "surface": {"mesh": "/dev/zero", "from": 0, "to": 1}}]})")}) {
+    auto r = read_scene_json(text);
+    ASSERT_FALSE(r.has_value()) << text;
+    EXPECT_EQ(r.error().code, ErrorCode::Io) << r.error().describe();
+    EXPECT_NE(r.error().message.find("not a regular file"), std::string::npos) << r.error().describe();
+    EXPECT_EQ(r.error().describe().rfind("/paths/0/", 0), 0u) << r.error().describe();
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
 }
 
 TEST(SceneV2, VersionOneRejectsTheNewMembers) {

@@ -53,7 +53,10 @@ inline CliRun run_cli(const std::string& args, const std::string& input = "") {
   const auto dir = test_dir();
   const auto in = dir / "stdin.txt", out = dir / "stdout.txt", err = dir / "stderr.txt";
   std::ofstream(in, std::ios::binary) << input;
-  const std::string command = std::string("'") + INBETWEEN_CLI + "' " + args + " < '" + in.string() + "' > '" +
+  // INBETWEEN_TEST_CLI runs the tests against another build of the tool (an older one, to see a
+  // regression test fail before its fix).
+  const char* cli = std::getenv("INBETWEEN_TEST_CLI");
+  const std::string command = std::string("'") + (cli && *cli ? cli : INBETWEEN_CLI) + "' " + args + " < '" + in.string() + "' > '" +
                               out.string() + "' 2> '" + err.string() + "'";
   const int status = std::system(command.c_str());
   CliRun r;
