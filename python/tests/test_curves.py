@@ -143,3 +143,11 @@ def test_arc_length_out_argument():
         arc.u(s, out=np.empty(49))
     with pytest.raises(ValueError, match="out"):
         arc.u(s, out=np.empty(50, dtype=np.float32))
+
+
+def test_constraints_speed_that_overflows_is_refused_not_searched():
+    # Issue 21: a constraints speed key of 1e308 on a path shorter than 1 never returned (the
+    # backing-up search subdivided an infinite speed hull 2^40 times).  Now inbetween.Error naming the key.
+    spec = {"kind": "constraints", "keys": [{"frame": 0, "distance": 0, "speed": 1e308}, {"frame": 24, "distance": 0.5}]}
+    with pytest.raises(inbetween.Error, match="tuples 0 → 1: the distance curve between them overflows"):
+        inbetween.Speed(spec, length=0.9)

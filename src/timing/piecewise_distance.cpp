@@ -99,6 +99,25 @@ std::array<T, 5> speed_bernstein(const Coeffs<T>& c) noexcept {
 constexpr int kSubdivisionDepth = 40;  // 2^-40 of an interval: far below any frame resolution
 constexpr int kBackingUpSamples = 256;  // resolution of the reported span of negative speed
 
+// Every interval's polynomial and its speed hull finite.  Finite tuples can still overflow them (a
+// speed of 1e308 times an interval of 10 frames); find_backing_up() on an infinite or NaN hull
+// would subdivide to its full depth everywhere (2^40 pieces: a hang), so such curves are refused.
+template <class T>
+Expected<void> check_finite_segments(const std::vector<Coeffs<T>>& seg, const char* what) {
+  for (std::size_t i = 0; i < seg.size(); ++i) {
+    const auto b = speed_bernstein<T>(seg[i]);
+    const bool finite = std::all_of(seg[i].begin(), seg[i].end(), [](T v) { return std::isfinite(v); }) &&
+                        std::all_of(b.begin(), b.end(), [](T v) { return std::isfinite(v); });
+    if (!finite) {
+      return Error{ErrorCode::NotFinite,
+                   std::string(what) + " " + std::to_string(i) + " → " + std::to_string(i + 1) +
+                       ": the distance curve between them overflows (speeds or accelerations too large for the interval)",
+                   "", {i}};
+    }
+  }
+  return {};
+}
+
 template <class T>
 Expected<void> check_times(std::size_t n, auto&& time_of) {
   for (std::size_t i = 0; i < n; ++i) {
@@ -176,6 +195,7 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_constraints(
     auto acc = [&](std::size_t j) { return k[j].a ? std::optional<T>(*k[j].a * hi * hi) : std::nullopt; };
     c.seg_.push_back(hermite<T>(k[i].s, c.v_[i] * hi, acc(i), k[i + 1].s, c.v_[i + 1] * hi, acc(i + 1)));
   }
+  if (auto ok = check_finite_segments<T>(c.seg_, "tuples"); !ok) return ok.error();
   if (const auto back = c.find_backing_up()) {
     const std::size_t i = std::size_t(back->segment);
     return Error{ErrorCode::NotMonotone,
@@ -242,6 +262,7 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_acceleration
     }
   }
   PiecewiseDistanceCurve c = integrate(scale);
+  if (auto ok = check_finite_segments<T>(c.seg_, "keys"); !ok) return ok.error();
   if (const auto back = c.find_backing_up()) {
     const std::size_t i = std::size_t(back->segment);
     return Error{ErrorCode::NotMonotone,

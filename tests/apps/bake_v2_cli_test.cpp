@@ -169,3 +169,24 @@ TEST(BakeV2Cli, ADeviceAsInputCurveFileOrMeshIsRefusedAtOnce) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 21: a constraints speed key of 1e308 on a path shorter than 1 (a surface path on the
+// icosphere) hung bake (killed after 12 minutes): the backing-up search subdivided an infinite
+// speed polynomial 2^40 times.  Now exit 2 at once naming the tuples.
+TEST(BakeV2Cli, AnOverflowingConstraintsSpeedIsRefusedAtOnce) {
+  const std::string mesh = std::string(INBETWEEN_SOURCE_DIR) + "/examples/meshes/icosphere.obj";
+  const fs::path scene = write_test_file("speed.json", R"({"inbetween": 2, "fps": 24, "range": [0, 24],
+      "paths": [{"name": "p", "surface": {"mesh": ")" + mesh + R"(", "from": 0, "to": 1}}],
+      "objects": [{"name": "o", "path": {"curve": "p", "speed": {"kind": "constraints", "keys": [
+          {"frame": 0, "distance": 0, "speed": 1e308}, {"frame": 24, "distance": 0.5}]}}}]})");
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = run_cli("bake '" + scene.string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("/objects/0/path/speed/keys/0: tuples 0 → 1: the distance curve between them overflows"), std::string::npos)
+      << r.err;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+}
+
+}  // namespace

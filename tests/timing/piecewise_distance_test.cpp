@@ -171,6 +171,24 @@ TYPED_TEST(PiecewiseDistanceTyped, RefusalNamesTheTupleAndIsReal) {
   EXPECT_LT(lo, 0.0);
 }
 
+// Issue 21: finite tuples whose interval polynomial overflows (a speed near the type's largest
+// value times an interval of 10) are refused at once, naming the tuples.  Before, the backing-up
+// search subdivided the infinite/NaN speed hull to its full depth (2^40 pieces) and never returned.
+TYPED_TEST(PiecewiseDistanceTyped, OverflowingSpeedIsRefusedNotSearched) {
+  using T = TypeParam;
+  const T huge = std::numeric_limits<T>::max() / T(2);
+  for (const std::vector<MotionConstraint<T>>& k :
+       {std::vector<MotionConstraint<T>>{{0, 0, std::nullopt, std::nullopt}, {10, T(0.5), huge, std::nullopt}},
+        std::vector<MotionConstraint<T>>{{0, 0, huge, std::nullopt}, {10, T(0.5), T(0), std::nullopt}, {20, 1, std::nullopt, std::nullopt}},
+        std::vector<MotionConstraint<T>>{{0, 0, T(0), huge}, {10, 1, T(0), std::nullopt}}}) {
+    auto c = Curve<T>::from_constraints(k);
+    ASSERT_FALSE(c);
+    EXPECT_EQ(c.error().code, ErrorCode::NotFinite) << c.error().message;
+    EXPECT_EQ(json_pointer(c.error().location), "/0") << c.error().message;
+    EXPECT_NE(c.error().message.find("tuples 0 → 1"), std::string::npos) << c.error().message;
+  }
+}
+
 // The museum of degenerate constraint sets.
 TYPED_TEST(PiecewiseDistanceTyped, Museum) {
   using T = TypeParam;
