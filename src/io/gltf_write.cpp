@@ -9,12 +9,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <string_view>
+#include <unordered_map>
 #include <variant>
 
+#include "inbetween/math/format.hpp"
 #include "inbetween/tracks/refit.hpp"
 
 namespace inbetween {
@@ -103,6 +107,50 @@ RefitKeys as_written(RefitKeys k, double first, double fps) {
   for (double& s : k.in_slopes) s = double(float(s * fps));
   for (double& s : k.out_slopes) s = double(float(s * fps));
   return k;
+}
+
+// glTF holds key times, values and tangents as float: the largest magnitude it can carry.
+constexpr double kFloatMax = double(std::numeric_limits<float>::max());
+
+// A channel as written (as_written) that glTF can hold: times finite and strictly increasing as
+// floats, values and tangents finite as floats.  `authored`: the keys are the scene's own (key k
+// is the scene's key k, named by its place), else refitted ones (named by frame).  The frame of
+// key k is `frames[k]` (before conversion to seconds).
+Expected<void> check_written(const RefitKeys& w, const std::vector<double>& frames, bool authored, std::size_t object,
+                             const std::string& path) {
+  auto fail = [&](std::size_t k, std::string what) -> Error {
+    Error e{ErrorCode::InvalidArgument, "", ""};
+    const std::string key = (authored ? "key " + std::to_string(k) : "refitted key " + std::to_string(k)) + " (frame " +
+                            shortest_text(frames[k]) + ")";
+    e.message = key + ": " + what;
+    e.location = authored ? std::vector<LocationStep>{std::string("objects"), object, path, std::string("keys"), k}
+                          : std::vector<LocationStep>{std::string("objects"), object, path};
+    return e;
+  };
+  const std::size_t d = w.dim;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    const double t = w.frames[k];
+    if (!std::isfinite(t)) {
+      return fail(k, "its time does not fit glTF's float seconds (at most 3.4e38 s): shorten the range or raise the fps");
+    }
+    if (k > 0 && !(t > w.frames[k - 1])) {
+      return fail(k, "its time in seconds rounds to the same float as the key before it (" + shortest_text(float(t)) +
+                         " s; glTF key times must increase): the fps is too high or the keys too close for float seconds");
+    }
+    auto check = [&](const std::vector<double>& v, const char* what) -> std::optional<Error> {
+      for (std::size_t c = 0; c < d && k * d + c < v.size(); ++c) {
+        if (!std::isfinite(v[k * d + c])) {
+          return fail(k, std::string("its ") + what + " does not fit glTF's float (largest magnitude 3.4e38)");
+        }
+      }
+      return std::nullopt;
+    };
+    for (auto [v, what] : {std::pair{&w.values, "value"}, std::pair{&w.in_slopes, "incoming tangent (per second)"},
+                           std::pair{&w.out_slopes, "outgoing tangent (per second)"}}) {
+      if (auto e = check(*v, what)) return *e;
+    }
+  }
+  return {};
 }
 
 struct Builder {
@@ -258,6 +306,24 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
   if (nodes.empty()) return Error{ErrorCode::Unsupported, "the scene has no objects to export as glTF nodes", "", {"objects"}};
   INBETWEEN_ASSERT(nodes.size() == raw.objects.size());
   const double first = scene.range_start(), last = scene.range_end(), fps = scene.fps();
+  // Key times are float seconds from the range's start: the range must last a float's worth of
+  // seconds, and its grid (substeps per frame) must fit the exporter's bound.
+  const double duration_s = (last - first) / fps;
+  if (!std::isfinite(last - first) || !(duration_s <= kFloatMax)) {
+    return Error{ErrorCode::InvalidArgument,
+                 "the range [" + shortest_text(first) + ", " + shortest_text(last) + "] at " + shortest_text(fps) +
+                     " fps lasts longer than glTF's float key times can hold (3.4e38 s)",
+                 "", {"range"}};
+  }
+  if (const double points = std::floor((last - first) * options.substeps) + 2; !(points <= double(kMaxGltfExportGridPoints))) {
+    char n[32];
+    std::snprintf(n, sizeof n, "%.3g", points);
+    return Error{ErrorCode::Unsupported,
+                 "the range [" + shortest_text(first) + ", " + shortest_text(last) + "] sampled " + std::to_string(options.substeps) +
+                     " times per frame needs " + n + " grid points, more than the " + std::to_string(kMaxGltfExportGridPoints) +
+                     " the exporter samples: shorten the range, lower the substeps or the fps",
+                 "", {"range"}};
+  }
   const std::vector<double> grid = make_grid(first, last, options.substeps);
   std::vector<double> grid_t(grid.size());
   for (std::size_t j = 0; j < grid.size(); ++j) grid_t[j] = (grid[j] - first) / fps;
@@ -328,8 +394,10 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
   };
   // Writes a channel and completes its report with the error of what is written (float keys
   // played with glTF's formulas) against the grid samples.
-  auto write_vec3 = [&](std::size_t i, const RefitKeys& keys, const std::vector<double>& samples, GltfChannelReport rep) {
+  auto write_vec3 = [&](std::size_t i, const RefitKeys& keys, const std::vector<double>& samples,
+                        GltfChannelReport rep) -> Expected<void> {
     const RefitKeys written = as_written(keys, first, fps);
+    if (auto ok = check_written(written, keys.frames, !rep.refitted, i, rep.path); !ok) return ok.error();
     double worst = 0, v[3];
     for (std::size_t j = 0; j < grid.size(); ++j) {
       evaluate_refit(written, grid_t[j], v);
@@ -340,9 +408,12 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
     rep.interpolation = sampler_name(written.interpolation);
     b.add_channel(written, int(i), rep.path, false);
     result.channels.push_back(rep);
+    return {};
   };
-  auto write_rot = [&](std::size_t i, const RefitKeys& keys, const std::vector<Quatd>& samples, GltfChannelReport rep) {
+  auto write_rot = [&](std::size_t i, const RefitKeys& keys, const std::vector<Quatd>& samples,
+                       GltfChannelReport rep) -> Expected<void> {
     const RefitKeys written = as_written(keys, first, fps);
+    if (auto ok = check_written(written, keys.frames, !rep.refitted, i, "rotation"); !ok) return ok.error();
     double worst = 0;
     for (std::size_t j = 0; j < grid.size(); ++j) {
       worst = std::max(worst, rotation_angle_between(evaluate_refit_rotation(written, grid_t[j]), samples[j]));
@@ -352,6 +423,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
     rep.interpolation = sampler_name(written.interpolation);
     b.add_channel(written, int(i), "rotation", true);
     result.channels.push_back(rep);
+    return {};
   };
 
   for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -416,8 +488,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
         if (!fit) return fit.error();
         keys = std::move(*fit);
       }
-      write_vec3(i, keys, samples, rep);
-      return {};
+      return write_vec3(i, keys, samples, rep);
     };
 
     if (translation_sampled(scene, i)) {
@@ -428,7 +499,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
       for (const Transform<double>& l : locals) samples.insert(samples.end(), {l.translation.x, l.translation.y, l.translation.z});
       auto fit = refit_vec3(i, "translation", samples, rep);
       if (!fit) return fit.error();
-      write_vec3(i, *fit, samples, rep);
+      if (auto ok = write_vec3(i, *fit, samples, rep); !ok) return ok.error();
     } else if (auto ok = vec3_channel("translation", node.local.translation, ro.translation.value_or(std::variant<Vec3d, RawVec3Channel>{Vec3d{}})); !ok) {
       return ok.error();
     }
@@ -442,7 +513,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
       for (const Transform<double>& l : locals) samples.push_back(l.rotation);
       auto fit = refit_rot(i, samples, rep);
       if (!fit) return fit.error();
-      write_rot(i, *fit, samples, rep);
+      if (auto ok = write_rot(i, *fit, samples, rep); !ok) return ok.error();
     } else if (node.local.rotation) {
       const QuatTrack<double>& track = *node.local.rotation;
       const auto& rc = std::get<RawQuatKeys>(*ro.rotation);
@@ -494,7 +565,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
         if (!fit) return fit.error();
         keys = std::move(*fit);
       }
-      write_rot(i, keys, samples, rep);
+      if (auto ok = write_rot(i, keys, samples, rep); !ok) return ok.error();
     }
     if (auto ok = vec3_channel("scale", node.local.scale, ro.scale); !ok) return ok.error();
   }

@@ -100,3 +100,51 @@ TEST(ConvertCli, SceneToSceneKeepsPathsAndCameras) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 21: convert wrote glTF with key time +inf (a range of ±1e308) or values of ±inf (1e39)
+// with exit 0.  Now: exit 2 naming the place, no output.
+TEST(ConvertCli, ValuesGltfCannotHoldExitTwoNamingTheKey) {
+  const fs::path dir = inbetween::test::test_dir();
+  const struct {
+    const char* scene;
+    const char* where;
+  } cases[] = {
+      {R"({"inbetween": 2, "fps": 24, "range": [-1e308, 1e308], "objects": [{"name": "a", "translation": {"keys": [
+          {"frame": 0, "value": [0, 0, 0], "tangent": "linear"}, {"frame": 10, "value": [1, 0, 0], "tangent": "linear"}]}}]})",
+       "/range"},
+      {R"({"inbetween": 2, "fps": 24, "range": [1, 10], "objects": [{"name": "a", "translation": {"keys": [
+          {"frame": 1, "value": [0, 0, 0], "tangent": "linear"}, {"frame": 10, "value": [1e39, 0, 0], "tangent": "linear"}]}}]})",
+       "/objects/0/translation/keys/1"},
+      {R"({"inbetween": 2, "fps": 1e308, "range": [1, 10], "objects": [{"name": "a", "translation": {"keys": [
+          {"frame": 1, "value": [0, 0, 0], "tangent": "linear"}, {"frame": 10, "value": [1, 0, 0], "tangent": "linear"}]}}]})",
+       "/objects/0/translation/keys/1"},
+  };
+  int n = 0;
+  for (const auto& c : cases) {
+    const fs::path in = inbetween::test::write_test_file("limits" + std::to_string(n) + ".json", c.scene);
+    const fs::path out = dir / ("limits" + std::to_string(n++) + ".glb");
+    const auto r = run_cli("convert '" + in.string() + "' '" + out.string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << c.where << ": " << r.err;
+    EXPECT_NE(r.err.find(std::string(in.string()) + ": " + c.where + ": "), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
+
+// Issue 21: `convert MODEL.glb OUT.glb --fps 1e9` allocated its sampling grid until bad_alloc (exit
+// 1 after 2 GB).  Now: exit 2 at once, the limit named.
+TEST(ConvertCli, AGridBeyondTheExportLimitExitsTwoNamingIt) {
+  const fs::path dir = inbetween::test::test_dir();
+  const fs::path in = inbetween::test::write_test_file(
+      "long.json", R"({"inbetween": 2, "fps": 24, "range": [0, 1e9], "objects": [{"name": "a", "translation": {"keys": [
+          {"frame": 0, "value": [0, 0, 0], "tangent": "linear"}, {"frame": 10, "value": [1, 0, 0], "tangent": "linear"}]}}]})");
+  const auto r = run_cli("convert '" + in.string() + "' '" + (dir / "long.glb").string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("/range: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("10000000"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "long.glb"));
+}
+
+}  // namespace

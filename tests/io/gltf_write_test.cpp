@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -25,6 +26,7 @@
 #include "inbetween/io/gltf.hpp"
 #include "inbetween/io/gltf_write.hpp"
 #include "inbetween/io/scene.hpp"
+#include "inbetween/math/format.hpp"
 #include "inbetween/tracks/refit.hpp"
 #include "support/cli.hpp"
 #include "support/gltf_appendix_c.hpp"
@@ -778,6 +780,99 @@ TEST(GltfWrite, ImportedGltfReexportsItsAccessorsByteForByte) {
         bool negated = true;
         for (std::size_t c = 0; c < 4; ++c) negated = negated && values[k + c] == -w.values[k + c];
         EXPECT_TRUE(same || negated) << w.node_path << " key " << k / 4 << ", round " << round;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace inbetween
+
+namespace inbetween {
+namespace {
+
+// Issue 21: what glTF's float cannot hold is refused, naming the key; every case that exports is a
+// valid file (finite float keys, strictly increasing times; the Khronos validator when installed).
+// Before: a range of ±1e308 wrote the time +inf ("max": [null]), values of 1e39 and 3.5e38 and
+// tangents of 3e38-valued keys wrote ±inf, an fps of 1e308 collapsed every key time to 0.
+struct FloatLimitCase {
+  const char* name;
+  double fps;
+  const char* range;
+  const char* translation;  // the translation member of object "a"
+  const char* where;        // the expected place of the refusal, "" when it exports
+};
+
+std::string limit_scene(const FloatLimitCase& c) {
+  return std::string(R"({"inbetween": 2, "fps": )") + shortest_text(c.fps) + R"(, "range": )" + c.range +
+         R"(, "objects": [{"name": "a", "translation": )" + c.translation + "}]}";
+}
+
+TEST(GltfWrite, ValuesBeyondFloatAreRefusedNotWrittenAsInfinity) {
+  const FloatLimitCase cases[] = {
+      {"range of ±1e308", 24, "[-1e308, 1e308]",
+       R"({"keys": [{"frame": 0, "value": [0, 0, 0], "tangent": "linear"}, {"frame": 10, "value": [1, 0, 0], "tangent": "linear"}]})",
+       "/range"},
+      {"value 1e39", 24, "[1, 10]",
+       R"({"keys": [{"frame": 1, "value": [0, 0, 0], "tangent": "linear"}, {"frame": 10, "value": [1e39, 0, 0], "tangent": "linear"}]})",
+       "/objects/0/translation/keys/1"},
+      {"linear 3.5e38", 24, "[1, 10]",
+       R"({"keys": [{"frame": 1, "value": [0, 3.5e38, 0], "tangent": "linear"}, {"frame": 10, "value": [1, 0, 0], "tangent": "linear"}]})",
+       "/objects/0/translation/keys/0"},
+      {"stepped 3.5e38", 24, "[1, 10]",
+       R"({"keys": [{"frame": 1, "value": [0, 0, 0], "tangent": "stepped"}, {"frame": 5, "value": [0, 0, -3.5e38], "tangent": "stepped"}]})",
+       "/objects/0/translation/keys/1"},
+      {"tangent of 3e38 values", 24, "[1, 10]",
+       R"({"keys": [{"frame": 1, "value": [0, 0, 0], "tangent": "hermite", "in_tangent": [0, 0, 0], "out_tangent": [3e38, 0, 0]},
+                    {"frame": 2, "value": [3e38, 0, 0], "tangent": "hermite", "in_tangent": [3e38, 0, 0], "out_tangent": [0, 0, 0]}]})",
+       "/objects/0/translation/keys/0"},
+      {"fps 1e308", 1e308, "[1, 10]",
+       R"({"keys": [{"frame": 1, "value": [0, 0, 0], "tangent": "linear"}, {"frame": 10, "value": [1, 0, 0], "tangent": "linear"}]})",
+       "/objects/0/translation/keys/1"},
+      // Near the limits but inside them: exported, finite.
+      {"value 3.3e38", 24, "[1, 10]",
+       R"({"keys": [{"frame": 1, "value": [0, 0, 0], "tangent": "linear"}, {"frame": 10, "value": [3.3e38, 0, 0], "tangent": "linear"}]})",
+       ""},
+      {"fps 1e30", 1e30, "[1, 10]",
+       R"({"keys": [{"frame": 1, "value": [0, 0, 0], "tangent": "linear"}, {"frame": 10, "value": [1, 0, 0], "tangent": "linear"}]})",
+       ""},
+  };
+  const fs::path tool = kSource / "tools/gltf-validator";
+  const bool validate = have_node_package(tool, "gltf-validator");
+  for (const FloatLimitCase& c : cases) {
+    SCOPED_TRACE(c.name);
+    auto raw = read_scene_json(limit_scene(c), "limits.json");
+    ASSERT_TRUE(raw) << raw.error().describe();
+    auto scene = build_scene(*raw);
+    ASSERT_TRUE(scene) << scene.error().describe();
+    for (bool reduce : {false, true}) {
+      auto out = export_gltf(*raw, *scene, {.reduce = reduce});
+      // Refitted (reduce), a channel may fit in float where its authored keys do not (the
+      // 3e38-valued keys' tangents): then the file is written and must be valid as any other.
+      if (*c.where && (!reduce || !out)) {
+        ASSERT_FALSE(out) << "exported";
+        const std::string where = json_pointer(out.error().location);
+        // A refitted channel is named without a key index (its keys are not the scene's).
+        EXPECT_EQ(where, reduce && where != "/range" ? "/objects/0/translation" : c.where) << out.error().describe();
+        continue;
+      }
+      ASSERT_TRUE(out) << out.error().describe();
+      const tinygltf::Model m = read_back(out->bytes);
+      for (std::size_t a = 0; a < m.accessors.size(); ++a) {
+        const std::vector<float> v = floats(m, int(a));
+        for (float x : v) EXPECT_TRUE(std::isfinite(x)) << "accessor " << a;
+      }
+      for (const auto& s : m.animations.at(0).samplers) {
+        const std::vector<float> t = floats(m, s.input);
+        for (std::size_t k = 1; k < t.size(); ++k) EXPECT_LT(t[k - 1], t[k]) << "key " << k;
+      }
+      if (validate) {
+        const fs::path file = test::write_test_file("limits.glb", out->bytes);
+        const fs::path report = test::test_dir() / "report.json";
+        const std::string cmd = "node '" + (tool / "validate.mjs").string() + "' '" + file.string() + "' > '" + report.string() + "'";
+        EXPECT_EQ(std::system(cmd.c_str()), 0) << test::slurp(report);
+        const auto j = nlohmann::json::parse(test::slurp(report));
+        EXPECT_EQ(j["issues"]["numErrors"], 0) << test::slurp(report);
       }
     }
   }

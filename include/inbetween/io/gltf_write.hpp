@@ -22,6 +22,11 @@
 
 namespace inbetween {
 
+/// The most grid points export_gltf() samples a scene's range on ((range end − start) × substeps
+/// + 2): beyond it the export is refused (Unsupported at {"range"}) instead of allocating without
+/// bound.  10 million points are a 24 fps range of 29 hours at the default 4 substeps.
+inline constexpr std::size_t kMaxGltfExportGridPoints = 10'000'000;
+
 /// Options of export_gltf().
 struct GltfExportOptions {
   /// Largest error of a refitted channel: a fraction of the channel's range (largest max − min
@@ -72,7 +77,11 @@ struct GltfExport {
 /// Exports `scene` (built from `raw`, which gives the authored keys and their kinds).  Errors:
 /// InvalidArgument for options ({"tolerance"}, {"substeps"}, {"camera_znear"}, {"camera_zfar"},
 /// {"camera_aspect"}), Unsupported when the scene has no objects, and the refitter's errors
-/// prefixed with {"objects", i, channel}.
+/// prefixed with {"objects", i, channel}.  What glTF's float cannot hold is refused, never written
+/// as infinity: a range lasting more than 3.4e38 s or over kMaxGltfExportGridPoints ({"range"}); a
+/// key whose time, value or tangent (per second) is beyond float, or whose time rounds to its
+/// predecessor's ({"objects", i, channel, "keys", k} for an authored key, {"objects", i, channel}
+/// for a refitted one, the message naming the key and its frame).
 [[nodiscard]] Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const GltfExportOptions& options = {});
 
 }  // namespace inbetween
