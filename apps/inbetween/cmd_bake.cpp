@@ -22,6 +22,7 @@
 #include "input.hpp"
 #include "output.hpp"
 #include "progress.hpp"
+#include "sample_check.hpp"
 
 namespace inbetween::cli {
 namespace {
@@ -85,11 +86,7 @@ void run_bake(const BakeOptions& opt) {
     scene.sample(f, row, cursor);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
-      if (!std::isfinite(v)) {
-        throw CommandError{"frame " + format_number(f) + ": " + columns[c].name +
-                           (std::isnan(v) ? " is not a number" : " overflows (" + format_number(v) +
-                                                                     (columns[c].single_precision ? ", single precision" : "") + ")")};
-      }
+      if (!std::isfinite(v)) throw non_finite_error(opt.input, scene, f, c, v);
     }
   };
 

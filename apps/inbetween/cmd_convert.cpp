@@ -14,6 +14,7 @@
 #include <string>
 
 #include "command.hpp"
+#include "frame_spec.hpp"
 #include "input.hpp"
 #include "inbetween/io/gltf_write.hpp"
 #include "inbetween/io/scene.hpp"
@@ -99,12 +100,12 @@ const RegisterCommand kConvert{{"convert", 45, [](CLI::App& root) {
   cmd->add_option("output", opt->output, "Output: .gltf or .glb (export), or .json (scene file, from glTF or scene input)")->required();
   cmd->add_option("--fps", opt->input.fps,
                   "glTF, BVH, assimp input: frames per second, frame = time · fps (default: the format's own)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive_number());
   cmd->add_option("--tolerance", opt->tolerance,
                   "Largest error of a refitted channel: fraction of its range (translation, scale), radians (rotation)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive_number());
   cmd->add_option("--reduce", opt->reduce, "Refit every channel with this tolerance (keyframe reduction)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive_number());
   cmd->add_option("--substeps", opt->substeps, "Grid points per frame where channels are sampled and checked")
       ->check(CLI::Range(1, 64));
   cmd->add_flag("--no-cubic", opt->no_cubic,

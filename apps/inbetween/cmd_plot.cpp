@@ -70,7 +70,7 @@ const RegisterCommand kPlot{{"plot", 45, [](CLI::App& root) {
                   "A:B[:STEP] frame axis and sample step (default: the range and keys padded by 10 %, at most 480 steps)");
   cmd->add_option("--fps", opt->input.fps,
                   "glTF, BVH, assimp input: frame = time · fps (default: the format's own); a scene file has its own")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive_number());
   cmd->add_option("--progress", opt->progress, "Progress bar on standard error: auto (when it is a terminal), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}));
   cmd->callback([opt] { run_plot(*opt); });

@@ -71,6 +71,9 @@ void register_demo_command(CLI::App& root) {
 }  // namespace
 }  // namespace inbetween::cli
 
+// The longest error line printed (bytes); readers quote input in short excerpts well below it.
+constexpr std::size_t kMaxMessageBytes = 2000;
+
 int main(int argc, char** argv) {
   using namespace inbetween::cli;
   CLI::App app{"inbetween: keyframe animation in between the keys (rotations, curves, timing, tracks)",
@@ -91,10 +94,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // One line (CLI11's own exit() adds a second, "Run with --help for more information.").
+    std::cerr << "inbetween: " << inbetween::one_line_excerpt(e.what(), kMaxMessageBytes) << " (--help for usage)\n";
     return kUserError;
   } catch (const CommandError& e) {
-    std::cerr << "inbetween: " << e.message << "\n";
+    // Every error is one line: a name with a newline or a long quote from the input that a reader
+    // let through is escaped and cut here.
+    std::cerr << "inbetween: " << inbetween::one_line_excerpt(e.message, kMaxMessageBytes) << "\n";
     return e.exit_code;
   } catch (const std::exception& e) {
     std::cerr << "inbetween: internal error: " << e.what() << "\n";

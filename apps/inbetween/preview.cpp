@@ -12,6 +12,7 @@
 #include "command.hpp"
 #include "frame_spec.hpp"
 #include "progress.hpp"
+#include "sample_check.hpp"
 
 namespace inbetween::cli {
 namespace {
@@ -167,10 +168,7 @@ std::string preview_html(const Scene& scene, const PreviewFrames& frames, const 
     data += i ? ",\n[" : "\n[";
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
-      if (!std::isfinite(v)) {
-        throw CommandError{"frame " + format_number(f) + ": " + columns[c].name +
-                           (std::isnan(v) ? " is not a number" : " overflows")};
-      }
+      if (!std::isfinite(v)) throw non_finite_error(InputArgs{.path = options.source}, scene, f, c, v);
       if (c) data += ",";
       if (columns[c].single_precision) {
         append_number(data, float(row[c]));

@@ -5,6 +5,8 @@
 // mesh builder checks the geometry (zero area, repeated vertices, shared edges, normals) and names
 // its places through a MeshPlaceNamer that gives the file's lines.
 #include "inbetween/io/obj.hpp"
+#include "inbetween/math/format.hpp"
+#include "inbetween/math/quote.hpp"
 
 #include <tiny_obj_loader.h>
 
@@ -64,10 +66,10 @@ Expected<LineIndex> scan_lines(std::string_view text, std::string_view source) {
         errno = 0;
         const double x = std::strtod(tok[k].c_str(), &stop);
         if (stop == tok[k].c_str() || *stop != '\0')
-          return Error{ErrorCode::Parse, "'" + key + "' coordinate '" + tok[k] + "' is not a number",
+          return Error{ErrorCode::Parse, "'" + key + "' coordinate " + quote_excerpt(tok[k], 40) + " is not a number",
                        at_line(source, line_no)};
         if (!std::isfinite(x))
-          return Error{ErrorCode::NotFinite, "'" + key + "' coordinate '" + tok[k] + "' is not finite",
+          return Error{ErrorCode::NotFinite, "'" + key + "' coordinate " + quote_excerpt(tok[k], 40) + " is not finite",
                        at_line(source, line_no)};
       }
       if (key == "v") index.vertex_lines.push_back(line_no);
@@ -87,7 +89,7 @@ Expected<LineIndex> scan_lines(std::string_view text, std::string_view source) {
             char* stop = nullptr;
             const long idx = std::strtol(num.c_str(), &stop, 10);
             if (num.empty() || *stop != '\0' || part > 2)
-              return Error{ErrorCode::Parse, "face corner '" + tok[k] + "' is not of the form v, v/vt, v//vn or v/vt/vn",
+              return Error{ErrorCode::Parse, "face corner " + quote_excerpt(tok[k], 40) + " is not of the form v, v/vt, v//vn or v/vt/vn",
                            at_line(source, line_no)};
             if (idx == 0)
               return Error{ErrorCode::InvalidArgument,
@@ -108,8 +110,8 @@ Expected<LineIndex> scan_lines(std::string_view text, std::string_view source) {
 Error from_tinyobj(const std::string& message, std::string_view source) {
   static const std::regex line_re(R"(line (\d+))");
   std::smatch m;
-  std::string text = message;
-  while (!text.empty() && (text.back() == '\n' || text.back() == '.')) text.pop_back();
+  std::string text = one_line_excerpt(message);
+  while (!text.empty() && text.back() == '.') text.pop_back();
   if (std::regex_search(text, m, line_re)) return Error{ErrorCode::Parse, text, at_line(source, std::stoi(m[1].str()))};
   return Error{ErrorCode::Parse, text, std::string(source)};
 }

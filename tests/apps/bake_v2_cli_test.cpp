@@ -190,3 +190,20 @@ TEST(BakeV2Cli, AnOverflowingConstraintsSpeedIsRefusedAtOnce) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 21, messages: "frame 0: child.translation.x is not a number" named neither the file nor
+// the member that caused it.  Now: the file, the member (/objects/0/scale: the parent's scale of
+// 1e308 in the product), the frame and the column; plot says the same.
+TEST(BakeV2Cli, AValueThatIsNotFiniteNamesTheFileAndTheMember) {
+  const fs::path scene = write_test_file("overflow.json", R"({"inbetween": 2, "fps": 24, "range": [0, 4],
+    "objects": [{"name": "parent", "scale": [1e308, 1, 1], "rotation": [0.9238795, 0, 0, 0.3826834]},
+                {"name": "child", "parent": "parent", "scale": [10, 1, 1], "translation": [10, 1, 0]}]})");
+  const auto r = run_cli("bake '" + scene.string() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("inbetween: " + scene.string() + ": /objects/0/scale: frame 0: child.", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("\"parent\"'s scale has a component of 1e+308"), std::string::npos) << r.err;
+}
+
+}  // namespace

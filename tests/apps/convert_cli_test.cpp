@@ -148,3 +148,20 @@ TEST(ConvertCli, AGridBeyondTheExportLimitExitsTwoNamingIt) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 21, messages: `--fps 0` printed DBL_MAX in 309 digits and a second "Run with --help" line.
+TEST(ConvertCli, OptionRangeErrorsAreOneShortLine) {
+  for (const char* option : {"--fps 0", "--tolerance -1", "--reduce nan"}) {
+    const auto r = run_cli("convert '" + kZoo + "' '" + (inbetween::test::test_dir() / "z.glb").string() + "' " + option);
+    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << option << ": not one line: " << r.err;
+    EXPECT_LT(r.err.size(), 200u) << option << ": " << r.err;
+    EXPECT_EQ(r.err.find("179769313486231570814527423731704356798070567525844996598917476803157260780028538760589558632766878"),
+              std::string::npos)
+        << r.err;
+  }
+}
+
+}  // namespace

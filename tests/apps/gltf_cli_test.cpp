@@ -267,3 +267,44 @@ TEST(GltfCli, WeightsAreNotedWhenExportingGltf) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 21, messages: every refusal is one line naming the place, quoting the input only as a short
+// escaped excerpt.  Before: tinygltf's two lines without a place for a missing sampler input, a
+// 100 KB data URI quoted whole, names with a newline splitting the line.
+TEST(GltfCli, ErrorsAreOneLineWithThePlaceAndShortEscapedQuotes) {
+  struct Case {
+    std::string name, text, words;
+  };
+  const std::vector<Case> cases = {
+      {"missing-input.gltf",
+       R"({"asset": {"version": "2.0"}, "nodes": [{"name": "a"}], "animations": [{"channels": [{"sampler": 0,
+          "target": {"node": 0, "path": "translation"}}], "samplers": [{"output": 0}]}]})",
+       "missing-input.gltf: /animations/0/samplers/0/input: required member \"input\" is missing"},
+      {"uri.gltf",
+       R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 10, "uri": "data:application/octet-stream;base64,)" +
+           std::string(100000, '!') + R"("}]})",
+       "uri.gltf: "},
+      {"newline.gltf",
+       R"({"asset": {"version": "2.0"}, "nodes": [{"name": "a\nb"}], "animations": [{"name": "walk\nrun", "channels": [{"sampler": 0,
+          "target": {"node": 0, "path": "translation"}}], "samplers": [{"input": 5, "output": 0}]}]})",
+       R"(animation 0 "walk\nrun", channel 0 (node 0 "a\nb" translation))"},
+  };
+  for (const Case& c : cases) {
+    const fs::path in = inbetween::test::write_test_file(c.name, c.text);
+    const auto r = run_cli("bake '" + in.string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.err;
+    EXPECT_NE(r.err.find(c.words), std::string::npos) << c.name << ": " << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << c.name << ": not one line: " << r.err;
+    EXPECT_LT(r.err.size(), 600u) << c.name << ": " << r.err.substr(0, 600);
+  }
+  // A name asked for with a newline is quoted escaped too.
+  const fs::path nl = inbetween::test::test_dir() / "newline.gltf";
+  const auto r = run_cli("bake '" + nl.string() + "' --animation \"$(printf 'no\\nsuch')\"");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(R"("no\nsuch" (the file has 1: 0 "walk\nrun"))"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+}
+
+}  // namespace

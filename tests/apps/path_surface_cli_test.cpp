@@ -159,3 +159,23 @@ TEST(PathSurfaceCli, ADeviceIsRefusedAtOnce) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 21, messages: an OBJ literal of 5 000 characters was quoted whole, a magnitude printed in
+// 309 digits.  Now a short escaped excerpt and the shortest round-trip number.
+TEST(PathSurfaceCli, ObjErrorsQuoteShortly) {
+  const fs::path literal = write_test_file("literal.obj", "v 1 2 " + std::string(5000, 'x') + "\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  CliRun r = run_cli("path surface '" + literal.string() + "' --from 0 --to 1");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("line 1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("xxx\"… (5000 bytes)"), std::string::npos) << r.err;
+  EXPECT_LT(r.err.size(), literal.string().size() + 150) << r.err;
+  const fs::path big = write_test_file("big.obj", "v 1 2 3\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\n");
+  r = run_cli("path surface '" + big.string() + "' --from 0 --to 1");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("magnitude 1e+308, beyond the mesh limit 2.2471164185778946e+307"), std::string::npos) << r.err;
+  EXPECT_LT(r.err.size(), big.string().size() + 120) << r.err;
+}
+
+}  // namespace

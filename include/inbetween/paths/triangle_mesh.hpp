@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "inbetween/math/expected.hpp"
+#include "inbetween/math/format.hpp"
 #include "inbetween/math/vec.hpp"
 
 namespace inbetween {
@@ -168,8 +169,8 @@ Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshP
     const T big = std::max({std::abs(raw.vertices[i].x), std::abs(raw.vertices[i].y), std::abs(raw.vertices[i].z)});
     if (big > kMeshMaxCoordinate<T>)
       return Error{ErrorCode::InvalidArgument,
-                   "vertex " + std::to_string(i) + " has a coordinate of magnitude " + std::to_string(double(big)) +
-                       ", beyond the mesh limit " + std::to_string(double(kMeshMaxCoordinate<T>)),
+                   "vertex " + std::to_string(i) + " has a coordinate of magnitude " + shortest_text(double(big)) +
+                       ", beyond the mesh limit " + shortest_text(double(kMeshMaxCoordinate<T>)),
                    name("vertices", i)};
     extent = std::max(extent, big);
   }
