@@ -56,6 +56,10 @@ void run_plot(const PlotCommandOptions& opt) {
   std::cout << "wrote " << report->files.size() << " plots and index.html to " << report->dir.string() << " ("
             << report->frame_count << " frames from " << format_number(report->frame_start) << " every "
             << format_number(report->frame_step) << ")\n";
+  if (report->left_out > 0) {
+    std::cerr << "note: " << report->left_out << " more plots left out: a plot folder holds at most " << report->files.size()
+              << " pages (listed on index.html)\n";
+  }
 }
 
 const RegisterCommand kPlot{{"plot", 45, [](CLI::App& root) {

@@ -22,6 +22,7 @@
 #include <system_error>
 
 #include "inbetween/math/format.hpp"
+#include "inbetween/scene/non_finite.hpp"
 #include "plot_svg.hpp"
 
 namespace inbetween::cli {
@@ -33,6 +34,11 @@ constexpr double kPadFraction = 0.1;           // frame axis beyond the keys and
 constexpr int kAutoSteps = 480;                // automatic grid: at most this many steps
 constexpr std::uint64_t kMaxSamples = 200000;  // grid samples at most (memory: samples × columns × 8 bytes)
 constexpr std::size_t kMaxDots = 150;          // position dots per path view at most
+// The sampled table at most (samples × columns, 8 bytes each: 160 MB); an automatic grid is made
+// coarser to fit, an explicit one refused.
+constexpr std::uint64_t kMaxTableValues = 20'000'000;
+constexpr std::size_t kMaxPlotFiles = 1000;    // SVG pages at most; tracks and objects beyond are listed as left out
+constexpr std::size_t kMaxFileNameBytes = 96;  // a plot's file name (before ".svg"): longer names are cut and hashed
 constexpr int kOrientationFrames = 12;         // orientation markers per path view
 constexpr int kPathSamples = 240;              // points per path leg drawn
 constexpr const char* kGenerator = "inbetween plot";
@@ -50,11 +56,21 @@ std::string short_text(double v, int digits = 12) {
   return std::string(buf, r.ptr);
 }
 
-// A file-name-safe version of a track or object name (letters, digits, . - _ kept).
+// A file-name-safe version of a track or object name (letters, digits, . - _ kept), at most
+// kMaxFileNameBytes: a longer one keeps its start and gets the FNV-1a hash of the whole name, so
+// that a legal 256-character name does not exceed the file system's 255 bytes (the page keeps the
+// full name in its title).
 std::string safe_name(const std::string& name) {
   std::string out;
   for (unsigned char c : name) out += (std::isalnum(c) || c == '.' || c == '-' || c == '_') ? char(c) : '_';
   if (out.empty() || out[0] == '.') out = "_" + out;
+  if (out.size() > kMaxFileNameBytes) {
+    std::uint64_t h = 14695981039346656037ull;
+    for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
+    char hex[20];
+    std::snprintf(hex, sizeof hex, "-%016llx", static_cast<unsigned long long>(h));
+    out = out.substr(0, kMaxFileNameBytes - 17) + hex;
+  }
   return out;
 }
 
@@ -140,10 +156,14 @@ class Plotter {
     for (std::size_t i = 0; i < objects.size(); ++i) total += scene_.path_legs(i).empty() ? 0 : 2;
     ProgressBar progress("plot: drawing", total, "plots", options_.progress);
     progress_ = &progress;
-    for (std::size_t k = 0; k < tracks.size() && !write_error; ++k) plot_track(k);
-    for (std::size_t i = 0; i < objects.size() && !write_error; ++i) plot_object(i);
+    // At most kMaxPlotFiles pages: what would go beyond is counted in `left_out`, not drawn.
+    auto room = [&] { return files.size() < kMaxPlotFiles; };
+    for (std::size_t k = 0; k < tracks.size() && !write_error; ++k) room() ? plot_track(k) : void(++left_out);
+    for (std::size_t i = 0; i < objects.size() && !write_error; ++i) room() ? plot_object(i) : void(++left_out);
     for (std::size_t i = 0; i < objects.size() && !write_error; ++i) {
-      if (!scene_.path_legs(i).empty()) {
+      if (!scene_.path_legs(i).empty() && !room()) {
+        left_out += 2;
+      } else if (!scene_.path_legs(i).empty()) {
         plot_path_views(i);
         if (!write_error) plot_speed(i);
       }
@@ -154,6 +174,19 @@ class Plotter {
 
   std::vector<PlotFile> files;       ///< written so far, in order
   std::optional<Error> write_error;  ///< the first file that could not be written
+  std::size_t left_out = 0;          ///< plots not drawn (over kMaxPlotFiles)
+
+  /// The first sampled value that is not finite, named as bake names it (scene/non_finite.hpp):
+  /// such a scene is refused rather than drawn with NaN coordinates.
+  std::optional<Error> non_finite() const {
+    for (std::uint64_t i = 0; i < grid_.count; ++i) {
+      const auto row = grid_row(i);
+      for (std::size_t c = 0; c < ncols_; ++c) {
+        if (!std::isfinite(row[c])) return non_finite_value_error(scene_, grid_.frame(i), c, row[c]);
+      }
+    }
+    return std::nullopt;
+  }
 
  private:
   std::span<const double> grid_row(std::uint64_t i) const {
@@ -910,7 +943,8 @@ Error io_error(const fs::path& where, const std::string& what, int err = 0) {
   return Error{ErrorCode::Io, what + (err ? std::string(": ") + std::strerror(err) : std::string()), where.string(), {}};
 }
 
-std::string index_html(const PlotOptions& options, const std::vector<PlotFile>& files, const Grid& grid, double fps) {
+std::string index_html(const PlotOptions& options, const std::vector<PlotFile>& files, const Grid& grid, double fps,
+                       std::size_t left_out) {
   std::string h = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
   h += "<meta name=\"generator\" content=\"" + std::string(kGenerator) + "\">\n";
   // The sampled grid (frame i = start + i · step, i < count) and fps, for tests and tools.
@@ -924,6 +958,10 @@ std::string index_html(const PlotOptions& options, const std::vector<PlotFile>& 
        " every " + svg_number(grid.step) + " at " + svg_number(fps) +
        " frames per second. Solid lines are the keyed range, dashed lines extrapolated, cycled or held "
        "parts; dots are keys (graph editor) or positions at equal time steps (path views). See docs/plots.md.</p>\n";
+  if (left_out > 0) {
+    h += "<p><strong>" + std::to_string(left_out) + " more plots left out:</strong> a plot folder holds at most " +
+         std::to_string(kMaxPlotFiles) + " pages (tracks first, then objects, then paths, in the scene's order).</p>\n";
+  }
   const std::pair<const char*, const char*> groups[] = {
       {"tracks", "Tracks (graph editor)"}, {"paths", "Paths and speed control"}, {"objects", "Objects: world transform channels"}};
   // Contents: one link per plot, grouped as below.
@@ -1032,6 +1070,20 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
                  shortest_text(count) + " samples; at most " + std::to_string(kMaxSamples) + " (raise the step)", "--frames", {}};
   }
   grid.count = std::max<std::uint64_t>(2, std::uint64_t(count));
+  // The table of samples: an automatic grid gets coarser until it fits, an explicit one is refused.
+  const std::uint64_t ncols = std::max<std::uint64_t>(1, scene.columns().size());
+  if (grid.count * ncols > kMaxTableValues) {
+    const std::uint64_t fit = kMaxTableValues / ncols;
+    if (options.frame_step > 0 || fit < 3) {
+      return Error{ErrorCode::InvalidArgument,
+                   std::to_string(grid.count) + " samples of " + std::to_string(ncols) + " columns; plot samples at most " +
+                       std::to_string(kMaxTableValues) + " values" + (fit >= 3 ? " (raise the step)" : " (the scene has too many columns)"),
+                   "--frames", {}};
+    }
+    grid.step = nice_step_at_least((b - a) / double(fit - 2));
+    grid.start = options.frame_start ? a : std::strtod(short_text(std::floor(a / grid.step) * grid.step).c_str(), nullptr);
+    grid.count = std::max<std::uint64_t>(2, std::uint64_t(std::floor((b - grid.start) / grid.step * (1 + 1e-12) + 1e-9) + 1));
+  }
 
   // The output folder: written into a temporary sibling and renamed at the end.
   fs::path target = dir;
@@ -1065,11 +1117,16 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
   }
   Plotter plotter(scene, raw, options, grid);
   plotter.sample_grid();
+  if (auto bad = plotter.non_finite()) {
+    // The member's pointer in front, as bake puts it ("/objects/0/scale: frame 0: …").
+    return fail(Error{ErrorCode::NotFinite, (bad->location.empty() ? "" : json_pointer(bad->location) + ": ") + bad->message, "", {}});
+  }
   plotter.plot_all(tmp);
   if (plotter.write_error) return fail(*plotter.write_error);
   report.files = plotter.files;
+  report.left_out = plotter.left_out;
   for (const char* sub : {"tracks", "objects", "paths"}) fs::remove(tmp / sub, ec);  // empty ones go
-  if (!write_text(tmp / "index.html", index_html(options, report.files, grid, scene.fps()))) {
+  if (!write_text(tmp / "index.html", index_html(options, report.files, grid, scene.fps(), report.left_out))) {
     return fail(io_error(tmp / "index.html", "cannot write file", errno));
   }
   fs::permissions(tmp, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |

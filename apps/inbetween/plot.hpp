@@ -45,6 +45,9 @@ struct PlotReport {
   double frame_start = 0;        ///< first frame of the plotted grid
   double frame_step = 1;         ///< its step
   std::uint64_t frame_count = 0; ///< samples of the grid (frame i = frame_start + i · frame_step)
+  /// Plots not drawn: at most 1000 SVG pages are written; tracks, objects and path views beyond
+  /// that (in index order) are counted here and named as left out on the index page.
+  std::size_t left_out = 0;
 };
 
 /// Writes the plots of `scene` (built from `raw`, which supplies names of interpolation and
@@ -54,7 +57,9 @@ struct PlotReport {
 /// earlier plot (its index.html names inbetween plot as generator); the folder that holds `dir`
 /// must exist (it is not created).  Progress bars on standard error per options.progress.  Errors (exit code 2 in the
 /// tool; `where` names the folder or the option): a scene with no tracks and no objects, a bad
-/// frame range or step, too many samples (more than 200000), a folder that cannot be written.
+/// frame range or step, too many samples (more than 200000, or more than 20 million values with the
+/// scene's columns: an automatic grid is made coarser instead), a sampled value that is not finite
+/// (as bake refuses it), a folder that cannot be written.
 [[nodiscard]] Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const std::filesystem::path& dir,
                                                const PlotOptions& options = {});
 
