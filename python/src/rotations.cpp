@@ -3,8 +3,12 @@
 // order (Hamilton, w first), matrices (..., 3, 3) with v' = R v, angles in radians.
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "common.hpp"
 #include "inbetween/math/euler.hpp"
+#include "inbetween/math/format.hpp"
 #include "inbetween/math/orientation_interp.hpp"
 #include "inbetween/math/rotation.hpp"
 
@@ -28,7 +32,35 @@ void put_vec(double* p, const Vec3d& v) { p[0] = v.x, p[1] = v.y, p[2] = v.z; }
 
 EulerSequence sequence(const std::string& name) { return take(parse_euler_sequence(name), "seq"); }
 
-/// Applies f(in_item, out_item) to each of the n items of `in` (item sizes in_size, out_size).
+/// Refuses an input array with a NaN or infinite element: inbetween.Error (code NotFinite) naming
+/// `what` and the item's flat index ("/i"), as quat_from_matrix's own check does.  The conversions
+/// themselves would quietly turn such input into the identity.
+void require_finite(const Array& a, std::size_t item_size, const char* what) {
+  const double* p = a.data();
+  const std::size_t n = std::size_t(a.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!std::isfinite(p[k])) {
+      throw BindingError(Error{ErrorCode::NotFinite, std::string(what) + " has a value that is not finite (" + shortest_text(p[k]) + ")",
+                               "", {item_size ? k / item_size : k}},
+                         what);
+    }
+  }
+}
+
+/// q scaled to unit length when it is not unit already (a unit q is kept bit for bit), first
+/// divided by its largest component so that a finite q of any magnitude (1e308) normalises
+/// without overflow; zero stays zero.
+Quatd unit_quat(Quatd q) {
+  const double n2 = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;
+  if (std::abs(n2 - 1) <= 1e-12) return q;
+  const double m = std::max({std::abs(q.w), std::abs(q.x), std::abs(q.y), std::abs(q.z)});
+  if (!(m > 0)) return q;
+  q = q / m;
+  return q / norm(q);
+}
+
+/// Applies f(in_item, out_item) to each of the n items of `in` (item sizes in_size, out_size),
+/// after require_finite(in).
 template <class F>
 Array map_items(const Array& in, std::initializer_list<py::ssize_t> tail_in, std::initializer_list<py::ssize_t> tail_out,
                 const char* what, F f) {
@@ -37,6 +69,7 @@ Array map_items(const Array& in, std::initializer_list<py::ssize_t> tail_in, std
   std::size_t in_size = 1, out_size = 1;
   for (auto t : tail_in) in_size *= std::size_t(t);
   for (auto t : tail_out) out_size *= std::size_t(t);
+  require_finite(in, in_size, what);
   const double* src = in.data();
   double* dst = out.mutable_data();
   {
@@ -62,6 +95,10 @@ void bind_rotations(py::module_& m) {
                    "(the scale cancels; zero or non-finite q gives the identity).  v' = R v.");
 
   m.def("quat_from_matrix", [](const Array& r, bool check, double tolerance) {
+    if (!(tolerance >= 0) || !std::isfinite(tolerance)) {
+      throw BindingError(Error{ErrorCode::InvalidArgument, "tolerance must be finite and >= 0, got " + shortest_text(tolerance), "",
+                               {"tolerance"}});
+    }
     return map_items(r, {3, 3}, {4}, "matrix", [&](const double* a, double* b, std::size_t i) {
       const Mat3d mat = mat_at(a);
       if (check) {
@@ -98,6 +135,7 @@ void bind_rotations(py::module_& m) {
       throw py::value_error("angle_rad: expected " + std::to_string(n) + " angles (one per axis), got " +
                             std::to_string(angle_rad.size()));
     }
+    require_finite(angle_rad, 1, "angle_rad");
     const double* ang = angle_rad.data();
     return map_items(axis, {3}, {4}, "axis", [&](const double* a, double* b, std::size_t i) {
       put_quat(b, quat_from_axis_angle(AxisAngled{vec_at(a), ang[i]}));
@@ -123,6 +161,7 @@ void bind_rotations(py::module_& m) {
       throw py::value_error("angle_rad: expected " + std::to_string(n) + " angles (one per axis), got " +
                             std::to_string(angle_rad.size()));
     }
+    require_finite(angle_rad, 1, "angle_rad");
     const double* ang = angle_rad.data();
     return map_items(axis, {3}, {3, 3}, "axis", [&](const double* a, double* b, std::size_t i) {
       put_mat(b, matrix_from_axis_angle(AxisAngled{vec_at(a), ang[i]}));
@@ -188,6 +227,7 @@ void bind_rotations(py::module_& m) {
     const EulerSequence s = sequence(seq);
     const std::size_t n = batch_count(angles_rad, {3}, "angles_rad");
     if (angles_rad.ndim() != 2) throw py::value_error("angles_rad: expected an array of shape (n, 3) (a sequence of keys)");
+    require_finite(angles_rad, 3, "angles_rad");
     Array out(out_shape(angles_rad, 1, {3}));
     const double* a = angles_rad.data();
     double* b = out.mutable_data();
@@ -217,6 +257,9 @@ void bind_rotations(py::module_& m) {
                               std::to_string(n) + " (a and b (..., 4) quaternions, u (...) parameters)");
       }
     }
+    require_finite(a, 4, "a");
+    require_finite(b, 4, "b");
+    require_finite(u, 1, "u");
     SlerpOptions opt;
     if (path == "shortest") opt.path = RotationPath::Shortest;
     else if (path == "longest") opt.path = RotationPath::Longest;
@@ -229,12 +272,14 @@ void bind_rotations(py::module_& m) {
     double* po = out.mutable_data();
     py::gil_scoped_release release;
     for (std::size_t i = 0; i < n; ++i) {
-      const Quatd qa = quat_at(pa + (na == 1 ? 0 : 4 * i)), qb = quat_at(pb + (nb == 1 ? 0 : 4 * i));
+      // Normalised first: slerp wants unit quaternions, and a finite 1e308 one overflows a plain norm.
+      const Quatd qa = unit_quat(quat_at(pa + (na == 1 ? 0 : 4 * i))), qb = unit_quat(quat_at(pb + (nb == 1 ? 0 : 4 * i)));
       put_quat(po + 4 * i, slerp(qa, qb, pu[nu == 1 ? 0 : i], opt));
     }
     return out;
   }, py::arg("a"), py::arg("b"), py::arg("u"), py::arg("path") = "shortest",
-     "Spherical linear interpolation of unit quaternions a, b (..., 4) at parameters u (...), broadcasting items of "
+     "Spherical linear interpolation of quaternions a, b (..., 4) (normalised first when not unit; any finite "
+     "non-zero magnitude) at parameters u (...), broadcasting items of "
      "count 1: the great arc at constant angular speed, a at u = 0 and the oriented b at u = 1 exactly.  path: "
      "\"shortest\" (b's sign flipped when a.b < 0), \"longest\" or \"as_given\".");
 }

@@ -184,6 +184,11 @@ void bind_scene(py::module_& m) {
 
   m.def("convert", [](const py::object& input, const std::string& output, const std::string& animation, double fps,
                       double tolerance, double reduce, int substeps, bool cubic) {
+    // reduce: 0 keeps exact keys, > 0 is a tolerance; NaN or < 0 is refused as the CLI's --reduce is.
+    if (!(reduce >= 0) || !std::isfinite(reduce)) {
+      throw BindingError(Error{ErrorCode::InvalidArgument, "reduce must be 0 (keep exact keys) or finite and > 0, got " +
+                                                               shortest_text(reduce), "", {"reduce"}});
+    }
     const PyScene s = load(input, animation, fps);
     const auto ends = [&](const char* ext) {
       const std::string e(ext);

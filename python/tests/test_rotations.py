@@ -126,3 +126,61 @@ def test_euler_filter_keeps_rotations_and_removes_jumps(rng):
         np.testing.assert_array_equal(filtered[0], raw[0])
     with pytest.raises(ValueError):
         inbetween.euler_filter("XYZ", np.zeros((2, 3, 3)))
+
+
+# Issue 21: a NaN or infinite input is refused (inbetween.Error naming the argument and the item)
+# instead of quietly becoming the identity; each call below returned the identity before.
+NAN_CALLS = [
+    ("matrix_from_quat", lambda x: inbetween.matrix_from_quat(np.array([[1.0, 0, 0, 0], [x, 0, 0, 1]]))),
+    ("rotvec_from_quat", lambda x: inbetween.rotvec_from_quat(np.array([1.0, x, 0, 0]))),
+    ("euler_from_quat", lambda x: inbetween.euler_from_quat("XYZ", np.array([x, 0, 0, 1.0]))),
+    ("quat_from_rotvec", lambda x: inbetween.quat_from_rotvec(np.array([0.1, x, 0]))),
+    ("matrix_from_rotvec", lambda x: inbetween.matrix_from_rotvec(np.array([x, 0, 0]))),
+    ("rotvec_from_matrix", lambda x: inbetween.rotvec_from_matrix(np.diag([1.0, 1, x]))),
+    ("axis_angle_from_quat", lambda x: inbetween.axis_angle_from_quat(np.array([x, 1.0, 0, 0]))),
+    ("axis_angle_from_matrix", lambda x: inbetween.axis_angle_from_matrix(np.diag([x, 1.0, 1]))),
+    ("quat_from_axis_angle angle", lambda x: inbetween.quat_from_axis_angle(np.array([0, 0, 1.0]), np.array(x))),
+    ("quat_from_axis_angle axis", lambda x: inbetween.quat_from_axis_angle(np.array([0, x, 1.0]), np.array(0.5))),
+    ("matrix_from_axis_angle", lambda x: inbetween.matrix_from_axis_angle(np.array([0, 0, 1.0]), np.array(x))),
+    ("quat_from_euler", lambda x: inbetween.quat_from_euler("xyz", np.array([x, 0, 0]))),
+    ("matrix_from_euler", lambda x: inbetween.matrix_from_euler("ZYX", np.array([0, 0, x]))),
+    ("euler_from_matrix", lambda x: inbetween.euler_from_matrix("XYZ", np.diag([1.0, x, 1]))),
+    ("euler_filter", lambda x: inbetween.euler_filter("XYZ", np.array([[0, 0, 0], [x, 0, 0.0]]))),
+    ("slerp a", lambda x: inbetween.slerp(np.array([x, 0, 0, 1.0]), np.array([1.0, 0, 0, 0]), np.array(0.5))),
+    ("slerp u", lambda x: inbetween.slerp(np.array([1.0, 0, 0, 0]), np.array([0, 1.0, 0, 0]), np.array(x))),
+    ("quat_from_matrix unchecked", lambda x: inbetween.quat_from_matrix(np.diag([x, 1.0, 1]), check=False)),
+]
+
+
+@pytest.mark.parametrize("name,call", NAN_CALLS, ids=[n for n, _ in NAN_CALLS])
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite_input_is_refused(name, call, bad):
+    with pytest.raises(inbetween.Error, match="not finite"):
+        call(bad)
+
+
+def test_non_finite_input_names_the_item():
+    with pytest.raises(inbetween.Error) as e:
+        inbetween.matrix_from_quat(np.array([[1.0, 0, 0, 0], [1.0, 0, 0, 0], [0, np.nan, 0, 1]]))
+    assert e.value.where == "/2"
+
+
+def test_slerp_of_huge_finite_quaternions_is_finite():
+    # slerp is scale-free on its inputs: 1e308 times a unit quaternion interpolates as the unit one
+    # (before: NaN, the plain norm overflowing).  Halfway between the identity and a half turn about
+    # z is the quarter turn about z (closed form).
+    a = np.array([1e308, 0, 0, 0])
+    b = np.array([0, 0, 0, 1e308])
+    q = inbetween.slerp(a, b, np.array(0.5))
+    assert np.all(np.isfinite(q))
+    np.testing.assert_allclose(q, [np.sqrt(0.5), 0, 0, np.sqrt(0.5)], atol=COMPONENT)
+    big = inbetween.slerp(np.array([1e308, -1e308, 1e308, 1e308]), np.array([1e300, 0, 0, 0]), np.array(0.25))
+    np.testing.assert_allclose(big, inbetween.slerp(np.array([0.5, -0.5, 0.5, 0.5]), np.array([1.0, 0, 0, 0]), np.array(0.25)),
+                               atol=COMPONENT)
+
+
+@pytest.mark.parametrize("tolerance", [np.nan, -1.0, np.inf])
+def test_quat_from_matrix_refuses_a_tolerance_that_switches_the_check_off(tolerance):
+    # Before: tolerance=nan made every comparison false, so a shear passed as a rotation.
+    with pytest.raises(inbetween.Error, match="tolerance"):
+        inbetween.quat_from_matrix(np.array([[1.0, 5, 0], [0, 1, 0], [0, 0, 1]]), tolerance=tolerance)

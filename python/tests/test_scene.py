@@ -96,3 +96,22 @@ def test_bake_frames_must_be_one_dimensional(source_dir):
     with pytest.raises(ValueError, match="1-D"):
         s.bake(np.zeros((2, 3)))
     assert s.bake(5.0)[0].shape == (1, len(s.columns))  # one frame as a scalar
+
+
+def test_a_device_is_refused_at_once(tmp_path):
+    # Issue 21: a curve file /dev/zero was read to 4 GB; every reader now refuses non-regular files.
+    scene = {"inbetween": 2, "paths": [{"name": "l", "file": "/dev/zero"}],
+             "objects": [{"name": "o", "path": {"curve": "l", "speed": {"kind": "ease", "start_frame": 0, "end_frame": 1}}}]}
+    with pytest.raises(inbetween.Error, match="not a regular file"):
+        inbetween.Scene(scene)
+    with pytest.raises(inbetween.Error, match="not a regular file"):
+        inbetween.Scene("/dev/zero")
+
+
+@pytest.mark.parametrize("reduce", [float("nan"), -1.0, float("inf")])
+def test_convert_refuses_a_reduce_the_tool_refuses(reduce, source_dir, tmp_path):
+    # Issue 21: reduce=nan or -1 was accepted (the CLI's --reduce refuses it); no file is written.
+    out = tmp_path / "out.glb"
+    with pytest.raises(inbetween.Error, match="reduce"):
+        inbetween.convert(str(source_dir / "examples" / "scenes" / "bouncing_cube.json"), str(out), reduce=reduce)
+    assert not out.exists()
