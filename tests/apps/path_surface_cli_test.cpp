@@ -117,7 +117,7 @@ TEST(PathSurfaceCli, BadInputExitsTwoNamingTheLineOrArgument) {
   const std::vector<Bad> cases = {
       {square + "f 1 2 3\nf 1 3 5\n", "--from 0 --to 2", "m.obj: line 6: face names vertex 5"},  // missing vertex
       {square + "f 1 2 3\nf 1 3 -9\n", "--from 0 --to 2", "m.obj: line 6:"},                     // relative, out of range
-      {"v 0 0 0\nv nan 1 0\nv 0 0 1\nf 1 2 3\n", "--from 0 --to 2", "m.obj: line 2: 'v' coordinate 'nan' is not finite"},
+      {"v 0 0 0\nv nan 1 0\nv 0 0 1\nf 1 2 3\n", "--from 0 --to 2", "m.obj: line 2: 'v' coordinate \"nan\" is not finite"},
       {"", "--from 0 --to 1", "m.obj: the mesh has no vertices"},
       {square, "--from 0 --to 1", "m.obj: the mesh has no faces"},
       {square + "f 1 2 3 4\n", "--from 0 --to 4", "--to 4: vertex 4 is not one of the mesh's 4 vertices"},

@@ -147,7 +147,7 @@ TEST(PlotCli, BadInputIsExitTwoWithThePlaceAndNothingWritten) {
   const fs::path file = dir / "a-file";
   std::ofstream(file) << "x";
   const std::vector<Case> cases = {
-      {qp(dir / "missing.json") + " -o " + qp(out), (dir / "missing.json").string() + ": cannot open file"},
+      {qp(dir / "missing.json") + " -o " + qp(out), (dir / "missing.json").string() + ": cannot open the file"},
       {qp(dir / "missing.glb") + " -o " + qp(out), (dir / "missing.glb").string()},
       {qp(empty) + " -o " + qp(out), empty.string() + ": the scene has no tracks and no objects: nothing to plot"},
       {qp(broken) + " -o " + qp(out), broken.string() + ": /tracks/0/keys/1"},

@@ -149,7 +149,7 @@ TEST(ViewCli, BadInputIsExitTwoWithAMessageAndWritesNothing) {
   const auto empty_scene = test::write_test_file("tracks_only.json",
       R"({"inbetween": 1, "tracks": [{"name": "v", "keys": [{"frame": 0, "value": 1}, {"frame": 9, "value": 2}]}]})");
   const std::vector<BadView> bad{
-      {"missing scene file", "'" + (test_dir() / "no-such.json").string() + "' -o '" + page.string() + "'", "cannot open file"},
+      {"missing scene file", "'" + (test_dir() / "no-such.json").string() + "' -o '" + page.string() + "'", "cannot open the file"},
       {"missing glTF file", "'" + (test_dir() / "no-such.glb").string() + "' -o '" + page.string() + "'", "no-such.glb"},
       {"output folder missing", "'" + kFrame22.string() + "' -o '" + (dir / "no-such-folder" / "p.html").string() + "'",
        "No such file or directory"},
