@@ -337,7 +337,8 @@ def bvh_section(r: Results, three: Results | str | None) -> list[str]:
     if isinstance(three, Results):
         frames = frames or three.counter(name, "frames")
         joints = joints or three.counter(name, "joints")
-    shape = "" if not frames or not joints else f", {frames:,.0f} frames × {joints:.0f} joints".replace(",", " ")
+    shape = "" if not frames or not joints else \
+        ", " + f"{frames:,.0f}".replace(",", " ") + f" frames × {joints:.0f} joints"
     q = ratio(peer, ours)
     if isinstance(three, Results):
         peer_cell = fmt_time(peer)
