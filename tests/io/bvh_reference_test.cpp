@@ -102,6 +102,8 @@ struct Clip {
   const char* name;
 };
 
+void PrintTo(const Clip& clip, std::ostream* os) { *os << clip.name; }
+
 class BvhReference : public ::testing::TestWithParam<Clip> {
  protected:
   void SetUp() override {
