@@ -22,6 +22,7 @@
 #include <system_error>
 
 #include "inbetween/math/format.hpp"
+#include "plot_skeleton.hpp"
 #include "plot_svg.hpp"
 
 namespace inbetween::cli {
@@ -925,7 +926,8 @@ std::string index_html(const PlotOptions& options, const std::vector<PlotFile>& 
        " frames per second. Solid lines are the keyed range, dashed lines extrapolated, cycled or held "
        "parts; dots are keys (graph editor) or positions at equal time steps (path views). See docs/plots.md.</p>\n";
   const std::pair<const char*, const char*> groups[] = {
-      {"tracks", "Tracks (graph editor)"}, {"paths", "Paths and speed control"}, {"objects", "Objects: world transform channels"}};
+      {"tracks", "Tracks (graph editor)"}, {"paths", "Paths and speed control"},
+      {"trajectories", "World trajectories (and poses of hierarchies)"}, {"objects", "Objects: world transform channels"}};
   // Contents: one link per plot, grouped as below.
   h += "<nav><ul>\n";
   for (const auto& [group, heading] : groups) {
@@ -1068,6 +1070,11 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
   plotter.plot_all(tmp);
   if (plotter.write_error) return fail(*plotter.write_error);
   report.files = plotter.files;
+  // World trajectories (plot_skeleton.cpp): the roots that move, or the --object names.
+  auto trajectories = write_trajectory_plots(scene, options.objects, grid.start, grid.step, grid.count, options, tmp);
+  if (!trajectories) return fail(trajectories.error());
+  report.files.insert(report.files.end(), trajectories->files.begin(), trajectories->files.end());
+  report.trajectory_roots_skipped = trajectories->roots_skipped;
   for (const char* sub : {"tracks", "objects", "paths"}) fs::remove(tmp / sub, ec);  // empty ones go
   if (!write_text(tmp / "index.html", index_html(options, report.files, grid, scene.fps()))) {
     return fail(io_error(tmp / "index.html", "cannot write file", errno));

@@ -29,13 +29,16 @@ struct PlotOptions {
   ProgressMode progress = ProgressMode::automatic;
   /// Shown in every title and on the index page (e.g. the input's file name).
   std::string title = "scene";
+  /// Objects that get a world-trajectory plot (trajectories/<object>.svg, plot_skeleton.hpp);
+  /// empty: the roots that move and are not on a path, at most kMaxDefaultTrajectories.
+  std::vector<std::string> objects;
 };
 
 /// One file written by write_plots().
 struct PlotFile {
   std::string name;   ///< path relative to the output folder ("tracks/cube.location.z.svg")
   std::string title;  ///< what it shows
-  std::string group;  ///< "tracks", "objects" or "paths"
+  std::string group;  ///< "tracks", "objects", "paths" or "trajectories"
 };
 
 /// What write_plots() wrote.
@@ -45,6 +48,7 @@ struct PlotReport {
   double frame_start = 0;        ///< first frame of the plotted grid
   double frame_step = 1;         ///< its step
   std::uint64_t frame_count = 0; ///< samples of the grid (frame i = frame_start + i · frame_step)
+  std::size_t trajectory_roots_skipped = 0;  ///< moving roots left without a trajectory plot (the default's bound)
 };
 
 /// Writes the plots of `scene` (built from `raw`, which supplies names of interpolation and
