@@ -228,8 +228,12 @@ class TrajectoryPlotter {
             if (i == obj) continue;
             const std::size_t parent = *objects[i].parent;
             const Vec3d a = pose_position(p, parent), b = pose_position(p, i);
+            // Checkable like the data: (x1, y1) is the parent's columns data-x1, data-y1 at
+            // data-frame, (x2, y2) the child's data-x2, data-y2.
             doc.leaf("line", {{"class", "bone"}, {"data-frame", f}, {"data-parent", objects[parent].name},
-                              {"data-child", objects[i].name}, {"x1", num(panel.px(a[view.h]))}, {"y1", num(panel.py(a[view.v]))},
+                              {"data-child", objects[i].name}, {"data-x1", column(parent, view.h)},
+                              {"data-y1", column(parent, view.v)}, {"data-x2", column(i, view.h)},
+                              {"data-y2", column(i, view.v)}, {"x1", num(panel.px(a[view.h]))}, {"y1", num(panel.py(a[view.v]))},
                               {"x2", num(panel.px(b[view.h]))}, {"y2", num(panel.py(b[view.v]))}, {"stroke", colour},
                               {"stroke-width", "1.3"}});
           }

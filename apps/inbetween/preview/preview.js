@@ -206,6 +206,42 @@ controls.update();
 controls.addEventListener('change', () => render());
 let lookThrough = null;  // name of the scene camera looked through, or null for the free camera
 
+// Following a root: the free view keeps its offset from the root's displayed position as the
+// frames change (a character walks out of a view that frames its whole trail).  Offered for every
+// root with descendants; on by default, for the root with the most, in a scene of many objects.
+const rootOf = data.objects.map((o, i) => { let r = i; while (data.objects[r].parent !== null) r = data.objects[r].parent; return r; });
+const descendants = data.objects.map(() => 0);
+rootOf.forEach((r, i) => { if (r !== i) descendants[r] += 1; });
+const followable = data.objects.map((o, i) => i).filter((i) => data.objects[i].parent === null && descendants[i] > 0);
+let following = null;  // name of the root followed, or null
+function follow(name) {
+  if (name !== null && !followable.some((i) => data.objects[i].name === name)) {
+    throw new Error(`${name} is not a root with descendants; roots: ${followable.map((i) => data.objects[i].name).join(', ')}`);
+  }
+  following = name;
+  if (name !== null) {
+    // Frame the hierarchy as displayed: the view's offset is 2.5 times its largest distance from the root.
+    const root = shown.get(name).group.position;
+    let size = jointRadius * 10;
+    data.objects.forEach((o, i) => { if (rootOf[i] === rootOf[followable.find((k) => data.objects[k].name === name)]) size = Math.max(size, shown.get(o.name).group.position.distanceTo(root)); });
+    controls.target.copy(root);
+    freeCamera.position.copy(root).add(new Vector3(0.45, 0.35, 1.0).normalize().multiplyScalar(size * 2.5));
+  } else {
+    controls.target.copy(centre);
+    freeCamera.position.copy(centre).add(new Vector3(0.45, 0.55, 1.0).multiplyScalar(extent * 0.72));
+  }
+  controls.update();
+  return following;
+}
+function keepFollowing() {
+  if (following === null) return;
+  const delta = shown.get(following).group.position.clone().sub(controls.target);
+  if (delta.lengthSq() === 0) return;
+  controls.target.add(delta);
+  freeCamera.position.add(delta);
+  controls.update();
+}
+
 function setPose(target, row, entry) {
   target.position.set(row[entry.t], row[entry.t + 1], row[entry.t + 2]);
   target.quaternion.set(row[entry.r + 1], row[entry.r + 2], row[entry.r + 3], row[entry.r]);  // w first in the table
@@ -359,6 +395,7 @@ function format(v) { return Math.abs(v) < 5e-4 ? '0.000' : v.toFixed(3); }
 function show(index) {
   current = Math.max(0, Math.min(frameCount - 1, Math.round(index)));
   applyFrame(current);
+  keepFollowing();
   render();
   ui.slider.value = String(current);
   ui.frame.textContent = `frame ${data.frames[current]}  (${(data.frames[current] / data.fps).toFixed(3)} s)`;
@@ -399,7 +436,24 @@ function setPlaying(on) {
 }
 ui.play.addEventListener('click', () => setPlaying(!playing));
 ui.slider.addEventListener('input', () => { setPlaying(false); show(Number(ui.slider.value)); });
-ui.camera.addEventListener('change', () => useCamera(ui.camera.value || null));
+for (const i of followable) {
+  const option = document.createElement('option');
+  option.value = 'follow:' + data.objects[i].name;
+  option.textContent = 'free view following ' + data.objects[i].name;
+  ui.camera.insertBefore(option, ui.camera.options[1] || null);
+}
+ui.camera.addEventListener('change', () => {
+  const value = ui.camera.value;
+  if (value.startsWith('follow:')) {
+    useCamera(null);
+    follow(value.slice(7));
+    ui.camera.value = value;
+    render();
+  } else {
+    if (following !== null && !value) follow(null);
+    useCamera(value || null);
+  }
+});
 window.addEventListener('keydown', (e) => {
   if (e.target instanceof HTMLInputElement && e.target.type !== 'range') return;
   if (e.key === ' ') { e.preventDefault(); setPlaying(!playing); }
@@ -413,7 +467,7 @@ function useCamera(name) {
   if (name && !shown.get(name).lens) throw new Error(`${name} is not a camera`);
   lookThrough = name || null;
   controls.enabled = lookThrough === null;
-  ui.camera.value = lookThrough || '';
+  ui.camera.value = lookThrough || (following ? 'follow:' + following : '');
   render();
   return lookThrough;
 }
@@ -456,6 +510,10 @@ window.inbetween = {
   objectRotation: (name) => { const q = entryOf(name).group.quaternion; return [q.w, q.x, q.y, q.z]; },
   /** Looks through the scene camera `name` (null: the free orbit camera); returns the name. */
   useCamera,
+  /** Makes the free view follow the root `name` (null: stop, and frame the whole scene); returns the name. */
+  follow: (name) => { const f = follow(name); ui.camera.value = f ? 'follow:' + f : ''; render(); return f; },
+  /** The root the free view follows, or null. */
+  following: () => following,
   /** The camera looked through, or null. */
   camera: () => lookThrough,
   play: () => setPlaying(true),
@@ -463,6 +521,13 @@ window.inbetween = {
 };
 
 resize();
+if (many && followable.length > 0) {
+  // A character: follow the root with the most descendants (frame 0's pose sets the distance).
+  applyFrame(0);
+  const root = followable.reduce((a, b) => (descendants[b] > descendants[a] ? b : a));
+  follow(data.objects[root].name);
+  ui.camera.value = 'follow:' + following;
+}
 show(0);
 window.inbetween.ready = true;
 document.body.dataset.ready = 'true';

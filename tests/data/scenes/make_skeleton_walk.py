@@ -5,9 +5,12 @@ The 31 joints of the CMU skeleton (names, parents and rest offsets shaped like
 /usr/share/assimp/models/BVH/01_01.bvh), the root walking along +x and bobbing, every joint turning
 about its own axis; keys every 8 frames over frames 0-96 at 120 fps (quaternion keys, slerp).
 Regenerate: /usr/bin/python3 tests/data/scenes/make_skeleton_walk.py > tests/data/scenes/skeleton_walk.json
+A longer clip for measuring (docs/preview.md): make_skeleton_walk.py LAST_FRAME KEY_STEP, e.g. 4510 1
+(01_03.bvh's 4 511 frames, a key on every frame).
 """
 import json
 import math
+import sys
 
 JOINTS = [("Hips", None, (0, 0, 0)), ("LHipJoint", "Hips", (0, 0, 0)), ("LeftUpLeg", "LHipJoint", (1.6, -1.9, 0.8)),
           ("LeftLeg", "LeftUpLeg", (2.4, -6.7, 0)), ("LeftFoot", "LeftLeg", (2.5, -6.9, 0)),
@@ -30,10 +33,12 @@ def r6(v):
 
 
 def main():
+    last = int(sys.argv[1]) if len(sys.argv) > 1 else 96
+    every = int(sys.argv[2]) if len(sys.argv) > 2 else 8
     objects = []
     for j, (name, parent, offset) in enumerate(JOINTS):
         rotation, translation = [], []
-        for f in range(0, 97, 8):
+        for f in range(0, last + 1, every):
             t = f / 120
             phase = 2 * math.pi * 0.8 * t + 0.7 * j
             angle = (0.35 if ("Leg" in name or "Arm" in name) else 0.12) * math.sin(phase)
@@ -50,7 +55,7 @@ def main():
             o["translation"] = {"keys": translation}
         o["rotation"] = {"keys": rotation}
         objects.append(o)
-    print(json.dumps({"inbetween": 1, "fps": 120, "range": [0, 96], "objects": objects}, separators=(",", ":")))
+    print(json.dumps({"inbetween": 1, "fps": 120, "range": [0, last], "objects": objects}, separators=(",", ":")))
 
 
 if __name__ == "__main__":
