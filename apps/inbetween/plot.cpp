@@ -34,6 +34,7 @@ constexpr double kPadFraction = 0.1;           // frame axis beyond the keys and
 constexpr int kAutoSteps = 480;                // automatic grid: at most this many steps
 constexpr std::uint64_t kMaxSamples = 200000;  // grid samples at most (memory: samples × columns × 8 bytes)
 constexpr std::size_t kMaxDots = 150;          // position dots per path view at most
+constexpr std::size_t kMaxObjectKeyDots = 500;  // an object channel with more keys (motion capture: one per frame) draws no key dots
 constexpr int kOrientationFrames = 12;         // orientation markers per path view
 constexpr int kPathSamples = 240;              // points per path leg drawn
 constexpr const char* kGenerator = "inbetween plot";
@@ -503,7 +504,7 @@ class Plotter {
         const char l = "xyz"[c];
         const std::string col = name + ".translation." + l;
         Curve curve{std::string(1, l), component_colour(l, c), col, col_value(col), {}};
-        if (root && !on_path && node.local.translation) {
+        if (root && !on_path && node.local.translation && node.local.translation->size() <= kMaxObjectKeyDots) {
           const auto& tr = *node.local.translation;
           for (std::size_t k = 0; k < tr.size(); ++k) curve.keys.emplace_back(tr.frames()[k], tr.values()[k][int(c)]);
         }
@@ -518,7 +519,7 @@ class Plotter {
       if (!on_path && !camera && node.local.rotation) {
         const auto& r = *node.local.rotation;
         p = channel_pieces(r.frames(), "held (first key)", "held (last key)");
-        if (root) {
+        if (root && r.size() <= kMaxObjectKeyDots) {
           for (std::size_t k = 0; k < r.size(); ++k) keys.emplace_back(r.frames()[k], r.keys()[k]);
         }
       }
@@ -548,7 +549,7 @@ class Plotter {
         const char l = "xyz"[c];
         const std::string col = name + ".scale." + l;
         Curve curve{std::string(1, l), component_colour(l, c), col, col_value(col), {}};
-        if (root && node.local.scale) {
+        if (root && node.local.scale && node.local.scale->size() <= kMaxObjectKeyDots) {
           const auto& sc = *node.local.scale;
           for (std::size_t k = 0; k < sc.size(); ++k) curve.keys.emplace_back(sc.frames()[k], sc.values()[k][int(c)]);
         }
