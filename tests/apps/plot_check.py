@@ -358,9 +358,18 @@ def main():
     ap.add_argument("--cli", required=True, help="the inbetween executable")
     ap.add_argument("--work", required=True, help="a scratch folder")
     ap.add_argument("--self-test", action="store_true", help="also check that perturbed plots fail")
+    ap.add_argument("--skip-unreadable", action="store_true",
+                    help="print SKIPPED and pass when `inbetween bake` cannot read an input (a format not read yet)")
     ap.add_argument("inputs", nargs="+", help="scene or glTF files; INPUT::ARG,ARG passes extra arguments")
     args = ap.parse_args()
     os.makedirs(args.work, exist_ok=True)
+    if args.skip_unreadable:
+        for spec in args.inputs:
+            input_path = spec.partition("::")[0]
+            r = subprocess.run([args.cli, "bake", input_path, "--frames", "0:0"], capture_output=True, text=True)
+            if r.returncode != 0:
+                print(f"SKIPPED: {input_path}: {r.stderr.strip()}")
+                return 0
     all_ok = True
     for spec in args.inputs:
         input_path, _, extra = spec.partition("::")
