@@ -52,13 +52,15 @@ struct PlotReport {
 };
 
 /// Writes the plots of `scene` (built from `raw`, which supplies names of interpolation and
-/// tangent kinds and the ease phases of path legs) into the folder `dir`, plus index.html.  The
+/// tangent kinds and the ease phases of path legs) into the folder `dir`, the world trajectories
+/// of options.objects or the moving roots (trajectories/, plot_skeleton.hpp), plus index.html.  The
 /// folder is written whole or not at all: the files go into a temporary sibling folder that is
 /// renamed onto `dir` at the end; an existing `dir` is replaced only when it is empty or holds an
 /// earlier plot (its index.html names inbetween plot as generator); the folder that holds `dir`
 /// must exist (it is not created).  Progress bars on standard error per options.progress.  Errors (exit code 2 in the
 /// tool; `where` names the folder or the option): a scene with no tracks and no objects, a bad
-/// frame range or step, too many samples (more than 200000), a folder that cannot be written.
+/// frame range or step, too many samples (more than 200000), a folder that cannot be written, an
+/// options.objects name that is no object (where = "--object").
 [[nodiscard]] Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const std::filesystem::path& dir,
                                                const PlotOptions& options = {});
 
