@@ -23,6 +23,7 @@
 
 #include "inbetween/math/format.hpp"
 #include "inbetween/scene/non_finite.hpp"
+#include "plot_skeleton.hpp"
 #include "plot_svg.hpp"
 
 namespace inbetween::cli {
@@ -38,7 +39,7 @@ constexpr std::size_t kMaxDots = 150;          // position dots per path view at
 // coarser to fit, an explicit one refused.
 constexpr std::uint64_t kMaxTableValues = 20'000'000;
 constexpr std::size_t kMaxPlotFiles = 1000;    // SVG pages at most; tracks and objects beyond are listed as left out
-constexpr std::size_t kMaxFileNameBytes = 96;  // a plot's file name (before ".svg"): longer names are cut and hashed
+constexpr std::size_t kMaxObjectKeyDots = 500;  // an object channel with more keys (motion capture: one per frame) draws no key dots
 constexpr int kOrientationFrames = 12;         // orientation markers per path view
 constexpr int kPathSamples = 240;              // points per path leg drawn
 constexpr const char* kGenerator = "inbetween plot";
@@ -56,23 +57,6 @@ std::string short_text(double v, int digits = 12) {
   return std::string(buf, r.ptr);
 }
 
-// A file-name-safe version of a track or object name (letters, digits, . - _ kept), at most
-// kMaxFileNameBytes: a longer one keeps its start and gets the FNV-1a hash of the whole name, so
-// that a legal 256-character name does not exceed the file system's 255 bytes (the page keeps the
-// full name in its title).
-std::string safe_name(const std::string& name) {
-  std::string out;
-  for (unsigned char c : name) out += (std::isalnum(c) || c == '.' || c == '-' || c == '_') ? char(c) : '_';
-  if (out.empty() || out[0] == '.') out = "_" + out;
-  if (out.size() > kMaxFileNameBytes) {
-    std::uint64_t h = 14695981039346656037ull;
-    for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
-    char hex[20];
-    std::snprintf(hex, sizeof hex, "-%016llx", static_cast<unsigned long long>(h));
-    out = out.substr(0, kMaxFileNameBytes - 17) + hex;
-  }
-  return out;
-}
 
 double nice_step_at_least(double raw) {
   const double mag = std::pow(10.0, std::floor(std::log10(raw)));
@@ -364,7 +348,7 @@ class Plotter {
   }
 
   void add_file(const std::string& group, const std::string& name, const std::string& title, SvgDocument& doc) {
-    std::string file = group + "/" + safe_name(name);
+    std::string file = group + "/" + plot_file_name(name);
     std::string candidate = file + ".svg";
     for (int n = 2; used_.count(candidate); ++n) candidate = file + "-" + std::to_string(n) + ".svg";
     used_.insert(candidate);
@@ -535,7 +519,7 @@ class Plotter {
         const char l = "xyz"[c];
         const std::string col = name + ".translation." + l;
         Curve curve{std::string(1, l), component_colour(l, c), col, col_value(col), {}};
-        if (root && !on_path && node.local.translation) {
+        if (root && !on_path && node.local.translation && node.local.translation->size() <= kMaxObjectKeyDots) {
           const auto& tr = *node.local.translation;
           for (std::size_t k = 0; k < tr.size(); ++k) curve.keys.emplace_back(tr.frames()[k], tr.values()[k][int(c)]);
         }
@@ -550,7 +534,7 @@ class Plotter {
       if (!on_path && !camera && node.local.rotation) {
         const auto& r = *node.local.rotation;
         p = channel_pieces(r.frames(), "held (first key)", "held (last key)");
-        if (root) {
+        if (root && r.size() <= kMaxObjectKeyDots) {
           for (std::size_t k = 0; k < r.size(); ++k) keys.emplace_back(r.frames()[k], r.keys()[k]);
         }
       }
@@ -580,7 +564,7 @@ class Plotter {
         const char l = "xyz"[c];
         const std::string col = name + ".scale." + l;
         Curve curve{std::string(1, l), component_colour(l, c), col, col_value(col), {}};
-        if (root && node.local.scale) {
+        if (root && node.local.scale && node.local.scale->size() <= kMaxObjectKeyDots) {
           const auto& sc = *node.local.scale;
           for (std::size_t k = 0; k < sc.size(); ++k) curve.keys.emplace_back(sc.frames()[k], sc.values()[k][int(c)]);
         }
@@ -963,7 +947,8 @@ std::string index_html(const PlotOptions& options, const std::vector<PlotFile>& 
          std::to_string(kMaxPlotFiles) + " pages (tracks first, then objects, then paths, in the scene's order).</p>\n";
   }
   const std::pair<const char*, const char*> groups[] = {
-      {"tracks", "Tracks (graph editor)"}, {"paths", "Paths and speed control"}, {"objects", "Objects: world transform channels"}};
+      {"tracks", "Tracks (graph editor)"}, {"paths", "Paths and speed control"},
+      {"trajectories", "World trajectories (and poses of hierarchies)"}, {"objects", "Objects: world transform channels"}};
   // Contents: one link per plot, grouped as below.
   h += "<nav><ul>\n";
   for (const auto& [group, heading] : groups) {
@@ -1125,6 +1110,11 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
   if (plotter.write_error) return fail(*plotter.write_error);
   report.files = plotter.files;
   report.left_out = plotter.left_out;
+  // World trajectories (plot_skeleton.cpp): the roots that move, or the --object names.
+  auto trajectories = write_trajectory_plots(scene, options.objects, grid.start, grid.step, grid.count, options, tmp);
+  if (!trajectories) return fail(trajectories.error());
+  report.files.insert(report.files.end(), trajectories->files.begin(), trajectories->files.end());
+  report.trajectory_roots_skipped = trajectories->roots_skipped;
   for (const char* sub : {"tracks", "objects", "paths"}) fs::remove(tmp / sub, ec);  // empty ones go
   if (!write_text(tmp / "index.html", index_html(options, report.files, grid, scene.fps(), report.left_out))) {
     return fail(io_error(tmp / "index.html", "cannot write file", errno));

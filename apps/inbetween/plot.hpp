@@ -29,13 +29,16 @@ struct PlotOptions {
   ProgressMode progress = ProgressMode::automatic;
   /// Shown in every title and on the index page (e.g. the input's file name).
   std::string title = "scene";
+  /// Objects that get a world-trajectory plot (trajectories/<object>.svg, plot_skeleton.hpp);
+  /// empty: the roots that move and are not on a path, at most kMaxDefaultTrajectories.
+  std::vector<std::string> objects;
 };
 
 /// One file written by write_plots().
 struct PlotFile {
   std::string name;   ///< path relative to the output folder ("tracks/cube.location.z.svg")
   std::string title;  ///< what it shows
-  std::string group;  ///< "tracks", "objects" or "paths"
+  std::string group;  ///< "tracks", "objects", "paths" or "trajectories"
 };
 
 /// What write_plots() wrote.
@@ -48,10 +51,12 @@ struct PlotReport {
   /// Plots not drawn: at most 1000 SVG pages are written; tracks, objects and path views beyond
   /// that (in index order) are counted here and named as left out on the index page.
   std::size_t left_out = 0;
+  std::size_t trajectory_roots_skipped = 0;  ///< moving roots left without a trajectory plot (the default's bound)
 };
 
 /// Writes the plots of `scene` (built from `raw`, which supplies names of interpolation and
-/// tangent kinds and the ease phases of path legs) into the folder `dir`, plus index.html.  The
+/// tangent kinds and the ease phases of path legs) into the folder `dir`, the world trajectories
+/// of options.objects or the moving roots (trajectories/, plot_skeleton.hpp), plus index.html.  The
 /// folder is written whole or not at all: the files go into a temporary sibling folder that is
 /// renamed onto `dir` at the end; an existing `dir` is replaced only when it is empty or holds an
 /// earlier plot (its index.html names inbetween plot as generator); the folder that holds `dir`
@@ -59,7 +64,8 @@ struct PlotReport {
 /// tool; `where` names the folder or the option): a scene with no tracks and no objects, a bad
 /// frame range or step, too many samples (more than 200000, or more than 20 million values with the
 /// scene's columns: an automatic grid is made coarser instead), a sampled value that is not finite
-/// (as bake refuses it), a folder that cannot be written.
+/// (as bake refuses it), a folder that cannot be written, an options.objects name that is no object
+/// (where = "--object").
 [[nodiscard]] Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const std::filesystem::path& dir,
                                                const PlotOptions& options = {});
 

@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 
 namespace inbetween::cli {
 namespace {
@@ -298,6 +301,21 @@ std::string component_colour(char letter, std::size_t i) {
   }
   static const char* palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b"};
   return palette[i % 6];
+}
+
+std::string plot_file_name(const std::string& name) {
+  constexpr std::size_t kMaxFileNameBytes = 96;
+  std::string out;
+  for (unsigned char c : name) out += (std::isalnum(c) || c == '.' || c == '-' || c == '_') ? char(c) : '_';
+  if (out.empty() || out[0] == '.') out = "_" + out;
+  if (out.size() > kMaxFileNameBytes) {
+    std::uint64_t h = 14695981039346656037ull;
+    for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
+    char hex[20];
+    std::snprintf(hex, sizeof hex, "-%016llx", static_cast<unsigned long long>(h));
+    out = out.substr(0, kMaxFileNameBytes - 17) + hex;
+  }
+  return out;
 }
 
 }  // namespace inbetween::cli

@@ -113,4 +113,10 @@ class Panel {
 /// red, green, blue, grey; further ones a fixed palette).
 std::string component_colour(char letter, std::size_t i);
 
+/// A file-name-safe version of a track or object name for a plot's file (letters, digits, . - _
+/// kept, others '_'), at most 96 bytes: a longer one keeps its start and gets the FNV-1a hash of
+/// the whole name, so that a legal 256-character name stays within the file system's 255 bytes
+/// (the page's title keeps the full name).
+std::string plot_file_name(const std::string& name);
+
 }  // namespace inbetween::cli
