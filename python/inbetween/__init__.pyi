@@ -162,6 +162,8 @@ def convert(input: Source, output: str, animation: str = "", fps: float = 24.0, 
 
 class Clip:
     """A file's objects (a skeleton's joints) sampled at frames, in local or world space."""
+    def __init__(self) -> None:
+        """Not constructible from Python: load_clip() makes one."""
     @property
     def names(self) -> list[str]:
         """Object (joint) names, in the file's order."""

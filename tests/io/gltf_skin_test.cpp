@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -169,6 +170,22 @@ TEST(GltfSkin, BadSkinsNameTheirPlace) {
   auto out = export_gltf(*raw, *scene);
   ASSERT_FALSE(out);
   EXPECT_EQ(json_pointer(out.error().location), "/skins/0/joints/0");
+}
+
+TEST(GltfSkin, GltfSkinErrorsNameTheSkinsJoint) {
+  auto read = [](const std::string& text) { return read_gltf(std::as_bytes(std::span<const char>(text.data(), text.size())), ""); };
+  const std::string head = R"({"asset": {"version": "2.0"}, "nodes": [{"name": "a", "children": [1]}, {"name": "b"}], )";
+  auto outside = read(head + R"("skins": [{"name": "s", "joints": [0, 5]}]})");
+  ASSERT_FALSE(outside);
+  EXPECT_EQ(json_pointer(outside.error().location), "/skins/0/joints/1");
+  EXPECT_NE(outside.error().message.find("joint 5 is not a node"), std::string::npos) << outside.error().message;
+  // A repeated joint reads, and build_scene names the same place in the glTF file.
+  auto twice = read(head + R"("skins": [{"joints": [1, 0, 1]}]})");
+  ASSERT_TRUE(twice) << twice.error().describe();
+  EXPECT_EQ(twice->skins[0].joints, (std::vector<std::string>{"b", "a", "b"}));
+  auto built = build_scene(*twice);
+  ASSERT_FALSE(built);
+  EXPECT_EQ(json_pointer(built.error().location), "/skins/0/joints/2");
 }
 
 TEST(GltfSkin, PassesTheKhronosValidator) {
