@@ -97,10 +97,8 @@ class Scene;
 /// path object, camera and descendant of one wrote at the previous sample and flips the sign of
 /// the new quaternion (q and −q are the same rotation) when the dot product with it is negative,
 /// so rotation columns are sign-continuous from frame to frame.  Objects whose rotation is keyed
-/// only (every version-1 object) are left as Scene::sample() writes them.  It also holds the
-/// objects' world transforms while Scene::sample(frame, out, cursor, Space::local) writes local
-/// ones.  Make one per scene and sequence (it allocates once, here: 4 doubles per tracked rotation
-/// and one per column); Scene::sample(frame, out, cursor[, space]) then never allocates.
+/// only (every version-1 object) are left as Scene::sample() writes them; with Space::local it holds the world transforms.
+/// Make one per scene and sequence (it allocates once, here); Scene::sample(frame, out, cursor[, space]) never allocates.
 class SceneCursor {
  public:
   /// A cursor for `scene` with no previous frame.
