@@ -464,8 +464,8 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
     const std::size_t line = lines.number();
     if (tokens.size() != value_count) {
       return line_error(line, ErrorCode::WrongArity,
-                        "frame " + std::to_string(i) + " has " + std::to_string(tokens.size()) + " numbers, the " +
-                            std::to_string(joints.size()) + " joints' channels need " + std::to_string(value_count));
+                        "frame " + std::to_string(i) + " has " + std::to_string(tokens.size()) + " numbers, the CHANNELS lines declare " +
+                            std::to_string(value_count));
     }
     for (std::size_t v = 0; v < value_count; ++v) {
       bool finite = true;
