@@ -543,6 +543,13 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
 Expected<RawScene> read_bvh_file(const std::filesystem::path& file, const BvhReadOptions& options) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return Error{ErrorCode::Io, "cannot open the file", file.string()};
+  std::error_code ec;
+  if (const auto size = std::filesystem::file_size(file, ec); !ec && size > kMaxBvhFileBytes) {
+    return Error{ErrorCode::Unsupported,
+                 "the file has " + std::to_string(size) + " bytes, more than the BVH reader's limit of " +
+                     std::to_string(kMaxBvhFileBytes),
+                 file.string()};
+  }
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) return Error{ErrorCode::Io, "cannot read the file", file.string()};
   return read_bvh(text, options);

@@ -6,6 +6,8 @@
 // build_scene() + Scene::sample() equal an independent Eigen composition of the raw numbers.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -15,6 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -265,6 +268,19 @@ TEST(BvhRead, AMillionJointsAreRefusedQuickly) {
     EXPECT_EQ(r.error().where, "line " + std::to_string(line)) << r.error().message;
     EXPECT_LT(seconds, 1.0);  // the limit is checked as joints come, not after reading 40 MB
   }
+}
+
+TEST(BvhRead, FilesAboveTheSizeLimitAreNotRead) {
+  // A sparse file one byte over the limit: refused by its size, before a byte is read.
+  const auto path = std::filesystem::temp_directory_path() / ("inbetween-bvh-size-" + std::to_string(::getpid()) + ".bvh");
+  { std::ofstream(path) << "HIERARCHY\n"; }
+  std::filesystem::resize_file(path, kMaxBvhFileBytes + 1);
+  auto r = read_bvh_file(path);
+  std::filesystem::remove(path);
+  ASSERT_FALSE(r.has_value());
+  EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(r.error().where, path.string());
+  EXPECT_FALSE(read_bvh_file(path).has_value());  // gone: cannot open
 }
 
 TEST(BvhRead, CmuClipsOfAssimpTestmodels) {

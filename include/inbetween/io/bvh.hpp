@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -37,7 +38,11 @@ inline constexpr std::size_t kMaxBvhJoints = 4096;
 /// Most animated keys (frames × joints with channels) the reader makes; beyond it the file is
 /// refused at its `Frames:` line before any frame is read, so memory stays below about 1 GB
 /// (docs/bvh.md: 01_03.bvh has 4 511 × 31 = 139 841).
-inline constexpr std::size_t kMaxBvhKeys = std::size_t(1) << 22;
+inline constexpr std::size_t kMaxBvhKeys = std::size_t(1) << 21;
+
+/// Largest file read_bvh_file() reads (256 MiB): with kMaxBvhKeys it keeps a read within about
+/// 1 GB (a clip at the key limit is 50–150 MB of text).
+inline constexpr std::uintmax_t kMaxBvhFileBytes = std::uintmax_t(256) << 20;
 
 /// Options of the BVH reader.
 struct BvhReadOptions {
@@ -67,7 +72,8 @@ struct BvhReadOptions {
 /// is not finite; options that are out of range (`where` = "--scale", "--axes", "--fps").
 [[nodiscard]] Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options = {});
 
-/// read_bvh() of a file's content; ErrorCode::Io (where = the path) when it cannot be read.
+/// read_bvh() of a file's content; ErrorCode::Io (where = the path) when it cannot be read,
+/// Unsupported when it is larger than kMaxBvhFileBytes.
 [[nodiscard]] Expected<RawScene> read_bvh_file(const std::filesystem::path& file, const BvhReadOptions& options = {});
 
 /// The signed permutation matrix of an axes name of BvhReadOptions::axes, rows = new axes:
