@@ -35,9 +35,10 @@ namespace inbetween {
 /// its line without reading further (real skeletons have 20–300).
 inline constexpr std::size_t kMaxBvhJoints = 4096;
 
-/// Most animated keys (frames × joints with channels) the reader makes; beyond it the file is
+/// Most animated keys (frames × (joints with rotation channels + joints with position channels))
+/// the reader makes; beyond it the file is
 /// refused at its `Frames:` line before any frame is read, so memory stays below about 1 GB
-/// (docs/bvh.md: 01_03.bvh has 4 511 × 31 = 139 841).
+/// (docs/bvh.md: 01_03.bvh has 4 511 × 32 = 144 352).
 inline constexpr std::size_t kMaxBvhKeys = std::size_t(1) << 21;
 
 /// Largest file read_bvh_file() reads (256 MiB): with kMaxBvhKeys it keeps a read within about
