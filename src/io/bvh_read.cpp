@@ -90,7 +90,10 @@ class Lines {
 // smallest subnormal reads as 0.
 std::optional<double> parse_number(std::string_view token, bool& finite) {
   finite = true;
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  if (!token.empty() && token.front() == '+') {
+    token.remove_prefix(1);
+    if (!token.empty() && token.front() == '-') return std::nullopt;  // "+-1"
+  }
   double v = 0;
   const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
   if (ptr != token.data() + token.size() || token.empty()) return std::nullopt;
