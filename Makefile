@@ -10,11 +10,12 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 # (libFuzzer, the sanitizer runtimes) build the asan preset that `make test` also runs.  esbuild
 # bundles three.js into the page of `inbetween view` at build time; chromium runs that page in the
 # browser test (docs/preview.md).  libhwy-dev: Highway, the double rig kernel's run-time SIMD
-# dispatch; libxsimd-dev: the benchmarks' xsimd comparison (docs/runtime.md).
+# dispatch; libxsimd-dev: the benchmarks' xsimd comparison (docs/runtime.md).  assimp-testmodels: the
+# CMU motion-capture clips (models/BVH/) the BVH tests read (docs/bvh.md).
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
         nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev gltfpack libeigen3-dev libglm-dev libboost-dev \
         python3 python3-scipy python3-jsonschema clang libclang-rt-dev esbuild chromium \
-        pybind11-dev python3-dev python3-pytest python3-numpy libhwy-dev libxsimd-dev
+        pybind11-dev python3-dev python3-pytest python3-numpy libhwy-dev libxsimd-dev assimp-testmodels
 
 .PHONY: all deps configure build test demo screenshots bench bench-ozz asan fuzz clean
 
