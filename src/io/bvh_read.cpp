@@ -553,7 +553,15 @@ Expected<RawScene> read_bvh_file(const std::filesystem::path& file, const BvhRea
                      std::to_string(kMaxBvhFileBytes),
                  file.string()};
   }
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string text;
+  if (const auto size = std::filesystem::file_size(file, ec); !ec) {
+    // One read of the whole file (a character-wise istreambuf_iterator copy took a fifth of the time).
+    text.resize(std::size_t(size));
+    in.read(text.data(), std::streamsize(size));
+    text.resize(std::size_t(in.gcount()));
+  } else {
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   if (in.bad()) return Error{ErrorCode::Io, "cannot read the file", file.string()};
   return read_bvh(text, options);
 }
