@@ -341,6 +341,7 @@ Expected<std::vector<Joint>> read_hierarchy(Lines& lines, std::vector<std::strin
 }
 
 Quatd axis_rotation(Channel ch, double deg) {
+  if (deg == 0) return Quatd{};  // exact, and a fifth of mocap angles: no sincos
   const double half = deg * (kPi / 180) / 2;
   const double s = std::sin(half);
   Quatd q = Quatd::from_wxyz(std::cos(half), 0, 0, 0);
@@ -492,7 +493,9 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
           case Channel::xpos: p.x = x; break;
           case Channel::ypos: p.y = x; break;
           case Channel::zpos: p.z = x; break;
-          default: q = q * axis_rotation(j.channels[c], x); break;
+          default:
+            if (x != 0) q = q * axis_rotation(j.channels[c], x);
+            break;
         }
       }
       if (j.has_position) {
