@@ -6,6 +6,9 @@ Every expected ratio below is recomputed here from the JSON's own cpu_time field
 renderer's code path), and the met/missed cases are perturbed copies of the same data, so a wrong
 ratio direction, a wrong target or a wrong comparison makes this fail.  ozz_rig_bench.json is the
 median aggregates of one `make bench-ozz` run (ozz-animation 0.16.0, commit 6cbdc790, same machine).
+inbetween_bench_io.json and bvh_threejs.json (issue 20's BVH row) are one run each of bench/io_bench.cpp
+(with the bvh branch's reader) and tools/bench/bvh_threejs.mjs on 01_03.bvh, 2026-11-27, same machine
+under load (times in ms).
 Seeded random perturbations of all times check every target cell against its own row's ratios, and
 that reference rows never carry a target.  Standard library only.
 """
@@ -47,18 +50,17 @@ def results_of(docs):
 
 
 def cpu(docs, program, run_name):
-    """The recorded median CPU time in ns, read straight from the JSON."""
+    """The recorded median CPU time in ns, read straight from the JSON (ns, or ms for the BVH benchmarks)."""
     for b in docs[program]["benchmarks"]:
         if b["run_name"] == run_name and b["aggregate_name"] == "median":
-            assert b["time_unit"] == "ns", b["time_unit"]
-            return b["cpu_time"]
+            return b["cpu_time"] * {"ns": 1.0, "ms": 1e6}[b["time_unit"]]
     raise KeyError(run_name)
 
 
 def set_cpu(docs, program, run_name, ns):
     for b in docs[program]["benchmarks"]:
         if b["run_name"] == run_name:
-            b["cpu_time"] = ns
+            b["cpu_time"] = ns / {"ns": 1.0, "ms": 1e6}[b["time_unit"]]
 
 
 def row(text, first_cell):
@@ -70,9 +72,24 @@ def row(text, first_cell):
     raise AssertionError(f"no row {first_cell!r} in\n{text}")
 
 
-def render(docs, ozz=None):
+def load_threejs():
+    return json.loads((DATA / "bvh_threejs.json").read_text(encoding="utf-8"))
+
+
+def threejs_results(doc):
+    r = wr.Results()
+    r.add_json(wr.THREEJS_PROGRAM, doc)
+    return r
+
+
+def render(docs, ozz=None, threejs="recorded"):
+    """The section from docs; threejs: a bvh_threejs.json document, "recorded" (tests/data/bench's) or a
+    reason string (not run)."""
+    if threejs == "recorded":
+        threejs = load_threejs()
     return wr.render(results_of(docs), "cmd", "2026-11-24", "1.00, 1.00, 1.00", None,
-                     None if ozz is None else ozz_results(ozz))
+                     None if ozz is None else ozz_results(ozz),
+                     threejs if isinstance(threejs, str) or threejs is None else threejs_results(threejs))
 
 
 def tables(text):
@@ -188,6 +205,7 @@ TARGETS = {
     "### Rig runtime against the memory floor": ([4], 5, "≤", 3.0, 10),
     "### F-curve rig against the linear-key rig": ([3], 4, "≤", 3.0, 5),
     "### ozz-animation SamplingJob vs RigClip": ([4], 6, "≥", 1.0, 4),
+    "### Reading and baking a BVH clip in world space": ([3], 4, "≥", 10.0, 1),  # issue 20
 }
 # The rows measured for comparison only (the scalar reference paths), and the ozz rows at sizes the
 # issue sets no target for (64 and 1024 joints have one).
@@ -252,10 +270,10 @@ class TargetsAndReferences(unittest.TestCase):
         for seed in range(40):
             with self.subTest(seed=seed):
                 rng = random.Random(seed)
-                docs, ozz = load_docs(), load_ozz()
-                for doc in list(docs.values()) + [ozz]:
+                docs, ozz, three = load_docs(), load_ozz(), load_threejs()
+                for doc in list(docs.values()) + [ozz, three]:
                     scale_times(doc, rng)
-                m, x = check_targets(self, render(docs, ozz))
+                m, x = check_targets(self, render(docs, ozz, three))
                 met, missed = met + m, missed + x
         self.assertGreater(met, 40)  # both outcomes occur, so both branches above were exercised
         self.assertGreater(missed, 40)
@@ -328,6 +346,79 @@ class Ozz(unittest.TestCase):
             self.assertIn("not run: ozz-animation", results.read_text(encoding="utf-8"))
             self.assertEqual(wr.main(base + ["--ozz-json", str(DATA / "ozz_rig_bench.json")]), 0)
             self.assertIn("| 1024 joints, ½ key interval per call |", results.read_text(encoding="utf-8"))
+
+class Bvh(unittest.TestCase):
+    """bvh_section: inbetween's BM_BvhReadBakeWorld against three.js's bvh_threejs.mjs (issue 20, ≥ 10×)."""
+
+    LABEL = "01_03.bvh, 4 511 frames × 31 joints: read + world bake"
+
+    def test_ratio_is_threejs_over_ours(self):
+        docs, three = load_docs(), load_threejs()
+        ours = cpu(docs, "inbetween_bench_io", "BM_BvhReadBakeWorld")  # ns
+        peer = three["benchmarks"][0]["cpu_time"] * 1e6  # ms -> ns
+        self.assertEqual(three["benchmarks"][0]["time_unit"], "ms")
+        cells = row(render(docs, threejs=three), self.LABEL)
+        self.assertEqual(cells[1], wr.fmt_time(ours))
+        self.assertEqual(cells[2], wr.fmt_time(peer))
+        self.assertEqual(cells[3], f"{peer / ours:.3g}")
+        self.assertGreater(peer / ours, 1.0)  # in the recording inbetween is faster: the ratio must exceed 1
+
+    def test_target_flips_at_10(self):
+        docs, three = load_docs(), load_threejs()
+        peer = three["benchmarks"][0]["cpu_time"] * 1e6
+        set_cpu(docs, "inbetween_bench_io", "BM_BvhReadBakeWorld", peer / 12)
+        self.assertEqual(row(render(docs, threejs=three), self.LABEL)[4], "met")
+        set_cpu(docs, "inbetween_bench_io", "BM_BvhReadBakeWorld", peer / 4)
+        self.assertEqual(row(render(docs, threejs=three), self.LABEL)[4], "missed (4× < 10×)")
+
+    def test_parts_and_context_lines(self):
+        docs = load_docs()
+        text = render(docs)
+        read = cpu(docs, "inbetween_bench_io", "BM_BvhRead")
+        self.assertIn(f"read_input_file {wr.fmt_time(read)}", text)
+        self.assertIn(f"three.js {load_threejs()['context']['three']} on Node", text)
+
+    def test_not_run_is_never_met(self):
+        for reason in ("node is not installed (Debian nodejs/npm; `make deps`)", None):
+            cells = row(render(load_docs(), threejs=reason), self.LABEL)
+            self.assertTrue(cells[2].startswith("not run: "), cells)
+            self.assertEqual(cells[3], "—")
+            self.assertEqual(cells[4], "not measured")
+
+    def test_missing_inbetween_side_is_not_measured(self):
+        docs = load_docs()
+        del docs["inbetween_bench_io"]
+        cells = row(render(docs), self.LABEL)  # frames and joints from three.js's counters
+        self.assertEqual(cells[1], "—")
+        self.assertEqual(cells[4], "not measured")
+
+    def test_json_dir_reads_the_peer_or_says_why_not(self):
+        with tempfile.TemporaryDirectory() as d:
+            for f in DATA.glob("inbetween_bench_*.json"):
+                (Path(d) / f.name).write_text(f.read_text(encoding="utf-8"), encoding="utf-8")
+            results = Path(d) / "RESULTS.md"
+            args = ["--json-dir", d, "--results", str(results), "--build-dir", d, "--load", "1.00",
+                    "--ozz-json", str(Path(d) / "absent.json")]
+            self.assertEqual(wr.main(args), 0)
+            self.assertIn("| not run: no bvh_threejs.json in", results.read_text(encoding="utf-8"))
+            (Path(d) / "bvh_threejs.json").write_text(json.dumps({"not_run": "three.js is not installed"}),
+                                                      encoding="utf-8")
+            self.assertEqual(wr.main(args), 0)
+            self.assertIn("| not run: three.js is not installed |", results.read_text(encoding="utf-8"))
+            (Path(d) / "bvh_threejs.json").write_text((DATA / "bvh_threejs.json").read_text(encoding="utf-8"),
+                                                      encoding="utf-8")
+            self.assertEqual(wr.main(args), 0)
+            self.assertNotIn("not run: ", row(results.read_text(encoding="utf-8"), self.LABEL)[2])
+
+    def test_run_threejs_without_node(self):
+        which = wr.shutil.which
+        wr.shutil.which = lambda name: None
+        try:
+            with tempfile.TemporaryDirectory() as d:
+                self.assertEqual(wr.run_threejs(Path(d)), "node is not installed (Debian nodejs/npm; `make deps`)")
+        finally:
+            wr.shutil.which = which
+
 
 class RigSimdKernels(unittest.TestCase):
     """rig_simd_section: each library's kernel against the std::experimental::simd kernel (issue 12)."""

@@ -17,6 +17,11 @@ benchmark missing from the JSON shows as "—" and its target as "not measured",
 that measure a reference next to the form a target is about (the Newton u(s)) say so ("reference,
 no target") instead of met/missed.
 
+BVH (issue 20): inbetween_bench_io's BM_BvhReadBakeWorld reads and bakes 01_03.bvh in world space; its peer
+is three.js in Node (tools/bench/bvh_threejs.mjs, run here when `node` exists and writing
+<build>/bench/bvh_threejs.json; with --json-dir, DIR/bvh_threejs.json).  Without node or three.js the
+table says "not run" and why.
+
 ozz-animation is not packaged in Debian: `make bench-ozz OZZ_SRC=…` (tools/bench/bench_ozz.sh) runs
 tools/bench/ozz_rig_bench.cpp out of tree and writes build/ozz/ozz_rig_bench.json; when that file
 exists (`--ozz-json`), its table joins the section, otherwise a line says how to produce it.
@@ -30,6 +35,7 @@ import os
 import platform
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -45,6 +51,7 @@ COMPARISON_FILTERS = {
     "inbetween_bench_arclength": r"BM_CurvePoint$|BM_ArcLengthInverse_UofS|BM_ArcLengthDefault_UofS$",
     "inbetween_bench_curves": r"Sequential|BatchCubic",
     "inbetween_bench_tracks": r"BM_Rig.*/(25|64|71|551|1024)/2$",
+    "inbetween_bench_io": r"BM_Bvh",
 }
 
 RIG_SIZES = (25, 64, 71, 551, 1024)
@@ -54,6 +61,12 @@ OZZ_PROGRAM = "ozz_rig_bench"
 DEFAULT_OZZ_JSON = Path(__file__).resolve().parents[2] / "build" / "ozz" / f"{OZZ_PROGRAM}.json"
 GAME_RIGS = (25, 71, 551)  # joints of the characters a game programmer recognises (issue 12)
 FRAME_BUDGET_US = 1000.0  # 1 ms per frame for all animation
+ROOT = Path(__file__).resolve().parents[2]
+BVH_CLIP = Path("/usr/share/assimp/models/BVH/01_03.bvh")  # Debian assimp-testmodels (issue 20)
+BVH_TARGET = 10.0  # issue 20: reading and baking 01_03.bvh at least 10× faster than three.js
+THREEJS_PROGRAM = "bvh_threejs"  # tools/bench/bvh_threejs.mjs; its JSON is <bench dir>/bvh_threejs.json
+THREEJS_SCRIPT = ROOT / "tools" / "bench" / "bvh_threejs.mjs"
+THREEJS_REPETITIONS = 5
 
 
 # ----------------------------------------------------------------------------- reading results
@@ -313,6 +326,50 @@ def ozz_section(ozz: Results | None) -> list[str]:
                      "ozz / ours double", "target ≥ 1× (float)", "max rotation error ozz / float / double",
                      "max translation error ozz / float / double"], rows) + [""])
 
+def bvh_section(r: Results, three: Results | str | None) -> list[str]:
+    """inbetween's BM_BvhReadBakeWorld against three.js (bvh_threejs.mjs); `three` is its Results or why not run."""
+    title = "### Reading and baking a BVH clip in world space: inbetween vs three.js (`inbetween_bench_io`, `bvh_threejs.mjs`)"
+    ours = r.time("BM_BvhReadBakeWorld")
+    name = "BM_BvhThreeJs/" + BVH_CLIP.stem
+    peer = three.time(name) if isinstance(three, Results) else None
+    frames = r.counter("BM_BvhReadBakeWorld", "frames")
+    joints = r.counter("BM_BvhReadBakeWorld", "joints")
+    if isinstance(three, Results):
+        frames = frames or three.counter(name, "frames")
+        joints = joints or three.counter(name, "joints")
+    shape = "" if not frames or not joints else \
+        ", " + f"{frames:,.0f}".replace(",", " ") + f" frames × {joints:.0f} joints"
+    q = ratio(peer, ours)
+    if isinstance(three, Results):
+        peer_cell = fmt_time(peer)
+    else:
+        peer_cell = f"not run: {three or 'not measured in this run'}"
+    rows = [[f"{BVH_CLIP.name}{shape}: read + world bake", fmt_time(ours), peer_cell, fmt_num(q),
+             verdict(q, BVH_TARGET, True)]]
+    parts = [(label, r.time(n)) for label, n in (("read_input_file", "BM_BvhRead"), ("build_scene", "BM_BvhBuild"),
+                                                 ("sample every frame", "BM_BvhSampleWorld"))]
+    out = [title, "",
+           f"Issue 20: read CMU motion capture `{BVH_CLIP.name}` (Debian assimp-testmodels) and bake every joint's "
+           "world translation, rotation and scale (10 numbers) at every frame into one preallocated row.  "
+           "inbetween: `read_input_file` + `build_scene` + `Scene::sample` (`BM_BvhReadBakeWorld`, CPU-time "
+           "median).  three.js: `BVHLoader` + `AnimationMixer` + `matrixWorld.decompose` in Node "
+           "(`tools/bench/bvh_threejs.mjs`, the code that records the test references), median process CPU "
+           "time (V8's helper threads included) of repeated runs after one untimed warm-up.  Target: at least "
+           f"{BVH_TARGET:g}× faster (ratio = three.js / inbetween).", ""]
+    out += table(["work", "inbetween", "three.js", "three.js / inbetween", f"target ≥ {BVH_TARGET:g}×"], rows)
+    if any(t is not None for _, t in parts):
+        out += ["", "inbetween's parts, each timed alone: "
+                + ", ".join(f"{label} {fmt_time(t)}" for label, t in parts) + "."]
+    if isinstance(three, Results):
+        ctx = three.contexts.get(THREEJS_PROGRAM, {})
+        wall = three.counter(name, "wall_ms")
+        cold = ctx.get("cold_cpu_ms")
+        out += ["", f"three.js {ctx.get('three', '?')} on Node {ctx.get('node', '?')}, {ctx.get('date', '?')}: median of "
+                f"{ctx.get('repetitions', '?')} runs" + ("" if wall is None else f", wall time {fmt_time(wall * 1e6)}")
+                + ("" if cold is None else f"; the cold first run (no warm-up) took {fmt_time(cold * 1e6)} CPU") + "."]
+    return out + [""]
+
+
 # Issue 12, "SIMD where it pays — measure and say why": the runtime's lane kernel in each library.
 RIG_KERNELS = (("std_simd", "std::experimental::simd"), ("xsimd", "xsimd"), ("hwy_static", "Highway static"),
                ("hwy_dynamic", "Highway dynamic"), ("hwy_dynamic_avx2", "Highway dynamic ≤ AVX2"))
@@ -429,7 +486,7 @@ def compiler_of(executable: str) -> str:
 
 # ----------------------------------------------------------------------------- document
 def render(r: Results, command: str, when: str, load: str, build_dir: Path | None = None,
-           ozz: Results | None = None) -> str:
+           ozz: Results | None = None, threejs: Results | str | None = None) -> str:
     lines = [BEGIN, "# Benchmark results (generated)", "",
              "Written by `make bench` (`tools/bench/write_results.py`) from the Google Benchmark programs in "
              "`bench/`, each comparison's two sides in one binary.  Times are CPU-time medians; ratios, "
@@ -438,6 +495,7 @@ def render(r: Results, command: str, when: str, load: str, build_dir: Path | Non
     lines += slerp_section(r) + arclength_section(r) + curves_section(r) + rig_section(r)
     lines += ozz_section(ozz)
     lines += rig_simd_section(r)
+    lines += bvh_section(r, threejs)
     lines.append(END)
     return "\n".join(lines) + "\n"
 
@@ -508,6 +566,32 @@ def read_ozz(path: Path) -> Results | None:
     return r
 
 
+def read_threejs(path: Path) -> Results | str:
+    """bvh_threejs.mjs's JSON as Results, or the reason it has none."""
+    if not path.is_file():
+        return f"no {path.name} in {path.parent}"
+    doc = json.loads(path.read_text(encoding="utf-8"))
+    if "not_run" in doc:
+        return str(doc["not_run"])
+    r = Results()
+    r.add_json(THREEJS_PROGRAM, doc)
+    return r
+
+
+def run_threejs(bench_dir: Path) -> Results | str:
+    """Runs tools/bench/bvh_threejs.mjs on BVH_CLIP (JSON next to the bench programs'), or says why not."""
+    node = shutil.which("node") or shutil.which("nodejs")
+    if node is None:
+        return "node is not installed (Debian nodejs/npm; `make deps`)"
+    out = bench_dir / f"{THREEJS_PROGRAM}.json"
+    cmd = [node, str(THREEJS_SCRIPT), str(BVH_CLIP), "--repetitions", str(THREEJS_REPETITIONS), "--json", str(out)]
+    print("==", " ".join(shlex.quote(c) for c in cmd), flush=True)
+    done = subprocess.run(cmd, check=False)
+    if done.returncode != 0:
+        return f"bvh_threejs.mjs exited with {done.returncode}"
+    return read_threejs(out)
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--build-dir", default="build/release", help="build tree with bench/inbetween_bench_*")
@@ -525,14 +609,16 @@ def main(argv: list[str] | None = None) -> int:
 
     if args.json_dir:
         r = read_dir(Path(args.json_dir))
+        threejs = read_threejs(Path(args.json_dir) / f"{THREEJS_PROGRAM}.json")
     else:
         r = run_programs(Path(args.build_dir) / "bench", args.min_time, args.comparisons_only)
+        threejs = run_threejs(Path(args.build_dir) / "bench")
     first = next(iter(r.contexts.values()), {})
     when = args.date or first.get("date") or time.strftime("%Y-%m-%dT%H:%M:%S+00:00", time.gmtime())
     load = args.load or ", ".join(f"{x:.2f}" for x in os.getloadavg())
     command = args.command or "python3 tools/bench/write_results.py " + " ".join(
         shlex.quote(a) for a in (argv if argv is not None else sys.argv[1:]))
-    section = render(r, command, when, load, Path(args.build_dir), read_ozz(Path(args.ozz_json)))
+    section = render(r, command, when, load, Path(args.build_dir), read_ozz(Path(args.ozz_json)), threejs)
     results = Path(args.results)
     old = results.read_text(encoding="utf-8") if results.exists() else ""
     target = Path(args.output) if args.output else results
