@@ -1,7 +1,7 @@
 #pragma once
 /// Biovision hierarchy (BVH) motion capture ↔ RawScene (docs/bvh.md).  A reader of our own (not
-/// assimp's): it names the line of every fault, applies the `Frames:` rule and Blender's meaning of
-/// position channels, none of which assimp's BVH importer does.
+/// assimp's), so that the choices where readers differ are ours and documented: it names the line
+/// of every fault, applies the `Frames:` rule and Blender's meaning of position channels.
 ///
 /// Reading: every ROOT and JOINT becomes an object (End Sites do not), in file order, its parent
 /// the enclosing joint.  Its rest translation is the OFFSET; rotation channels compose in the order
