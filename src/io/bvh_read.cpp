@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "inbetween/io/bvh.hpp"
+#include "inbetween/io/read_file.hpp"
 #include "inbetween/math/euler.hpp"
 #include "inbetween/math/format.hpp"
 
@@ -551,26 +552,11 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
 }
 
 Expected<RawScene> read_bvh_file(const std::filesystem::path& file, const BvhReadOptions& options) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return Error{ErrorCode::Io, "cannot open the file", file.string()};
-  std::error_code ec;
-  if (const auto size = std::filesystem::file_size(file, ec); !ec && size > kMaxBvhFileBytes) {
-    return Error{ErrorCode::Unsupported,
-                 "the file has " + std::to_string(size) + " bytes, more than the BVH reader's limit of " +
-                     std::to_string(kMaxBvhFileBytes),
-                 file.string()};
-  }
-  std::string text;
-  if (const auto size = std::filesystem::file_size(file, ec); !ec) {
-    // One read of the whole file (a character-wise istreambuf_iterator copy took a fifth of the time).
-    text.resize(std::size_t(size));
-    in.read(text.data(), std::streamsize(size));
-    text.resize(std::size_t(in.gcount()));
-  } else {
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  if (in.bad()) return Error{ErrorCode::Io, "cannot read the file", file.string()};
-  return read_bvh(text, options);
+  // Every reader's file rules (io/read_file.hpp): a regular file only (a device such as /dev/zero
+  // or a FIFO named *.bvh is refused before a byte is read), in one read, with the BVH limit.
+  auto text = read_file_bytes(file, kMaxBvhFileBytes);
+  if (!text) return text.error();
+  return read_bvh(*text, options);
 }
 
 }  // namespace inbetween

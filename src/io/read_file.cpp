@@ -21,7 +21,7 @@ std::string size_text(std::uintmax_t bytes) {
 
 // "is 600 MiB, more than …" or, for a stream, "is more than …".
 Error too_large(std::string_view name, std::string_view size, std::uintmax_t max_bytes) {
-  return Error{ErrorCode::Io,
+  return Error{ErrorCode::Unsupported,
                "is " + std::string(size) + (size.empty() ? "" : ", ") + "more than the " + size_text(max_bytes) +
                    " an input file may have",
                std::string(name)};

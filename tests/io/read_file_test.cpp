@@ -64,7 +64,7 @@ TEST(ReadFile, RefusesAFileOverTheLimitFromItsSize) {
   fs::resize_file(big, kMaxInputFileBytes + 1);
   auto r = read_file_bytes(big);
   ASSERT_FALSE(r);
-  EXPECT_EQ(r.error().code, ErrorCode::Io);
+  EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
   EXPECT_NE(r.error().message.find("is 512 MiB, more than the 512 MiB an input file may have"), std::string::npos)
       << r.error().message;
   fs::remove(big);
@@ -83,6 +83,29 @@ TEST(ReadFile, StreamsStopOneByteOverTheLimit) {
   auto e = read_stream_bytes(over, "standard input", 10);
   ASSERT_FALSE(e);
   EXPECT_EQ(e.error().describe(), "standard input: is more than the 10 bytes an input file may have");
+}
+
+}  // namespace
+}  // namespace inbetween
+
+#include "inbetween/io/input.hpp"
+
+namespace inbetween {
+namespace {
+
+// Every format read_input_file() dispatches to refuses a device at once: a link named *.bvh,
+// *.gltf, *.glb or *.json to /dev/zero (the BVH reader read such a file to 4 GB before).
+TEST(ReadFile, EveryInputFormatRefusesADeviceAtOnce) {
+  const auto start = std::chrono::steady_clock::now();
+  for (const char* name : {"zero.bvh", "zero.gltf", "zero.glb", "zero.json", "zero"}) {
+    const fs::path link = test::test_dir() / name;
+    fs::remove(link);
+    fs::create_symlink("/dev/zero", link);
+    auto r = read_input_file(link);
+    ASSERT_FALSE(r) << name;
+    EXPECT_NE(r.error().describe().find("not a regular file"), std::string::npos) << name << ": " << r.error().describe();
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
 }
 
 }  // namespace
