@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "frame_spec.hpp"
 #include "inbetween/io/scene.hpp"
 
 namespace inbetween::cli {
@@ -23,7 +24,7 @@ void add_input_options(CLI::App* cmd, InputArgs& args, const std::string& name, 
   cmd->add_option("--animation", args.animation,
                   "glTF and assimp input: the animation's NAME or INDEX (default: the first)");
   cmd->add_option("--scale", args.scale, "BVH and assimp input: factor on every length (default 1: the file's units)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive_number());
   cmd->add_option("--axes", args.axes, "BVH and assimp input: axis conversion (default: the file's axes; docs/bvh.md)");
 }
 

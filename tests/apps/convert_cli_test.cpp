@@ -153,7 +153,7 @@ namespace {
 
 // Issue 21, messages: `--fps 0` printed DBL_MAX in 309 digits and a second "Run with --help" line.
 TEST(ConvertCli, OptionRangeErrorsAreOneShortLine) {
-  for (const char* option : {"--fps 0", "--tolerance -1", "--reduce nan"}) {
+  for (const char* option : {"--fps 0", "--tolerance -1", "--reduce nan", "--scale 0"}) {
     const auto r = run_cli("convert '" + kZoo + "' '" + (inbetween::test::test_dir() / "z.glb").string() + "' " + option);
     EXPECT_EQ(r.exit_code, 2) << option << ": " << r.err;
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << option << ": not one line: " << r.err;
