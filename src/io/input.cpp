@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "inbetween/io/assimp.hpp"
 #include "inbetween/io/gltf.hpp"
 #include "inbetween/io/scene.hpp"
 
@@ -43,6 +44,8 @@ InputFormat input_format(const std::filesystem::path& file) {
   if (ext == ".gltf" || ext == ".glb") return InputFormat::gltf;
   if (ext == ".bvh") return InputFormat::bvh;
   if (ext == ".json") return InputFormat::scene_json;
+  for (const std::string_view known : assimp_extensions())
+    if (ext == known) return InputFormat::assimp;
   if (has_glb_magic(file)) return InputFormat::gltf;
   return InputFormat::scene_json;
 }
@@ -56,8 +59,16 @@ Expected<RawScene> read_input_file(const std::filesystem::path& file, const Inpu
       gltf.notes = options.notes;
       return read_gltf_file(file, gltf);
     }
+    case InputFormat::assimp: {
+      AssimpReadOptions assimp;
+      assimp.animation = options.animation;
+      assimp.fps = options.fps;
+      assimp.scale = options.scale;
+      assimp.axes = options.axes;
+      assimp.notes = options.notes;
+      return read_assimp_file(file, assimp);
+    }
     case InputFormat::bvh:
-    case InputFormat::assimp:
       return Error{ErrorCode::Unsupported, "no reader for " + std::string(to_string(input_format(file))) + " files yet",
                    file.string()};
     case InputFormat::scene_json: break;
