@@ -4,6 +4,8 @@
 // that an error names the animation, node and key index and build_scene() never sees a bad key.
 #include "inbetween/io/assimp.hpp"
 
+#include "assimp_scene.hpp"
+
 #include <assimp/BaseImporter.h>
 #include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
@@ -378,8 +380,10 @@ Expected<RawQuatKeys> quat_keys(const aiQuatKey* keys, unsigned count, const Con
   return out;
 }
 
+}  // namespace
+
 // ------------------------------------------------------------------------------ scene
-Expected<RawScene> to_raw_scene(const aiScene& ai, const AssimpReadOptions& options) {
+Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpReadOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale)) {
     return Error{ErrorCode::InvalidArgument, "scale " + shortest_text(options.scale) + " is not finite and positive", "--scale"};
   }
@@ -530,13 +534,15 @@ Expected<RawScene> to_raw_scene(const aiScene& ai, const AssimpReadOptions& opti
   return scene;
 }
 
+namespace {
+
 Expected<RawScene> finish(Assimp::Importer& importer, const aiScene* ai, const AssimpReadOptions& options) {
   if (!ai) {
     std::string why = one_line(importer.GetErrorString());
     if (why.empty()) why = "assimp gave no reason";
     return Error{ErrorCode::Parse, "assimp cannot read it: " + why, ""};
   }
-  return to_raw_scene(*ai, options);
+  return detail::assimp_to_raw_scene(*ai, options);
 }
 
 }  // namespace
