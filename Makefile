@@ -10,11 +10,14 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 # (libFuzzer, the sanitizer runtimes) build the asan preset that `make test` also runs.  esbuild
 # bundles three.js into the page of `inbetween view` at build time; chromium runs that page in the
 # browser test (docs/preview.md).  libhwy-dev: Highway, the double rig kernel's run-time SIMD
-# dispatch; libxsimd-dev: the benchmarks' xsimd comparison (docs/runtime.md).
+# dispatch; libxsimd-dev: the benchmarks' xsimd comparison (docs/runtime.md).  libassimp-dev:
+# FBX, Collada, … (docs/assimp.md); assimp-testmodels: its test files (FBX, Collada, CMU BVH clips)
+# that the assimp and BVH tests read.
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
         nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev gltfpack libeigen3-dev libglm-dev libboost-dev \
         python3 python3-scipy python3-jsonschema clang libclang-rt-dev esbuild chromium \
-        pybind11-dev python3-dev python3-pytest python3-numpy libhwy-dev libxsimd-dev
+        pybind11-dev python3-dev python3-pytest python3-numpy libhwy-dev libxsimd-dev \
+        libassimp-dev assimp-testmodels
 
 .PHONY: all deps configure build test demo screenshots bench bench-ozz asan fuzz clean
 
@@ -109,7 +112,7 @@ asan:
 # Each libFuzzer target for FUZZ_SECONDS (asan preset); the corpus grows in build/asan/fuzz/corpus-*,
 # crashes land in build/asan/fuzz/artifacts-*/ (see fuzz/README.md for what to do with them).
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := scene curve csv rotation_line obj environment gltf
+FUZZ_TARGETS := scene curve csv rotation_line obj environment gltf assimp
 fuzz:
 	$(MAKE) configure PRESET=asan
 	cmake --build --preset asan -j $(JOBS) --target $(addprefix inbetween_fuzz_,$(FUZZ_TARGETS))
