@@ -119,6 +119,7 @@ fuzz:
 	@set -e; for t in $(FUZZ_TARGETS); do \
 	  d=build/asan/fuzz; mkdir -p $$d/corpus-$$t $$d/artifacts-$$t; \
 	  echo "== fuzz $$t for $(FUZZ_SECONDS) s"; \
+	  supp=fuzz/lsan-$$t.supp; if [ -f $$supp ]; then export LSAN_OPTIONS=suppressions=$$PWD/$$supp; else unset LSAN_OPTIONS; fi; \
 	  $$d/inbetween_fuzz_$$t -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
 	    -max_total_time=$(FUZZ_SECONDS) -timeout=10 -dict=fuzz/dict/$$t.dict -print_final_stats=1 \
 	    -artifact_prefix=$$d/artifacts-$$t/ $$d/corpus-$$t fuzz/corpus/$$t 2>&1 | grep -E '^#|INFO: (exiting|fuzzed)' | tail -3; \

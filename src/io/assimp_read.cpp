@@ -107,6 +107,21 @@ void configure(Assimp::Importer& importer) {
   importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
 }
 
+// Binary and compressed DirectX files ("xof 0303bin ", "bzip", "tzip" in the header): assimp
+// 5.2's binary .x parser allocates from counts it does not bound (a fuzzed 12 KB file made it
+// take 8 GB and 39 s before failing), so the reader refuses them before assimp sees them.
+bool is_binary_x(std::span<const std::byte> head) {
+  if (head.size() < 12) return false;
+  const auto* c = reinterpret_cast<const char*>(head.data());
+  if (std::string_view(c, 4) != "xof ") return false;
+  const std::string_view format(c + 8, 4);
+  return format == "bin " || format == "bzip" || format == "tzip";
+}
+
+const char* const kBinaryXMessage =
+    "binary and compressed DirectX .x files are not read (assimp 5.2's binary .x parser is not safe on "
+    "damaged files: docs/assimp.md); save it as text .x";
+
 // No post-processing step: they work on meshes, which this reader does not import.
 constexpr unsigned kPostProcessing = 0;
 
@@ -232,19 +247,25 @@ Expected<Transformd> rest_pose(const aiMatrix4x4& t, const std::string& name, co
   Transformd rest;
   if (trs) {
     rest = *trs;
-  } else if (trs.error().code == ErrorCode::Unsupported && trs.error().message.find("shear") != std::string::npos) {
+  } else if (trs.error().code == ErrorCode::NotFinite) {
+    return Error{ErrorCode::NotFinite, "node " + in_quotes(name) + ": rest matrix is not finite", ""};
+  } else {
+    // Shear, a zero scale or a projective last row: no exact TRS.  assimp's own Decompose() (what
+    // its players use), with the identity rotation where it has none (a zero scale).
     aiVector3D s, p;
     aiQuaternion q;
     t.Decompose(s, q, p);
     rest.translation = Vec3d{double(p.x), double(p.y), double(p.z)};
-    rest.rotation = Quatd::from_wxyz(double(q.w), double(q.x), double(q.y), double(q.z));
     rest.scale = Vec3d{double(s.x), double(s.y), double(s.z)};
-    if (!is_finite(rest.translation) || !is_finite(rest.scale) || !is_finite(rest.rotation) || !(norm(rest.rotation) > 0)) {
+    const Quatd r = Quatd::from_wxyz(double(q.w), double(q.x), double(q.y), double(q.z));
+    rest.rotation = is_finite(r) && norm(r) > 0.5 ? normalized(r) : Quatd{};
+    if (!is_finite(rest.translation) || !is_finite(rest.scale)) {
       return Error{ErrorCode::InvalidArgument, "node " + in_quotes(name) + ": rest matrix cannot be decomposed", ""};
     }
-    if (notes) notes->push_back("node " + in_quotes(name) + ": rest matrix has shear; imported as the nearest TRS (assimp's Decompose)");
-  } else {
-    return Error{trs.error().code, "node " + in_quotes(name) + ": rest matrix: " + trs.error().message, ""};
+    if (notes) {
+      notes->push_back("node " + in_quotes(name) + ": rest matrix is not a TRS (" + trs.error().message +
+                       "); imported as the nearest TRS (assimp's Decompose)");
+    }
   }
   // Translation in the parent's space, rotation and scale as above.
   Transformd out;
@@ -557,6 +578,7 @@ Expected<RawScene> read_assimp(std::span<const std::byte> bytes, std::string_vie
                  ""};
   }
   if (bytes.empty()) return Error{ErrorCode::Parse, "assimp cannot read it: the input is empty", ""};
+  if (is_binary_x(bytes)) return Error{ErrorCode::Unsupported, kBinaryXMessage, ""};
   std::string hint_text = lower(std::string(hint));
   if (hint_text.size() > 16 || hint_text.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789") != std::string::npos) hint_text.clear();
   try {
@@ -586,6 +608,11 @@ Expected<RawScene> read_assimp_file(const std::filesystem::path& file, const Ass
   {
     std::ifstream probe(file, std::ios::binary);
     if (!probe) return Error{ErrorCode::Io, "cannot open the file", file.string()};
+    std::array<char, 12> head{};
+    probe.read(head.data(), std::streamsize(head.size()));
+    if (is_binary_x(std::as_bytes(std::span<const char>(head.data(), std::size_t(probe.gcount()))))) {
+      return Error{ErrorCode::Unsupported, kBinaryXMessage, file.string()};
+    }
   }
   try {
     Assimp::Importer importer;

@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -303,6 +304,12 @@ TEST(AssimpRead, UnreadableFilesAreRefused) {
   AssimpReadOptions small;
   small.max_file_bytes = 100;
   EXPECT_FALSE(read_assimp_file(x_file("walk.x", kXFile), small));
+  // Binary and compressed .x: refused before assimp (its binary parser is not safe on damaged files).
+  auto binary = read_assimp_file(x_file("binary.x", std::string("xof 0303bin 0032") + std::string(64, '\0')));
+  ASSERT_FALSE(binary);
+  EXPECT_EQ(binary.error().code, ErrorCode::Unsupported);
+  EXPECT_NE(binary.error().message.find("binary and compressed DirectX .x files are not read"), std::string::npos);
+  EXPECT_FALSE(read_assimp(std::as_bytes(std::span<const char>("xof 0303bzip0032 ....", 21)), "x"));
   auto empty = read_assimp_file(x_file("empty.dae", ""));
   ASSERT_FALSE(empty);
   EXPECT_EQ(empty.error().code, ErrorCode::Parse);
@@ -410,6 +417,42 @@ TEST(AssimpRead, ZeroQuaternionAndNaNTimeNameNodeAndKey) {
     EXPECT_EQ(raw->range[1], 5);
     ASSERT_FALSE(notes.empty());
     EXPECT_NE(notes[0].find("25 assumed"), std::string::npos);
+  }
+}
+
+TEST(AssimpRead, RestMatricesThatAreNotTrsAreNotedOrRefused) {
+  {
+    MemoryScene m(1, 1);  // shear: x' = x + 0.5 y
+    m.scene.mRootNode->mTransformation = aiMatrix4x4(1, 0.5f, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1);
+    std::vector<std::string> notes;
+    AssimpReadOptions options;
+    options.notes = &notes;
+    auto raw = detail::assimp_to_raw_scene(m.scene, options);
+    ASSERT_TRUE(raw) << raw.error().describe();
+    ASSERT_FALSE(notes.empty());
+    EXPECT_EQ(notes[0].rfind("node \"hips\": rest matrix is not a TRS (", 0), 0u) << notes[0];
+    EXPECT_TRUE(build_scene(*raw));
+  }
+  {
+    MemoryScene m(1, 1);  // a bone scaled to nothing (hidden): scale 0, identity rotation
+    m.scene.mRootNode->mTransformation = aiMatrix4x4(aiVector3D(0, 0, 0), aiQuaternion(), aiVector3D(4, 5, 6));
+    std::vector<std::string> notes;
+    AssimpReadOptions options;
+    options.notes = &notes;
+    auto raw = detail::assimp_to_raw_scene(m.scene, options);
+    ASSERT_TRUE(raw) << raw.error().describe();
+    const auto& hips = raw->objects.at(0);
+    EXPECT_EQ(std::get<Vec3d>(*hips.translation), (Vec3d{4, 5, 6}));
+    EXPECT_EQ(std::get<Vec3d>(hips.scale), (Vec3d{0, 0, 0}));
+    EXPECT_EQ(std::get<Quatd>(*hips.rotation), Quatd{});
+    EXPECT_FALSE(notes.empty());
+  }
+  {
+    MemoryScene m(1, 1);
+    m.scene.mRootNode->mChildren[0]->mTransformation.a4 = std::numeric_limits<float>::quiet_NaN();
+    auto raw = detail::assimp_to_raw_scene(m.scene, {});
+    ASSERT_FALSE(raw);
+    EXPECT_EQ(raw.error().message, "node \"knee\": rest matrix is not finite");
   }
 }
 

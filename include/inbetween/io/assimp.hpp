@@ -7,8 +7,8 @@
 ///   node                 one RawObject per aiNode, depth first from the root (index = visit
 ///                        order); name = the node's, `node<index>` when empty, `#<index>` appended
 ///                        while the name is taken (as the glTF reader does)
-///   rest pose            aiNode::mTransformation decomposed into TRS (a matrix with shear: the
-///                        nearest TRS assimp's own Decompose() gives, and a note)
+///   rest pose            aiNode::mTransformation decomposed into TRS (shear, a zero scale or a
+///                        projective row: the nearest TRS assimp's own Decompose() gives, and a note)
 ///   position / scaling   RawVec3Channel, TangentKind::linear (assimp gives keys, not curves: its
 ///   keys                 players interpolate linearly)
 ///   rotation keys        RawQuatKeys, QuatInterpolation::slerp (shortest arc, as assimp and three.js)
