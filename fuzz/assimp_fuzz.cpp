@@ -1,6 +1,6 @@
 // libFuzzer target: the assimp reader (inbetween/io/assimp.hpp, docs/assimp.md) on bytes in memory,
 // with no extension hint: assimp tells the format by content among the importers the reader
-// enables (FBX, Collada, .x, MD5, SMD, B3D, MS3D, ASE, 3DS, LWS/LWO, CSM), and no file beside the
+// enables (FBX, Collada, .x, MD5, SMD, B3D, MS3D, ASE, LWS/LWO, CSM), and no file beside the
 // input can be opened.  A file that reads must build (the reader checks what build_scene() would
 // refuse) and is then sampled at a few frames, every value finite.  An error is a fine answer.
 // Seeds: fuzz/corpus/assimp/ (small files of Debian's assimp-testmodels, BSD-3-clause, and a
