@@ -9,6 +9,7 @@
 #include <assimp/BaseImporter.h>
 #include <assimp/IOSystem.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/ai_assert.h>
 #include <assimp/anim.h>
 #include <assimp/config.h>
 #include <assimp/importerdesc.h>
@@ -25,6 +26,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +35,21 @@
 #include "inbetween/math/mat.hpp"
 #include "inbetween/math/rotation.hpp"
 #include "inbetween/math/transform.hpp"
+
+// Debian builds assimp 5.2 with its assertions on (ASSIMP_BUILD_DEBUG): a damaged file that breaks
+// one of them (a fuzzed Collada sampler reading past its source: "pos < pData.mValues.size()" in
+// ColladaLoader.cpp) calls Assimp::aiAssertViolation(), which aborts the process.  The library
+// exports that function but not the handler setter of newer versions, so the definition here
+// takes its place in every program that links inbetween_io (the executable's definition comes
+// first in the dynamic linker's lookup): it throws, assimp's importer catches the exception at its
+// ReadFile() boundary, and the read fails with the assertion as its message instead of aborting.
+// (A Python extension module is loaded RTLD_LOCAL, where assimp keeps its own, aborting, one.)
+namespace Assimp {
+void aiAssertViolation(const char* failed_expression, const char* file, int line) {
+  throw std::runtime_error(std::string("assimp's internal check failed: ") + (failed_expression ? failed_expression : "?") +
+                           " (" + (file ? file : "?") + ":" + std::to_string(line) + ")");
+}
+}  // namespace Assimp
 
 namespace inbetween {
 namespace {
