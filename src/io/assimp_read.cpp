@@ -172,6 +172,69 @@ std::string without_mesh_libraries(std::string_view text) {
   return out;
 }
 
+// Text DirectX .x: every `Mesh` data object is dropped before assimp parses the text, for the same
+// reason (a fuzzed 11 KB .x with a damaged DeclData made assimp 5.2 crash with SIGSEGV, or ask for
+// 23 GB).  Frames, their matrices and the AnimationSets stay.  Braces are counted outside quoted
+// strings and comments (`//`, `#`); a Mesh without its closing brace is left for assimp to refuse.
+bool is_text_x(std::string_view text) { return text.size() >= 12 && text.substr(0, 4) == "xof " && text.substr(8, 4) == "txt "; }
+
+std::string without_x_meshes(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  const auto is_name = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; };
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (c == '"') {  // copy a quoted string whole
+      const std::size_t end = text.find('"', i + 1);
+      const std::size_t stop = end == std::string_view::npos ? text.size() : end + 1;
+      out.append(text.substr(i, stop - i));
+      i = stop;
+      continue;
+    }
+    if (c == '#' || (c == '/' && i + 1 < text.size() && text[i + 1] == '/')) {  // copy a comment line
+      const std::size_t end = text.find('\n', i);
+      const std::size_t stop = end == std::string_view::npos ? text.size() : end;
+      out.append(text.substr(i, stop - i));
+      i = stop;
+      continue;
+    }
+    const bool word_start = (i == 0 || !is_name(text[i - 1]));
+    const auto after_template = [&out] {  // "template Mesh { … }" declares the type: keep it
+      std::size_t e = out.size();
+      while (e > 0 && std::isspace(static_cast<unsigned char>(out[e - 1]))) --e;
+      return e >= 8 && std::string_view(out).substr(e - 8, 8) == "template";
+    };
+    if (word_start && text.substr(i, 4) == "Mesh" && !after_template() && (i + 4 == text.size() || !is_name(text[i + 4]))) {
+      // "Mesh [name] {": find the brace, then its match.
+      std::size_t j = i + 4;
+      while (j < text.size() && (std::isspace(static_cast<unsigned char>(text[j])) || is_name(text[j]))) ++j;
+      if (j < text.size() && text[j] == '{') {
+        int depth = 0;
+        std::size_t k = j;
+        for (; k < text.size(); ++k) {
+          if (text[k] == '"') {
+            const std::size_t end = text.find('"', k + 1);
+            if (end == std::string_view::npos) break;
+            k = end;
+          } else if (text[k] == '{') {
+            ++depth;
+          } else if (text[k] == '}' && --depth == 0) {
+            break;
+          }
+        }
+        if (k < text.size() && depth == 0) {
+          i = k + 1;  // dropped
+          continue;
+        }
+      }
+    }
+    out.push_back(c);
+    ++i;
+  }
+  return out;
+}
+
 // assimp's messages may quote kilobytes of the file: one short line.
 std::string shortened(std::string s) {
   constexpr std::size_t kMax = 240;
@@ -650,6 +713,7 @@ Expected<RawScene> read_assimp(std::span<const std::byte> bytes, std::string_vie
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   std::string stripped;
   if (looks_like_collada(text)) stripped = without_mesh_libraries(text);
+  if (is_text_x(text)) stripped = without_x_meshes(text);
   try {
     Assimp::Importer importer;
     configure(importer);
@@ -685,12 +749,12 @@ Expected<RawScene> read_assimp_file(const std::filesystem::path& file, const Ass
     }
   }
   std::string ext = lower(file.extension().string());
-  if (ext == ".dae") {
-    // Collada needs no file beside it for node animation: read, drop the mesh libraries, parse in memory.
+  if (ext == ".dae" || ext == ".x") {
+    // Collada and .x need no file beside them for node animation: read, drop the meshes, parse in memory.
     std::ifstream in(file, std::ios::binary);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) return Error{ErrorCode::Io, "cannot read the file", file.string()};
-    auto raw = read_assimp(std::as_bytes(std::span<const char>(text.data(), text.size())), "dae", options);
+    auto raw = read_assimp(std::as_bytes(std::span<const char>(text.data(), text.size())), ext.substr(1), options);
     if (!raw) {
       Error e = raw.error();
       if (e.where.empty() && e.location.empty()) e.where = file.string();
