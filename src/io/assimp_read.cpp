@@ -178,20 +178,15 @@ std::string without_mesh_libraries(std::string_view text) {
 // strings and comments (`//`, `#`); a Mesh without its closing brace is left for assimp to refuse.
 bool is_text_x(std::string_view text) { return text.size() >= 12 && text.substr(0, 4) == "xof " && text.substr(8, 4) == "txt "; }
 
-std::string without_x_meshes(std::string_view text) {
+// The text without its Mesh objects, or nothing when a Mesh has no closing brace (then assimp
+// would parse the rest of the file as mesh data: the file is refused).
+std::optional<std::string> without_x_meshes(std::string_view text) {
   std::string out;
   out.reserve(text.size());
   const auto is_name = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'; };
   std::size_t i = 0;
   while (i < text.size()) {
     const char c = text[i];
-    if (c == '"') {  // copy a quoted string whole
-      const std::size_t end = text.find('"', i + 1);
-      const std::size_t stop = end == std::string_view::npos ? text.size() : end + 1;
-      out.append(text.substr(i, stop - i));
-      i = stop;
-      continue;
-    }
     if (c == '#' || (c == '/' && i + 1 < text.size() && text[i + 1] == '/')) {  // copy a comment line
       const std::size_t end = text.find('\n', i);
       const std::size_t stop = end == std::string_view::npos ? text.size() : end;
@@ -205,28 +200,21 @@ std::string without_x_meshes(std::string_view text) {
       while (e > 0 && std::isspace(static_cast<unsigned char>(out[e - 1]))) --e;
       return e >= 8 && std::string_view(out).substr(e - 8, 8) == "template";
     };
-    if (word_start && text.substr(i, 4) == "Mesh" && !after_template() && (i + 4 == text.size() || !is_name(text[i + 4]))) {
-      // "Mesh [name] {": find the brace, then its match.
+    if (word_start && text.substr(i, 4) == "Mesh" && (i + 4 == text.size() || !is_name(text[i + 4])) && !after_template()) {
+      // "Mesh [name] {": find the brace, then its match (braces in comments or strings inside a
+      // mesh would miscount: then the match is missing or early, and assimp refuses the rest).
       std::size_t j = i + 4;
       while (j < text.size() && (std::isspace(static_cast<unsigned char>(text[j])) || is_name(text[j]))) ++j;
       if (j < text.size() && text[j] == '{') {
         int depth = 0;
         std::size_t k = j;
         for (; k < text.size(); ++k) {
-          if (text[k] == '"') {
-            const std::size_t end = text.find('"', k + 1);
-            if (end == std::string_view::npos) break;
-            k = end;
-          } else if (text[k] == '{') {
-            ++depth;
-          } else if (text[k] == '}' && --depth == 0) {
-            break;
-          }
+          if (text[k] == '{') ++depth;
+          if (text[k] == '}' && --depth == 0) break;
         }
-        if (k < text.size() && depth == 0) {
-          i = k + 1;  // dropped
-          continue;
-        }
+        if (k >= text.size()) return std::nullopt;
+        i = k + 1;  // dropped
+        continue;
       }
     }
     out.push_back(c);
@@ -713,7 +701,11 @@ Expected<RawScene> read_assimp(std::span<const std::byte> bytes, std::string_vie
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   std::string stripped;
   if (looks_like_collada(text)) stripped = without_mesh_libraries(text);
-  if (is_text_x(text)) stripped = without_x_meshes(text);
+  if (is_text_x(text)) {
+    auto kept = without_x_meshes(text);
+    if (!kept) return Error{ErrorCode::Parse, "assimp cannot read it: a Mesh object has no closing brace", ""};
+    stripped = std::move(*kept);
+  }
   try {
     Assimp::Importer importer;
     configure(importer);
