@@ -43,7 +43,8 @@
 // takes its place in every program that links inbetween_io (the executable's definition comes
 // first in the dynamic linker's lookup): it throws, assimp's importer catches the exception at its
 // ReadFile() boundary, and the read fails with the assertion as its message instead of aborting.
-// (A Python extension module is loaded RTLD_LOCAL, where assimp keeps its own, aborting, one.)
+// (A Python extension module is loaded RTLD_LOCAL: there the module's own group is searched, where
+// this definition precedes libassimp's; not checked by a test.)
 namespace Assimp {
 void aiAssertViolation(const char* failed_expression, const char* file, int line) {
   throw std::runtime_error(std::string("assimp's internal check failed: ") + (failed_expression ? failed_expression : "?") +
