@@ -10,13 +10,15 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 # (libFuzzer, the sanitizer runtimes) build the asan preset that `make test` also runs.  esbuild
 # bundles three.js into the page of `inbetween view` at build time; chromium runs that page in the
 # browser test (docs/preview.md).  libhwy-dev: Highway, the double rig kernel's run-time SIMD
-# dispatch; libxsimd-dev: the benchmarks' xsimd comparison (docs/runtime.md).  assimp-testmodels: the CMU
-# motion-capture clips (models/BVH/) that `make demo` shows and the BVH tests and bench read
-# (tests/data/bvh/README.md).
+# dispatch; libxsimd-dev: the benchmarks' xsimd comparison (docs/runtime.md).  libassimp-dev:
+# FBX, Collada, … (docs/assimp.md); assimp-testmodels: its test files (FBX, Collada, CMU BVH clips)
+# that the assimp and BVH tests read, and the CMU
+# motion-capture clips (models/BVH/) that `make demo` shows and the BVH bench reads (tests/data/bvh/README.md).
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
         nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev gltfpack libeigen3-dev libglm-dev libboost-dev \
         python3 python3-scipy python3-jsonschema clang libclang-rt-dev esbuild chromium \
-        pybind11-dev python3-dev python3-pytest python3-numpy libhwy-dev libxsimd-dev assimp-testmodels
+        pybind11-dev python3-dev python3-pytest python3-numpy libhwy-dev libxsimd-dev \
+        libassimp-dev assimp-testmodels
 
 .PHONY: all deps configure build test demo screenshots bench bench-ozz asan fuzz clean
 
@@ -114,13 +116,14 @@ asan:
 # Each libFuzzer target for FUZZ_SECONDS (asan preset); the corpus grows in build/asan/fuzz/corpus-*,
 # crashes land in build/asan/fuzz/artifacts-*/ (see fuzz/README.md for what to do with them).
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := scene curve csv rotation_line obj environment gltf bvh
+FUZZ_TARGETS := scene curve csv rotation_line obj environment gltf bvh assimp
 fuzz:
 	$(MAKE) configure PRESET=asan
 	cmake --build --preset asan -j $(JOBS) --target $(addprefix inbetween_fuzz_,$(FUZZ_TARGETS))
 	@set -e; for t in $(FUZZ_TARGETS); do \
 	  d=build/asan/fuzz; mkdir -p $$d/corpus-$$t $$d/artifacts-$$t; \
 	  echo "== fuzz $$t for $(FUZZ_SECONDS) s"; \
+	  supp=fuzz/lsan-$$t.supp; if [ -f $$supp ]; then export LSAN_OPTIONS=suppressions=$$PWD/$$supp; else unset LSAN_OPTIONS; fi; \
 	  $$d/inbetween_fuzz_$$t -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
 	    -max_total_time=$(FUZZ_SECONDS) -timeout=10 -dict=fuzz/dict/$$t.dict -print_final_stats=1 \
 	    -artifact_prefix=$$d/artifacts-$$t/ $$d/corpus-$$t fuzz/corpus/$$t 2>&1 | grep -E '^#|INFO: (exiting|fuzzed)' | tail -3; \

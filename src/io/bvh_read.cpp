@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "inbetween/io/bvh.hpp"
+#include "inbetween/io/axes.hpp"
 #include "inbetween/io/read_file.hpp"
 #include "inbetween/math/euler.hpp"
 #include "inbetween/math/format.hpp"
@@ -354,39 +355,12 @@ Quatd axis_rotation(Channel ch, double deg) {
 
 }  // namespace
 
-Expected<std::array<std::array<int, 3>, 3>> parse_bvh_axes(std::string_view name) {
-  using Matrix = std::array<std::array<int, 3>, 3>;
-  if (name.empty() || name == "y-up" || name == "x,y,z") return Matrix{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-  if (name == "z-up") return Matrix{{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}};
-  std::string message = quoted(name);
-  message += " is not an axes name: \"y-up\" (the file's), \"z-up\", or three signed axes such as \"x,-z,y\"";
-  const Error bad{ErrorCode::Parse, std::move(message), "--axes"};
-  Matrix m{};
-  std::size_t i = 0;
-  bool used[3] = {false, false, false};
-  for (int r = 0; r < 3; ++r) {
-    if (r > 0) {
-      if (i >= name.size() || name[i] != ',') return bad;
-      ++i;
-    }
-    int sign = 1;
-    if (i < name.size() && (name[i] == '-' || name[i] == '+')) sign = name[i++] == '-' ? -1 : 1;
-    if (i >= name.size() || name[i] < 'x' || name[i] > 'z') return bad;
-    const int axis = name[i++] - 'x';
-    if (used[axis]) return bad;
-    used[axis] = true;
-    m[std::size_t(r)][std::size_t(axis)] = sign;
-  }
-  if (i != name.size()) return bad;
-  return m;
-}
-
 Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options) {
   if (!std::isfinite(options.scale) || !(options.scale > 0)) {
     return Error{ErrorCode::InvalidArgument, shortest_text(options.scale) + " is not finite and positive", "--scale"};
   }
   if (!std::isfinite(options.fps)) return Error{ErrorCode::InvalidArgument, "not finite", "--fps"};
-  auto axes = parse_bvh_axes(options.axes);
+  auto axes = parse_axes(options.axes);
   if (!axes) return axes.error();
   Conversion conv;
   conv.m = *axes;

@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "inbetween/io/bvh.hpp"
+#include "inbetween/io/assimp.hpp"
 #include "inbetween/io/gltf.hpp"
 #include "inbetween/io/read_file.hpp"
 #include "inbetween/io/scene.hpp"
@@ -47,6 +48,8 @@ InputFormat input_format(const std::filesystem::path& file) {
   if (ext == ".gltf" || ext == ".glb") return InputFormat::gltf;
   if (ext == ".bvh") return InputFormat::bvh;
   if (ext == ".json") return InputFormat::scene_json;
+  for (const std::string_view known : assimp_extensions())
+    if (ext == known) return InputFormat::assimp;
   if (has_glb_magic(file)) return InputFormat::gltf;
   return InputFormat::scene_json;
 }
@@ -68,9 +71,15 @@ Expected<RawScene> read_input_file(const std::filesystem::path& file, const Inpu
       bvh.notes = options.notes;
       return read_bvh_file(file, bvh);
     }
-    case InputFormat::assimp:
-      return Error{ErrorCode::Unsupported, "no reader for " + std::string(to_string(input_format(file))) + " files yet",
-                   file.string()};
+    case InputFormat::assimp: {
+      AssimpReadOptions assimp;
+      assimp.animation = options.animation;
+      assimp.fps = options.fps;
+      assimp.scale = options.scale;
+      assimp.axes = options.axes;
+      assimp.notes = options.notes;
+      return read_assimp_file(file, assimp);
+    }
     case InputFormat::scene_json: break;
   }
   auto text = read_file_bytes(file);

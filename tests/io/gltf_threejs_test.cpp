@@ -17,7 +17,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "inbetween/io/bvh.hpp"
 #include "inbetween/io/gltf.hpp"
+#include "inbetween/io/gltf_write.hpp"
 #include "inbetween/scene/scene.hpp"
 #include "support/cli.hpp"
 #include "support/gltf_builder.hpp"
@@ -176,6 +178,97 @@ TEST(ThreeJsGltfImport, BakeMatchesThreeJsOnRandomFiles) {
     worst_all = std::max(worst_all, worst);
   }
   std::printf("three.js glTF import: worst difference over all rounds %.3g (tolerance %.1g)\n", worst_all, kThreeJsTol);
+}
+
+// Issue 20: `convert CLIP.bvh OUT.glb` writes the skeleton as nodes with a skin, and three.js plays
+// the file as `bake` plays the clip.  A real CMU clip (Debian's assimp-testmodels) read by
+// inbetween's BVH reader, exported with the default options (BVH keys are per-frame slerp and
+// linear keys, which glTF LINEAR holds exactly, so no channel is refitted), loaded by GLTFLoader
+// and played by AnimationMixer at every 7th frame and between frames; every joint's world transform
+// equals the BVH scene's.  The only difference is float32 storage of times, offsets and keys:
+// positions within 1e-5 of the clip's extent (the issue's figure), rotations within 1e-5 rad.
+TEST(ThreeJsGltfImport, CmuClipConvertedToGlbPlaysAsBakeDoes) {
+  const fs::path tools = fs::path(INBETWEEN_SOURCE_DIR) / "tools/threejs";
+  const fs::path clip = "/usr/share/assimp/models/BVH/01_01.bvh";
+  if (std::system("node --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "node not installed";
+  if (!fs::exists(tools / "node_modules/three/package.json")) {
+    GTEST_SKIP() << "three.js not installed (npm ci --prefix tools/threejs)";
+  }
+  if (!fs::exists(clip)) GTEST_SKIP() << clip << " missing (Debian package assimp-testmodels)";
+  auto raw = read_bvh_file(clip);
+  ASSERT_TRUE(raw.has_value()) << raw.error().describe();
+  auto scene = build_scene(*raw);
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  auto out = export_gltf(*raw, *scene, {});
+  ASSERT_TRUE(out.has_value()) << out.error().describe();
+  for (const auto& c : out->channels) EXPECT_FALSE(c.refitted) << c.object << "." << c.path << ": " << c.reason;
+  const fs::path dir = test::test_dir();
+  const fs::path glb = test::write_test_file("01_01.glb", out->bytes);
+
+  // glTF key times are float32: key i of the file is at k_i = float(i / fps), not at i / fps.  The
+  // times asked of three.js are such key times (where every sampler returns its key exactly) and
+  // midpoints between two of them; the BVH scene is sampled at the frame those times stand for,
+  // i + (t − k_i) / (k_{i+1} − k_i), so the comparison sees the stored values, not the time rounding
+  // (which alone moves a fast joint by ~1e-5 rad between frames at 120 fps).
+  const double fps = scene->fps();
+  auto key_time = [&](double i) { return double(float(i / fps)); };
+  std::vector<double> frames, times;
+  for (double f = scene->range_start(); f <= scene->range_end(); f += 7) {
+    frames.push_back(f);
+    times.push_back(key_time(f));
+  }
+  for (double f = scene->range_start(); f + 1 <= scene->range_end(); f += 61) {
+    const double k0 = key_time(f), k1 = key_time(f + 1), t = 0.5 * (k0 + k1);
+    frames.push_back(f + (t - k0) / (k1 - k0));
+    times.push_back(t);
+  }
+  const fs::path req = dir / "request.json", three_out = dir / "three.json";
+  std::ofstream(req) << nlohmann::json{{"animation", 0}, {"times", times}}.dump();
+  const std::string cmd = "node '" + (tools / "sample_gltf_file.mjs").string() + "' '" + glb.string() + "' < '" +
+                          req.string() + "' > '" + three_out.string() + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const auto three = nlohmann::json::parse(test::slurp(three_out));
+
+  // Node i of the file is object i of the scene (the writer keeps the order).
+  const auto objects = scene->objects();
+  ASSERT_EQ(three["nodes"].size(), objects.size());
+  const auto cols = scene->columns();
+  std::vector<double> row(cols.size());
+  std::vector<std::array<double, 10>> world;  // every object, every frame
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (double f : frames) {
+    scene->sample(f, row);
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      std::array<double, 10> trs{};
+      for (std::size_t c = 0; c < 10; ++c) trs[c] = row[10 * i + c];  // objects' columns: 10 each, in order
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], trs[std::size_t(a)]), hi[a] = std::max(hi[a], trs[std::size_t(a)]);
+      world.push_back(trs);
+    }
+  }
+  ASSERT_EQ(cols.size(), 10 * objects.size());  // a BVH scene has only objects
+  for (std::size_t i = 0; i < objects.size(); ++i) ASSERT_EQ(cols[10 * i].name, raw->objects[i].name + ".translation.x");
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  double worst_position = 0, worst_angle = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      const auto& mine = world[k * objects.size() + i];
+      const auto& theirs = three["nodes"][std::to_string(i)][k];
+      double d = 0;
+      for (std::size_t c = 0; c < 3; ++c) d = std::max(d, std::abs(mine[c] - theirs[c].get<double>()));
+      double plus = 0, minus = 0;
+      for (std::size_t c = 3; c < 7; ++c) {
+        plus += (mine[c] - theirs[c].get<double>()) * (mine[c] - theirs[c].get<double>());
+        minus += (mine[c] + theirs[c].get<double>()) * (mine[c] + theirs[c].get<double>());
+      }
+      const double angle = 4 * std::asin(std::min(1.0, std::sqrt(std::min(plus, minus)) / 2));  // |q1 − q2| = 2 sin(θ/4)
+      EXPECT_LT(d, 1e-5 * extent) << "object " << i << " frame " << frames[k];
+      EXPECT_LT(angle, 1e-5) << "object " << i << " frame " << frames[k];
+      worst_position = std::max(worst_position, d);
+      worst_angle = std::max(worst_angle, angle);
+    }
+  }
+  std::printf("01_01.bvh → .glb in three.js: %zu frames × %zu joints, positions %.3g of the extent %.4g, rotations %.3g rad\n",
+              frames.size(), objects.size(), worst_position / extent, extent, worst_angle);
 }
 
 }  // namespace

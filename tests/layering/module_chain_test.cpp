@@ -29,7 +29,7 @@ std::vector<Violation> scan(const std::filesystem::path& root) {
   namespace fs = std::filesystem;
   std::vector<Violation> bad;
   const std::regex own_include(R"re(^\s*#\s*include\s*[<"]inbetween/([a-z_]+)/)re");
-  const std::regex third_party(R"re(^\s*#\s*include\s*[<"]((nlohmann|Eigen|CLI|gtest|benchmark)/|tiny_obj_loader))re");
+  const std::regex third_party(R"re(^\s*#\s*include\s*[<"]((nlohmann|Eigen|CLI|gtest|benchmark|assimp)/|tiny_obj_loader))re");
   for (const char* top : {"include/inbetween", "src"}) {
     const fs::path base = root / top;
     if (!fs::exists(base)) continue;

@@ -53,11 +53,10 @@ struct BvhReadOptions {
   double fps = 0;
   /// Factor on every length (OFFSETs and position channels); finite and > 0.
   double scale = 1;
-  /// Axis conversion (docs/bvh.md): "" keeps the file's axes; "y-up" is the same; "z-up" turns a
-  /// Y-up file into Z-up (x, y, z) → (x, −z, y), what Blender's importer does by default;
-  /// otherwise three signed axis letters separated by commas naming where each new axis comes
-  /// from, e.g. "x,-z,y" (= "z-up") or "-x,y,-z" (a half turn about y).  Positions map as p' = M p,
-  /// rotations as R' = M R Mᵀ; a mirror (det M = −1) is allowed and keeps rotations proper.
+  /// Axis conversion, a name of parse_axes() (io/axes.hpp): "" keeps the file's axes (BVH files
+  /// are Y-up by convention); "z-up" turns them Z-up, what Blender's importer does by default.
+  /// Positions map as p' = M p, rotations as R' = M R Mᵀ; a mirror is allowed and keeps
+  /// rotations proper.
   std::string axes;
   /// When not null, the reader appends one line per thing it ignores (MOTION lines beyond the
   /// `Frames:` count); the commands print them as `note:` lines.
@@ -77,11 +76,6 @@ struct BvhReadOptions {
 /// read_bvh() of a file's content; ErrorCode::Io (where = the path) when it cannot be read,
 /// Unsupported when it is larger than kMaxBvhFileBytes.
 [[nodiscard]] Expected<RawScene> read_bvh_file(const std::filesystem::path& file, const BvhReadOptions& options = {});
-
-/// The signed permutation matrix of an axes name of BvhReadOptions::axes, rows = new axes:
-/// row r has ±1 in the column of the old axis new axis r comes from.  Error (Parse, where
-/// "--axes") for any other text.
-[[nodiscard]] Expected<std::array<std::array<int, 3>, 3>> parse_bvh_axes(std::string_view name);
 
 /// Options of write_bvh().
 struct BvhWriteOptions {

@@ -35,7 +35,7 @@ struct InputOptions {
   /// glTF and assimp: the animation's name, or its index in decimal; empty for the first.
   std::string animation;
   /// Frames per second, finite and > 0, or ≤ 0 for the format's own: glTF 24; BVH 1 / Frame Time;
-  /// assimp the animation's ticks per second (25 when the file gives none).  Key times in
+  /// assimp the animation's ticks per second when in [1, 240], else 24 (docs/assimp.md).  Key times in
   /// seconds become frames = time · fps.  A scene file keeps its own fps (the commands relabel).
   double fps = 0;
   /// BVH and assimp: factor applied to every length (offsets, positions), finite and > 0.
