@@ -177,7 +177,11 @@ std::string preview_html(const Scene& scene, const PreviewFrames& frames, const 
     data += i ? ",\n[" : "\n[";
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
-      if (!std::isfinite(v)) throw non_finite_error(InputArgs{.path = options.source}, scene, f, c, v);
+      if (!std::isfinite(v)) {
+        InputArgs source;
+        source.path = options.source;
+        throw non_finite_error(source, scene, f, c, v);
+      }
       if (c) data += ",";
       if (columns[c].single_precision) {
         append_number(data, float(row[c]));
