@@ -5,7 +5,9 @@
 //     and cameras included), so that `bake OUT.json` equals `bake IN.json`;
 //   - scene file or glTF → glTF (.gltf, .glb): exported by io/gltf_write.hpp, keys kept where glTF
 //     holds them exactly and refitted otherwise (or every channel with --reduce), with a report of
-//     each channel (why, keys before/after, measured max error) on standard error.
+//     each channel (why, keys before/after, measured max error) on standard error;
+//   - any input → BVH (.bvh): the objects sampled at every whole frame of the range
+//     (inbetween/io/bvh.hpp, docs/bvh.md), notes on standard error.
 // The output is written whole or not at all.
 #include <cmath>
 #include <cstdio>
@@ -15,6 +17,7 @@
 
 #include "command.hpp"
 #include "input.hpp"
+#include "inbetween/io/bvh.hpp"
 #include "inbetween/io/gltf_write.hpp"
 #include "inbetween/io/scene.hpp"
 #include "inbetween/io/scene_write.hpp"
@@ -60,6 +63,15 @@ void run_convert(const ConvertOptions& opt) {
   if (!std::isfinite(opt.input.fps)) throw CommandError{"--fps: not a finite positive number"};
   const bool to_json = ends_with(opt.output, ".json");
   const bool glb = ends_with(opt.output, ".glb"), gltf = ends_with(opt.output, ".gltf");
+  if (ends_with(opt.output, ".bvh")) {
+    const Scene scene = load_scene(opt.input);
+    auto out = write_bvh(scene);
+    if (!out) throw CommandError{opt.input.path + ": " + out.error().describe()};
+    write_output(opt.output, out->text);
+    if (!opt.quiet)
+      for (const std::string& note : out->notes) std::cerr << "note: " << note << '\n';
+    return;
+  }
   if (to_json) {
     // glTF → scene file, or scene file → scene file (the writer's form: version 2, defaults left
     // out, curve files inlined).
@@ -73,7 +85,7 @@ void run_convert(const ConvertOptions& opt) {
   if (!glb && !gltf) {
     throw CommandError{"convert: " + opt.input.path + " → " + opt.output +
                        " is not a supported conversion: the output must end in .gltf or .glb (export of a scene or glTF "
-                       "file) or in .json (a scene file, from glTF or scene input)"};
+                       "file), .bvh (BVH motion, docs/bvh.md) or .json (a scene file)"};
   }
   const RawScene raw = read_raw(opt);
   auto scene = build_scene(raw);
@@ -92,11 +104,11 @@ void run_convert(const ConvertOptions& opt) {
 
 const RegisterCommand kConvert{{"convert", 45, [](CLI::App& root) {
   auto opt = std::make_shared<ConvertOptions>();
-  auto* cmd = root.add_subcommand("convert", "Convert between glTF 2.0 and scene files (by extension), refitting what glTF cannot hold");
+  auto* cmd = root.add_subcommand("convert", "Convert between scene files, glTF 2.0 and BVH (by extension), refitting what glTF cannot hold");
   add_input_options(cmd, opt->input, "input",
                     "Scene file (docs/scene-format.md; - for standard input), glTF 2.0 (.gltf, .glb), BVH (.bvh) or a "
                     "file assimp reads (.fbx, .dae, …)");
-  cmd->add_option("output", opt->output, "Output: .gltf or .glb (export), or .json (scene file, from glTF or scene input)")->required();
+  cmd->add_option("output", opt->output, "Output: .gltf or .glb (export), .bvh (BVH motion) or .json (scene file)")->required();
   cmd->add_option("--fps", opt->input.fps,
                   "glTF, BVH, assimp input: frames per second, frame = time · fps (default: the format's own)")
       ->check(CLI::PositiveNumber);
@@ -109,7 +121,7 @@ const RegisterCommand kConvert{{"convert", 45, [](CLI::App& root) {
       ->check(CLI::Range(1, 64));
   cmd->add_flag("--no-cubic", opt->no_cubic,
                 "Write STEP and LINEAR samplers only (Blender 3.4's importer ignores CUBICSPLINE tangents)");
-  cmd->add_flag("-q,--quiet", opt->quiet, "Do not print the channel report");
+  cmd->add_flag("-q,--quiet", opt->quiet, "Do not print the channel report (nor the notes of a BVH export)");
   cmd->callback([opt] { run_convert(*opt); });
 }}};
 

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "inbetween/io/bvh.hpp"
 #include "inbetween/io/gltf.hpp"
 #include "inbetween/io/scene.hpp"
 
@@ -56,7 +57,14 @@ Expected<RawScene> read_input_file(const std::filesystem::path& file, const Inpu
       gltf.notes = options.notes;
       return read_gltf_file(file, gltf);
     }
-    case InputFormat::bvh:
+    case InputFormat::bvh: {
+      BvhReadOptions bvh;
+      bvh.fps = options.fps;
+      bvh.scale = options.scale;
+      bvh.axes = options.axes;
+      bvh.notes = options.notes;
+      return read_bvh_file(file, bvh);
+    }
     case InputFormat::assimp:
       return Error{ErrorCode::Unsupported, "no reader for " + std::string(to_string(input_format(file))) + " files yet",
                    file.string()};

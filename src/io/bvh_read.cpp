@@ -1,0 +1,558 @@
+// BVH → RawScene (inbetween/io/bvh.hpp, docs/bvh.md).  A line-oriented reader: the HIERARCHY is
+// read statement by statement (one statement per line, a `{` may end a ROOT, JOINT or End Site
+// line), with an explicit stack instead of recursion so that deep nesting costs no stack; the
+// MOTION lines are converted to keys as they are read.  Every fault names its line.  The reader
+// checks what build_scene() would report at a place that does not exist in a BVH file (duplicate
+// joint names, non-finite numbers), as the glTF reader does.
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "inbetween/io/bvh.hpp"
+#include "inbetween/math/euler.hpp"
+#include "inbetween/math/format.hpp"
+
+namespace inbetween {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr std::size_t kMaxQuoted = 40;  // characters of a token quoted in a message
+
+std::string quoted(std::string_view token) {
+  std::string s(token.substr(0, std::min(token.size(), kMaxQuoted)));
+  if (token.size() > kMaxQuoted) s += "...";
+  return "'" + s + "'";
+}
+
+Error line_error(std::size_t line, ErrorCode code, std::string message) {
+  return Error{code, std::move(message), "line " + std::to_string(line)};
+}
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+bool iequals(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const auto lower = [](char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; };
+    if (lower(a[i]) != lower(b[i])) return false;
+  }
+  return true;
+}
+
+// The text line by line ('\n', "\r\n" or a lone '\r' ends a line), each split into tokens at
+// blanks.  Lines count from 1.
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : text_(text) {}
+
+  // The next line that has a token (into `tokens`); false at the end of the text.
+  bool next(std::vector<std::string_view>& tokens) {
+    while (pos_ < text_.size()) {
+      const std::size_t start = pos_;
+      std::size_t end = start;
+      while (end < text_.size() && text_[end] != '\n' && !(text_[end] == '\r' && (end + 1 == text_.size() || text_[end + 1] != '\n')))
+        ++end;
+      // A "\r\n" ends the line at the '\r' (blank anyway); a lone '\r' or '\n' is one character.
+      pos_ = end < text_.size() ? end + 1 : end;
+      ++number_;
+      tokens.clear();
+      std::size_t i = start;
+      while (i < end) {
+        while (i < end && is_space(text_[i])) ++i;
+        const std::size_t t = i;
+        while (i < end && !is_space(text_[i])) ++i;
+        if (i > t) tokens.push_back(text_.substr(t, i - t));
+      }
+      if (!tokens.empty()) return true;
+    }
+    return false;
+  }
+  // The number of the line last returned by next() (of the last line after it returned false).
+  [[nodiscard]] std::size_t number() const { return number_; }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::size_t number_ = 0;
+};
+
+// A decimal number as BVH writers print it (a leading '+' allowed); nullopt when `token` is not
+// one.  Sets `finite` false for nan, inf and numbers beyond double's range; a number below the
+// smallest subnormal reads as 0.
+std::optional<double> parse_number(std::string_view token, bool& finite) {
+  finite = true;
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  double v = 0;
+  const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+  if (ptr != token.data() + token.size() || token.empty()) return std::nullopt;
+  if (ec == std::errc::result_out_of_range) {
+    // Underflow (an exponent far below zero) is a tiny number, overflow is not finite.
+    const auto e = token.find_first_of("eE");
+    if (e != std::string_view::npos && e + 1 < token.size() && token[e + 1] == '-') return 0.0;
+    finite = false;
+    return 0.0;
+  }
+  if (ec != std::errc()) return std::nullopt;
+  if (!std::isfinite(v)) finite = false;
+  return v;
+}
+
+Expected<double> number_at(std::string_view token, std::size_t line, const std::string& what) {
+  bool finite = true;
+  const auto v = parse_number(token, finite);
+  if (!v) return line_error(line, ErrorCode::Parse, what + ": " + quoted(token) + " is not a number");
+  if (!finite) return line_error(line, ErrorCode::NotFinite, what + ": " + quoted(token) + " is not a finite number");
+  return *v;
+}
+
+enum class Channel : std::uint8_t { xpos, ypos, zpos, xrot, yrot, zrot };
+
+std::optional<Channel> channel_of(std::string_view name) {
+  static constexpr std::array<std::string_view, 6> names = {"Xposition", "Yposition", "Zposition",
+                                                            "Xrotation", "Yrotation", "Zrotation"};
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (iequals(name, names[i])) return Channel(i);
+  return std::nullopt;
+}
+
+struct Joint {
+  std::string name;
+  std::optional<std::size_t> parent;
+  std::size_t line = 0;              // of its ROOT / JOINT statement
+  std::optional<Vec3d> offset;       // OFFSET, scaled and converted
+  bool has_channels_line = false;
+  bool has_children = false;
+  std::vector<Channel> channels;     // in the order listed
+  std::size_t first_value = 0;       // index of its first channel in a frame line
+  bool has_position = false;
+  bool has_rotation = false;
+};
+
+// One open block of the hierarchy: a joint, or an End Site (joint = none).
+struct Block {
+  std::optional<std::size_t> joint;
+  std::size_t line = 0;
+  bool open = false;        // its `{` seen
+  bool has_offset = false;  // End Site: its OFFSET seen
+};
+
+// The conversion of BvhReadOptions::axes and ::scale.
+struct Conversion {
+  std::array<std::array<int, 3>, 3> m{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  int det = 1;
+  double scale = 1;
+  Vec3d point(const Vec3d& p) const {
+    const double in[3] = {p.x, p.y, p.z};
+    double out[3];
+    for (int r = 0; r < 3; ++r) out[r] = scale * (m[r][0] * in[0] + m[r][1] * in[1] + m[r][2] * in[2]);
+    return Vec3d{out[0], out[1], out[2]};
+  }
+  // R' = M R Mᵀ: the vector part maps as det(M)·M v (exact: a signed permutation).
+  Quatd rotation(const Quatd& q) const {
+    const double in[3] = {q.x, q.y, q.z};
+    double out[3];
+    for (int r = 0; r < 3; ++r) out[r] = det * (m[r][0] * in[0] + m[r][1] * in[1] + m[r][2] * in[2]);
+    return Quatd::from_wxyz(q.w, out[0], out[1], out[2]);
+  }
+};
+
+std::string joint_name(const std::vector<std::string_view>& tokens) {
+  // Blender's importer joins the words of a name with '_'; a trailing "{" opens the block.
+  std::string name;
+  const std::size_t end = tokens.size() - (tokens.back() == "{" ? 1 : 0);
+  for (std::size_t i = 1; i < end; ++i) {
+    if (i > 1) name += '_';
+    name += tokens[i];
+  }
+  return name;
+}
+
+// Parses the HIERARCHY (everything up to and including the MOTION line).
+Expected<std::vector<Joint>> read_hierarchy(Lines& lines, std::vector<std::string_view>& tokens, const Conversion& conv) {
+  if (!lines.next(tokens)) return line_error(std::max<std::size_t>(lines.number(), 1), ErrorCode::Parse, "empty file: no HIERARCHY");
+  if (!iequals(tokens[0], "HIERARCHY") || tokens.size() != 1) {
+    return line_error(lines.number(), ErrorCode::Parse, "a BVH file starts with HIERARCHY, not " + quoted(tokens[0]));
+  }
+  std::vector<Joint> joints;
+  std::unordered_map<std::string, std::size_t> names;  // name → joint index
+  std::vector<Block> stack;
+  while (lines.next(tokens)) {
+    const std::size_t line = lines.number();
+    const std::string_view kw = tokens[0];
+    if (!stack.empty() && !stack.back().open) {
+      if (tokens.size() == 1 && kw == "{") {
+        stack.back().open = true;
+        continue;
+      }
+      const std::string what = stack.back().joint ? "joint '" + joints[*stack.back().joint].name + "'" : std::string("End Site");
+      return line_error(line, ErrorCode::Parse,
+                        "expected '{' after the " + what + " of line " + std::to_string(stack.back().line) + ", not " +
+                            quoted(kw));
+    }
+    if (iequals(kw, "ROOT") || iequals(kw, "JOINT")) {
+      const bool root = iequals(kw, "ROOT");
+      if (root && !stack.empty()) {
+        return line_error(line, ErrorCode::Parse, "ROOT inside a joint: missing '}' of the block opened at line " +
+                                                      std::to_string(stack.back().line));
+      }
+      if (!root && stack.empty()) return line_error(line, ErrorCode::Parse, "JOINT outside a ROOT");
+      if (!root && !stack.back().joint) return line_error(line, ErrorCode::Parse, "JOINT inside an End Site");
+      Joint j;
+      j.name = joint_name(tokens);
+      if (j.name.empty()) return line_error(line, ErrorCode::Parse, std::string(root ? "ROOT" : "JOINT") + " without a name");
+      if (joints.size() >= kMaxBvhJoints) {
+        return line_error(line, ErrorCode::Unsupported,
+                          "more than " + std::to_string(kMaxBvhJoints) + " joints (the reader's limit)");
+      }
+      if (auto [it, inserted] = names.emplace(j.name, joints.size()); !inserted) {
+        return line_error(line, ErrorCode::InvalidArgument,
+                          "joint name '" + j.name + "' is already used by the joint of line " +
+                              std::to_string(joints[it->second].line));
+      }
+      j.line = line;
+      if (!root) {
+        j.parent = *stack.back().joint;
+        joints[*j.parent].has_children = true;
+      }
+      joints.push_back(std::move(j));
+      stack.push_back(Block{joints.size() - 1, line, tokens.back() == "{" && tokens.size() > 2, false});
+      continue;
+    }
+    if (iequals(kw, "End")) {
+      if (tokens.size() < 2 || !iequals(tokens[1], "Site")) return line_error(line, ErrorCode::Parse, "'End' must be followed by 'Site'");
+      if (stack.empty() || !stack.back().joint) return line_error(line, ErrorCode::Parse, "End Site outside a joint");
+      joints[*stack.back().joint].has_children = true;
+      stack.push_back(Block{std::nullopt, line, tokens.back() == "{" && tokens.size() > 2, false});
+      continue;
+    }
+    if (iequals(kw, "OFFSET")) {
+      if (stack.empty()) return line_error(line, ErrorCode::Parse, "OFFSET outside a joint");
+      if (tokens.size() != 4) {
+        return line_error(line, ErrorCode::WrongArity,
+                          "OFFSET needs 3 numbers, the line has " + std::to_string(tokens.size() - 1));
+      }
+      Vec3d v;
+      double* c[3] = {&v.x, &v.y, &v.z};
+      for (int k = 0; k < 3; ++k) {
+        auto n = number_at(tokens[std::size_t(k) + 1], line, "OFFSET");
+        if (!n) return n.error();
+        *c[k] = *n;
+      }
+      Block& b = stack.back();
+      if (b.joint) {
+        Joint& j = joints[*b.joint];
+        if (j.offset) return line_error(line, ErrorCode::Parse, "a second OFFSET for joint '" + j.name + "'");
+        if (j.has_channels_line || j.has_children) {
+          return line_error(line, ErrorCode::Parse, "the OFFSET of joint '" + j.name + "' must come before its CHANNELS and children");
+        }
+        const Vec3d p = conv.point(v);
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+          return line_error(line, ErrorCode::NotFinite, "OFFSET times --scale is not finite");
+        }
+        j.offset = p;
+      } else {
+        if (b.has_offset) return line_error(line, ErrorCode::Parse, "a second OFFSET in an End Site");
+        b.has_offset = true;  // End Sites are not joints: the offset is not kept
+      }
+      continue;
+    }
+    if (iequals(kw, "CHANNELS")) {
+      if (stack.empty() || !stack.back().joint) return line_error(line, ErrorCode::Parse, "CHANNELS outside a joint");
+      Joint& j = joints[*stack.back().joint];
+      if (j.has_channels_line) return line_error(line, ErrorCode::Parse, "a second CHANNELS line for joint '" + j.name + "'");
+      if (j.has_children) {
+        return line_error(line, ErrorCode::Parse, "the CHANNELS of joint '" + j.name + "' must come before its children");
+      }
+      j.has_channels_line = true;
+      if (tokens.size() < 2) return line_error(line, ErrorCode::Parse, "CHANNELS without a count");
+      const std::string_view count = tokens[1];
+      std::size_t n = 0;
+      const auto [ptr, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
+      if (ec != std::errc() || ptr != count.data() + count.size()) {
+        return line_error(line, ErrorCode::Parse, "CHANNELS count " + quoted(count) + " is not a whole number");
+      }
+      if (tokens.size() - 2 != n) {
+        return line_error(line, ErrorCode::WrongArity,
+                          "CHANNELS " + std::string(count) + " but the line names " + std::to_string(tokens.size() - 2) +
+                              " channels");
+      }
+      for (std::size_t k = 2; k < tokens.size(); ++k) {
+        const auto ch = channel_of(tokens[k]);
+        if (!ch) {
+          return line_error(line, ErrorCode::Parse,
+                            "unknown channel " + quoted(tokens[k]) +
+                                " (Xposition, Yposition, Zposition, Xrotation, Yrotation, Zrotation)");
+        }
+        if (std::find(j.channels.begin(), j.channels.end(), *ch) != j.channels.end()) {
+          return line_error(line, ErrorCode::Parse, "channel " + quoted(tokens[k]) + " listed twice");
+        }
+        j.channels.push_back(*ch);
+        (int(*ch) < 3 ? j.has_position : j.has_rotation) = true;
+      }
+      continue;
+    }
+    if (kw == "}") {
+      if (tokens.size() != 1) return line_error(line, ErrorCode::Parse, "'}' must stand on its own line");
+      if (stack.empty()) return line_error(line, ErrorCode::Parse, "'}' without an open joint");
+      const Block b = stack.back();
+      stack.pop_back();
+      if (b.joint && !joints[*b.joint].offset) {
+        return line_error(line, ErrorCode::Parse, "joint '" + joints[*b.joint].name + "' (line " + std::to_string(b.line) + ") has no OFFSET");
+      }
+      if (!b.joint && !b.has_offset) {
+        return line_error(line, ErrorCode::Parse, "the End Site of line " + std::to_string(b.line) + " has no OFFSET");
+      }
+      continue;
+    }
+    if (iequals(kw, "MOTION")) {
+      if (!stack.empty()) {
+        const Block& b = stack.back();
+        const std::string what = b.joint ? "joint '" + joints[*b.joint].name + "'" : std::string("End Site");
+        return line_error(line, ErrorCode::Parse,
+                          "MOTION before the '}' of the " + what + " opened at line " + std::to_string(b.line));
+      }
+      if (joints.empty()) return line_error(line, ErrorCode::Parse, "no ROOT before MOTION");
+      if (tokens.size() != 1) return line_error(line, ErrorCode::Parse, "MOTION must stand on its own line");
+      return joints;
+    }
+    if (kw == "{") return line_error(line, ErrorCode::Parse, "'{' without a ROOT, JOINT or End Site before it");
+    return line_error(line, ErrorCode::Parse, "unknown statement " + quoted(kw) + " in the HIERARCHY");
+  }
+  const std::size_t last = std::max<std::size_t>(lines.number(), 1);
+  if (!stack.empty()) {
+    const Block& b = stack.back();
+    const std::string what = b.joint ? "joint '" + joints[*b.joint].name + "'" : std::string("End Site");
+    return line_error(last, ErrorCode::Parse,
+                      "the file ends inside the " + what + " opened at line " + std::to_string(b.line) + ": missing '}'");
+  }
+  return line_error(last, ErrorCode::Parse, "the file ends before MOTION");
+}
+
+Quatd axis_rotation(Channel ch, double deg) {
+  const double half = deg * (kPi / 180) / 2;
+  const double s = std::sin(half);
+  Quatd q = Quatd::from_wxyz(std::cos(half), 0, 0, 0);
+  if (ch == Channel::xrot) q.x = s;
+  else if (ch == Channel::yrot) q.y = s;
+  else q.z = s;
+  return q;
+}
+
+}  // namespace
+
+Expected<std::array<std::array<int, 3>, 3>> parse_bvh_axes(std::string_view name) {
+  using Matrix = std::array<std::array<int, 3>, 3>;
+  if (name.empty() || name == "y-up" || name == "x,y,z") return Matrix{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  if (name == "z-up") return Matrix{{{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}};
+  std::string message = quoted(name);
+  message += " is not an axes name: \"y-up\" (the file's), \"z-up\", or three signed axes such as \"x,-z,y\"";
+  const Error bad{ErrorCode::Parse, std::move(message), "--axes"};
+  Matrix m{};
+  std::size_t i = 0;
+  bool used[3] = {false, false, false};
+  for (int r = 0; r < 3; ++r) {
+    if (r > 0) {
+      if (i >= name.size() || name[i] != ',') return bad;
+      ++i;
+    }
+    int sign = 1;
+    if (i < name.size() && (name[i] == '-' || name[i] == '+')) sign = name[i++] == '-' ? -1 : 1;
+    if (i >= name.size() || name[i] < 'x' || name[i] > 'z') return bad;
+    const int axis = name[i++] - 'x';
+    if (used[axis]) return bad;
+    used[axis] = true;
+    m[std::size_t(r)][std::size_t(axis)] = sign;
+  }
+  if (i != name.size()) return bad;
+  return m;
+}
+
+Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options) {
+  if (!std::isfinite(options.scale) || !(options.scale > 0)) {
+    return Error{ErrorCode::InvalidArgument, shortest_text(options.scale) + " is not finite and positive", "--scale"};
+  }
+  if (!std::isfinite(options.fps)) return Error{ErrorCode::InvalidArgument, "not finite", "--fps"};
+  auto axes = parse_bvh_axes(options.axes);
+  if (!axes) return axes.error();
+  Conversion conv;
+  conv.m = *axes;
+  conv.scale = options.scale;
+  {
+    const auto& m = conv.m;
+    conv.det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+               m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  }
+
+  Lines lines(text);
+  std::vector<std::string_view> tokens;
+  auto hierarchy = read_hierarchy(lines, tokens, conv);
+  if (!hierarchy) return hierarchy.error();
+  std::vector<Joint>& joints = *hierarchy;
+  std::size_t value_count = 0, animated = 0;
+  for (Joint& j : joints) {
+    j.first_value = value_count;
+    value_count += j.channels.size();
+    animated += j.has_position ? 1 : 0;
+    animated += j.has_rotation ? 1 : 0;
+  }
+
+  // Frames: N
+  const std::size_t motion_line = lines.number();
+  if (!lines.next(tokens)) return line_error(motion_line, ErrorCode::Parse, "the file ends after MOTION: no 'Frames:' line");
+  const std::size_t frames_line = lines.number();
+  if (tokens.size() != 2 || !iequals(tokens[0], "Frames:")) {
+    return line_error(frames_line, ErrorCode::Parse, "expected 'Frames: N' after MOTION");
+  }
+  std::size_t frame_count = 0;
+  {
+    const std::string_view t = tokens[1];
+    const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), frame_count);
+    if (ec != std::errc() || ptr != t.data() + t.size()) {
+      return line_error(frames_line, ErrorCode::Parse, "Frames: " + quoted(t) + " is not a whole number ≥ 0");
+    }
+  }
+  if (animated > 0 && frame_count > kMaxBvhKeys / animated) {
+    return line_error(frames_line, ErrorCode::Unsupported,
+                      "Frames: " + std::to_string(frame_count) + " × " + std::to_string(animated) +
+                          " animated channels of joints is more than the reader's limit of " +
+                          std::to_string(kMaxBvhKeys) + " keys");
+  }
+  // Frame Time: t
+  if (!lines.next(tokens)) return line_error(frames_line, ErrorCode::Parse, "the file ends before 'Frame Time:'");
+  const std::size_t time_line = lines.number();
+  if (tokens.size() != 3 || !iequals(tokens[0], "Frame") || !iequals(tokens[1], "Time:")) {
+    return line_error(time_line, ErrorCode::Parse, "expected 'Frame Time: SECONDS' after 'Frames:'");
+  }
+  auto frame_time = number_at(tokens[2], time_line, "Frame Time");
+  if (!frame_time) return frame_time.error();
+  const double file_fps = 1 / *frame_time;
+  if (!(*frame_time > 0) || !std::isfinite(file_fps)) {
+    return line_error(time_line, ErrorCode::InvalidArgument,
+                      "Frame Time " + shortest_text(*frame_time) + " is not a positive number of seconds");
+  }
+  const bool own_fps = !(options.fps > 0);
+  const auto frame_of = [&](std::size_t i) { return own_fps ? double(i) : double(i) * *frame_time * options.fps; };
+  if (frame_count > 0 && !std::isfinite(frame_of(frame_count - 1))) {
+    return Error{ErrorCode::InvalidArgument, "the last frame at this fps is not finite", "--fps"};
+  }
+
+  RawScene scene;
+  scene.fps = own_fps ? file_fps : options.fps;
+  scene.range = {0, frame_count > 0 ? frame_of(frame_count - 1) : 0.0};
+  std::vector<RawVec3Channel> positions(joints.size());
+  std::vector<RawQuatKeys> rotations(joints.size());
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    if (joints[k].has_position) positions[k].keys.reserve(frame_count);
+    if (joints[k].has_rotation) rotations[k].keys.reserve(frame_count);
+  }
+  std::vector<double> values(value_count);
+  for (std::size_t i = 0; i < frame_count; ++i) {
+    if (!lines.next(tokens)) {
+      return line_error(frames_line, ErrorCode::TooFewPoints,
+                        "Frames: " + std::to_string(frame_count) + ", but the MOTION section ends after " +
+                            std::to_string(i) + " frame lines (line " + std::to_string(lines.number()) + ")");
+    }
+    const std::size_t line = lines.number();
+    if (tokens.size() != value_count) {
+      return line_error(line, ErrorCode::WrongArity,
+                        "frame " + std::to_string(i) + " has " + std::to_string(tokens.size()) + " numbers, the CHANNELS lines declare " +
+                            std::to_string(value_count));
+    }
+    for (std::size_t v = 0; v < value_count; ++v) {
+      bool finite = true;
+      const auto n = parse_number(tokens[v], finite);
+      if (!n || !finite) {
+        return line_error(line, n ? ErrorCode::NotFinite : ErrorCode::Parse,
+                          "frame " + std::to_string(i) + ", value " + std::to_string(v + 1) + ": " + quoted(tokens[v]) +
+                              (n ? " is not a finite number" : " is not a number"));
+      }
+      values[v] = *n;
+    }
+    const double frame = frame_of(i);
+    for (std::size_t k = 0; k < joints.size(); ++k) {
+      const Joint& j = joints[k];
+      if (j.channels.empty()) continue;
+      Vec3d p{};
+      Quatd q{};
+      for (std::size_t c = 0; c < j.channels.size(); ++c) {
+        const double x = values[j.first_value + c];
+        switch (j.channels[c]) {
+          case Channel::xpos: p.x = x; break;
+          case Channel::ypos: p.y = x; break;
+          case Channel::zpos: p.z = x; break;
+          default: q = q * axis_rotation(j.channels[c], x); break;
+        }
+      }
+      if (j.has_position) {
+        TrackKey<Vec3d> key;
+        key.frame = frame;
+        key.value = conv.point(p);
+        if (!std::isfinite(key.value.x) || !std::isfinite(key.value.y) || !std::isfinite(key.value.z)) {
+          return line_error(line, ErrorCode::NotFinite,
+                            "frame " + std::to_string(i) + ": the position of joint '" + j.name + "' times --scale is not finite");
+        }
+        key.tangent = TangentKind::linear;
+        positions[k].keys.push_back(key);
+      }
+      if (j.has_rotation) {
+        QuatKey<double> key;
+        key.frame = frame;
+        key.value = conv.rotation(q);
+        key.interpolation = QuatInterpolation::slerp;
+        // Sign-continuous keys: q and −q are the same rotation; keep each next to the previous one.
+        if (!rotations[k].keys.empty() && dot(rotations[k].keys.back().value, key.value) < 0) key.value = -key.value;
+        rotations[k].keys.push_back(key);
+      }
+    }
+  }
+  // Lines beyond the declared count: three.js reads Frames: of them, Blender all; we follow the count.
+  std::size_t extra = 0, first_extra = 0, last_extra = 0;
+  while (lines.next(tokens)) {
+    if (extra++ == 0) first_extra = lines.number();
+    last_extra = lines.number();
+  }
+  if (extra > 0 && options.notes) {
+    options.notes->push_back(std::to_string(extra) + " MOTION line" + (extra > 1 ? "s" : "") + " after the " +
+                             std::to_string(frame_count) + " frames of 'Frames:' ignored (line " + std::to_string(first_extra) +
+                             (extra > 1 ? "–" + std::to_string(last_extra) : std::string()) + ")");
+  }
+
+  scene.objects.reserve(joints.size());
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    Joint& j = joints[k];
+    RawObject o;
+    o.name = j.name;
+    if (j.parent) o.parent = joints[*j.parent].name;
+    if (j.has_position && frame_count > 0) o.translation = std::move(positions[k]);
+    else o.translation = *j.offset;
+    if (j.has_rotation && frame_count > 0) o.rotation = std::move(rotations[k]);
+    scene.objects.push_back(std::move(o));
+  }
+  return scene;
+}
+
+Expected<RawScene> read_bvh_file(const std::filesystem::path& file, const BvhReadOptions& options) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return Error{ErrorCode::Io, "cannot open the file", file.string()};
+  std::error_code ec;
+  if (const auto size = std::filesystem::file_size(file, ec); !ec && size > kMaxBvhFileBytes) {
+    return Error{ErrorCode::Unsupported,
+                 "the file has " + std::to_string(size) + " bytes, more than the BVH reader's limit of " +
+                     std::to_string(kMaxBvhFileBytes),
+                 file.string()};
+  }
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) return Error{ErrorCode::Io, "cannot read the file", file.string()};
+  return read_bvh(text, options);
+}
+
+}  // namespace inbetween
