@@ -10,8 +10,9 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 # (libFuzzer, the sanitizer runtimes) build the asan preset that `make test` also runs.  esbuild
 # bundles three.js into the page of `inbetween view` at build time; chromium runs that page in the
 # browser test (docs/preview.md).  libhwy-dev: Highway, the double rig kernel's run-time SIMD
-# dispatch; libxsimd-dev: the benchmarks' xsimd comparison (docs/runtime.md).  assimp-testmodels:
-# real files for the tests and the bench (CMU motion capture in models/BVH/, tests/data/bvh/README.md).
+# dispatch; libxsimd-dev: the benchmarks' xsimd comparison (docs/runtime.md).  assimp-testmodels: the CMU
+# motion-capture clips (models/BVH/) that `make demo` shows and the BVH tests and bench read
+# (tests/data/bvh/README.md).
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
         nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev gltfpack libeigen3-dev libglm-dev libboost-dev \
         python3 python3-scipy python3-jsonschema clang libclang-rt-dev esbuild chromium \
@@ -84,7 +85,10 @@ screenshots: build
 	ctest --preset $(PRESET) -L browser
 	@test -f $(BUILD)/preview-test/preview.png || { echo "make: the browser test wrote no screenshot (skipped?)"; exit 1; }
 	cp $(BUILD)/preview-test/preview.png docs/images/preview.png
-	@echo "make: docs/images/preview.png updated from the browser test"
+	@# the CMU clip once the tool reads BVH, else the test's own 31-joint skeleton
+	if [ -f $(BUILD)/preview-test/01_01.png ]; then cp $(BUILD)/preview-test/01_01.png docs/images/preview-skeleton.png; \
+	else cp $(BUILD)/preview-test/skeleton.png docs/images/preview-skeleton.png; fi
+	@echo "make: docs/images/preview.png and preview-skeleton.png updated from the browser test"
 
 # Runs every bench program (3 interleaved repetitions, medians) and writes the generated section of
 # bench/RESULTS.md (tools/bench/write_results.py; the hand-written analysis below it stays).

@@ -1,6 +1,7 @@
-// `inbetween bake SCENE|MODEL.gltf|MODEL.glb`: evaluates every track of a scene file (or every
-// node of a glTF animation, read into the same scene by inbetween/io/gltf.hpp) at every frame of a
-// range and writes a CSV or JSON table.  Rows are written as they are computed (frame i is a + i·step, made
+// `inbetween bake SCENE|MODEL.gltf|MODEL.glb [--space world|local]`: evaluates every track of a
+// scene file (or every node of a glTF animation, read into the same scene by inbetween/io/gltf.hpp)
+// at every frame of a range and writes a CSV or JSON table; objects in world space (default) or
+// relative to their parents.  Rows are written as they are computed (frame i is a + i·step, made
 // on the fly), so memory does not grow with the frame count; to a file through a temporary that is
 // renamed at the end (an error leaves nothing), to standard output directly.  Parsing lives in the
 // library (inbetween/io/scene.hpp reads, inbetween/scene/scene.hpp builds and samples); this file
@@ -63,12 +64,19 @@ struct BakeOptions {
   std::string format = "csv";
   std::string output = "-";
   std::string progress = "auto";
+  std::string space = "world";  ///< --space: the objects' transforms, world or local (relative to the parent)
+  bool space_given = false;     ///< --space was on the command line
 };
 
 void run_bake(const BakeOptions& opt) {
   // Keys in seconds (glTF, BVH, assimp): --fps sets frame = time · fps (default: the format's
   // own), and the scene read carries that fps.  A scene file's --fps only relabels the time column.
   const Scene scene = load_scene(opt.input);
+  const Space space = enum_from_string<Space>(opt.space).value_or(Space::world);  // CLI11 checked the name
+  if (opt.space_given && scene.objects().empty()) {
+    throw CommandError{"--space: " + opt.input.path +
+                       " has no objects (only tracks, whose columns are the same in every space)"};
+  }
   const double fps = opt.input.fps > 0 ? opt.input.fps : scene.fps();
   const std::span<const SceneColumn> columns = scene.columns();
   const FrameRange frames = frame_range(opt.frames, scene.range_start(), scene.range_end());
@@ -82,7 +90,7 @@ void run_bake(const BakeOptions& opt) {
     if (!std::isfinite(f / fps)) {
       throw CommandError{"frame " + format_number(f) + ": time = frame / fps " + format_number(fps) + " overflows"};
     }
-    scene.sample(f, row, cursor);
+    scene.sample(f, row, cursor, space);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const double v = columns[c].single_precision ? double(float(row[c])) : row[c];
       if (!std::isfinite(v)) {
@@ -155,7 +163,15 @@ const RegisterCommand kBake{{"bake", 40, [](CLI::App& root) {
   cmd->add_option("--progress", opt->progress,
                   "Progress bar on standard error: auto (when it is a terminal), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}));
-  cmd->callback([opt] { run_bake(*opt); });
+  auto* space = cmd->add_option("--space", opt->space,
+                                 "Space of the objects' translation, rotation and scale columns (same names): world "
+                                 "(default, as before: the parent chain composed in) or local (relative to the parent; "
+                                 "a root's is its world transform). Track columns are the same in both")
+                    ->check(CLI::IsMember({"world", "local"}));
+  cmd->callback([opt, space] {
+    opt->space_given = space->count() > 0;
+    run_bake(*opt);
+  });
 }}};
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "frame_spec.hpp"
 #include "input.hpp"
 #include "plot.hpp"
+#include "plot_skeleton.hpp"
 
 namespace inbetween::cli {
 namespace {
@@ -23,6 +24,7 @@ struct PlotCommandOptions {
   std::string output;
   std::string frames;
   std::string progress = "auto";
+  std::vector<std::string> objects;
 };
 
 void run_plot(const PlotCommandOptions& opt) {
@@ -36,6 +38,7 @@ void run_plot(const PlotCommandOptions& opt) {
 
   PlotOptions options;
   options.progress = parse_progress_mode(opt.progress);
+  options.objects = opt.objects;
   options.title = opt.input.path == "-" ? std::string("standard input") : std::filesystem::path(opt.input.path).filename().string();
   if (!opt.frames.empty()) {
     const FrameSpec f = parse_frame_spec(opt.frames);
@@ -56,6 +59,10 @@ void run_plot(const PlotCommandOptions& opt) {
   std::cout << "wrote " << report->files.size() << " plots and index.html to " << report->dir.string() << " ("
             << report->frame_count << " frames from " << format_number(report->frame_start) << " every "
             << format_number(report->frame_step) << ")\n";
+  if (report->trajectory_roots_skipped > 0) {
+    std::cout << "note: " << report->trajectory_roots_skipped << " more moving roots have no trajectory plot (at most "
+              << kMaxDefaultTrajectories << " by default); name them with --object\n";
+  }
 }
 
 const RegisterCommand kPlot{{"plot", 45, [](CLI::App& root) {
@@ -71,6 +78,10 @@ const RegisterCommand kPlot{{"plot", 45, [](CLI::App& root) {
   cmd->add_option("--fps", opt->input.fps,
                   "glTF, BVH, assimp input: frame = time · fps (default: the format's own); a scene file has its own")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--object", opt->objects,
+                  "World trajectory (top, front, side views; with the poses of its descendants) of this object; "
+                  "repeatable; default: the roots that move, at most 8")
+      ->allow_extra_args(false);
   cmd->add_option("--progress", opt->progress, "Progress bar on standard error: auto (when it is a terminal), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}));
   cmd->callback([opt] { run_plot(*opt); });

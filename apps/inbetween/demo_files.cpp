@@ -137,6 +137,9 @@ std::string write_demo_files(const std::string& dir) {
     written.push_back("preview.html   not written: this build has no preview page (make deps, then rebuild)");
   }
 
+  // The character: the CMU clip's preview and plots (demo_character.cpp).
+  for (auto& entry : write_character_demo(out, kDemoCharacterClip)) written.push_back(std::move(entry));
+
   std::ostringstream summary;
   summary << "wrote " << dir << "/:\n";
   for (const auto& w : written) summary << "  " << w << "\n";

@@ -7,6 +7,16 @@
 #include "inbetween/io/scene.hpp"
 
 namespace inbetween::cli {
+namespace {
+
+// A scene file's error as parse_scene() renders it: its place as a JSON pointer, "/" for the
+// document root.
+std::string scene_file_error(const std::string& path, Error e) {
+  if (e.where.empty()) e.where = e.location.empty() ? std::string("/") : json_pointer(e.location);
+  return path + ": " + e.describe();
+}
+
+}  // namespace
 
 void add_input_options(CLI::App* cmd, InputArgs& args, const std::string& name, const std::string& what) {
   cmd->add_option(name, args.path, what)->required();
@@ -31,7 +41,7 @@ RawScene load_raw(const InputArgs& args) {
   if (!keyed_in_time) {
     // The path too: curve files named by "file" members are relative to the scene's folder.
     auto raw = read_scene_json(read_input(args.path), args.path);
-    if (!raw) throw CommandError{args.path + ": " + raw.error().describe()};
+    if (!raw) throw CommandError{scene_file_error(args.path, raw.error())};
     return std::move(*raw);
   }
   InputOptions options;
@@ -54,7 +64,10 @@ RawScene load_raw(const InputArgs& args) {
 Scene load_scene(const InputArgs& args) {
   RawScene raw = load_raw(args);
   auto scene = build_scene(raw);
-  if (!scene) throw CommandError{args.path + ": " + scene.error().describe()};
+  if (!scene) {
+    if (input_format_of(args) == InputFormat::scene_json) throw CommandError{scene_file_error(args.path, scene.error())};
+    throw CommandError{args.path + ": " + scene.error().describe()};
+  }
   return std::move(*scene);
 }
 

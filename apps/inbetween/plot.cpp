@@ -22,6 +22,7 @@
 #include <system_error>
 
 #include "inbetween/math/format.hpp"
+#include "plot_skeleton.hpp"
 #include "plot_svg.hpp"
 
 namespace inbetween::cli {
@@ -33,6 +34,7 @@ constexpr double kPadFraction = 0.1;           // frame axis beyond the keys and
 constexpr int kAutoSteps = 480;                // automatic grid: at most this many steps
 constexpr std::uint64_t kMaxSamples = 200000;  // grid samples at most (memory: samples × columns × 8 bytes)
 constexpr std::size_t kMaxDots = 150;          // position dots per path view at most
+constexpr std::size_t kMaxObjectKeyDots = 500;  // an object channel with more keys (motion capture: one per frame) draws no key dots
 constexpr int kOrientationFrames = 12;         // orientation markers per path view
 constexpr int kPathSamples = 240;              // points per path leg drawn
 constexpr const char* kGenerator = "inbetween plot";
@@ -502,7 +504,7 @@ class Plotter {
         const char l = "xyz"[c];
         const std::string col = name + ".translation." + l;
         Curve curve{std::string(1, l), component_colour(l, c), col, col_value(col), {}};
-        if (root && !on_path && node.local.translation) {
+        if (root && !on_path && node.local.translation && node.local.translation->size() <= kMaxObjectKeyDots) {
           const auto& tr = *node.local.translation;
           for (std::size_t k = 0; k < tr.size(); ++k) curve.keys.emplace_back(tr.frames()[k], tr.values()[k][int(c)]);
         }
@@ -517,7 +519,7 @@ class Plotter {
       if (!on_path && !camera && node.local.rotation) {
         const auto& r = *node.local.rotation;
         p = channel_pieces(r.frames(), "held (first key)", "held (last key)");
-        if (root) {
+        if (root && r.size() <= kMaxObjectKeyDots) {
           for (std::size_t k = 0; k < r.size(); ++k) keys.emplace_back(r.frames()[k], r.keys()[k]);
         }
       }
@@ -547,7 +549,7 @@ class Plotter {
         const char l = "xyz"[c];
         const std::string col = name + ".scale." + l;
         Curve curve{std::string(1, l), component_colour(l, c), col, col_value(col), {}};
-        if (root && node.local.scale) {
+        if (root && node.local.scale && node.local.scale->size() <= kMaxObjectKeyDots) {
           const auto& sc = *node.local.scale;
           for (std::size_t k = 0; k < sc.size(); ++k) curve.keys.emplace_back(sc.frames()[k], sc.values()[k][int(c)]);
         }
@@ -925,7 +927,8 @@ std::string index_html(const PlotOptions& options, const std::vector<PlotFile>& 
        " frames per second. Solid lines are the keyed range, dashed lines extrapolated, cycled or held "
        "parts; dots are keys (graph editor) or positions at equal time steps (path views). See docs/plots.md.</p>\n";
   const std::pair<const char*, const char*> groups[] = {
-      {"tracks", "Tracks (graph editor)"}, {"paths", "Paths and speed control"}, {"objects", "Objects: world transform channels"}};
+      {"tracks", "Tracks (graph editor)"}, {"paths", "Paths and speed control"},
+      {"trajectories", "World trajectories (and poses of hierarchies)"}, {"objects", "Objects: world transform channels"}};
   // Contents: one link per plot, grouped as below.
   h += "<nav><ul>\n";
   for (const auto& [group, heading] : groups) {
@@ -1068,6 +1071,11 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
   plotter.plot_all(tmp);
   if (plotter.write_error) return fail(*plotter.write_error);
   report.files = plotter.files;
+  // World trajectories (plot_skeleton.cpp): the roots that move, or the --object names.
+  auto trajectories = write_trajectory_plots(scene, options.objects, grid.start, grid.step, grid.count, options, tmp);
+  if (!trajectories) return fail(trajectories.error());
+  report.files.insert(report.files.end(), trajectories->files.begin(), trajectories->files.end());
+  report.trajectory_roots_skipped = trajectories->roots_skipped;
   for (const char* sub : {"tracks", "objects", "paths"}) fs::remove(tmp / sub, ec);  // empty ones go
   if (!write_text(tmp / "index.html", index_html(options, report.files, grid, scene.fps()))) {
     return fail(io_error(tmp / "index.html", "cannot write file", errno));

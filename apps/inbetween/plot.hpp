@@ -29,13 +29,16 @@ struct PlotOptions {
   ProgressMode progress = ProgressMode::automatic;
   /// Shown in every title and on the index page (e.g. the input's file name).
   std::string title = "scene";
+  /// Objects that get a world-trajectory plot (trajectories/<object>.svg, plot_skeleton.hpp);
+  /// empty: the roots that move and are not on a path, at most kMaxDefaultTrajectories.
+  std::vector<std::string> objects;
 };
 
 /// One file written by write_plots().
 struct PlotFile {
   std::string name;   ///< path relative to the output folder ("tracks/cube.location.z.svg")
   std::string title;  ///< what it shows
-  std::string group;  ///< "tracks", "objects" or "paths"
+  std::string group;  ///< "tracks", "objects", "paths" or "trajectories"
 };
 
 /// What write_plots() wrote.
@@ -45,16 +48,19 @@ struct PlotReport {
   double frame_start = 0;        ///< first frame of the plotted grid
   double frame_step = 1;         ///< its step
   std::uint64_t frame_count = 0; ///< samples of the grid (frame i = frame_start + i · frame_step)
+  std::size_t trajectory_roots_skipped = 0;  ///< moving roots left without a trajectory plot (the default's bound)
 };
 
 /// Writes the plots of `scene` (built from `raw`, which supplies names of interpolation and
-/// tangent kinds and the ease phases of path legs) into the folder `dir`, plus index.html.  The
+/// tangent kinds and the ease phases of path legs) into the folder `dir`, the world trajectories
+/// of options.objects or the moving roots (trajectories/, plot_skeleton.hpp), plus index.html.  The
 /// folder is written whole or not at all: the files go into a temporary sibling folder that is
 /// renamed onto `dir` at the end; an existing `dir` is replaced only when it is empty or holds an
 /// earlier plot (its index.html names inbetween plot as generator); the folder that holds `dir`
 /// must exist (it is not created).  Progress bars on standard error per options.progress.  Errors (exit code 2 in the
 /// tool; `where` names the folder or the option): a scene with no tracks and no objects, a bad
-/// frame range or step, too many samples (more than 200000), a folder that cannot be written.
+/// frame range or step, too many samples (more than 200000), a folder that cannot be written, an
+/// options.objects name that is no object (where = "--object").
 [[nodiscard]] Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const std::filesystem::path& dir,
                                                const PlotOptions& options = {});
 

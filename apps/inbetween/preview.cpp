@@ -94,6 +94,15 @@ PreviewFrames preview_frames(const std::string& spec, const Scene& scene) {
     throw CommandError{g.what + ": " + format_number(g.count) + " frames; a preview embeds at most " +
                        std::to_string(kMaxPreviewFrames) + " (give --frames A:B:STEP with a larger STEP)"};
   }
+  const auto columns = std::uint64_t(scene.columns().size());
+  if (double(g.count) * double(columns) > double(kMaxPreviewValues)) {
+    // The largest step-1 multiple that fits: count ≤ kMaxPreviewValues / columns.
+    const auto fit = kMaxPreviewValues / std::max<std::uint64_t>(columns, 1);
+    throw CommandError{g.what + ": " + format_number(g.count) + " frames × " + std::to_string(columns) + " columns = " +
+                       format_number(g.count * double(columns)) + " values; a preview embeds at most " +
+                       std::to_string(kMaxPreviewValues) + " (at most " + std::to_string(fit) +
+                       " frames of this scene: give --frames A:B:STEP with a larger STEP)"};
+  }
   return PreviewFrames{g.start, g.step, std::uint64_t(g.count)};
 }
 

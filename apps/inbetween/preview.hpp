@@ -16,6 +16,11 @@ namespace inbetween::cli {
 /// 19 445 frames made 10.4 MB of HTML).  More is an error that suggests a coarser --frames step.
 inline constexpr std::uint64_t kMaxPreviewFrames = 20000;
 
+/// Most values (frames × columns) one preview embeds: 10 columns per object, so a 31-joint
+/// skeleton at 20 000 frames (6.2 million values) fits — an 89 MB page that headless chromium
+/// opened in 7.6 s (docs/preview.md) — and a 400-joint one must take a coarser step.
+inline constexpr std::uint64_t kMaxPreviewValues = 8000000;
+
 /// Points sampled (at equal arc length, by the library) on each path leg for its line.
 inline constexpr int kPathLinePoints = 241;
 
@@ -41,7 +46,8 @@ struct PreviewOptions {
 void require_preview();
 
 /// Frames from "A:B[:STEP]" ("" = the scene's range, step 1); throws CommandError for a bad text,
-/// an empty or reversed range, or more than kMaxPreviewFrames frames.
+/// an empty or reversed range, more than kMaxPreviewFrames frames or more than kMaxPreviewValues
+/// values (frames × the scene's columns).
 [[nodiscard]] PreviewFrames preview_frames(const std::string& spec, const Scene& scene);
 
 /// The whole HTML page: the scene baked at `frames` (Scene::sample through a SceneCursor, as `bake`

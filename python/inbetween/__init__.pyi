@@ -160,6 +160,40 @@ def convert(input: Source, output: str, animation: str = "", fps: float = 24.0, 
             reduce: float = 0.0, substeps: int = 4, cubic: bool = True) -> list[dict[str, Any]]:
     """`inbetween convert`: scene or glTF to .glb/.gltf or .json; returns the channel report."""
 
+class Clip:
+    """A file's objects (a skeleton's joints) sampled at frames, in local or world space."""
+    def __init__(self) -> None:
+        """Not constructible from Python: load_clip() makes one."""
+    @property
+    def names(self) -> list[str]:
+        """Object (joint) names, in the file's order."""
+    @property
+    def parents(self) -> NDArray:
+        """int64 index of each object's parent in names, -1 for a root."""
+    @property
+    def frames(self) -> NDArray:
+        """The frames sampled (1-D)."""
+    @property
+    def times(self) -> NDArray:
+        """frames / fps, seconds."""
+    @property
+    def fps(self) -> float:
+        """Frames per second."""
+    @property
+    def space(self) -> str:
+        """Either "local" (relative to the parent) or "world"."""
+    @property
+    def transforms(self) -> NDArray:
+        """(len(frames), len(names), 10): tx, ty, tz, qw, qx, qy, qz, sx, sy, sz."""
+    @property
+    def skins(self) -> list[tuple[str, list[int]]]:
+        """(name, joint indices into names) per skin of the file."""
+
+def load_clip(path: str | PathLike[str], space: str = "local", frames: ArrayLike | None = None,
+              fps: float | None = None, animation: str | None = None) -> Clip:
+    """Any file inbetween reads, every object sampled at frames (default the file's range, step 1) in
+    space "local" or "world", as `inbetween bake --space`; inbetween.Error names the file and place."""
+
 # ----------------------------------------------------------------------------------- paths
 def fit_bspline(t: ArrayLike, points: ArrayLike, degree: int = 3,
                 control_points: int = 0) -> tuple[Curve, dict[str, Any]]:

@@ -76,5 +76,6 @@ void bind_rotations(py::module_& m);
 void bind_curves(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_paths(py::module_& m);
+void bind_clip(py::module_& m);
 
 }  // namespace inbetween::python

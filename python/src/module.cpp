@@ -36,4 +36,5 @@ PYBIND11_MODULE(_inbetween, m) {
   bind_curves(m);
   bind_scene(m);
   bind_paths(m);
+  bind_clip(m);
 }

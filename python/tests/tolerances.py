@@ -14,3 +14,10 @@ ARC_LENGTH_REL = 1e-9
 # B-spline least squares vs scipy.interpolate.make_lsq_spline on the same knots: both solve the
 # same well-conditioned system (QR in SciPy, Eigen here); 1e-10 relative to the data's scale.
 LSQ_REL = 1e-10
+# load_clip: a child's world transform recomposed in NumPy from its parent's world and its local
+# transform (t = tp + Rp(sp * tl), q = qp ql) against the library's world columns: a few roundings
+# of O(1..10) values per level, 64 ulp of the scene's size is ample and far below any frame mix-up.
+COMPOSE_REL = 64 * 2.220446049250313e-16
+# glTF accessors are float32: values read back from a .glb agree with the double scene to float
+# rounding of O(1) values (a few float ulp).
+GLTF_FLOAT = 4 * 1.1920929e-07

@@ -142,7 +142,10 @@ class Lines {
 // smallest subnormal reads as 0.
 std::optional<double> parse_number(std::string_view token, bool& finite) {
   finite = true;
-  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  if (!token.empty() && token.front() == '+') {
+    token.remove_prefix(1);
+    if (!token.empty() && token.front() == '-') return std::nullopt;  // "+-1"
+  }
   {
     const char* p = token.data();
     double v = 0;
@@ -399,8 +402,8 @@ Expected<std::vector<Joint>> read_hierarchy(Lines& lines, std::vector<std::strin
 // series on |x| ≤ π/4 (truncation below 1e-19) and the quadrant's symmetry.  Twice as fast as
 // libm's sincos here (a third of reading a CMU clip) and more accurate for angles past ±180°,
 // where converting whole degrees to radians first loses digits (measured worst absolute error
-// 1.5e-16 against long double over ±720°, libm after the conversion 3.5e-14); multiples of 90°
-// are exact.
+// 1.5e-16 against long double over ±720°, libm after the conversion 3.5e-14); channel angles
+// that are multiples of 180° give exact quaternions.
 void half_angle_sincos(double deg, double& s, double& c) {
   const double h = deg * 0.5;
   if (!(std::abs(h) < 0x1p50)) {
@@ -583,7 +586,9 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
           case Channel::xpos: p.x = x; break;
           case Channel::ypos: p.y = x; break;
           case Channel::zpos: p.z = x; break;
-          default: q = times_axis_rotation(q, j.channels[c], x); break;
+          default:
+            if (x != 0) q = times_axis_rotation(q, j.channels[c], x);  // 0: exact, a fifth of mocap angles
+            break;
         }
       }
       if (j.has_position) {
@@ -638,25 +643,21 @@ Expected<RawScene> read_bvh_file(const std::filesystem::path& file, const BvhRea
   std::ifstream in(file, std::ios::binary);
   if (!in) return Error{ErrorCode::Io, "cannot open the file", file.string()};
   std::error_code ec;
-  const auto size = std::filesystem::file_size(file, ec);
-  if (!ec && size > kMaxBvhFileBytes) {
+  if (const auto size = std::filesystem::file_size(file, ec); !ec && size > kMaxBvhFileBytes) {
     return Error{ErrorCode::Unsupported,
                  "the file has " + std::to_string(size) + " bytes, more than the BVH reader's limit of " +
                      std::to_string(kMaxBvhFileBytes),
                  file.string()};
   }
-  // The whole file in one read where its size is known (one byte more to meet the end), then in
-  // blocks for whatever follows (a file still growing, or one without a size).
   std::string text;
-  std::size_t have = 0;
-  std::size_t block = !ec ? std::size_t(size) + 1 : std::size_t(1) << 16;
-  while (in) {
-    text.resize(have + block);
-    in.read(text.data() + have, std::streamsize(block));
-    have += std::size_t(in.gcount());
-    block = std::size_t(1) << 16;
+  if (const auto size = std::filesystem::file_size(file, ec); !ec) {
+    // One read of the whole file (a character-wise istreambuf_iterator copy took a fifth of the time).
+    text.resize(std::size_t(size));
+    in.read(text.data(), std::streamsize(size));
+    text.resize(std::size_t(in.gcount()));
+  } else {
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  text.resize(have);
   if (in.bad()) return Error{ErrorCode::Io, "cannot read the file", file.string()};
   return read_bvh(text, options);
 }

@@ -53,6 +53,17 @@ Expected<BvhExport> write_bvh(const Scene& scene, const BvhWriteOptions& options
                  ""};
   }
   const std::size_t frame_count = std::size_t(std::floor(last - first)) + 1;
+  // What the reader will count: every joint's rotation, and the positions of roots and of joints
+  // with keyed translation; more than kMaxBvhKeys would write a file read_bvh() refuses.
+  std::size_t animated = nodes.size();
+  for (const auto& node : nodes) animated += !node.parent || node.local.translation ? 1 : 0;
+  if (frame_count > kMaxBvhKeys / animated) {
+    return Error{ErrorCode::Unsupported,
+                 std::to_string(frame_count) + " frames × " + std::to_string(animated) +
+                     " animated channels of joints is more than the " + std::to_string(kMaxBvhKeys) +
+                     " keys the BVH reader accepts",
+                 ""};
+  }
 
   // Names: BVH ends a name at the line's end and splits it at blanks.
   std::vector<std::string> names(nodes.size());

@@ -769,6 +769,24 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
       scene.tracks.push_back(std::move(track));
     }
   }
+  // Skins: which nodes are joints (their inverse bind matrices are not kept: export writes them
+  // again from the bind pose, docs/gltf-export.md).  Repeated joints are build_scene()'s check,
+  // whose place /skins/i/joints/j is the same in the glTF file.
+  for (std::size_t k = 0; k < model.skins.size(); ++k) {
+    const tg::Skin& skin = model.skins[k];
+    RawSkin raw_skin;
+    raw_skin.name = skin.name;
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+      const int joint = skin.joints[j];
+      if (joint < 0 || std::size_t(joint) >= model.nodes.size()) {
+        return error_at(ErrorCode::InvalidArgument,
+                        "skin " + std::to_string(k) + quoted(skin.name) + ": joint " + std::to_string(joint) + " is not a node",
+                        {"skins", k, "joints", j});
+      }
+      raw_skin.joints.push_back(names[std::size_t(joint)]);
+    }
+    scene.skins.push_back(std::move(raw_skin));
+  }
   return scene;
 }
 

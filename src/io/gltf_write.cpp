@@ -15,6 +15,7 @@
 #include <sstream>
 #include <variant>
 
+#include "inbetween/math/format.hpp"
 #include "inbetween/tracks/refit.hpp"
 
 namespace inbetween {
@@ -500,6 +501,49 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
   }
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (nodes[i].parent) b.model.nodes[*nodes[i].parent].children.push_back(int(i));
+  }
+  if (!scene.skins().empty()) {
+    // Bind pose: the nodes' TRS as written (the scene at the first frame of its range), composed
+    // as a viewer composes them, world_from_node = world_from_parent · T·R·S (matrix products,
+    // exact also for non-uniform scale); inverse bind matrix = its affine inverse.
+    std::vector<Mat4<double>> world_from_node(nodes.size());
+    for (std::size_t i : scene.evaluation_order()) {
+      const tinygltf::Node& gn = b.model.nodes[i];
+      const Transform<double> local{{gn.translation[0], gn.translation[1], gn.translation[2]},
+                                    Quatd::from_xyzw(gn.rotation[0], gn.rotation[1], gn.rotation[2], gn.rotation[3]),
+                                    {gn.scale[0], gn.scale[1], gn.scale[2]}};
+      world_from_node[i] = nodes[i].parent ? world_from_node[*nodes[i].parent] * local.to_matrix() : local.to_matrix();
+    }
+    for (std::size_t k = 0; k < scene.skins().size(); ++k) {
+      const SceneSkin& skin = scene.skins()[k];
+      std::vector<float> ibm;
+      ibm.reserve(16 * skin.joints.size());
+      for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+        const Mat4<double>& m = world_from_node[skin.joints[j]];
+        const Mat4<double> inv = affine_inverse(m);
+        bool finite = determinant(m.linear()) != 0;
+        for (int c = 0; c < 4; ++c) {
+          for (int r = 0; r < 4; ++r) {
+            // glTF matrices are column-major; the last row is written exactly (0, 0, 0, 1), as
+            // glTF requires of an inverse bind matrix.
+            const float v = r == 3 ? (c == 3 ? 1.0f : 0.0f) : float(inv.m[r][c]);
+            finite = finite && std::isfinite(v);
+            ibm.push_back(v);
+          }
+        }
+        if (!finite) {
+          return Error{ErrorCode::Unsupported,
+                       "joint \"" + nodes[skin.joints[j]].name + "\" has no inverse bind matrix: its world transform at frame " +
+                           shortest_text(first) + " (the bind pose) is singular or beyond float's range",
+                       "", {"skins", k, "joints", j}};
+        }
+      }
+      tinygltf::Skin gs;
+      gs.name = skin.name;
+      for (std::size_t joint : skin.joints) gs.joints.push_back(int(joint));
+      gs.inverseBindMatrices = b.add_accessor(ibm, TINYGLTF_TYPE_MAT4, skin.joints.size(), false);
+      b.model.skins.push_back(std::move(gs));
+    }
   }
   b.model.scenes.push_back(gscene);
   b.model.defaultScene = 0;

@@ -384,7 +384,7 @@ Expected<RawObject> read_object(const json& oj, const Loc& p, const Context& cx)
 Expected<RawScene> read_scene(const json& root, Context cx) {
   const Loc doc;
   if (!root.is_object()) return error_at(ErrorCode::InvalidArgument, "a scene must be a JSON object", doc);
-  if (auto ok = only_members(root, doc, {"inbetween", "fps", "range", "tracks", "paths", "objects"}); !ok) return ok.error();
+  if (auto ok = only_members(root, doc, {"inbetween", "fps", "range", "tracks", "paths", "objects", "skins"}); !ok) return ok.error();
   RawScene scene;
   auto version = root.find("inbetween");
   if (version == root.end()) {
@@ -397,7 +397,9 @@ Expected<RawScene> read_scene(const json& root, Context cx) {
                     {"inbetween"});
   }
   cx.version = int(version->get<long long>());
-  if (auto ok = needs_version_2(root, doc, cx, "paths"); !ok) return ok.error();
+  for (std::string_view member : {"paths", "skins"}) {
+    if (auto ok = needs_version_2(root, doc, cx, member); !ok) return ok.error();
+  }
   auto fps = number_member(root, doc, "fps", 24.0);
   if (!fps) return fps.error();
   scene.fps = *fps;
@@ -428,6 +430,7 @@ Expected<RawScene> read_scene(const json& root, Context cx) {
       scene.objects.push_back(std::move(*object));
     }
   }
+  if (auto ok = read_skins(root, scene); !ok) return ok.error();
   return scene;
 }
 

@@ -204,6 +204,8 @@ Expected<RawQuatKeys> read_quat_keys(const json& j, const Loc& loc);
 
 /// "paths" of the document (version 2; the version check is the caller's); scene_v2.cpp.
 Expected<void> read_paths(const json& root, const Context& cx, RawScene& scene);
+// Version 2: the document's "skins" into scene.skins (shape only; build_scene checks the joints).
+Expected<void> read_skins(const json& root, RawScene& scene);
 
 /// An object's version-2 members "path" and "camera" (an error under version 1); scene_v2.cpp.
 Expected<void> read_path_and_camera(const json& oj, const Loc& p, const Context& cx, RawObject& object);

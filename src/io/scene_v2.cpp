@@ -574,6 +574,37 @@ Expected<void> read_paths(const json& root, const Context& cx, RawScene& scene) 
   return {};
 }
 
+Expected<void> read_skins(const json& root, RawScene& scene) {
+  auto ss = root.find("skins");
+  if (ss == root.end()) return {};
+  if (!ss->is_array()) return error_at(ErrorCode::InvalidArgument, "\"skins\" must be an array", {"skins"});
+  for (std::size_t i = 0; i < ss->size(); ++i) {
+    const json& sj = (*ss)[i];
+    const Loc p{"skins", i};
+    if (!sj.is_object()) return error_at(ErrorCode::InvalidArgument, "a skin must be an object, found " + type_name(sj), p);
+    if (auto ok = only_members(sj, p, {"name", "joints"}); !ok) return ok.error();
+    RawSkin skin;
+    if (auto name = sj.find("name"); name != sj.end()) {
+      if (!name->is_string()) return error_at(ErrorCode::InvalidArgument, "\"name\" must be a string", at(p, "name"));
+      skin.name = name->get<std::string>();
+    }
+    auto joints = sj.find("joints");
+    if (joints == sj.end() || !joints->is_array()) {
+      return error_at(ErrorCode::InvalidArgument, "a skin needs \"joints\": an array of object names", at(p, "joints"));
+    }
+    for (std::size_t j = 0; j < joints->size(); ++j) {
+      const json& name = (*joints)[j];
+      if (!name.is_string()) {
+        return error_at(ErrorCode::InvalidArgument, "a joint is an object name (a string), found " + type_name(name),
+                        at(at(p, "joints"), j));
+      }
+      skin.joints.push_back(name.get<std::string>());
+    }
+    scene.skins.push_back(std::move(skin));
+  }
+  return {};
+}
+
 Expected<void> read_path_and_camera(const json& oj, const Loc& p, const Context& cx, RawObject& object) {
   for (std::string_view member : {"path", "camera"}) {
     if (auto ok = needs_version_2(oj, p, cx, member); !ok) return ok.error();

@@ -493,6 +493,16 @@ Expected<std::string> write_scene_json(const RawScene& scene, const SceneWriteOp
     for (std::size_t i = 0; i < scene.objects.size(); ++i) objects.push_back(w.object(scene.objects[i], {"objects", i}));
     root["objects"] = std::move(objects);
   }
+  if (!scene.skins.empty()) {
+    json skins = json::array();
+    for (const RawSkin& skin : scene.skins) {
+      json sj = json::object();
+      if (!skin.name.empty()) sj["name"] = skin.name;
+      sj["joints"] = skin.joints;
+      skins.push_back(std::move(sj));
+    }
+    root["skins"] = std::move(skins);
+  }
   if (w.failure) return *w.failure;
   // Names are arbitrary bytes in a RawScene: invalid UTF-8 is replaced rather than thrown on.
   if (options.indent < 0) return root.dump(-1, ' ', false, json::error_handler_t::replace) + "\n";

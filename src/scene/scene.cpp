@@ -263,10 +263,10 @@ Expected<Scene> build_scene(const RawScene& raw) {
   }
 
   const std::size_t n = raw.objects.size();
+  std::map<std::string, std::size_t> object_index;  // object name → index
   if (n > 0) {
     std::vector<HierarchyNode<double>> nodes;
     nodes.reserve(n);
-    std::map<std::string, std::size_t> object_index;
     for (std::size_t i = 0; i < n; ++i) {
       const RawObject& o = raw.objects[i];
       if (auto ok = check_name(o.name, {"objects", i, "name"}); !ok) return ok.error();
@@ -516,6 +516,29 @@ Expected<Scene> build_scene(const RawScene& raw) {
       }
     }
   }
+  // Skins: each joint an existing object, once per skin.
+  for (std::size_t k = 0; k < raw.skins.size(); ++k) {
+    const RawSkin& skin = raw.skins[k];
+    if (skin.joints.empty()) {
+      return error_at(ErrorCode::InvalidArgument, "a skin needs at least one joint", {"skins", k, "joints"});
+    }
+    SceneSkin built{skin.name, {}};
+    built.joints.reserve(skin.joints.size());
+    std::set<std::size_t> seen;
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+      const auto it = object_index.find(skin.joints[j]);
+      if (it == object_index.end()) {
+        return error_at(ErrorCode::InvalidArgument, "no object named \"" + skin.joints[j] + "\" in \"objects\"",
+                        {"skins", k, "joints", j});
+      }
+      if (!seen.insert(it->second).second) {
+        return error_at(ErrorCode::InvalidArgument, "joint \"" + skin.joints[j] + "\" appears twice in this skin",
+                        {"skins", k, "joints", j});
+      }
+      built.joints.push_back(it->second);
+    }
+    scene.skins_.push_back(std::move(built));
+  }
   // Camera targets are read in place from their objects' translation columns (any number of them,
   // without copying): object index → column.
   for (Scene::ObjectExtra& x : scene.extras_) {
@@ -539,8 +562,17 @@ Vec3d get_point(const double* in) noexcept { return {in[0], in[1], in[2]}; }
 
 }  // namespace
 
+template <>
+std::optional<Space> enum_from_string<Space>(std::string_view name) noexcept {
+  return find_enum_name<Space>(enum_names<Space>(), name);
+}
+
 void Scene::sample(double frame, std::span<double> out) const noexcept {
   INBETWEEN_ASSERT(out.size() == columns_.size());
+  sample_into(frame, out, out.data());
+}
+
+void Scene::sample_into(double frame, std::span<double> out, double* world_columns) const noexcept {
   // Beyond float's range the conversion is undefined; the nearest float frame is the largest one.
   constexpr double kFloatMax = std::numeric_limits<float>::max();
   const float single_precision_frame =
@@ -567,8 +599,11 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
   if (!objects_) return;
   // Everything an object reads (its parent, the objects it looks at) is evaluated before it and
   // read back from the columns it has just written.
+  // `base` holds every object's world transform (it is `out` in world space, the cursor's copy of
+  // the columns in local space); `out` receives the local transforms when they differ.
   const auto nodes = objects_->nodes();
-  double* base = out.data();
+  double* base = world_columns;
+  const bool local_space = world_columns != out.data();
   for (std::size_t i : order_) {
     const ObjectExtra& x = extras_[i];
     const std::optional<std::size_t>& parent = nodes[i].parent;
@@ -608,14 +643,23 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
       if (x.up_path) in.up_path = PathView<double>::of(paths_[*x.up_path]);
       in.world_from_path = world_T_parent;
       in.targets = TargetPositions<double>::from_columns(base, x.camera_targets);
-      in.tilt_track_deg = x.tilt_column ? base[*x.tilt_column] : 0.0;
+      in.tilt_track_deg = x.tilt_column ? out[*x.tilt_column] : 0.0;  // track columns are in `out`
       in.world_rotation = world.rotation;
       const CameraViewSample<double> view = x.camera->evaluate(in);
       world.rotation = view.pose.rotation();
       coi = view.target;
     }
-    double* c = base + x.column;
-    put_trs(c, world);
+    put_trs(base + x.column, world);
+    double* c = out.data() + x.column;
+    if (local_space) {
+      if (x.camera) {
+        // The view's rotation in the parent's frame: compose(world_T_parent, local) gives it back.
+        local.rotation = parent ? canonical(normalized(conjugate(normalized(world_T_parent.rotation)) * world.rotation))
+                                : world.rotation;
+        if (parent) coi = to_parent_space(world_T_parent, coi);
+      }
+      put_trs(c, local);
+    }
     c += kObjectColumns;
     if (leg) {
       *c++ = leg->distance_before + on_path.distance;
@@ -630,8 +674,13 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
 }
 
 void Scene::sample(double frame, std::span<double> out, SceneCursor& cursor) const noexcept {
+  sample(frame, out, cursor, Space::world);
+}
+
+void Scene::sample(double frame, std::span<double> out, SceneCursor& cursor, Space space) const noexcept {
   INBETWEEN_ASSERT(cursor.column_count_ == columns_.size());
-  sample(frame, out);
+  INBETWEEN_ASSERT(out.size() == columns_.size());
+  sample_into(frame, out, space == Space::local ? cursor.world_.data() : out.data());
   for (std::size_t k = 0; k < cursor.rotation_columns_.size(); ++k) {
     double* q = out.data() + cursor.rotation_columns_[k];
     double* prev = cursor.previous_.data() + 4 * k;
@@ -648,6 +697,7 @@ SceneCursor::SceneCursor(const Scene& scene) : column_count_(scene.columns().siz
     if (x.continuous) rotation_columns_.push_back(x.column + 3);  // rotation.w follows translation.x y z
   }
   previous_.assign(4 * rotation_columns_.size(), 0.0);
+  world_.assign(column_count_, 0.0);
 }
 
 }  // namespace inbetween

@@ -87,6 +87,26 @@ TEST(DemoCli, WritesTheSceneItsBakeAndThePreviewAndEndsWithTheSummary) {
   // The preview page, when the tool has it, embeds the scene.
   const std::string page = slurp(dir / "preview.html");
   if (!page.empty()) EXPECT_NE(page.find("window.INBETWEEN_DATA = "), std::string::npos);
+
+  // The character (issue 20): CMU 01_01.bvh's page and plots once the tool reads BVH (checked as
+  // `inbetween bake` would: one frame), otherwise one summary line saying why it is not there.
+  const fs::path clip = "/usr/share/assimp/models/BVH/01_01.bvh";
+  const bool readable = fs::exists(clip) && run_cli("bake '" + clip.string() + "' --frames 0:0").exit_code == 0;
+  if (readable) {
+    EXPECT_NE(summary.find("  01_01.html     the CMU motion-capture clip 01_01.bvh (31 joints, 1 root, 2752 frames)"),
+              std::string::npos) << summary;
+    const std::string clip_page = slurp(dir / "01_01.html");
+    if (!page.empty()) EXPECT_NE(clip_page.find("window.INBETWEEN_DATA = "), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir / "01_01-plots" / "index.html"));
+    EXPECT_TRUE(fs::exists(dir / "01_01-plots" / "trajectories" / "Hips.svg"));
+    std::size_t clip_svgs = 0;
+    for (const auto& e : fs::recursive_directory_iterator(dir / "01_01-plots")) clip_svgs += e.path().extension() == ".svg";
+    EXPECT_EQ(clip_svgs, 32u) << "31 joints' channels and the root's trajectory";
+    EXPECT_NE(summary.find("  01_01-plots/   " + std::to_string(clip_svgs) + " SVG plots"), std::string::npos) << summary;
+  } else {
+    EXPECT_NE(summary.find("  01_01.html     not written: "), std::string::npos) << summary;
+    EXPECT_FALSE(fs::exists(dir / "01_01.html"));
+  }
 }
 
 TEST(DemoCli, AnOutputFolderThatCannotBeMadeIsExitTwo) {

@@ -15,6 +15,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <map>
 #include <sstream>
 #include <string>
@@ -216,6 +218,124 @@ TEST(PreviewBrowser, GltfFileShowsTheBakedNodes) {
   if (page.skipped) GTEST_SKIP() << page.skip_reason;
   EXPECT_EQ(page.data["cameras"], nlohmann::json({"follow_cam", "hold_cam"})) << "glTF camera nodes are scene cameras";
   EXPECT_EQ(slurp(shot).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << "no screenshot";
+}
+
+// A character-sized hierarchy written as a scene file: the 31 joints of the CMU skeleton (names,
+// parents and rest offsets shaped like 01_01.bvh's), the root walking along +x and bobbing, every
+// joint turning about its own axis, keyed every 4 frames over frames 0–120 at 120 fps.
+fs::path write_skeleton_scene() {
+  struct Joint {
+    const char* name;
+    const char* parent;
+    double x, y, z;
+  };
+  static const Joint joints[] = {
+      {"Hips", nullptr, 0, 0, 0}, {"LHipJoint", "Hips", 0, 0, 0}, {"LeftUpLeg", "LHipJoint", 1.6, -1.9, 0.8},
+      {"LeftLeg", "LeftUpLeg", 2.4, -6.7, 0}, {"LeftFoot", "LeftLeg", 2.5, -6.9, 0}, {"LeftToeBase", "LeftFoot", 0.1, -0.4, 2.2},
+      {"RHipJoint", "Hips", 0, 0, 0}, {"RightUpLeg", "RHipJoint", -1.6, -1.9, 0.8}, {"RightLeg", "RightUpLeg", -2.4, -6.7, 0},
+      {"RightFoot", "RightLeg", -2.5, -6.9, 0}, {"RightToeBase", "RightFoot", -0.1, -0.4, 2.2}, {"LowerBack", "Hips", 0, 0, 0},
+      {"Spine", "LowerBack", 0, 2.0, -0.1}, {"Spine1", "Spine", 0, 2.0, 0}, {"Neck", "Spine1", 0, 2.0, 0},
+      {"Neck1", "Neck", 0, 1.6, 0.1}, {"Head", "Neck1", 0, 1.6, 0.1}, {"LeftShoulder", "Spine1", 0, 0, 0},
+      {"LeftArm", "LeftShoulder", 3.4, 1.8, 0.5}, {"LeftForeArm", "LeftArm", 5.3, 0, 0}, {"LeftHand", "LeftForeArm", 3.6, 0, 0},
+      {"LeftFingerBase", "LeftHand", 0, 0, 0}, {"LeftHandIndex1", "LeftFingerBase", 0.7, 0, 0}, {"LThumb", "LeftHand", 0, 0, 0},
+      {"RightShoulder", "Spine1", 0, 0, 0}, {"RightArm", "RightShoulder", -3.4, 1.8, 0.5},
+      {"RightForeArm", "RightArm", -5.3, 0, 0}, {"RightHand", "RightForeArm", -3.6, 0, 0},
+      {"RightFingerBase", "RightHand", 0, 0, 0}, {"RightHandIndex1", "RightFingerBase", -0.7, 0, 0},
+      {"RThumb", "RightHand", 0, 0, 0}};
+  nlohmann::json objects = nlohmann::json::array();
+  for (std::size_t j = 0; j < std::size(joints); ++j) {
+    nlohmann::json o{{"name", joints[j].name}};
+    if (joints[j].parent) o["parent"] = joints[j].parent;
+    nlohmann::json rotation = nlohmann::json::array(), translation = nlohmann::json::array();
+    for (int f = 0; f <= 120; f += 4) {
+      const double t = f / 120.0, phase = 2 * M_PI * 0.8 * t + 0.7 * double(j);
+      const double angle = 0.35 * std::sin(phase), axis_y = 0.2 * std::sin(double(j));
+      const double n = std::sqrt(1 + axis_y * axis_y + 0.01), s = std::sin(angle / 2) / n;
+      rotation.push_back({{"frame", f}, {"value", {std::cos(angle / 2), s, s * axis_y, s * 0.1}}});
+      translation.push_back({{"frame", f}, {"value", {10 * t, 17 + 0.5 * std::sin(2 * phase), 0}}});
+    }
+    o["rotation"] = {{"keys", rotation}};
+    if (joints[j].parent) {
+      o["translation"] = {joints[j].x, joints[j].y, joints[j].z};
+    } else {
+      o["translation"] = {{"keys", translation}};
+    }
+    objects.push_back(o);
+  }
+  fs::create_directories(kOut);
+  const fs::path path = kOut / "skeleton.json";
+  std::ofstream(path) << nlohmann::json{{"inbetween", 1}, {"fps", 120}, {"range", {0, 120}}, {"objects", objects}}.dump();
+  return path;
+}
+
+// Every bone the page drew at each scrubbed frame runs from its parent's baked world position to
+// its child's, as float32 (the line's vertices are a Float32BufferAttribute, what WebGL draws):
+// each vertex equals the baked double rounded to float, exactly.  Returns the bones of the first frame.
+nlohmann::json check_bones(const Page& page, const Bake& bake) {
+  nlohmann::json first;
+  for (const auto& shown : page.data["frames"]) {
+    const double f = shown["shown"].get<double>();
+    if (!bake.rows.count(f)) continue;
+    const auto& row = bake.rows.at(f);
+    EXPECT_EQ(shown["bones"].size(), page.data["boneCount"].get<std::size_t>());
+    for (const auto& bone : shown["bones"]) {
+      const std::size_t p = bake.column(bone["parent"].get<std::string>() + ".translation.x");
+      const std::size_t c = bake.column(bone["child"].get<std::string>() + ".translation.x");
+      for (std::size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(bone["from"][i].get<double>(), double(float(row[p + i]))) << bone.dump() << " frame " << f;
+        EXPECT_EQ(bone["to"][i].get<double>(), double(float(row[c + i]))) << bone.dump() << " frame " << f;
+      }
+    }
+    if (first.is_null()) first = shown["bones"];
+  }
+  return first;
+}
+
+TEST(PreviewBrowser, SkeletonDrawsABoneFromEveryJointToItsParentAndTheRootsTrail) {
+  SKIP_WITHOUT_NODE();
+  const fs::path scene = write_skeleton_scene();
+  const fs::path shot = kOut / "skeleton.png";
+  const Page page = check_page(scene, "skeleton", {0, 60, 120}, {"Hips", "Head", "LeftHand", "RightToeBase"}, "",
+                               "--overview '" + shot.string() + "'");
+  if (page.skipped) GTEST_SKIP() << page.skip_reason;
+  if (HasFailure()) return;
+  // 31 joints, one root: 30 bones, each joint to the parent the scene gives it; the trail is the
+  // root's only (a scene of more than 12 objects draws roots' trails only).
+  EXPECT_EQ(page.data["boneCount"], 30);
+  EXPECT_EQ(page.data["trails"], nlohmann::json({"Hips"}));
+  const nlohmann::json file = nlohmann::json::parse(slurp(scene));
+  std::map<std::string, std::string> parent_of;
+  for (const auto& o : file["objects"])
+    if (o.contains("parent")) parent_of[o["name"]] = o["parent"];
+  const nlohmann::json bones = check_bones(page, read_bake(slurp(kOut / "skeleton.csv")));
+  ASSERT_EQ(bones.size(), parent_of.size());
+  for (const auto& bone : bones) EXPECT_EQ(parent_of[bone["child"].get<std::string>()], bone["parent"].get<std::string>()) << bone.dump();
+  EXPECT_EQ(slurp(shot).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << "no screenshot";
+}
+
+TEST(PreviewBrowser, CmuClipDrawsItsSkeleton) {
+  SKIP_WITHOUT_NODE();
+  // The CMU clip of the demo (Debian package assimp-testmodels): 31 joints, 2 752 frames at 120 fps,
+  // every frame embedded.  Runs once the tool reads BVH (`inbetween bake 01_01.bvh` succeeds).
+  const fs::path clip = "/usr/share/assimp/models/BVH/01_01.bvh";
+  if (!fs::exists(clip)) GTEST_SKIP() << clip << " is missing (Debian package assimp-testmodels)";
+  const auto probe = run_cli("bake '" + clip.string() + "' --frames 0:0");
+  if (probe.exit_code != 0) GTEST_SKIP() << "this inbetween does not read BVH yet: " << probe.err;
+  const Bake one = read_bake(probe.out);
+  std::vector<std::string> joints;
+  for (const auto& name : one.names)
+    if (name.size() > 14 && name.ends_with(".translation.x")) joints.push_back(name.substr(0, name.size() - 14));
+  ASSERT_EQ(joints.size(), 31u);
+  const fs::path shot = kOut / "01_01.png";
+  const Page page = check_page(clip, "01_01", {0, 1375, 2751}, {joints.front(), joints.back()}, "",
+                               "--overview '" + shot.string() + "'");
+  if (page.skipped) GTEST_SKIP() << page.skip_reason;
+  if (HasFailure()) return;
+  EXPECT_EQ(page.data["boneCount"], 30);
+  EXPECT_EQ(page.data["trails"], nlohmann::json({joints.front()}));
+  check_bones(page, read_bake(slurp(kOut / "01_01.csv")));
+  std::cout << "01_01.bvh: page " << fs::file_size(kOut / "01_01.html") << " bytes, opened in "
+            << page.data["openSeconds"].get<double>() << " s\n";
 }
 
 }  // namespace

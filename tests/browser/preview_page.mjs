@@ -9,7 +9,8 @@
 // --overview saves a screenshot in the free view at the second of the frames (the README's image,
 // docs/images/preview.png); --screenshot one through the camera NAME, after the frames.
 // Prints one JSON object on standard output: {ready, variance, played: {from, to}, frames: [{asked,
-// shown, positions: {A: [x, y, z], …}, rotations: {A: [w, x, y, z], …}}], cameras, camera, cameraVariance, errors}.  Exit 77 (with the reason on
+// shown, positions: {A: [x, y, z], …}, rotations: {A: [w, x, y, z], …}, bones: [{parent, child, from, to}, …]}],
+// boneCount, trails, bytes, cameras, camera, cameraVariance, errors}.  Exit 77 (with the reason on
 // standard error) when playwright-core or chromium is missing or chromium cannot start; 1 on any
 // other failure.
 import { existsSync } from 'node:fs';
@@ -57,8 +58,10 @@ try {
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   // Nothing may be fetched: the page is self-contained.
   page.on('request', (r) => { if (!r.url().startsWith('file:') && !r.url().startsWith('data:')) errors.push(`fetched ${r.url()}`); });
+  const t0 = Date.now();
   await page.goto(pathToFileURL(resolve(page_path)).href);
   await page.waitForFunction(() => window.inbetween && window.inbetween.ready === true, null, { timeout: 60000 });
+  const opened = (Date.now() - t0) / 1000;  // seconds from navigation to the first frame drawn
 
   // Pixel variance of the 3-D canvas (its drawing buffer is preserved): a blank canvas has 0.
   const variance = () => page.evaluate(() => {
@@ -78,6 +81,9 @@ try {
   });
 
   const result = { ready: true, variance: await variance(), frames: [], cameras: await page.evaluate(() => window.inbetween.cameras) };
+  result.boneCount = await page.evaluate(() => window.inbetween.boneCount());
+  result.trails = await page.evaluate(() => window.inbetween.trails());
+  result.openSeconds = opened;
   // The timeline plays: from the first frame, playing moves the frame on (waited for up to 10 s:
   // software WebGL in a headless browser may draw only a few frames a second).
   const start = await page.evaluate(() => window.inbetween.setFrame(window.inbetween.frames[0]));
@@ -92,7 +98,8 @@ try {
       positions[name] = await page.evaluate((n) => window.inbetween.objectPosition(n), name);
       rotations[name] = await page.evaluate((n) => window.inbetween.objectRotation(n), name);
     }
-    result.frames.push({ asked: f, shown, positions, rotations });
+    const bones = await page.evaluate(() => Array.from({ length: window.inbetween.boneCount() }, (_, k) => window.inbetween.bone(k)));
+    result.frames.push({ asked: f, shown, positions, rotations, bones });
   }
   if (overview && frames.length > 0) {
     await page.evaluate((frame) => window.inbetween.setFrame(frame), frames[Math.min(1, frames.length - 1)]);

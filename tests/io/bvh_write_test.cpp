@@ -202,6 +202,10 @@ TEST(BvhWrite, FrameRangeOption) {
   EXPECT_NE(part->text.find("Frames: 5\n"), std::string::npos);  // 5, 6, 7, 8, 9
   EXPECT_FALSE(write_bvh(scene, {.first = 9, .last = 5}).has_value());
   EXPECT_FALSE(write_bvh(scene, {.first = 0, .last = 1e300}).has_value());
+  // 3 joints + 2 position sets = 5 keys a frame: the reader's limit allows kMaxBvhKeys / 5 frames.
+  const double most = double(kMaxBvhKeys / 5);
+  EXPECT_FALSE(write_bvh(scene, {.first = 0, .last = most}).has_value());  // most + 1 frames
+  EXPECT_NE(write_bvh(scene, {.first = 0, .last = most}).error().message.find("keys the BVH reader accepts"), std::string::npos);
 }
 
 }  // namespace

@@ -106,6 +106,8 @@ TEST(SceneHotPath, PathAndCameraScenesNeverAllocate) {
         scene->sample(frame, out);
         scene->sample(frame, out, cursor);
         checksum += out.back();
+        scene->sample(frame, out, cursor, Space::local);  // world transforms kept in the cursor
+        checksum += out.back();
       }
     });
     EXPECT_EQ(n, 0);

@@ -5,7 +5,8 @@
 // It plays the baked values that the tool embedded (window.INBETWEEN_DATA, written by
 // apps/inbetween/preview.cpp from Scene::sample with round-trip precision): positions, rotations,
 // scales, camera poses and the distance/speed columns are read from the table, never recomputed.
-// The only arithmetic here is drawing: axes, path polylines the tool sampled, 2-D plot scaling.
+// The only arithmetic here is drawing: axes, path polylines the tool sampled, 2-D plot scaling,
+// and bones: a segment between two baked world positions (parent and child), copied each frame.
 import {
   AxesHelper,
   BoxGeometry,
@@ -18,6 +19,7 @@ import {
   Group,
   Line,
   LineBasicMaterial,
+  LineSegments,
   Mesh,
   MeshStandardMaterial,
   AmbientLight,
@@ -37,6 +39,19 @@ const palette = [0xe4572e, 0x17bebb, 0xffc914, 0x76b041, 0x8e6c8a, 0x2e86ab, 0xf
 const columnIndex = new Map(data.columns.map((name, i) => [name, i]));
 const column = (name) => (columnIndex.has(name) ? columnIndex.get(name) : -1);
 const frameCount = data.frames.length;
+
+// ------------------------------------------------------------------------------------ hierarchy
+// A skeleton is objects in a hierarchy: every object with a parent gets a bone, the segment from
+// its parent's world position to its own.  A plain object (not a camera, not on a path) with a
+// plain parent or a plain child is a joint, drawn as a small sphere.  In a scene of more than
+// kManyObjects objects (a character), only roots draw their trails and only the first
+// kManyObjects objects have their own line in the legend and their local axes drawn.
+const kManyObjects = 12;
+const many = data.objects.length > kManyObjects;
+const plain = (i) => data.objects[i].kind === 'object';
+const hasPlainChildren = new Set(data.objects.map((o, i) => i).filter((i) => plain(i) && data.objects[i].parent !== null).map((i) => data.objects[i].parent));
+const isJoint = (object, i) => plain(i) && ((object.parent !== null && plain(object.parent)) || hasPlainChildren.has(i));
+const boneChildren = data.objects.map((o, i) => i).filter((i) => data.objects[i].parent !== null);
 
 // --------------------------------------------------------------------------------------- 3-D view
 const view = document.getElementById('view');
@@ -68,6 +83,17 @@ for (const object of data.objects) {
 const centre = lo.clone().add(hi).multiplyScalar(0.5);
 const extent = Math.max(hi.clone().sub(lo).length(), 1);
 const shapeSize = extent * 0.03;
+// Joints: a sphere a tenth of the median bone length at the first frame (bones of a character are
+// much shorter than the extent of its trail), at most a shape.
+let jointRadius = shapeSize * 0.35;
+if (boneChildren.length > 0) {
+  const row = data.rows[0];
+  const lengths = boneChildren.map((i) => {
+    const c = column(data.objects[i].name + '.translation.x'), p = column(data.objects[data.objects[i].parent].name + '.translation.x');
+    return Math.hypot(row[c] - row[p], row[c + 1] - row[p + 1], row[c + 2] - row[p + 2]);
+  }).filter((l) => l > 0).sort((a, b) => a - b);
+  if (lengths.length > 0) jointRadius = Math.min(jointRadius, lengths[lengths.length >> 1] * 0.1);
+}
 
 const grid = new GridHelper(Math.ceil(extent * 1.5), 20, 0x555a60, 0x33373c);
 grid.position.set(centre.x, lo.y, centre.z);
@@ -95,6 +121,10 @@ data.objects.forEach((object, i) => {
     entry.helper = helper;
     entry.lens = new PerspectiveCamera(object.yfov_deg, 16 / 9, extent * 0.002, extent * 20);
     cameras.push(object.name);
+  } else if (isJoint(object, i)) {
+    // A joint: a sphere, a root's larger.
+    const radius = object.parent === null ? jointRadius * 1.6 : jointRadius;
+    group.add(new Mesh(new SphereGeometry(radius, 12, 8), new MeshStandardMaterial({ color: colour, roughness: 0.55 })));
   } else {
     const material = new MeshStandardMaterial({ color: colour, roughness: 0.55 });
     const body = object.kind === 'path'
@@ -102,7 +132,7 @@ data.objects.forEach((object, i) => {
       : new Mesh(new BoxGeometry(shapeSize * 1.4, shapeSize * 1.4, shapeSize * 1.4), material);
     group.add(body);
   }
-  group.add(new AxesHelper(shapeSize * 2.5));
+  if (!many || object.kind !== 'object') group.add(new AxesHelper(isJoint(object, i) ? jointRadius * 4 : shapeSize * 2.5));
   scene.add(group);
 
   // The path legs, sampled by the tool in the parent's space: a line under a group that follows
@@ -118,9 +148,10 @@ data.objects.forEach((object, i) => {
     entry.pathSpace = space;
   }
   // An object that moves but is not on a path (keyed, or a glTF node): its trajectory, the baked
-  // world positions of every frame, as a dim line.
+  // world positions of every frame, as a dim line; in a scene of many objects, for roots only
+  // (a character's trail is its root's).
   let trajectory = false;
-  if (!object.path_points) {
+  if (!object.path_points && (!many || object.parent === null)) {
     const points = data.rows.map((row) => [row[base], row[base + 1], row[base + 2]]);
     trajectory = points.some((p) => p[0] !== points[0][0] || p[1] !== points[0][1] || p[2] !== points[0][2]);
     if (trajectory) {
@@ -129,18 +160,42 @@ data.objects.forEach((object, i) => {
       scene.add(new Line(geometry, new LineBasicMaterial({ color: colour, transparent: true, opacity: 0.45 })));
     }
   }
+  entry.trajectory = trajectory;
   shown.set(object.name, entry);
+  if (many && i >= kManyObjects) return;
 
   // Legend entry: the colour of the shape and path line, the name, what it is.
   const item = document.createElement('div');
   const swatch = document.createElement('span');
   swatch.className = 'swatch';
   swatch.style.background = '#' + colour.getHexString();
-  const kind = object.kind === 'camera' ? 'camera' : object.kind === 'path' ? 'on a path' : 'object';
+  const kind = object.kind === 'camera' ? 'camera' : object.kind === 'path' ? 'on a path' : isJoint(object, i) ? (object.parent === null ? 'root' : 'joint') : 'object';
   const line = object.path_points ? ', line: its path' : trajectory ? ', line: its trajectory' : '';
   item.append(swatch, `${object.name} (${kind}${line})`);
   document.getElementById('legend').appendChild(item);
 });
+
+if (many) {
+  const item = document.createElement('div');
+  item.textContent = `… and ${data.objects.length - kManyObjects} more objects (${data.objects.length} in all)`;
+  document.getElementById('legend').appendChild(item);
+}
+
+// Bones: one line segment per object with a parent, from the parent's displayed world position to
+// the object's, rewritten from the groups every frame (applyFrame).
+const bonePositions = new Float32Array(boneChildren.length * 6);
+const bones = new LineSegments(new BufferGeometry(), new LineBasicMaterial({ color: 0xf2f2f2 }));
+bones.geometry.setAttribute('position', new Float32BufferAttribute(bonePositions, 3));
+bones.frustumCulled = false;  // its vertices move every frame; the bounding sphere would be stale
+if (boneChildren.length > 0) {
+  scene.add(bones);
+  const item = document.createElement('div');
+  const swatch = document.createElement('span');
+  swatch.className = 'swatch';
+  swatch.style.background = '#f2f2f2';
+  item.append(swatch, `bones: ${boneChildren.length} (a line from each object to its parent)`);
+  document.getElementById('legend').appendChild(item);
+}
 
 // Free camera looking at the whole scene.
 const freeCamera = new PerspectiveCamera(45, 16 / 9, extent * 0.002, extent * 50);
@@ -150,6 +205,42 @@ controls.target.copy(centre);
 controls.update();
 controls.addEventListener('change', () => render());
 let lookThrough = null;  // name of the scene camera looked through, or null for the free camera
+
+// Following a root: the free view keeps its offset from the root's displayed position as the
+// frames change (a character walks out of a view that frames its whole trail).  Offered for every
+// root with descendants; on by default, for the root with the most, in a scene of many objects.
+const rootOf = data.objects.map((o, i) => { let r = i; while (data.objects[r].parent !== null) r = data.objects[r].parent; return r; });
+const descendants = data.objects.map(() => 0);
+rootOf.forEach((r, i) => { if (r !== i) descendants[r] += 1; });
+const followable = data.objects.map((o, i) => i).filter((i) => data.objects[i].parent === null && descendants[i] > 0);
+let following = null;  // name of the root followed, or null
+function follow(name) {
+  if (name !== null && !followable.some((i) => data.objects[i].name === name)) {
+    throw new Error(`${name} is not a root with descendants; roots: ${followable.map((i) => data.objects[i].name).join(', ')}`);
+  }
+  following = name;
+  if (name !== null) {
+    // Frame the hierarchy as displayed: the view's offset is 2.5 times its largest distance from the root.
+    const root = shown.get(name).group.position;
+    let size = jointRadius * 10;
+    data.objects.forEach((o, i) => { if (rootOf[i] === rootOf[followable.find((k) => data.objects[k].name === name)]) size = Math.max(size, shown.get(o.name).group.position.distanceTo(root)); });
+    controls.target.copy(root);
+    freeCamera.position.copy(root).add(new Vector3(0.45, 0.35, 1.0).normalize().multiplyScalar(size * 2.5));
+  } else {
+    controls.target.copy(centre);
+    freeCamera.position.copy(centre).add(new Vector3(0.45, 0.55, 1.0).multiplyScalar(extent * 0.72));
+  }
+  controls.update();
+  return following;
+}
+function keepFollowing() {
+  if (following === null) return;
+  const delta = shown.get(following).group.position.clone().sub(controls.target);
+  if (delta.lengthSq() === 0) return;
+  controls.target.add(delta);
+  freeCamera.position.add(delta);
+  controls.update();
+}
 
 function setPose(target, row, entry) {
   target.position.set(row[entry.t], row[entry.t + 1], row[entry.t + 2]);
@@ -174,6 +265,13 @@ function applyFrame(index) {
   }
   scene.updateMatrixWorld(true);
   for (const entry of shown.values()) if (entry.helper) entry.helper.update();
+  const attribute = bones.geometry.getAttribute('position');
+  boneChildren.forEach((i, k) => {
+    const child = shown.get(data.objects[i].name).group.position, parent = shown.get(data.objects[data.objects[i].parent].name).group.position;
+    attribute.setXYZ(2 * k, parent.x, parent.y, parent.z);
+    attribute.setXYZ(2 * k + 1, child.x, child.y, child.z);
+  });
+  attribute.needsUpdate = true;
 }
 
 function resize() {
@@ -297,6 +395,7 @@ function format(v) { return Math.abs(v) < 5e-4 ? '0.000' : v.toFixed(3); }
 function show(index) {
   current = Math.max(0, Math.min(frameCount - 1, Math.round(index)));
   applyFrame(current);
+  keepFollowing();
   render();
   ui.slider.value = String(current);
   ui.frame.textContent = `frame ${data.frames[current]}  (${(data.frames[current] / data.fps).toFixed(3)} s)`;
@@ -337,7 +436,24 @@ function setPlaying(on) {
 }
 ui.play.addEventListener('click', () => setPlaying(!playing));
 ui.slider.addEventListener('input', () => { setPlaying(false); show(Number(ui.slider.value)); });
-ui.camera.addEventListener('change', () => useCamera(ui.camera.value || null));
+for (const i of followable) {
+  const option = document.createElement('option');
+  option.value = 'follow:' + data.objects[i].name;
+  option.textContent = 'free view following ' + data.objects[i].name;
+  ui.camera.insertBefore(option, ui.camera.options[1] || null);
+}
+ui.camera.addEventListener('change', () => {
+  const value = ui.camera.value;
+  if (value.startsWith('follow:')) {
+    useCamera(null);
+    follow(value.slice(7));
+    ui.camera.value = value;
+    render();
+  } else {
+    if (following !== null && !value) follow(null);
+    useCamera(value || null);
+  }
+});
 window.addEventListener('keydown', (e) => {
   if (e.target instanceof HTMLInputElement && e.target.type !== 'range') return;
   if (e.key === ' ') { e.preventDefault(); setPlaying(!playing); }
@@ -351,7 +467,7 @@ function useCamera(name) {
   if (name && !shown.get(name).lens) throw new Error(`${name} is not a camera`);
   lookThrough = name || null;
   controls.enabled = lookThrough === null;
-  ui.camera.value = lookThrough || '';
+  ui.camera.value = lookThrough || (following ? 'follow:' + following : '');
   render();
   return lookThrough;
 }
@@ -379,10 +495,25 @@ window.inbetween = {
   frame: () => data.frames[current],
   /** The world position of the object as displayed (its three.js group), [x, y, z]. */
   objectPosition: (name) => entryOf(name).group.position.toArray(),
+  /** The number of bones drawn (objects with a parent). */
+  boneCount: () => boneChildren.length,
+  /** Bone k as drawn: {parent, child, from: [x, y, z], to: [x, y, z]} (the line's two vertices). */
+  bone: (k) => {
+    const a = bones.geometry.getAttribute('position');
+    const i = boneChildren[k];
+    return { parent: data.objects[data.objects[i].parent].name, child: data.objects[i].name,
+             from: [a.getX(2 * k), a.getY(2 * k), a.getZ(2 * k)], to: [a.getX(2 * k + 1), a.getY(2 * k + 1), a.getZ(2 * k + 1)] };
+  },
+  /** Names of the objects that draw a trajectory (trail) line. */
+  trails: () => [...shown.values()].filter((e) => e.trajectory).map((e) => e.object.name),
   /** The world rotation of the object as displayed, [w, x, y, z]. */
   objectRotation: (name) => { const q = entryOf(name).group.quaternion; return [q.w, q.x, q.y, q.z]; },
   /** Looks through the scene camera `name` (null: the free orbit camera); returns the name. */
   useCamera,
+  /** Makes the free view follow the root `name` (null: stop, and frame the whole scene); returns the name. */
+  follow: (name) => { const f = follow(name); ui.camera.value = f ? 'follow:' + f : ''; render(); return f; },
+  /** The root the free view follows, or null. */
+  following: () => following,
   /** The camera looked through, or null. */
   camera: () => lookThrough,
   play: () => setPlaying(true),
@@ -390,6 +521,13 @@ window.inbetween = {
 };
 
 resize();
+if (many && followable.length > 0) {
+  // A character: follow the root with the most descendants (frame 0's pose sets the distance).
+  applyFrame(0);
+  const root = followable.reduce((a, b) => (descendants[b] > descendants[a] ? b : a));
+  follow(data.objects[root].name);
+  ui.camera.value = 'follow:' + following;
+}
 show(0);
 window.inbetween.ready = true;
 document.body.dataset.ready = 'true';

@@ -105,7 +105,8 @@ struct BvhExport {
 /// intrinsic ZXY degrees, made continuous across frames (euler_filter).  A leaf gets an End Site
 /// with OFFSET 0.  Names: whitespace becomes '_' (a note).  Errors (Unsupported, naming the object):
 /// a scale other than 1 at any written frame, a path object or a camera, a name that collides after
-/// the renaming, a scene without objects, an empty frame range.
+/// the renaming, a scene without objects, an empty frame range, more frames × joints than the reader's
+/// kMaxBvhKeys.
 [[nodiscard]] Expected<BvhExport> write_bvh(const Scene& scene, const BvhWriteOptions& options = {});
 
 }  // namespace inbetween

@@ -9,7 +9,11 @@
 /// rotation, and their translation on a path) have no keys: their local transform is sampled from
 /// the built Scene on the grid and refitted the same way ("path with speed control", "camera
 /// view").  A camera becomes a glTF perspective camera on its node; the node's rotation is the
-/// view's (glTF cameras look down local −Z with +Y up, as scene cameras do).  Written through
+/// view's (glTF cameras look down local −Z with +Y up, as scene cameras do).  Each skin of the
+/// scene becomes a glTF skin (its joints the objects' nodes, in joint order) with inverse bind
+/// matrices: the inverse of each joint's world matrix in the bind pose, which is the pose the nodes'
+/// own TRS hold (the scene at the first frame of its range), composed as viewers do (matrix products).
+/// Written through
 /// Debian's tinygltf (it serialises JSON and GLB).
 
 #include <cstddef>
@@ -71,8 +75,9 @@ struct GltfExport {
 
 /// Exports `scene` (built from `raw`, which gives the authored keys and their kinds).  Errors:
 /// InvalidArgument for options ({"tolerance"}, {"substeps"}, {"camera_znear"}, {"camera_zfar"},
-/// {"camera_aspect"}), Unsupported when the scene has no objects, and the refitter's errors
-/// prefixed with {"objects", i, channel}.
+/// {"camera_aspect"}), Unsupported when the scene has no objects or a joint's bind-pose world
+/// matrix has no inverse ({"skins", k, "joints", j}), and the refitter's errors prefixed with
+/// {"objects", i, channel}.
 [[nodiscard]] Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const GltfExportOptions& options = {});
 
 }  // namespace inbetween

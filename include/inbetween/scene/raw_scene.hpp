@@ -160,6 +160,14 @@ struct RawObject {
   std::optional<RawCameraViewd> camera;
 };
 
+/// A skin (file: "skins"[i], version 2): which objects are the joints of a skeleton.  The
+/// skeleton itself stays objects in a hierarchy; a skin only names them, in joint order (glTF's
+/// skin.joints; a BVH reader names every joint).  Joints must exist and appear once per skin.
+struct RawSkin {
+  std::string name;                 ///< skin name (may be empty)
+  std::vector<std::string> joints;  ///< object names, joint order; ≥ 1, each once
+};
+
 /// A whole scene as authored.
 struct RawScene {
   double fps = 24;                      ///< frames per second (> 0); time = frame / fps
@@ -167,6 +175,7 @@ struct RawScene {
   std::vector<RawTrack> tracks;         ///< named tracks, in file order (output columns in this order)
   std::vector<RawScenePath> paths;      ///< named curves (version 2), in file order; no columns of their own
   std::vector<RawObject> objects;       ///< objects, in file order (columns after all tracks)
+  std::vector<RawSkin> skins;           ///< skins (version 2), in file order; no columns of their own
 };
 
 }  // namespace inbetween

@@ -4,10 +4,12 @@
 /// output columns and samples all of them at a frame into a caller's span, noexcept and without
 /// allocating.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -20,10 +22,25 @@
 #include "inbetween/tracks/euler_track.hpp"
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
+#include "inbetween/tracks/enum_names.hpp"
 #include "inbetween/tracks/track.hpp"
 #include "inbetween/tracks/transform_track.hpp"
 
 namespace inbetween {
+
+/// The frame an object's transform columns are expressed in (bake --space, Python load_clip).
+enum class Space {
+  world,  ///< relative to the scene's root: the parent chain composed in (the default everywhere)
+  local,  ///< relative to the object's parent (a root's local transform is its world transform)
+};
+
+/// File and command-line names of the Space enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 2> space_names = {"world", "local"};
+/// The name table of Space (see enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<Space>() noexcept {
+  return space_names;
+}
 
 /// One output column of a scene.
 struct SceneColumn {
@@ -68,14 +85,20 @@ struct ScenePathLeg {
   std::optional<std::size_t> look_at_object;   ///< object index looked at (orientation look_at an object)
 };
 
+/// A built skin: the joints of RawSkin resolved to object indices (into Scene::objects()).
+struct SceneSkin {
+  std::string name;                 ///< skin name (may be empty)
+  std::vector<std::size_t> joints;  ///< object indices in joint order, each once
+};
+
 class Scene;
 
 /// A sampling context for a sequence of frames (bake, a preview): it remembers the rotation each
 /// path object, camera and descendant of one wrote at the previous sample and flips the sign of
 /// the new quaternion (q and −q are the same rotation) when the dot product with it is negative,
 /// so rotation columns are sign-continuous from frame to frame.  Objects whose rotation is keyed
-/// only (every version-1 object) are left as Scene::sample() writes them.  Make one per scene and
-/// sequence (it allocates once, here); Scene::sample(frame, out, cursor) then never allocates.
+/// only (every version-1 object) are left as Scene::sample() writes them; with Space::local it holds the world transforms.
+/// Make one per scene and sequence (it allocates once, here); Scene::sample(frame, out, cursor[, space]) never allocates.
 class SceneCursor {
  public:
   /// A cursor for `scene` with no previous frame.
@@ -88,6 +111,7 @@ class SceneCursor {
   std::vector<std::size_t> rotation_columns_;  // column of rotation.w of each tracked object
   std::vector<double> previous_;               // 4 per tracked object: the last written w, x, y, z
   std::size_t column_count_ = 0;               // the scene's column count (checked by sample)
+  std::vector<double> world_;                  // Space::local: every column, objects in world space
   bool has_previous_ = false;
 };
 
@@ -115,6 +139,8 @@ class Scene {
   [[nodiscard]] const CameraView<double>* camera(std::size_t i) const noexcept {
     return extras_[i].camera ? &*extras_[i].camera : nullptr;
   }
+  /// The skins, in the RawScene's order, their joints resolved to object indices.
+  [[nodiscard]] std::span<const SceneSkin> skins() const noexcept { return skins_; }
   /// Object indices in evaluation order: parents before children, and every object looked at
   /// (a path's look_at object, a camera's targets) before the object that looks at it.
   [[nodiscard]] std::span<const std::size_t> evaluation_order() const noexcept { return order_; }
@@ -147,8 +173,28 @@ class Scene {
   /// been made for this scene (asserted).  Never allocates.
   void sample(double frame, std::span<double> out, SceneCursor& cursor) const noexcept;
 
+  /// sample(frame, out, cursor) with the objects' columns in `space`.  Space::world is exactly
+  /// sample(frame, out, cursor).  Space::local: each object's translation, rotation and scale
+  /// columns hold its transform relative to its parent, `parent_world_T_object` such that
+  /// compose(world_T_parent, local) is the world transform sample() writes (a root's local is its
+  /// world transform).  For a keyed object that is its keyed channels; for a path object the
+  /// leg's position and rotation (the path lives in the parent's space) and its scale; for a
+  /// camera its keyed or path position, its scale and its view rotation expressed in the parent's
+  /// frame, conjugate(world_T_parent.rotation) · world rotation (canonical, then made sign-continuous
+  /// by the cursor like every rotation of a camera).  A camera's
+  /// target columns are the centre of interest in the parent's space (the inverse of the parent's
+  /// world TRS; a zero scale component maps to 0); distance, speed and every track column are the
+  /// same in both spaces.  The world transforms that children, looked-at objects and camera targets
+  /// read are kept in the cursor (allocated once when it was made), so this never allocates and
+  /// one Scene may still be sampled from several threads, each with its own cursor and `out`.
+  void sample(double frame, std::span<double> out, SceneCursor& cursor, Space space) const noexcept;
+
  private:
   friend class SceneCursor;
+  // Tracks into `out`; objects' world transforms into `world` (indexed like `out`, may be
+  // out.data()); when `world` is not out.data(), every object's local transform and extra columns
+  // into `out`.
+  void sample_into(double frame, std::span<double> out, double* world) const noexcept;
   struct ObjectExtra {
     std::size_t column = 0;                      // first output column of the object
     std::vector<ScenePathLeg> legs;              // empty: not on a path
@@ -171,6 +217,7 @@ class Scene {
   std::vector<ArcLength<AnyCurve>> paths_;  // the named paths (coi_path, up_path)
   std::vector<ObjectExtra> extras_;         // one per object
   std::vector<std::size_t> order_;          // evaluation order of the objects
+  std::vector<SceneSkin> skins_;            // skins with joint indices
 };
 
 /// Checks everything and builds the scene: fps finite and > 0; range first ≤ last; track, path
@@ -184,7 +231,8 @@ class Scene {
 /// speed.track and tilt_track, objects for look_at and hold targets); legs in increasing,
 /// non-overlapping frame ranges (a track speed only on a single leg); no translation or rotation
 /// with a path, no rotation on a camera (unless it views along it, own_rotation); ahead/coi_path/up_path only on a camera on a path; no cycle through parents, look-ats and
-/// camera targets (the error names the member that closes it).  The Error's structured `location` names the offending
+/// camera targets (the error names the member that closes it); skins' joints
+/// naming existing objects, each at most once per skin, and at least one joint ({"skins", i, "joints", j}).  The Error's structured `location` names the offending
 /// member of `raw` ({"tracks", 2, "keys", 3, "frame"}), which, since RawScene mirrors the file, is
 /// the JSON pointer of the value in a scene file.
 [[nodiscard]] Expected<Scene> build_scene(const RawScene& raw);
