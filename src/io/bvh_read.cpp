@@ -603,13 +603,14 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
         positions[k].keys.push_back(key);
       }
       if (j.has_rotation) {
-        QuatKey<double> key;
-        key.frame = frame;
-        key.value = conv.rotation(q);
-        key.interpolation = QuatInterpolation::slerp;
+        std::vector<QuatKey<double>>& keys = rotations[k].keys;
+        Quatd value = conv.rotation(q);
         // Sign-continuous keys: q and −q are the same rotation; keep each next to the previous one.
-        if (!rotations[k].keys.empty() && dot(rotations[k].keys.back().value, key.value) < 0) key.value = -key.value;
-        rotations[k].keys.push_back(key);
+        if (!keys.empty() && dot(keys.back().value, value) < 0) value = -value;
+        QuatKey<double>& key = keys.emplace_back();  // in place: a key is 112 bytes
+        key.frame = frame;
+        key.value = value;
+        key.interpolation = QuatInterpolation::slerp;
       }
     }
   }

@@ -330,6 +330,12 @@ Quat<T> QuatTrack<T>::sample(T frame, TrackCursor& cursor, bool use_cursor) cons
     }
   }
   cursor.segment = i;
+#if defined(__GNUC__)
+  // Playback walks the keys in order, one track after another: with dozens of tracks (a skeleton)
+  // the hardware's stream prefetchers lose track and each key was a cache miss.  Ask for the key a
+  // few segments ahead (a hint only: no effect on the result).
+  __builtin_prefetch(keys_.data() + std::min(i + 8, n - 1));
+#endif
   const T h = frames_[i + 1] - frames_[i];
   const T u = std::clamp((frame - frames_[i]) / h, T(0), T(1));
   switch (mode_[i]) {
