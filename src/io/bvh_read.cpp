@@ -605,6 +605,10 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
     else o.translation = *j.offset;
     if (j.has_rotation && frame_count > 0) o.rotation = std::move(rotations[k]);
     scene.objects.push_back(std::move(o));
+    // One skin per ROOT naming its joints in file order (a subtree is contiguous in depth-first
+    // order), so that a glTF export shows the skeleton (docs/gltf-export.md).
+    if (!j.parent) scene.skins.push_back(RawSkin{j.name, {}});
+    scene.skins.back().joints.push_back(j.name);
   }
   return scene;
 }

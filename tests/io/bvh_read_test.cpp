@@ -160,6 +160,10 @@ TEST(BvhRead, HierarchyParentsAndNamesInFileOrder) {
   EXPECT_EQ(raw->objects[2].parent, "Hips");
   EXPECT_EQ(raw->objects[3].parent, "Spine");
   EXPECT_FALSE(raw->objects[2].rotation);  // CHANNELS 0
+  // One skin per ROOT, naming its joints in file order.
+  ASSERT_EQ(raw->skins.size(), 1u);
+  EXPECT_EQ(raw->skins[0].name, "Hips");
+  EXPECT_EQ(raw->skins[0].joints, (std::vector<std::string>{"Hips", "Left_Up_Leg", "Spine", "Head"}));
   const Scene scene = built(*raw);
   // Columns as for glTF nodes: translation, rotation, scale per joint, in file order.
   EXPECT_EQ(scene.columns()[0].name, "Hips.translation.x");

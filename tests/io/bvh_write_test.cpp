@@ -186,6 +186,8 @@ TEST(BvhWrite, RefusesWhatBvhCannotHold) {
   EXPECT_EQ(back->objects[1].name, "arm");  // depth first: root, then arm's tree
   EXPECT_FALSE(back->objects[1].parent.has_value());
   EXPECT_EQ(back->objects[2].parent, "arm");
+  ASSERT_EQ(back->skins.size(), 2u);  // one skin per ROOT
+  EXPECT_EQ(back->skins[1].joints, (std::vector<std::string>{"arm", "left_hand"}));
   // A name that collides once blanks become '_'.
   RawScene clash = hierarchy_scene();
   clash.objects[1].name = "left_hand";

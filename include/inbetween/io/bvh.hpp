@@ -1,7 +1,7 @@
 #pragma once
 /// Biovision hierarchy (BVH) motion capture ↔ RawScene (docs/bvh.md).  A reader of our own (not
-/// assimp's): it names the line of every fault, applies the `Frames:` rule and Blender's meaning of
-/// position channels, none of which assimp's BVH importer does.
+/// assimp's), so that the choices where readers differ are ours and documented: it names the line
+/// of every fault, applies the `Frames:` rule and Blender's meaning of position channels.
 ///
 /// Reading: every ROOT and JOINT becomes an object (End Sites do not), in file order, its parent
 /// the enclosing joint.  Its rest translation is the OFFSET; rotation channels compose in the order
@@ -11,7 +11,8 @@
 /// i is the i-th non-blank line after `Frame Time:` (from 0), at time i × Frame Time.  A joint with
 /// rotation channels gets one slerp key per frame (sign-continuous), one with position channels one
 /// linear translation key per frame; columns are then `<joint>.translation.x|y|z`,
-/// `<joint>.rotation.w|x|y|z`, `<joint>.scale.x|y|z`, as for glTF nodes.
+/// `<joint>.rotation.w|x|y|z`, `<joint>.scale.x|y|z`, as for glTF nodes.  Each ROOT also gives a
+/// skin (RawScene::skins) named after it, listing its joints in file order.
 ///
 /// Writing: write_bvh() samples a built Scene's objects at whole frames; see BvhWriteOptions for
 /// the channel order.
