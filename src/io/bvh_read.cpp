@@ -39,7 +39,8 @@ Error line_error(std::size_t line, ErrorCode code, std::string message) {
   return Error{code, std::move(message), "line " + std::to_string(line)};
 }
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
+bool is_space(char c) { return is_blank(c) || c == '\r'; }
 
 bool iequals(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
@@ -50,33 +51,84 @@ bool iequals(std::string_view a, std::string_view b) {
   return true;
 }
 
+// Clinger's fast path for the numbers BVH writers print ("-12.345678"): at most 15 digits, no
+// exponent.  The digits make an exact integer below 2^53 and 10^k (k ≤ 15) is exact, so one
+// division rounds correctly — the value std::from_chars gives, bit for bit.  Reads from `p` up to
+// the first character that is not part of such a number; false (and `p` anywhere) when what it
+// read is not one or has more digits, for std::from_chars to decide.
+constexpr std::array<double, 16> kPow10 = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                           1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+bool simple_decimal(const char*& p, const char* end, double& out) {
+  const bool negative = p != end && *p == '-';
+  if (negative) ++p;
+  std::uint64_t m = 0;
+  int digits = 0, fraction = 0;
+  for (; p != end && unsigned(*p - '0') < 10; ++p, ++digits) m = m * 10 + unsigned(*p - '0');
+  if (p != end && *p == '.') {
+    for (++p; p != end && unsigned(*p - '0') < 10; ++p, ++fraction) m = m * 10 + unsigned(*p - '0');
+  }
+  digits += fraction;
+  if (digits == 0 || digits > 15) return false;
+  const double v = double(m) / kPow10[std::size_t(fraction)];
+  out = negative ? -v : v;
+  return true;
+}
+
 // The text line by line ('\n', "\r\n" or a lone '\r' ends a line), each split into tokens at
 // blanks.  Lines count from 1.
 class Lines {
  public:
   explicit Lines(std::string_view text) : text_(text) {}
 
-  // The next line that has a token (into `tokens`); false at the end of the text.
+  // The next line that has a token (into `tokens`); false at the end of the text.  One pass over
+  // the characters: blanks (a '\r' followed by '\n' is one), tokens, and the line's end.
   bool next(std::vector<std::string_view>& tokens) {
-    while (pos_ < text_.size()) {
-      const std::size_t start = pos_;
-      std::size_t end = start;
-      while (end < text_.size() && text_[end] != '\n' && !(text_[end] == '\r' && (end + 1 == text_.size() || text_[end + 1] != '\n')))
-        ++end;
-      // A "\r\n" ends the line at the '\r' (blank anyway); a lone '\r' or '\n' is one character.
-      pos_ = end < text_.size() ? end + 1 : end;
+    const char* const text = text_.data();
+    const std::size_t size = text_.size();
+    while (pos_ < size) {
       ++number_;
       tokens.clear();
-      std::size_t i = start;
-      while (i < end) {
-        while (i < end && is_space(text_[i])) ++i;
+      std::size_t i = pos_;
+      for (;;) {
+        while (i < size && (is_blank(text[i]) || (text[i] == '\r' && i + 1 < size && text[i + 1] == '\n'))) ++i;
+        if (i == size) {
+          pos_ = size;
+          break;
+        }
+        if (text[i] == '\n' || text[i] == '\r') {  // a '\r' here is a lone one: it ends the line
+          pos_ = i + 1;
+          break;
+        }
         const std::size_t t = i;
-        while (i < end && !is_space(text_[i])) ++i;
-        if (i > t) tokens.push_back(text_.substr(t, i - t));
+        while (i < size && !is_space(text[i]) && text[i] != '\n') ++i;
+        tokens.emplace_back(text + t, i - t);
       }
       if (!tokens.empty()) return true;
     }
     return false;
+  }
+  // The next line when it is exactly `count` (≥ 1) plain numbers of simple_decimal() between
+  // blanks: the numbers into `out`, true.  Otherwise false with nothing consumed, for next() and
+  // the full checks (blank lines, other number forms, wrong counts and faults all go that way).
+  bool next_numbers(double* out, std::size_t count) {
+    const char* const begin = text_.data();
+    const char* const end = begin + text_.size();
+    const char* p = begin + pos_;
+    if (count == 0 || p == end) return false;
+    for (std::size_t v = 0; v < count; ++v) {
+      while (p != end && is_blank(*p)) ++p;
+      if (!simple_decimal(p, end, out[v])) return false;
+      if (p != end && !is_space(*p) && *p != '\n') return false;  // "1.5x": not a number
+    }
+    while (p != end && is_blank(*p)) ++p;
+    if (p != end && *p == '\r' && p + 1 != end && p[1] == '\n') ++p;
+    if (p != end) {
+      if (*p != '\n' && *p != '\r') return false;  // more on the line
+      ++p;
+    }
+    pos_ = std::size_t(p - begin);
+    ++number_;
+    return true;
   }
   // The number of the line last returned by next() (of the last line after it returned false).
   [[nodiscard]] std::size_t number() const { return number_; }
@@ -95,6 +147,11 @@ std::optional<double> parse_number(std::string_view token, bool& finite) {
   if (!token.empty() && token.front() == '+') {
     token.remove_prefix(1);
     if (!token.empty() && token.front() == '-') return std::nullopt;  // "+-1"
+  }
+  {
+    const char* p = token.data();
+    double v = 0;
+    if (simple_decimal(p, token.data() + token.size(), v) && p == token.data() + token.size()) return v;
   }
   double v = 0;
   const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
@@ -435,27 +492,32 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
   }
   std::vector<double> values(value_count);
   for (std::size_t i = 0; i < frame_count; ++i) {
-    if (!lines.next(tokens)) {
-      return line_error(frames_line, ErrorCode::TooFewPoints,
-                        "Frames: " + std::to_string(frame_count) + ", but the MOTION section ends after " +
-                            std::to_string(i) + " frame lines (line " + std::to_string(lines.number()) + ")");
+    // The common line of plain numbers is read without tokens (the values parse_number gives);
+    // anything else takes the tokens and the checks with their messages.
+    if (!lines.next_numbers(values.data(), value_count)) {
+      if (!lines.next(tokens)) {
+        return line_error(frames_line, ErrorCode::TooFewPoints,
+                          "Frames: " + std::to_string(frame_count) + ", but the MOTION section ends after " +
+                              std::to_string(i) + " frame lines (line " + std::to_string(lines.number()) + ")");
+      }
+      const std::size_t line = lines.number();
+      if (tokens.size() != value_count) {
+        return line_error(line, ErrorCode::WrongArity,
+                          "frame " + std::to_string(i) + " has " + std::to_string(tokens.size()) + " numbers, the CHANNELS lines declare " +
+                              std::to_string(value_count));
+      }
+      for (std::size_t v = 0; v < value_count; ++v) {
+        bool finite = true;
+        const auto n = parse_number(tokens[v], finite);
+        if (!n || !finite) {
+          return line_error(line, n ? ErrorCode::NotFinite : ErrorCode::Parse,
+                            "frame " + std::to_string(i) + ", value " + std::to_string(v + 1) + ": " + quoted(tokens[v]) +
+                                (n ? " is not a finite number" : " is not a number"));
+        }
+        values[v] = *n;
+      }
     }
     const std::size_t line = lines.number();
-    if (tokens.size() != value_count) {
-      return line_error(line, ErrorCode::WrongArity,
-                        "frame " + std::to_string(i) + " has " + std::to_string(tokens.size()) + " numbers, the CHANNELS lines declare " +
-                            std::to_string(value_count));
-    }
-    for (std::size_t v = 0; v < value_count; ++v) {
-      bool finite = true;
-      const auto n = parse_number(tokens[v], finite);
-      if (!n || !finite) {
-        return line_error(line, n ? ErrorCode::NotFinite : ErrorCode::Parse,
-                          "frame " + std::to_string(i) + ", value " + std::to_string(v + 1) + ": " + quoted(tokens[v]) +
-                              (n ? " is not a finite number" : " is not a number"));
-      }
-      values[v] = *n;
-    }
     const double frame = frame_of(i);
     for (std::size_t k = 0; k < joints.size(); ++k) {
       const Joint& j = joints[k];
@@ -485,13 +547,14 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
         positions[k].keys.push_back(key);
       }
       if (j.has_rotation) {
-        QuatKey<double> key;
-        key.frame = frame;
-        key.value = conv.rotation(q);
-        key.interpolation = QuatInterpolation::slerp;
+        std::vector<QuatKey<double>>& keys = rotations[k].keys;
+        Quatd value = conv.rotation(q);
         // Sign-continuous keys: q and −q are the same rotation; keep each next to the previous one.
-        if (!rotations[k].keys.empty() && dot(rotations[k].keys.back().value, key.value) < 0) key.value = -key.value;
-        rotations[k].keys.push_back(key);
+        if (!keys.empty() && dot(keys.back().value, value) < 0) value = -value;
+        QuatKey<double>& key = keys.emplace_back();  // in place: a key is 112 bytes
+        key.frame = frame;
+        key.value = value;
+        key.interpolation = QuatInterpolation::slerp;
       }
     }
   }

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -177,6 +178,107 @@ TEST(QuatTrack, DyadicEvaluationMatchesDeCasteljau) {
         EXPECT_TRUE(same_rotation(tr->bezier_dyadic(seg, j, m), tr->bezier(seg, u), 1e-13)) << seg << " " << j << "/" << m;
       }
     }
+  }
+}
+
+// build_quat_track computes Bézier/squad control points only at keys of Bézier or squad segments
+// (issue 20: a BVH clip's 140 000 slerp keys never read them).  A slerp-only track must sample
+// exactly as before: each segment the math module's slerp of its two keys, to the bit; and the
+// Bézier and squad segments of a mixed track exactly as in a track where every key has them.
+bool same_bits(const Q& a, const Q& b) { return a.w == b.w && a.x == b.x && a.y == b.y && a.z == b.z; }
+
+TEST(QuatTrack, ControlPointsOnlyWhereUsedChangeNoSample) {
+  test::Random rng(test::seed_for(5036));
+  SCOPED_TRACE(rng.trace());
+  constexpr int kKeys = 12;
+  std::vector<Q> values;
+  std::vector<double> frames;
+  double frame = 0;
+  for (int i = 0; i < kKeys; ++i) {
+    values.push_back(rng.rotation());
+    frames.push_back(frame);
+    frame += rng.uniform(0.3, 3.0);
+  }
+  auto keys_with = [&](auto mode_of) {
+    std::vector<QuatKey<double>> keys;
+    for (int i = 0; i < kKeys; ++i) keys.push_back(qkey(frames[std::size_t(i)], values[std::size_t(i)], mode_of(i)));
+    return keys;
+  };
+  auto all = [](QuatInterpolation m) { return [m](int) { return m; }; };
+  auto slerp_only = build_quat_track(keys_with(all(QuatInterpolation::slerp)));
+  auto all_bezier = build_quat_track(keys_with(all(QuatInterpolation::bezier)));
+  auto all_squad = build_quat_track(keys_with(all(QuatInterpolation::squad)));
+  // Segments 0-1 and 6 Bézier, 3-4 squad, 9 step, the rest slerp.
+  auto mixed_mode = [](int i) {
+    if (i <= 1 || i == 6) return QuatInterpolation::bezier;
+    if (i == 3 || i == 4) return QuatInterpolation::squad;
+    return i == 9 ? QuatInterpolation::step : QuatInterpolation::slerp;
+  };
+  auto mixed = build_quat_track(keys_with(mixed_mode));
+  ASSERT_TRUE(slerp_only && all_bezier && all_squad && mixed);
+  const auto keys = slerp_only->keys();
+  // A track without Bézier and squad keys stores no control points: they read as the keys.
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    EXPECT_TRUE(same_bits(slerp_only->control_after(i), keys[i]) && same_bits(slerp_only->control_before(i), keys[i])) << i;
+  }
+  int compared = 0;
+  for (std::size_t seg = 0; seg + 1 < std::size_t(kKeys); ++seg) {
+    for (int j = 1; j < 16; ++j) {  // inside the segment: the keys themselves are returned as they are
+      const double u = j / 16.0;
+      const double f = frames[seg] + u * (frames[seg + 1] - frames[seg]);
+      const double uu = std::clamp((f - frames[seg]) / (frames[seg + 1] - frames[seg]), 0.0, 1.0);  // as sample() computes it
+      const Q want_slerp = slerp(keys[seg], keys[seg + 1], uu, SlerpOptions{.path = RotationPath::AsGiven});
+      EXPECT_TRUE(same_bits(slerp_only->sample(f), want_slerp)) << "slerp segment " << seg << " u " << u;
+      const QuatInterpolation m = mixed_mode(int(seg));
+      const Q want = m == QuatInterpolation::bezier  ? all_bezier->sample(f)
+                     : m == QuatInterpolation::squad ? all_squad->sample(f)
+                     : m == QuatInterpolation::step  ? keys[seg]
+                                                     : want_slerp;
+      EXPECT_TRUE(same_bits(mixed->sample(f), want)) << "mixed segment " << seg << " u " << u;
+      ++compared;
+    }
+    // The control points a Bézier segment reads are the all-Bézier track's, bit for bit.
+    if (mixed_mode(int(seg)) == QuatInterpolation::bezier) {
+      EXPECT_TRUE(same_bits(mixed->control_after(seg), all_bezier->control_after(seg))) << seg;
+      EXPECT_TRUE(same_bits(mixed->control_before(seg + 1), all_bezier->control_before(seg + 1))) << seg;
+    }
+  }
+  EXPECT_EQ(compared, 15 * (kKeys - 1));
+}
+
+// sample() without a cursor first tries the segment at the frame's proportion of the keyed range
+// (right at once for evenly spaced keys) and checks it; the segment must always be the one a
+// linear search finds (frames[i] ≤ f < frames[i + 1]), for even and uneven keys, at the keys
+// themselves and between them.
+TEST(QuatTrack, SegmentLookupMatchesLinearSearch) {
+  test::Random rng(test::seed_for(5037));
+  SCOPED_TRACE(rng.trace());
+  for (const bool even : {true, false}) {
+    std::vector<QuatKey<double>> keys;
+    double frame = 10;
+    for (int i = 0; i < 300; ++i) {
+      keys.push_back(qkey(frame, rng.rotation(), QuatInterpolation::slerp));
+      frame += even ? 0.5 : rng.uniform(0.01, 2.0);
+    }
+    auto tr = build_quat_track(keys);
+    ASSERT_TRUE(tr.has_value());
+    const auto f = tr->frames();
+    const auto q = tr->keys();
+    auto reference = [&](double x) {
+      if (x <= f.front()) return q.front();
+      if (x >= f.back()) return q.back();
+      std::size_t i = 0;
+      while (!(f[i] <= x && x < f[i + 1])) ++i;
+      const double u = std::clamp((x - f[i]) / (f[i + 1] - f[i]), 0.0, 1.0);
+      return slerp(q[i], q[i + 1], u, SlerpOptions{.path = RotationPath::AsGiven});
+    };
+    std::vector<double> probes(f.begin(), f.end());
+    for (std::size_t i = 0; i + 1 < f.size(); ++i) {
+      probes.push_back(0.5 * (f[i] + f[i + 1]));
+      probes.push_back(std::nextafter(f[i + 1], 0.0));
+    }
+    for (int r = 0; r < 2000; ++r) probes.push_back(rng.uniform(f.front() - 1, f.back() + 1));
+    for (double x : probes) EXPECT_TRUE(same_bits(tr->sample(x), reference(x))) << (even ? "even" : "uneven") << " frame " << x;
   }
 }
 

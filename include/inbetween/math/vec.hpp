@@ -199,7 +199,11 @@ scalar_of<P> norm(const P& a) noexcept {
     return std::abs(a);
   } else {
     T big{};
-    for (int i = 0; i < PointTraits<P>::dim; ++i) big = std::fmax(big, std::abs(PointTraits<P>::get(a, i)));
+    for (int i = 0; i < PointTraits<P>::dim; ++i) {
+      // std::fmax's value (a NaN component is skipped) without its library call.
+      const T c = std::abs(PointTraits<P>::get(a, i));
+      if (c > big) big = c;
+    }
     if (big == T(0) || !std::isfinite(big)) return big;
     T s{};
     for (int i = 0; i < PointTraits<P>::dim; ++i) {

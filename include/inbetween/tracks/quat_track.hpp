@@ -122,10 +122,11 @@ class QuatTrack {
   [[nodiscard]] std::span<const Quat<T>> keys() const noexcept { return keys_; }
   /// Interpolation of the segment that starts at key i (i < size()).
   [[nodiscard]] QuatInterpolation interpolation(std::size_t i) const noexcept { return mode_[i]; }
-  /// Bézier control point after key i (a'_i of §3.3.1, scaled by the distance factor).
-  [[nodiscard]] const Quat<T>& control_after(std::size_t i) const noexcept { return after_[i]; }
-  /// Bézier control point before key i (b'_i).
-  [[nodiscard]] const Quat<T>& control_before(std::size_t i) const noexcept { return before_[i]; }
+  /// Bézier control point after key i (a'_i of §3.3.1, scaled by the distance factor); computed
+  /// only for keys at a Bézier or squad segment, elsewhere the key itself.
+  [[nodiscard]] const Quat<T>& control_after(std::size_t i) const noexcept { return after_.empty() ? keys_[i] : after_[i]; }
+  /// Bézier control point before key i (b'_i); as control_after(), the key where not computed.
+  [[nodiscard]] const Quat<T>& control_before(std::size_t i) const noexcept { return before_.empty() ? keys_[i] : before_[i]; }
 
   /// Orientation at `frame` (clamped to the keyed range); a unit quaternion.
   [[nodiscard]] Quat<T> sample(T frame) const noexcept {
@@ -141,13 +142,15 @@ class QuatTrack {
   }
 
   /// The point of segment i at u = j/2^m of the Bézier spline, computed by bisections only
-  /// (the text's fast evaluation); i < size() − 1, 0 ≤ j ≤ 2^m, m ≤ 30.
+  /// (the text's fast evaluation); i < size() − 1, 0 ≤ j ≤ 2^m, m ≤ 30.  The spline's control
+  /// points exist at Bézier and squad segments only (control_after()).
   [[nodiscard]] Quat<T> bezier_dyadic(std::size_t i, std::uint64_t j, int m) const noexcept {
     INBETWEEN_ASSERT(i + 1 < keys_.size() && m >= 0 && m <= 30);
     using quat_track_detail::slerp_dyadic;
-    const Quat<T> p1 = slerp_dyadic(keys_[i], after_[i], j, m);
-    const Quat<T> p2 = slerp_dyadic(after_[i], before_[i + 1], j, m);
-    const Quat<T> p3 = slerp_dyadic(before_[i + 1], keys_[i + 1], j, m);
+    const Quat<T>&a = control_after(i), &b = control_before(i + 1);
+    const Quat<T> p1 = slerp_dyadic(keys_[i], a, j, m);
+    const Quat<T> p2 = slerp_dyadic(a, b, j, m);
+    const Quat<T> p3 = slerp_dyadic(b, keys_[i + 1], j, m);
     const Quat<T> p12 = slerp_dyadic(p1, p2, j, m);
     const Quat<T> p23 = slerp_dyadic(p2, p3, j, m);
     return slerp_dyadic(p12, p23, j, m);
@@ -156,9 +159,10 @@ class QuatTrack {
   /// The Bézier spline of segment i at parameter u in [0, 1] by de Casteljau with slerp.
   [[nodiscard]] Quat<T> bezier(std::size_t i, T u) const noexcept {
     using quat_track_detail::slerp_unit;
-    const Quat<T> p1 = slerp_unit(keys_[i], after_[i], u);
-    const Quat<T> p2 = slerp_unit(after_[i], before_[i + 1], u);
-    const Quat<T> p3 = slerp_unit(before_[i + 1], keys_[i + 1], u);
+    const Quat<T>&a = control_after(i), &b = control_before(i + 1);
+    const Quat<T> p1 = slerp_unit(keys_[i], a, u);
+    const Quat<T> p2 = slerp_unit(a, b, u);
+    const Quat<T> p3 = slerp_unit(b, keys_[i + 1], u);
     return slerp_unit(slerp_unit(p1, p2, u), slerp_unit(p2, p3, u), u);
   }
 
@@ -170,7 +174,9 @@ class QuatTrack {
   Quat<T> sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept;
 
   std::vector<T> frames_;
-  std::vector<Quat<T>> keys_, after_, before_, squad_, tin_, tout_;
+  std::vector<Quat<T>> keys_;
+  std::vector<Quat<T>> after_, before_, squad_;  // empty when no key is Bézier or squad
+  std::vector<Quat<T>> tin_, tout_;              // empty when no key is glTF cubic
   std::vector<T> sign_;  // ±1 applied to each authored key (and its tangents) for continuity
   std::vector<T> length_;  // |authored key|: glTF cubic segments use the key as authored, not normalised
   std::vector<QuatInterpolation> mode_;
@@ -205,12 +211,21 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const 
     e.prepend(steps);
     return e;
   };
+  // Only the arrays some key's interpolation reads are made (a motion-capture clip's slerp keys
+  // need neither control points nor tangents).
+  bool any_controls = false, any_cubic = false;
+  for (const auto& k : keys) {
+    any_controls |= k.interpolation == QuatInterpolation::bezier || k.interpolation == QuatInterpolation::squad;
+    any_cubic |= k.interpolation == QuatInterpolation::gltf_cubic;
+  }
   QuatTrack<T> tr;
   tr.frames_.resize(n);
   tr.keys_.resize(n);
   tr.mode_.resize(n);
-  tr.tin_.resize(n);
-  tr.tout_.resize(n);
+  if (any_cubic) {
+    tr.tin_.resize(n);
+    tr.tout_.resize(n);
+  }
   tr.sign_.resize(n);
   tr.length_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -235,24 +250,32 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const 
       if (negative != k.long_way) sign = T(-1);
     }
     tr.keys_[i] = q * sign;
-    tr.tin_[i] = k.in_tangent * sign;
-    tr.tout_[i] = k.out_tangent * sign;
+    if (any_cubic) {
+      tr.tin_[i] = k.in_tangent * sign;
+      tr.tout_[i] = k.out_tangent * sign;
+    }
     tr.sign_[i] = sign;
     tr.length_[i] = len;
     tr.mode_[i] = k.interpolation;
   }
   // Bézier control points (§3.3.1): a_i = bisect(double(q_{i−1}, q_i), q_{i+1}), b_i = double(a_i, q_i);
   // at the ends the missing neighbour is the reflection of the other one through the end key.
-  tr.after_.resize(n);
-  tr.before_.resize(n);
-  tr.squad_.resize(n);
+  // Only keys at a Bézier or squad segment (the one starting at key i or the one ending there) get
+  // them: each key's points depend on its neighbouring keys only, so they are the same as if every
+  // key had them.  Elsewhere they are the key itself (step, slerp and glTF cubic never read them);
+  // a track without Bézier and squad keys stores none (control_after() gives the key).
+  if (!any_controls) return tr;
+  tr.after_.assign(tr.keys_.begin(), tr.keys_.end());
+  tr.before_.assign(tr.keys_.begin(), tr.keys_.end());
+  tr.squad_.assign(tr.keys_.begin(), tr.keys_.end());
+  const auto uses_controls = [&](std::size_t s) {
+    return tr.mode_[s] == QuatInterpolation::bezier || tr.mode_[s] == QuatInterpolation::squad;
+  };
   const T k = options.distance_factor;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; n > 1 && i < n; ++i) {
+    // Segment i starts at key i; segment i − 1 ends there (the last key starts none).
+    if (!((i + 1 < n && uses_controls(i)) || (i > 0 && uses_controls(i - 1)))) continue;
     const Quat<T>& q = tr.keys_[i];
-    if (n == 1) {
-      tr.after_[i] = tr.before_[i] = tr.squad_[i] = q;
-      break;
-    }
     const Quat<T> prev = i > 0 ? tr.keys_[i - 1] : double_through(tr.keys_[i + 1], q);
     const Quat<T> next = i + 1 < n ? tr.keys_[i + 1] : double_through(tr.keys_[i - 1], q);
     const Quat<T> a = bisect(double_through(prev, q), next);
@@ -289,10 +312,30 @@ Quat<T> QuatTrack<T>::sample(T frame, TrackCursor& cursor, bool use_cursor) cons
   } else if (use_cursor && i + 2 < n && frame >= frames_[i + 1] && frame <= frames_[i + 2]) {
     ++i;
   } else {
-    const auto it = std::upper_bound(frames_.begin(), frames_.end(), frame);
-    i = std::min(std::size_t(it - frames_.begin()) - 1, n - 2);
+    // The segment upper_bound finds (frames_[i] ≤ frame < frames_[i + 1]); first tried at the
+    // frame's proportion of the keyed range and its neighbour on the frame's side (rounding), which
+    // is it for evenly spaced keys (motion capture).
+    const T guess = (frame - frames_[0]) / (frames_[n - 1] - frames_[0]) * T(n - 1);
+    std::size_t g = guess > T(0) && guess < T(n - 1) ? std::min(std::size_t(guess), n - 2) : 0;
+    if (frame < frames_[g]) {
+      if (g > 0) --g;
+    } else if (frame >= frames_[g + 1] && g + 2 < n) {
+      ++g;
+    }
+    if (frames_[g] <= frame && frame < frames_[g + 1]) {
+      i = g;
+    } else {
+      const auto it = std::upper_bound(frames_.begin(), frames_.end(), frame);
+      i = std::min(std::size_t(it - frames_.begin()) - 1, n - 2);
+    }
   }
   cursor.segment = i;
+#if defined(__GNUC__)
+  // Playback walks the keys in order, one track after another: with dozens of tracks (a skeleton)
+  // the hardware's stream prefetchers lose track and each key was a cache miss.  Ask for the key a
+  // few segments ahead (a hint only: no effect on the result).
+  __builtin_prefetch(keys_.data() + std::min(i + 8, n - 1));
+#endif
   const T h = frames_[i + 1] - frames_[i];
   const T u = std::clamp((frame - frames_[i]) / h, T(0), T(1));
   switch (mode_[i]) {
