@@ -399,15 +399,46 @@ Expected<std::vector<Joint>> read_hierarchy(Lines& lines, std::vector<std::strin
   return line_error(last, ErrorCode::Parse, "the file ends before MOTION");
 }
 
-Quatd axis_rotation(Channel ch, double deg) {
-  if (deg == 0) return Quatd{};  // exact, and a fifth of mocap angles: no sincos
-  const double half = deg * (kPi / 180) / 2;
-  const double s = std::sin(half);
-  Quatd q = Quatd::from_wxyz(std::cos(half), 0, 0, 0);
-  if (ch == Channel::xrot) q.x = s;
-  else if (ch == Channel::yrot) q.y = s;
-  else q.z = s;
-  return q;
+// sin and cos of `deg`/2 degrees: the half angle reduced exactly in degrees (h − 90k is exact for
+// |h| < 2^50: both are multiples of h's ulp and the result is smaller than h), then the Taylor
+// series on |x| ≤ π/4 (truncation below 1e-19) and the quadrant's symmetry.  Twice as fast as
+// libm's sincos here (a third of reading a CMU clip) and more accurate for angles past ±180°,
+// where converting whole degrees to radians first loses digits (measured worst absolute error
+// 1.5e-16 against long double over ±720°, libm after the conversion 3.5e-14); channel angles
+// that are multiples of 180° give exact quaternions.
+void half_angle_sincos(double deg, double& s, double& c) {
+  const double h = deg * 0.5;
+  if (!(std::abs(h) < 0x1p50)) {
+    const double x = h * (kPi / 180);
+    s = std::sin(x);
+    c = std::cos(x);
+    return;
+  }
+  const double k = std::rint(h * (1.0 / 90));
+  const double x = (h - 90 * k) * (kPi / 180);
+  const double x2 = x * x;
+  const double sr =
+      x * (1 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 + x2 * (-1.0 / 39916800 +
+          x2 * (1.0 / 6227020800 + x2 * (-1.0 / 1307674368000 + x2 * (1.0 / 355687428096000.0)))))))));
+  const double cr =
+      1 + x2 * (-0.5 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800 + x2 * (1.0 / 479001600 +
+          x2 * (-1.0 / 87178291200.0 + x2 * (1.0 / 20922789888000.0 + x2 * (-1.0 / 6402373705728000.0)))))))));
+  switch (std::int64_t(k) & 3) {  // h = 90k + r: quarter turns
+    case 0: s = sr; c = cr; break;
+    case 1: s = cr; c = 0.0 - sr; break;
+    case 2: s = 0.0 - sr; c = 0.0 - cr; break;
+    default: s = 0.0 - cr; c = sr; break;
+  }
+}
+
+// q · (rotation by `deg` degrees about the channel's axis), the product written out for the
+// axis quaternion's two non-zero components (half the multiplications of a general product).
+Quatd times_axis_rotation(const Quatd& q, Channel ch, double deg) {
+  double s = 0, c = 1;
+  half_angle_sincos(deg, s, c);
+  if (ch == Channel::xrot) return Quatd::from_wxyz(q.w * c - q.x * s, q.x * c + q.w * s, q.y * c + q.z * s, q.z * c - q.y * s);
+  if (ch == Channel::yrot) return Quatd::from_wxyz(q.w * c - q.y * s, q.x * c - q.z * s, q.y * c + q.w * s, q.z * c + q.x * s);
+  return Quatd::from_wxyz(q.w * c - q.z * s, q.x * c + q.y * s, q.y * c - q.x * s, q.z * c + q.w * s);
 }
 
 }  // namespace
@@ -531,7 +562,7 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
           case Channel::ypos: p.y = x; break;
           case Channel::zpos: p.z = x; break;
           default:
-            if (x != 0) q = q * axis_rotation(j.channels[c], x);
+            if (x != 0) q = times_axis_rotation(q, j.channels[c], x);  // 0: exact, a fifth of mocap angles
             break;
         }
       }
