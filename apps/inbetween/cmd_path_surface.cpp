@@ -33,7 +33,7 @@ struct Args {
 void setup(CLI::App& root) {
   CLI::App* path = nullptr;
   for (CLI::App* sub : root.get_subcommands([](CLI::App* s) { return s->get_name() == "path"; })) path = sub;
-  if (path == nullptr) path = root.add_subcommand("path", "Paths: fitting and smoothing");
+  if (path == nullptr) path = root.add_subcommand("path", kPathDescription);
   path->require_subcommand(1);
   auto* surface = path->add_subcommand(
       "surface", "A path on a triangle mesh from an OBJ file, as CSV rows x,y,z (texts 004 section 3.4.4)");

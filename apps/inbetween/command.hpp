@@ -63,6 +63,10 @@ struct RegisterDemo {
 void write_output(const std::string& path, const std::string& content);
 
 /// Reads a whole file ("-" means standard input); throws CommandError naming the file on failure.
+/// The `path` command's one-line description, the same whichever path subcommand registers it first.
+inline constexpr const char* kPathDescription =
+    "Paths: fit curves to samples, smooth point lists, walk on mesh surfaces (across faces, along edges, downhill) and find paths around obstacles";
+
 std::string read_input(const std::string& path);
 
 /// Formats a double with the shortest text that reads back to the same value.

@@ -1,0 +1,39 @@
+// What a newcomer meets first (issue 26, "A newcomer's path"): the help text says what each
+// command does and shows its defaults, a file of the wrong kind names the command that reads it,
+// and the argument parser's errors look like every other usage error.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "support/cli.hpp"
+
+namespace {
+
+using inbetween::test::CliRun;
+using inbetween::test::run_cli;
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// The line of `text` that contains `part` ("" when none).
+std::string line_with(const std::string& text, const std::string& part) {
+  const auto at = text.find(part);
+  if (at == std::string::npos) return "";
+  const auto begin = text.rfind('\n', at);
+  const auto end = text.find('\n', at);
+  return text.substr(begin == std::string::npos ? 0 : begin + 1, end == std::string::npos ? std::string::npos : end - begin - 1);
+}
+
+// `path` fits, smooths, walks surfaces and finds paths: the top-level help and `path --help` say all four.
+TEST(NewcomerCli, PathHelpNamesEverythingPathDoes) {
+  const CliRun top = run_cli("--help");
+  ASSERT_EQ(top.exit_code, 0) << top.err;
+  const std::string line = line_with(top.out, "  path");
+  for (const char* word : {"fit", "smooth", "surface", "find"}) EXPECT_TRUE(has(line, word)) << word << " not in: " << line;
+  const CliRun path = run_cli("path --help");
+  ASSERT_EQ(path.exit_code, 0) << path.err;
+  for (const char* word : {"fit", "smooth", "surface", "find"}) EXPECT_TRUE(has(path.out, word)) << word << " not in: " << path.out;
+  const std::string first = path.out.substr(0, path.out.find('\n'));
+  for (const char* word : {"smooth", "surface", "find"}) EXPECT_TRUE(has(first, word)) << word << " not in: " << first;
+}
+
+}  // namespace
