@@ -27,7 +27,10 @@ namespace {
 AnyCurve load_curve(const std::string& path) {
   const std::string text = read_input(path);
   auto curve = parse_curve_json(text, path);
-  if (!curve) throw CommandError{curve.error().describe()};
+  if (!curve) {
+    if (const std::string other = other_kind_message(path, text, "curve"); !other.empty()) throw CommandError{other};
+    throw CommandError{curve.error().describe()};
+  }
   return std::move(curve).value();
 }
 

@@ -15,6 +15,8 @@
 #include "demo_files.hpp"
 #include "inbetween/math/format.hpp"
 
+#include <nlohmann/json.hpp>
+
 namespace inbetween::cli {
 
 std::vector<CommandSpec>& command_registry() {
@@ -39,6 +41,25 @@ std::string read_input(const std::string& path) {
   ss << in.rdbuf();
   if (in.bad()) throw CommandError{path + ": read failed"};
   return ss.str();
+}
+
+std::string json_file_kind(const std::string& text) {
+  const auto doc = nlohmann::json::parse(text, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) return "";
+  if (doc.contains("inbetween") || doc.contains("tracks") || doc.contains("objects")) return "scene";
+  if (doc.contains("type") && doc["type"].is_string() && doc.contains("points")) return "curve";
+  return "";
+}
+
+std::string other_kind_message(const std::string& path, const std::string& text, const std::string& expected) {
+  const std::string kind = json_file_kind(text);
+  if (kind.empty() || kind == expected) return "";
+  if (kind == "scene") {
+    return path + ": a scene file, not a curve file; scene files are read by inbetween bake, plot, view and convert "
+                  "(docs/scene-format.md)";
+  }
+  return path + ": a curve file, not a scene file; curve files are read by inbetween curve info, curve sample and "
+                "curve plot (docs/curve-format.md)";
 }
 
 std::string format_number(double v) {

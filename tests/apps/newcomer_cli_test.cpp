@@ -3,6 +3,7 @@
 // and the argument parser's errors look like every other usage error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "support/cli.hpp"
@@ -34,6 +35,29 @@ TEST(NewcomerCli, PathHelpNamesEverythingPathDoes) {
   for (const char* word : {"fit", "smooth", "surface", "find"}) EXPECT_TRUE(has(path.out, word)) << word << " not in: " << path.out;
   const std::string first = path.out.substr(0, path.out.find('\n'));
   for (const char* word : {"smooth", "surface", "find"}) EXPECT_TRUE(has(first, word)) << word << " not in: " << first;
+}
+
+// A file of another kind inbetween knows: one line saying what it is and which commands read it.
+TEST(NewcomerCli, AFileOfAnotherKindNamesTheCommandThatReadsIt) {
+  const std::string scene = std::string(INBETWEEN_SOURCE_DIR) + "/examples/scenes/bouncing_cube.json";
+  const std::string curve = std::string(INBETWEEN_SOURCE_DIR) + "/examples/curves/hermite.json";
+  for (const char* cmd : {"curve info ", "curve sample ", "curve plot "}) {
+    const std::string out = (inbetween::test::test_dir() / "x.svg").string();
+    const CliRun r = run_cli(cmd + scene + (std::string(cmd) == "curve plot " ? " -o " + out : ""));
+    EXPECT_EQ(r.exit_code, 2) << cmd;
+    EXPECT_TRUE(has(r.err, "inbetween: " + scene + ": a scene file, not a curve file")) << cmd << r.err;
+    EXPECT_TRUE(has(r.err, "inbetween bake")) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  // view: the same loader (only when built with the preview page).
+  for (const char* cmd : {"bake ", "plot ", "convert "}) {
+    const std::string out = (inbetween::test::test_dir() / "x.json").string();
+    const CliRun r = run_cli(cmd + curve + (std::string(cmd) == "convert " ? " " + out : std::string(cmd) == "bake " ? "" : " -o " + out));
+    EXPECT_EQ(r.exit_code, 2) << cmd;
+    EXPECT_TRUE(has(r.err, "inbetween: " + curve + ": a curve file, not a scene file")) << cmd << r.err;
+    EXPECT_TRUE(has(r.err, "inbetween curve info")) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
 }
 
 }  // namespace
