@@ -60,4 +60,21 @@ TEST(NewcomerCli, AFileOfAnotherKindNamesTheCommandThatReadsIt) {
   }
 }
 
+// Downhill is a method too: `--method downhill --from I` gives the same path as `--downhill I`, and
+// the help says when --from/--to are needed.
+TEST(NewcomerCli, PathSurfaceTakesDownhillAsAMethod) {
+  const std::string mesh = std::string(INBETWEEN_SOURCE_DIR) + "/tests/data/obj/blender_torus.obj";
+  const CliRun option = run_cli("path surface " + mesh + " --downhill 3");
+  ASSERT_EQ(option.exit_code, 0) << option.err;
+  const CliRun method = run_cli("path surface " + mesh + " --method downhill --from 3");
+  EXPECT_EQ(method.exit_code, 0) << method.err;
+  EXPECT_EQ(method.out, option.out);
+  const CliRun both = run_cli("path surface " + mesh + " --method downhill --from 3 --to 5");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_TRUE(has(both.err, "--to")) << both.err;
+  const CliRun help = run_cli("path surface --help");
+  EXPECT_TRUE(has(line_with(help.out, "--from"), "unless")) << help.out;
+  EXPECT_TRUE(has(line_with(help.out, "--method"), "downhill")) << help.out;
+}
+
 }  // namespace
