@@ -95,6 +95,16 @@ void register_demo_command(CLI::App& root) {
   });
 }
 
+// Every option that takes a value and is not required shows its default in --help: the value of
+// its variable before parsing (options already given a default text keep it).
+void show_defaults(CLI::App* app) {
+  for (CLI::Option* opt : app->get_options()) {
+    if (opt->get_required() || opt->get_type_size() == 0 || opt->get_positional() || !opt->get_default_str().empty()) continue;
+    opt->capture_default_str();
+  }
+  for (CLI::App* sub : app->get_subcommands({})) show_defaults(sub);
+}
+
 }  // namespace
 }  // namespace inbetween::cli
 
@@ -109,6 +119,7 @@ int main(int argc, char** argv) {
                    [](const CommandSpec& a, const CommandSpec& b) { return a.order < b.order; });
   register_demo_command(app);
   for (const auto& command : commands) command.setup(app);
+  show_defaults(&app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -118,7 +129,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // The parser's own errors ("--output is required") are usage errors like every other.
+    std::cerr << "inbetween: " << e.what() << "\n";
     return kUserError;
   } catch (const CommandError& e) {
     std::cerr << "inbetween: " << e.message << "\n";

@@ -77,4 +77,28 @@ TEST(NewcomerCli, PathSurfaceTakesDownhillAsAMethod) {
   EXPECT_TRUE(has(line_with(help.out, "--method"), "downhill")) << help.out;
 }
 
+// Every option with a value shows its default in --help; the parser's own errors are usage errors
+// like the others: "inbetween: " and one line, exit 2.
+TEST(NewcomerCli, HelpShowsDefaultsAndParserErrorsAreUsageErrors) {
+  const CliRun convert = run_cli("convert --help");
+  for (const char* opt : {"--tolerance", "--substeps"}) {
+    const std::string line = line_with(convert.out, opt);
+    const auto name = line.find(opt);
+    EXPECT_TRUE(name != std::string::npos && has(line.substr(name, line.find("  ", name) - name), "=")) << line;
+  }
+  EXPECT_TRUE(has(run_cli("demo --help").out, "--out TEXT=out/demo")) << run_cli("demo --help").out;
+  const CliRun sample = run_cli("curve sample --help");
+  const std::string by = sample.out.substr(sample.out.find("--by"));
+  const std::string by_text = by.substr(0, by.find("\n  -o"));
+  EXPECT_EQ(by_text.find_last_not_of(" \n"), by_text.rfind('.')) << by_text;
+  const std::string scene = std::string(INBETWEEN_SOURCE_DIR) + "/examples/scenes/frame22.json";
+  const CliRun missing = run_cli("plot " + scene);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_EQ(missing.err, "inbetween: --output is required\n");
+  const CliRun unknown = run_cli("bake " + scene + " --no-such-option");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_EQ(unknown.err.rfind("inbetween: ", 0), 0u) << unknown.err;
+  EXPECT_EQ(std::count(unknown.err.begin(), unknown.err.end(), '\n'), 1) << unknown.err;
+}
+
 }  // namespace
