@@ -53,7 +53,7 @@ void setup(CLI::App& root) {
   if (path == nullptr) path = root.add_subcommand("path", kPathDescription);
   path->require_subcommand(1);
   auto* fit = path->add_subcommand(
-      "fit", "Fit a B-spline to rows t,x[,y[,z]] (texts 004 section 3.2.5) and write a bspline curve file");
+      "fit", "Fit a B-spline to rows t,x[,y[,z]] (Parent, Computer Animation, section 3.2.5) and write a bspline curve file");
   struct Args {
     std::string input, output = "-";
     int degree = 3;

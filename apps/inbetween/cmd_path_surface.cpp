@@ -36,7 +36,7 @@ void setup(CLI::App& root) {
   if (path == nullptr) path = root.add_subcommand("path", kPathDescription);
   path->require_subcommand(1);
   auto* surface = path->add_subcommand(
-      "surface", "A path on a triangle mesh from an OBJ file, as CSV rows x,y,z (texts 004 section 3.4.4)");
+      "surface", "A path on a triangle mesh from an OBJ file, as CSV rows x,y,z (Parent, Computer Animation, section 3.4.4)");
   auto args = std::make_shared<Args>();
   surface->add_option("MESH", args->input, "OBJ file (v, vn, f lines; polygons are triangulated); - for stdin")
       ->required();

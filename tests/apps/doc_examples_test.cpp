@@ -86,4 +86,36 @@ TEST(DocExamples, EveryExampleCommandRunsAsWritten) {
   EXPECT_GT(ran, 20);
 }
 
+// README and docs/ quote no figure a command prints (test counts drift), cite the texts by name
+// instead of their file numbers ("texts 004 §3.2", "000 §2.4"), and README says what the texts
+// are; --help cites them the same way.
+TEST(DocExamples, NoTestCountsAndTheTextsCitedByName) {
+  const fs::path src = INBETWEEN_SOURCE_DIR;
+  const std::regex count(R"(\b[0-9][0-9 ]* (tests|test cases)\b)");
+  const std::regex number(R"(\b(texts? )?00[0-9] ?(§|Eqs?\.|Figs?\.|App\.|section))");
+  std::vector<fs::path> files = {src / "README.md"};
+  for (const auto& e : fs::directory_iterator(src / "docs"))
+    if (e.path().extension() == ".md") files.push_back(e.path());
+  for (const fs::path& md : files) {
+    std::ifstream in(md);
+    int n = 0;
+    for (std::string line; std::getline(in, line);) {
+      ++n;
+      std::smatch m;
+      if (std::regex_search(line, m, count)) ADD_FAILURE() << md.filename() << ":" << n << ": a test count: " << m.str();
+      if (std::regex_search(line, m, number)) ADD_FAILURE() << md.filename() << ":" << n << ": a text by number: " << m.str();
+    }
+  }
+  const std::string readme = inbetween::test::slurp(src / "README.md");
+  EXPECT_NE(readme.find("*Computer Animation"), std::string::npos);
+  EXPECT_NE(readme.find("Interpolating Values"), std::string::npos);
+  EXPECT_NE(readme.find("keyframing lecture"), std::string::npos);
+  for (const char* help : {"--help", "path --help", "path fit --help", "path find --help", "path smooth --help",
+                           "path surface --help", "curve --help", "bake --help", "convert --help", "plot --help"}) {
+    const auto r = inbetween::test::run_cli(help);
+    std::smatch m;
+    EXPECT_FALSE(std::regex_search(r.out, m, number)) << help << ": " << m.str();
+  }
+}
+
 }  // namespace
