@@ -27,7 +27,10 @@ namespace {
 AnyCurve load_curve(const std::string& path) {
   const std::string text = read_input(path);
   auto curve = parse_curve_json(text, path);
-  if (!curve) throw CommandError{curve.error().describe()};
+  if (!curve) {
+    if (const std::string other = other_kind_message(path, text, "curve"); !other.empty()) throw CommandError{other};
+    throw CommandError{curve.error().describe()};
+  }
   return std::move(curve).value();
 }
 
@@ -237,7 +240,11 @@ void setup_curve(CLI::App& root) {
   sample->add_option("--count,-n", opts->count, "number of samples (2 .. 1000000)")->capture_default_str();
   std::vector<std::string> names;
   std::string help = "sample spacing:";
-  for (const auto& s : sample_spacings()) names.push_back(s.name), help += " " + s.name + " = " + s.help + ";";
+  for (const auto& s : sample_spacings()) {
+    help += std::string(names.empty() ? " " : "; ") + s.name + " = " + s.help;
+    names.push_back(s.name);
+  }
+  help += ".";
   sample->add_option("--by", opts->by, help)->check(CLI::IsMember(names))->capture_default_str();
   sample->add_option("-o,--output", opts->output, "output file ('-' = standard output)")->capture_default_str();
   sample->callback([opts] { run_sample(*opts); });

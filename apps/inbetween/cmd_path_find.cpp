@@ -66,10 +66,10 @@ void setup(CLI::App& root) {
   // `path` may already exist (path fit, path smooth); share it.
   CLI::App* path = nullptr;
   for (CLI::App* sub : root.get_subcommands([](CLI::App* s) { return s->get_name() == "path"; })) path = sub;
-  if (path == nullptr) path = root.add_subcommand("path", "Paths: fitting, smoothing and finding");
+  if (path == nullptr) path = root.add_subcommand("path", kPathDescription);
   path->require_subcommand(1);
   auto* find = path->add_subcommand(
-      "find", "Find a collision-free path among 3-D obstacles (texts 004 section 3.4.5) and its timing");
+      "find", "Find a collision-free path among 3-D obstacles (Parent, Computer Animation, section 3.4.5) and its timing");
   auto args = std::make_shared<Args>();
   find->add_option("ENV", args->input, "environment file (JSON, docs/paths.md); - for stdin")->required();
   find->add_option("-o,--output", args->output, "output curve file (catmull-rom, readable by `curve sample`)")

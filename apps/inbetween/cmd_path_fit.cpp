@@ -50,10 +50,10 @@ void setup(CLI::App& root) {
   // Another command file may already have created `path`; share it.
   CLI::App* path = nullptr;
   for (CLI::App* sub : root.get_subcommands([](CLI::App* a) { return a->get_name() == "path"; })) path = sub;
-  if (path == nullptr) path = root.add_subcommand("path", "Paths: fitting curves to position-time data");
+  if (path == nullptr) path = root.add_subcommand("path", kPathDescription);
   path->require_subcommand(1);
   auto* fit = path->add_subcommand(
-      "fit", "Fit a B-spline to rows t,x[,y[,z]] (texts 004 section 3.2.5) and write a bspline curve file");
+      "fit", "Fit a B-spline to rows t,x[,y[,z]] (Parent, Computer Animation, section 3.2.5) and write a bspline curve file");
   struct Args {
     std::string input, output = "-";
     int degree = 3;

@@ -95,9 +95,9 @@ void setup(CLI::App& root) {
   // `path` may already exist (path fit); share it.
   CLI::App* path = nullptr;
   for (CLI::App* sub : root.get_subcommands([](CLI::App* s) { return s->get_name() == "path"; })) path = sub;
-  if (path == nullptr) path = root.add_subcommand("path", "Paths: fitting and smoothing");
+  if (path == nullptr) path = root.add_subcommand("path", kPathDescription);
   path->require_subcommand(1);
-  auto* smooth = path->add_subcommand("smooth", "Smooth CSV rows as an ordered list of points (texts 004 section 3.4.3)");
+  auto* smooth = path->add_subcommand("smooth", "Smooth CSV rows as an ordered list of points (Parent, Computer Animation, section 3.4.3)");
   auto args = std::make_shared<Args>();
   smooth->add_option("FILE", args->input, "CSV of rows with 1 to 4 numbers (a header line is allowed); - for stdin")
       ->required();

@@ -33,32 +33,44 @@ struct Args {
 void setup(CLI::App& root) {
   CLI::App* path = nullptr;
   for (CLI::App* sub : root.get_subcommands([](CLI::App* s) { return s->get_name() == "path"; })) path = sub;
-  if (path == nullptr) path = root.add_subcommand("path", "Paths: fitting and smoothing");
+  if (path == nullptr) path = root.add_subcommand("path", kPathDescription);
   path->require_subcommand(1);
   auto* surface = path->add_subcommand(
-      "surface", "A path on a triangle mesh from an OBJ file, as CSV rows x,y,z (texts 004 section 3.4.4)");
+      "surface", "A path on a triangle mesh from an OBJ file, as CSV rows x,y,z (Parent, Computer Animation, section 3.4.4)");
   auto args = std::make_shared<Args>();
   surface->add_option("MESH", args->input, "OBJ file (v, vn, f lines; polygons are triangulated); - for stdin")
       ->required();
-  auto* from = surface->add_option("--from", args->from, "start vertex, counting from 0 in the order of the v lines");
-  auto* to = surface->add_option("--to", args->to, "end vertex, counting from 0");
+  auto* from = surface->add_option(
+      "--from", args->from,
+      "start vertex, counting from 0 in the order of the v lines (needed, with --to, unless --downhill I is given)");
+  auto* to = surface->add_option("--to", args->to, "end vertex, counting from 0 (needed unless downhill)");
   auto* method = surface->add_option("--method", args->method,
-                                     "plane (Fig. 3.47), greedy (across faces toward J), edges (shortest along edges)")
-                     ->check(CLI::IsMember({"plane", "greedy", "edges"}))
+                                     "plane (Fig. 3.47), greedy (across faces toward J), edges (shortest along edges), "
+                                     "downhill (from --from; the same as --downhill I)")
+                     ->check(CLI::IsMember({"plane", "greedy", "edges", "downhill"}))
                      ->capture_default_str();
-  auto* downhill = surface->add_option("--downhill", args->downhill, "downhill path from this vertex (Fig. 3.48)");
+  auto* downhill = surface->add_option("--downhill", args->downhill,
+                                       "downhill path from this vertex (Fig. 3.48; or --method downhill --from I)");
   surface->add_option("--up", args->up, "world up for --downhill (three numbers)")->expected(3)->capture_default_str();
   surface->add_option("-o,--output", args->output, "output CSV (default: standard output)");
   surface->callback([args, from, to, method, downhill] {
+    // --method downhill --from I is --downhill I.
+    const bool by_method = args->method == "downhill";
+    if (by_method) {
+      if (downhill->count() > 0) throw CommandError{"--method downhill starts at --from I; --downhill I is the same, give one"};
+      if (to->count() > 0) throw CommandError{"--method downhill takes no --to (the path ends where no neighbour is lower)"};
+      if (from->count() == 0) throw CommandError{"--method downhill needs --from I, the start vertex"};
+      args->downhill = args->from;
+    }
     const bool pair = from->count() > 0 || to->count() > 0;
-    if (downhill->count() > 0 && (pair || method->count() > 0))
+    if (!by_method && downhill->count() > 0 && (pair || method->count() > 0))
       throw CommandError{"--downhill takes no --from, --to or --method"};
-    if (downhill->count() == 0 && (from->count() == 0 || to->count() == 0))
+    if (!by_method && downhill->count() == 0 && (from->count() == 0 || to->count() == 0))
       throw CommandError{"give --from I and --to J, or --downhill I"};
     auto mesh = parse_obj(read_input(args->input), args->input);
     if (!mesh) throw CommandError{mesh.error().describe()};
     Expected<std::vector<Vec3d>> points = Error{};
-    if (downhill->count() > 0) {
+    if (by_method || downhill->count() > 0) {
       auto d = downhill_mesh_path(*mesh, args->downhill, Vec3d{args->up[0], args->up[1], args->up[2]});
       if (!d) fail(d.error(), *args);
       points = std::move(d->points);

@@ -63,7 +63,19 @@ struct RegisterDemo {
 void write_output(const std::string& path, const std::string& content);
 
 /// Reads a whole file ("-" means standard input); throws CommandError naming the file on failure.
+/// The `path` command's one-line description, the same whichever path subcommand registers it first.
+inline constexpr const char* kPathDescription =
+    "Paths: fit curves to samples, smooth point lists, walk on mesh surfaces (across faces, along edges, downhill) and find paths around obstacles";
+
 std::string read_input(const std::string& path);
+
+/// The kind of JSON file `text` is when it is one inbetween reads elsewhere: "scene" (a top-level
+/// "inbetween", "tracks" or "objects" member), "curve" (a string "type" and "points"), or "".
+std::string json_file_kind(const std::string& text);
+
+/// One line for a file of the other kind: "PATH: a scene file, not a curve file; …" naming the
+/// commands that read it ("" when `text` is not a scene or curve file, or is the `expected` kind).
+std::string other_kind_message(const std::string& path, const std::string& text, const std::string& expected);
 
 /// Formats a double with the shortest text that reads back to the same value.
 std::string format_number(double v);

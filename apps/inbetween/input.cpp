@@ -41,8 +41,12 @@ RawScene load_raw(const InputArgs& args) {
   }
   if (!keyed_in_time) {
     // The path too: curve files named by "file" members are relative to the scene's folder.
-    auto raw = read_scene_json(read_input(args.path), args.path);
-    if (!raw) throw CommandError{scene_file_error(args.path, raw.error())};
+    const std::string text = read_input(args.path);
+    auto raw = read_scene_json(text, args.path);
+    if (!raw) {
+      if (const std::string other = other_kind_message(args.path, text, "scene"); !other.empty()) throw CommandError{other};
+      throw CommandError{scene_file_error(args.path, raw.error())};
+    }
     return std::move(*raw);
   }
   InputOptions options;

@@ -17,6 +17,8 @@
 #include "inbetween/math/format.hpp"
 #include "inbetween/math/quote.hpp"
 
+#include <nlohmann/json.hpp>
+
 namespace inbetween::cli {
 
 std::vector<CommandSpec>& command_registry() {
@@ -33,6 +35,25 @@ std::string read_input(const std::string& path) {
   auto text = path == "-" ? read_stream_bytes(std::cin, "standard input") : read_file_bytes(path);
   if (!text) throw CommandError{text.error().describe()};
   return std::move(*text);
+}
+
+std::string json_file_kind(const std::string& text) {
+  const auto doc = nlohmann::json::parse(text, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) return "";
+  if (doc.contains("inbetween") || doc.contains("tracks") || doc.contains("objects")) return "scene";
+  if (doc.contains("type") && doc["type"].is_string() && doc.contains("points")) return "curve";
+  return "";
+}
+
+std::string other_kind_message(const std::string& path, const std::string& text, const std::string& expected) {
+  const std::string kind = json_file_kind(text);
+  if (kind.empty() || kind == expected) return "";
+  if (kind == "scene") {
+    return path + ": a scene file, not a curve file; scene files are read by inbetween bake, plot, view and convert "
+                  "(docs/scene-format.md)";
+  }
+  return path + ": a curve file, not a scene file; curve files are read by inbetween curve info, curve sample and "
+                "curve plot (docs/curve-format.md)";
 }
 
 std::string format_number(double v) {
@@ -68,6 +89,16 @@ void register_demo_command(CLI::App& root) {
   });
 }
 
+// Every option that takes a value and is not required shows its default in --help: the value of
+// its variable before parsing (options already given a default text keep it).
+void show_defaults(CLI::App* app) {
+  for (CLI::Option* opt : app->get_options()) {
+    if (opt->get_required() || opt->get_type_size() == 0 || opt->get_positional() || !opt->get_default_str().empty()) continue;
+    opt->capture_default_str();
+  }
+  for (CLI::App* sub : app->get_subcommands({})) show_defaults(sub);
+}
+
 }  // namespace
 }  // namespace inbetween::cli
 
@@ -85,6 +116,7 @@ int main(int argc, char** argv) {
                    [](const CommandSpec& a, const CommandSpec& b) { return a.order < b.order; });
   register_demo_command(app);
   for (const auto& command : commands) command.setup(app);
+  show_defaults(&app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

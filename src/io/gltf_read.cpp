@@ -663,6 +663,21 @@ Expected<std::optional<RawCameraViewd>> node_camera(const tg::Model& model, std:
   return std::optional<RawCameraViewd>{view};
 }
 
+// A range end t·fps within the precision of its key time t of a whole frame is that frame: key
+// times authored on frames come back as float32 (Fox.glb's 17/24 s → frame 16.9999995) or as
+// six significant digits (BoxAnimated's 89/24 s written 3.70833 → frame 88.99992), and the default
+// range would lose that frame.  Precision: the larger of 4 float32 ulp of t and 5·10⁻⁶·|t| (half a
+// unit in the sixth digit), times fps, at most 10⁻³ frame above the float32 term (docs/gltf.md).
+double whole_frame_within_key_precision(double t, double fps) {
+  const double frame = t * fps;
+  const double whole = std::round(frame);
+  const float tf = float(t);
+  const double ulp = double(std::nextafter(std::abs(tf), std::numeric_limits<float>::infinity())) - double(std::abs(tf));
+  const double float_tol = 4 * ulp * fps;
+  const double tol = std::max(float_tol, std::min(5e-6 * std::abs(t) * fps, float_tol + 1e-3));
+  return std::abs(frame - whole) <= tol ? whole : frame;
+}
+
 Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& options) {
   if (!(options.fps > 0) || !std::isfinite(options.fps)) {
     return Error{ErrorCode::InvalidArgument, "fps " + shortest_text(options.fps) + " is not finite and positive", ""};
@@ -724,7 +739,10 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
       }
       channels.emplace(key, std::move(*ch));
     }
-    if (start <= end) scene.range = {start, end};
+    if (start <= end) {
+      const double first = whole_frame_within_key_precision(start / fps, fps);
+      scene.range = {first, std::max(first, whole_frame_within_key_precision(end / fps, fps))};
+    }
   }
 
   std::size_t weight_columns = 0;

@@ -204,6 +204,38 @@ TEST(GltfRead, ChannelsMapOntoTheMatchingTrackKinds) {
   EXPECT_DOUBLE_EQ(w.keys[1].in_tangent.x, 1.0 / 30);
 }
 
+// The default range ends on the whole frame a key time stands for (docs/gltf.md, "Time, frames"):
+// key times from real assets whose time × 24 fps falls just short of a whole frame.  Fox.glb's
+// Walk ends at float32 0.70833331 s (17/24, frame 16.9999995), BoxAnimated at 3.708329916 s (89/24
+// written as 3.70833, frame 88.99992); MorphStressTest's 224-frame animation ends at float32 224/24
+// (frame 223.9999924; the assets are not in the repository, the times are rebuilt here).  A start
+// just past a whole frame rounds the same way; an end a real fraction of a frame away does not.
+TEST(GltfRead, RangeEndsWithinKeyTimePrecisionOfAWholeFrameAreThatFrame) {
+  struct Key {
+    float first, last;
+    double start, end;  // the range expected, in frames at 24 fps
+  };
+  const Key cases[] = {
+      {0.0f, 0.70833331f, 0, 17},                          // Fox, Walk
+      {0.0f, 3.708329916000366f, 0, 89},                   // BoxAnimated (its "max")
+      {0.0f, float(224.0 / 24), 0, 224},                   // MorphStressTest
+      {float(1.0 / 24), float(48.0 / 24), 1, 48},          // a start just past frame 1
+      {0.0f, float(16.99 / 24), 0, double(float(16.99 / 24)) * 24},  // 0.01 frame short: kept
+      {0.0f, float(16.5 / 24), 0, 16.5},                   // a half frame: kept
+  };
+  for (const Key& k : cases) {
+    GltfBuilder g;
+    g.add_node({{"name", "n"}});
+    const int in = g.add_times({k.first, k.last});
+    g.add_channel(0, 0, "translation", in, g.add_accessor(std::vector<float>{0, 0, 0, 1, 1, 1}, test::kFloat, "VEC3"), "LINEAR");
+    const std::string text = g.gltf_embedded();
+    auto raw = read_gltf(std::as_bytes(std::span<const char>(text.data(), text.size())), "", {.fps = kFps});
+    ASSERT_TRUE(raw.has_value()) << raw.error().describe();
+    EXPECT_EQ(raw->range[0], k.start) << "first key " << k.first;
+    EXPECT_EQ(raw->range[1], k.end) << "last key " << k.last;
+  }
+}
+
 // Normalised integers decode as the specification's §3.11 table: byte max(c/127, −1), ubyte
 // c/255, short max(c/32767, −1), ushort c/65535 — checked at the keys (STEP holds them).
 TEST(GltfRead, NormalisedIntegerAccessorsDecodeAsTheSpecificationSays) {
