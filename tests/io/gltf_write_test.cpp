@@ -935,7 +935,14 @@ TEST(GltfWrite, ExportTimeIsLinearInTheNodes) {
   EXPECT_EQ(nlohmann::json::parse(b->bytes.substr(20, json_bytes))["nodes"].size(), 60000u);
   std::printf("[ export ] 6000 nodes %.3f s, 60000 nodes %.3f s CPU\n", small_s, large_s);
   EXPECT_LT(large_s, 20 * std::max(small_s, 0.01)) << "superlinear";
-#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+  // The 2 s bound is the release build's (the asan preset compiles tests at -O0 under
+  // AddressSanitizer: 11 s measured; GCC says so with __SANITIZE_ADDRESS__, clang with __has_feature).
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define INBETWEEN_EXPORT_TEST_SANITIZED 1
+#endif
+#endif
+#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__) && !defined(INBETWEEN_EXPORT_TEST_SANITIZED)
   EXPECT_LT(large_s, 2.0);
 #endif
 }
