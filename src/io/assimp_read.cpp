@@ -440,9 +440,10 @@ struct Timing {
   std::string head;  // "animation 0 \"Take 001\""
 };
 
-// Frame of key k's time (ticks), checked: finite, strictly after the previous key.
-Expected<double> key_frame(double ticks, std::size_t k, std::optional<double> previous_ticks, const Timing& timing,
-                           const std::string& where) {
+// Frame of key k's time (ticks), checked: finite, strictly after the previous key, both in ticks
+// and, after the conversion, in frames (two ticks may round to one frame; −inf for the first key).
+Expected<double> key_frame(double ticks, std::size_t k, std::optional<double> previous_ticks,
+                           double previous_frame, const Timing& timing, const std::string& where) {
   if (!std::isfinite(ticks)) {
     return Error{ErrorCode::NotFinite, where + ", key " + std::to_string(k) + ": time is not finite", ""};
   }
@@ -457,6 +458,12 @@ Expected<double> key_frame(double ticks, std::size_t k, std::optional<double> pr
     return Error{ErrorCode::InvalidArgument,
                  where + ", key " + std::to_string(k) + ": time " + shortest_text(ticks) + " is not a finite frame", ""};
   }
+  if (!(frame > previous_frame)) {
+    return Error{ErrorCode::KeysNotIncreasing,
+                 where + ", key " + std::to_string(k) + ": time " + shortest_text(ticks) +
+                     " is not a frame after the previous key's",
+                 ""};
+  }
   return frame;
 }
 
@@ -466,14 +473,9 @@ Expected<RawVec3Channel> vec3_keys(const aiVectorKey* keys, unsigned count, bool
   out.keys.reserve(count);
   std::optional<double> previous;
   for (unsigned k = 0; k < count; ++k) {
-    auto frame = key_frame(keys[k].mTime, k, previous, timing, where);
+    const double previous_frame = out.keys.empty() ? -std::numeric_limits<double>::infinity() : out.keys.back().frame;
+    auto frame = key_frame(keys[k].mTime, k, previous, previous_frame, timing, where);
     if (!frame) return frame.error();
-    if (!out.keys.empty() && !(*frame > out.keys.back().frame)) {
-      return Error{ErrorCode::KeysNotIncreasing,
-                   where + ", key " + std::to_string(k) + ": time " + shortest_text(keys[k].mTime) +
-                       " is not a frame after the previous key's",
-                   ""};
-    }
     previous = keys[k].mTime;
     const aiVector3D& v = keys[k].mValue;
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
@@ -497,14 +499,9 @@ Expected<RawQuatKeys> quat_keys(const aiQuatKey* keys, unsigned count, const Con
   out.keys.reserve(count);
   std::optional<double> previous;
   for (unsigned k = 0; k < count; ++k) {
-    auto frame = key_frame(keys[k].mTime, k, previous, timing, where);
+    const double previous_frame = out.keys.empty() ? -std::numeric_limits<double>::infinity() : out.keys.back().frame;
+    auto frame = key_frame(keys[k].mTime, k, previous, previous_frame, timing, where);
     if (!frame) return frame.error();
-    if (!out.keys.empty() && !(*frame > out.keys.back().frame)) {
-      return Error{ErrorCode::KeysNotIncreasing,
-                   where + ", key " + std::to_string(k) + ": time " + shortest_text(keys[k].mTime) +
-                       " is not a frame after the previous key's",
-                   ""};
-    }
     previous = keys[k].mTime;
     const aiQuaternion& v = keys[k].mValue;
     const Quatd q = Quatd::from_wxyz(double(v.w), double(v.x), double(v.y), double(v.z));
