@@ -477,7 +477,7 @@ class CurvePlotter {
         draw_curve(doc, panel, pc, pc.curve, "curve before", "#999999", "5 4", 1.5);
         draw_influence(doc, panel, pc, colour);
         draw_curve(doc, panel, pc, *pc.moved, "curve", colour, "", 2);
-        draw_move(doc, panel, pc);
+        if (!graph_) draw_move(doc, panel, pc);  // a 1-D curve's points have no place on the graph over u
         draw_samples(doc, panel, *pc.moved, colour);
         legend.push_back({"before the move", "#999999", "5 4", false});
         legend.push_back({std::string(curve_kind_name(pc.curve.kind)) + " after the move", colour, "", false});

@@ -245,6 +245,27 @@ TEST(CurvePlotCli, MovingAPointChangesALocalCurveOnlyInItsRange) {
   }
 }
 
+// A 1-D curve moved: the graph over u before and after, no control points (they have no u on the
+// graph); Lagrange is global, its band the whole domain [-1, 1].
+TEST(CurvePlotCli, MovingAOneDimensionalCurveDrawsTheGraphs) {
+  const std::string svg = plot(example("lagrange-runge.json") + " --move 5:0.5", "graph_move.svg");
+  const auto panels = read_panels(svg);
+  ASSERT_EQ(panels.size(), 1u);
+  EXPECT_EQ(svg.find("class=\"move\""), std::string::npos);
+  EXPECT_TRUE(panels[0].controls.empty());
+  const Polyline* band = find_line(panels[0], "influence");
+  ASSERT_NE(band, nullptr);
+  EXPECT_EQ(band->u_lo, -1);
+  EXPECT_EQ(band->u_hi, 1);
+  const Polyline* before = find_line(panels[0], "curve before");
+  const Polyline* after = find_line(panels[0], "curve");
+  ASSERT_TRUE(before && after);
+  // Lagrange through the 11 samples interpolates: at u = 0 (point 5) the graph rises by the move.
+  const auto at0 = std::find(before->u.begin(), before->u.end(), 0.0) - before->u.begin();
+  ASSERT_LT(std::size_t(at0), before->u.size());
+  EXPECT_NEAR(after->y[at0] - before->y[at0], 0.5, kReadBack);
+}
+
 TEST(CurvePlotCli, BadMovesAndMixedDimensionsAreOneLineErrors) {
   const fs::path out = inbetween::test::test_dir() / "bad_move.svg";
   fs::remove(out);
