@@ -725,6 +725,31 @@ void demo_curves(std::ostream& out) {
   row("Kochanek-Bartels c = 0.8", build_kochanek_bartels(q, corner).value());
   row("cubic B-spline (clamped)", build_bspline(q, 3).value());
   row("quadratic B-spline", build_bspline(q, 2).value());
+
+  // Local vs global control (Parent, Fig. 3.3): the points of examples/curves/same-points-*.json.
+  const std::vector<Vec3d> same{{0, 0, 0}, {1, 2, 0}, {3, 3, 0}, {4, 1, 0}, {6, 0, 0},
+                                {7, 2, 0}, {9, 3, 0}, {10, 1, 0}, {12, 0, 0}};
+  out << "\nMoving point 4 of (0,0) (1,2) (3,3) (4,1) (6,0) (7,2) (9,3) (10,1) (12,0) by (0,2):\n";
+  auto moved_row = [&](const AnyCurve& c) {
+    const auto ranges = influence_ranges(c, 4);
+    const AnyCurve after = with_control_point(c, 4, c.control_point(4) + Vec3d{0, 2, 0}).value();
+    // The largest change at u outside [2, 6], Catmull-Rom's range for point 4 (both curves pass
+    // through point i at u = i).
+    double outside = 0;
+    for (int k = 0; k <= 800; ++k) {
+      const double u = 8.0 * k / 800;
+      if (u < 2 || u > 6) outside = std::max(outside, norm(after.point(u) - c.point(u)));
+    }
+    std::ostringstream r;
+    r << "  " << std::left << std::setw(12) << curve_kind_name(c.kind) << " moves u in " << ranges_text(ranges)
+      << " (segments " << segment_runs(segments_in(c, ranges)) << " of " << c.segment_count()
+      << "); largest change at u outside [2, 6]: " << std::setprecision(3) << outside << "\n";
+    out << r.str();
+  };
+  moved_row(AnyCurve{CurveKind::CatmullRom, 2, build_catmull_rom(same).value()});
+  moved_row(AnyCurve{CurveKind::Natural, 2, build_natural_spline(same).value()});
+  out << "  (inbetween curve plot examples/curves/same-points-catmull-rom.json examples/curves/same-points-natural.json\n"
+         "   --move 4:0,2 -o fig.svg draws it; curve info FILE --point 4 reports it)\n";
 }
 
 const RegisterDemo kCurveDemo{{"curves", 30, demo_curves}};
