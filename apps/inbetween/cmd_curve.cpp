@@ -1,5 +1,6 @@
 // `inbetween curve info|sample|plot FILE`: reads a curve file (docs/curve-format.md) and reports,
-// samples or draws it.  Argument parsing and formatting only; the maths is in the curves module.
+// samples or draws it; `info --point I` and `plot --move I:DX,DY` show local vs global control
+// (curves/local_control.hpp).  Argument parsing and formatting only; the maths is in the curves module.
 //
 // Sampling: `curve sample --by NAME` looks NAME up in sample_spacings() (parameter, arclength); a
 // new spacing is one more row there, returning the parameters (and arc lengths) to sample.
