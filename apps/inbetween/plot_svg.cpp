@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 
 namespace inbetween::cli {
 namespace {
@@ -125,8 +126,11 @@ std::string SvgDocument::str() {
 
 std::vector<double> nice_ticks(double lo, double hi, int target) {
   std::vector<double> ticks;
-  if (!(hi > lo) || !std::isfinite(hi - lo)) return ticks;
-  const double raw = (hi - lo) / std::max(target, 1);
+  // Half extents throughout: hi − lo overflows for ranges near ±1.8e308 (issue 9: a Lagrange curve
+  // from 1.6e308 to −2e307), hi/2 − lo/2 never does; halving is exact, so normal ranges give the
+  // same ticks to the last bit.
+  if (!(hi > lo) || !std::isfinite(hi) || !std::isfinite(lo)) return ticks;
+  const double raw = (hi / 2 - lo / 2) / std::max(target, 1) * 2;
   const double mag = std::pow(10.0, std::floor(std::log10(raw)));
   double step = mag;
   for (double m : {1.0, 2.0, 2.5, 5.0, 10.0}) {
@@ -154,12 +158,15 @@ std::pair<double, double> padded_range(const std::vector<double>& values, double
     hi = std::max(hi, v);
   }
   if (!(lo <= hi)) return {0, 1};
-  if (hi - lo <= 1e-12 * std::max(1.0, std::abs(lo))) {
+  if (hi / 2 - lo / 2 <= 0.5e-12 * std::max(1.0, std::abs(lo))) {
     const double half = 0.5 * std::max(1.0, std::abs(lo));
     return {lo - half, hi + half};
   }
-  const double d = (hi - lo) * pad;
-  return {lo - d, hi + d};
+  // Half extents (exact, the same bits for normal ranges) so that a range near ±1.8e308 does not
+  // overflow; the padded ends saturate at the largest finite value.
+  const double d = (hi / 2 - lo / 2) * (2 * pad);
+  constexpr double big = std::numeric_limits<double>::max();
+  return {std::max(lo - d, -big), std::min(hi + d, big)};
 }
 
 Panel::Panel(double left, double top, double width, double height, double x0, double x1, double y0, double y1,
@@ -168,25 +175,29 @@ Panel::Panel(double left, double top, double width, double height, double x0, do
       flip_x_(flip_x), flip_y_(flip_y), clip_id_("clip" + std::to_string(next_clip_id())) {}
 
 void Panel::equal_aspect() {
-  const double sx = width_ / (x1_ - x0_), sy = height_ / (y1_ - y0_);
+  // Pixels per half unit, from half extents (see px()): the same bits as pixels per unit / 2.
+  const double sx = width_ / (x1_ / 2 - x0_ / 2), sy = height_ / (y1_ / 2 - y0_ / 2);
+  constexpr double big = std::numeric_limits<double>::max();
   if (sx > sy) {
-    const double half = 0.5 * width_ / sy, mid = 0.5 * (x0_ + x1_);
-    x0_ = mid - half;
-    x1_ = mid + half;
+    const double half = width_ / sy, mid = x0_ / 2 + x1_ / 2;
+    x0_ = std::max(mid - half, -big);
+    x1_ = std::min(mid + half, big);
   } else {
-    const double half = 0.5 * height_ / sx, mid = 0.5 * (y0_ + y1_);
-    y0_ = mid - half;
-    y1_ = mid + half;
+    const double half = height_ / sx, mid = y0_ / 2 + y1_ / 2;
+    y0_ = std::max(mid - half, -big);
+    y1_ = std::min(mid + half, big);
   }
 }
 
+// Half extents: x − x0 and x1 − x0 overflow near ±1.8e308, the halves never do; halving is exact,
+// so the fraction has the same bits for every normal range.
 double Panel::px(double x) const noexcept {
-  const double f = (x - x0_) / (x1_ - x0_);
+  const double f = (x / 2 - x0_ / 2) / (x1_ / 2 - x0_ / 2);
   return left_ + (flip_x_ ? 1 - f : f) * width_;
 }
 
 double Panel::py(double y) const noexcept {
-  const double f = (y - y0_) / (y1_ - y0_);
+  const double f = (y / 2 - y0_ / 2) / (y1_ / 2 - y0_ / 2);
   return top_ + (flip_y_ ? f : 1 - f) * height_;
 }
 

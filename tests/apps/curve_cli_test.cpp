@@ -113,8 +113,12 @@ TEST(CurveCli, PlotWritesSvg) {
   std::stringstream ss;
   ss << in.rdbuf();
   EXPECT_NE(ss.str().find("<svg"), std::string::npos);
-  EXPECT_NE(ss.str().find("<polyline"), std::string::npos);
+  EXPECT_NE(ss.str().find("<polyline class=\"curve\""), std::string::npos);
   EXPECT_NE(ss.str().find("</svg>"), std::string::npos);
+  // Axes with ticks and labels, as `inbetween plot` draws them (read back in curve_plot_cli_test.cpp).
+  EXPECT_NE(ss.str().find("<g class=\"tick-x\">"), std::string::npos);
+  EXPECT_NE(ss.str().find("<g class=\"tick-y\">"), std::string::npos);
+  EXPECT_NE(ss.str().find("class=\"axis-label\""), std::string::npos);
 }
 
 TEST(CurveCli, BadInputExitsTwoNamingFileAndPointer) {
