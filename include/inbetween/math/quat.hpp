@@ -95,11 +95,11 @@ constexpr T squared_norm(const Quat<T>& q) noexcept { return dot(q, q); }
 
 /// Norm |q| = √(q q*), computed without overflow or underflow.
 template <Real T>
-T norm(const Quat<T>& q) noexcept { return norm(Vec4<T>{q.w, q.x, q.y, q.z}); }
+[[gnu::always_inline]] inline T norm(const Quat<T>& q) noexcept { return norm(Vec4<T>{q.w, q.x, q.y, q.z}); }
 
 /// q/|q|; a zero or non-finite quaternion gives the identity (documented fallback).
 template <Real T>
-Quat<T> normalized(const Quat<T>& q) noexcept {
+[[gnu::always_inline]] inline Quat<T> normalized(const Quat<T>& q) noexcept {
   const T n = norm(q);
   if (!(n > T(0)) || !std::isfinite(n)) return {};
   return q / n;

@@ -221,7 +221,7 @@ Expected<Transform<T>> transform_from_matrix(const Mat4<T>& m, const DecomposeOp
 /// holds, and the result keeps R = Ra·Rb, S = Sa ⊙ Sb, t = ta + Ra(Sa ⊙ tb) — points at b's
 /// origin still map exactly.  Use to_matrix() products when exactness matters.
 template <Real T>
-Transform<T> compose(const Transform<T>& a, const Transform<T>& b) noexcept {
+[[gnu::always_inline]] inline Transform<T> compose(const Transform<T>& a, const Transform<T>& b) noexcept {
   return {a.apply_to_point(b.translation), normalized(a.rotation * b.rotation), hadamard(a.scale, b.scale)};
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include "inbetween/math/scalar.hpp"
 
@@ -191,26 +192,46 @@ bool is_finite(T a) noexcept { return std::isfinite(a); }
 template <Point P>
 constexpr scalar_of<P> squared_norm(const P& a) noexcept { return dot(a, a); }
 
+namespace vec_detail {
+/// norm()'s rare path (a sum of squares that overflows or underflows): the components scaled by the
+/// power of two 2^-e nearest below the largest |component|, so that every step is the plain path's
+/// times an exact power of two and a point scaled by 2^k gets exactly 2^k times its norm (paths on
+/// huge and tiny meshes are the same bits scaled).  Kept out of line so the common path inlines.
+template <Point P>
+[[gnu::noinline]] scalar_of<P> norm_scaled(const P& a) noexcept {
+  using T = scalar_of<P>;
+  T big{};
+  for (int i = 0; i < PointTraits<P>::dim; ++i) {
+    // std::fmax's value (a NaN component is skipped) without its library call.
+    const T c = std::abs(PointTraits<P>::get(a, i));
+    if (c > big) big = c;
+  }
+  if (big == T(0) || !std::isfinite(big)) return big;
+  const int e = std::ilogb(big);
+  T s{};
+  for (int i = 0; i < PointTraits<P>::dim; ++i) {
+    const T c = std::ldexp(PointTraits<P>::get(a, i), -e);
+    s += c * c;
+  }
+  return std::ldexp(std::sqrt(s), e);
+}
+}  // namespace vec_detail
+
 /// Euclidean norm, computed without overflow or underflow for any finite input.
 template <Point P>
-scalar_of<P> norm(const P& a) noexcept {
+[[gnu::always_inline]] inline scalar_of<P> norm(const P& a) noexcept {
   using T = scalar_of<P>;
   if constexpr (PointTraits<P>::dim == 1) {
     return std::abs(a);
   } else {
-    T big{};
-    for (int i = 0; i < PointTraits<P>::dim; ++i) {
-      // std::fmax's value (a NaN component is skipped) without its library call.
-      const T c = std::abs(PointTraits<P>::get(a, i));
-      if (c > big) big = c;
-    }
-    if (big == T(0) || !std::isfinite(big)) return big;
-    T s{};
-    for (int i = 0; i < PointTraits<P>::dim; ++i) {
-      const T c = PointTraits<P>::get(a, i) / big;
-      s += c * c;
-    }
-    return big * std::sqrt(s);
+    // The plain √(Σc²) where the sum of squares can neither have overflowed nor lost digits to
+    // underflow (a square's underflow error, below the smallest subnormal, is then under ε² of the
+    // sum): the common case, one rounding fewer than the scaled form and a fraction of its time
+    // (compose() of every joint of a skeleton, every frame).  Otherwise the scaled form.
+    const T sum = squared_norm(a);
+    constexpr T kLeast = std::numeric_limits<T>::min() / std::numeric_limits<T>::epsilon();
+    if (sum >= kLeast && sum <= std::numeric_limits<T>::max()) [[likely]] return std::sqrt(sum);
+    return vec_detail::norm_scaled(a);
   }
 }
 
