@@ -79,33 +79,47 @@ struct Segment {
 };
 
 // Greedy segmentation: from each key, the farthest end e for which fits(s, e) holds (doubling,
-// then bisection between the last good and the first bad end).  fits(s, s + 1) must hold.
+// then bisection between the last good and the first bad end).  fits(s, s + 1) must hold.  A
+// segment never crosses a hold (RefitOptions::holds): it ends at the hold's first sample, and the
+// hold is a segment of its own with zero slopes (`dim` each for cubic fits).
 using FitFn = std::function<bool(std::size_t, std::size_t, Segment&)>;
 
-std::vector<std::pair<std::size_t, Segment>> segment_greedy(std::size_t n, const FitFn& fits) {
+std::vector<std::pair<std::size_t, Segment>> segment_greedy(std::size_t n, const FitFn& fits, std::span<const std::size_t> holds,
+                                                            std::size_t slopes) {
   std::vector<std::pair<std::size_t, Segment>> keys;  // key grid index and the segment leaving it
-  std::size_t s = 0;
+  std::size_t s = 0, h = 0;
   while (s + 1 < n) {
+    while (h < holds.size() && holds[h] < s) ++h;
+    if (h < holds.size() && holds[h] == s) {
+      Segment still;
+      still.out_slope.assign(slopes, 0.0);
+      still.in_slope.assign(slopes, 0.0);
+      keys.emplace_back(s, std::move(still));
+      s += 1;
+      continue;
+    }
+    const std::size_t last = h < holds.size() ? holds[h] : n - 1;  // the farthest end allowed
     Segment best;
     std::size_t good = s + 1;
     fits(s, good, best);
     std::size_t step = 2;
-    std::size_t bad = n;  // first known failing end (n: none)
+    constexpr std::size_t kNone = std::size_t(-1);
+    std::size_t bad = kNone;  // first known failing end
     while (true) {
-      const std::size_t e = std::min(s + step, n - 1);
+      const std::size_t e = std::min(s + step, last);
       if (e <= good) break;
       Segment seg;
       if (fits(s, e, seg)) {
         good = e;
         best = std::move(seg);
-        if (e == n - 1) break;
+        if (e == last) break;
         step *= 2;
       } else {
         bad = e;
         break;
       }
     }
-    while (bad != n && bad - good > 1) {
+    while (bad != kNone && bad - good > 1) {
       const std::size_t mid = good + (bad - good) / 2;
       Segment seg;
       if (fits(s, mid, seg)) {
@@ -120,6 +134,19 @@ std::vector<std::pair<std::size_t, Segment>> segment_greedy(std::size_t n, const
   }
   keys.emplace_back(n - 1, Segment{});
   return keys;
+}
+
+// The holds must be strictly increasing, below the last sample, and join equal samples.
+Expected<void> check_holds(std::span<const std::size_t> holds, std::size_t n, const auto& same) {
+  for (std::size_t i = 0; i < holds.size(); ++i) {
+    if (!(holds[i] + 1 < n) || (i > 0 && !(holds[i] > holds[i - 1]))) {
+      return Error{ErrorCode::InvalidArgument, "holds must be strictly increasing sample indices below the last", "", {"holds", i}};
+    }
+    if (!same(holds[i])) {
+      return Error{ErrorCode::InvalidArgument, "a hold joins two samples that differ", "", {"holds", i}};
+    }
+  }
+  return {};
 }
 
 RefitKeys assemble(const Grid& g, RefitInterpolation kind, const std::vector<std::pair<std::size_t, Segment>>& segs) {
@@ -276,6 +303,9 @@ Expected<RefitKeys> refit_vector(std::span<const double> frames, std::span<const
   }
   const Grid g{frames, values, dim};
   const std::size_t n = frames.size();
+  if (auto ok = check_holds(o.holds, n, [&](std::size_t j) { return std::equal(g.at(j), g.at(j) + dim, g.at(j + 1)); }); !ok) {
+    return ok.error();
+  }
   std::vector<double> tmp(dim);
   auto fit_kind = [&](RefitInterpolation kind) {
     FitFn fits = [&](std::size_t s, std::size_t e, Segment& seg) {
@@ -298,7 +328,7 @@ Expected<RefitKeys> refit_vector(std::span<const double> frames, std::span<const
       }
       return true;
     };
-    RefitKeys k = assemble(g, kind, segment_greedy(n, fits));
+    RefitKeys k = assemble(g, kind, segment_greedy(n, fits, o.holds, dim));
     k.max_error = grid_error(n, [&](std::size_t j) {
       evaluate_refit(k, frames[j], tmp);
       double e = 0;
@@ -330,6 +360,9 @@ Expected<RefitKeys> refit_rotation(std::span<const double> frames, std::span<con
     flat[4 * j + 3] = q[j].z;
   }
   const Grid g{frames, flat, 4};
+  if (auto ok = check_holds(o.holds, n, [&](std::size_t j) { return std::equal(g.at(j), g.at(j) + 4, g.at(j + 1)); }); !ok) {
+    return ok.error();
+  }
   auto key_quat = [&](std::size_t j) { return q[j]; };
   auto fit_kind = [&](RefitInterpolation kind) {
     FitFn fits = [&](std::size_t s, std::size_t e, Segment& seg) {
@@ -361,7 +394,7 @@ Expected<RefitKeys> refit_rotation(std::span<const double> frames, std::span<con
       }
       return true;
     };
-    RefitKeys k = assemble(g, kind, segment_greedy(n, fits));
+    RefitKeys k = assemble(g, kind, segment_greedy(n, fits, o.holds, 4));
     k.max_error = grid_error(n, [&](std::size_t j) { return rotation_angle_between(evaluate_refit_rotation(k, frames[j]), q[j]); });
     return k;
   };

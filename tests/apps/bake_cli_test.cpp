@@ -341,30 +341,6 @@ TEST(BakeCli, ProgressBarOnlyWhenAsked) {
   EXPECT_EQ(run(args + " --progress sometimes").exit_code, 2);
 }
 
-// Peak resident memory (KiB, the child's own rusage from wait4) of one run of the tool with
-// standard output to /dev/null.
-long peak_rss_kib(const std::vector<std::string>& args, int& exit_code) {
-  std::vector<char*> argv;
-  std::string cli = INBETWEEN_CLI;
-  argv.push_back(cli.data());
-  std::vector<std::string> copy = args;
-  for (auto& a : copy) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, cli.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  exit_code = -1;
-  if (spawned != 0) return -1;
-  int status = 0;
-  rusage usage{};
-  if (wait4(pid, &status, 0, &usage) != pid) return -1;
-  exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return usage.ru_maxrss;
-}
-
 // Memory does not grow with the frame count: 10^6 frames of a 20-track scene (2.2·10^7 values,
 // beyond the old 2·10^7 cap) peak at about the same resident memory as 10^5 frames (measured: 6 MB
 // both).  The old in-memory table, on 15 tracks to stay under its cap, peaked at 22 MB at 10^5
@@ -387,8 +363,8 @@ TEST(BakeCli, MemoryDoesNotGrowWithFrameCount) {
   }
   const fs::path scene = write_scene("memory.json", R"({"inbetween": 1, "tracks": [)" + tracks + "]}");
   int small_exit = 0, big_exit = 0;
-  const long small = peak_rss_kib({"bake", scene.string(), "--frames", "1:100000"}, small_exit);
-  const long big = peak_rss_kib({"bake", scene.string(), "--frames", "1:1000000"}, big_exit);
+  const long small = inbetween::test::peak_rss_kib({"bake", scene.string(), "--frames", "1:100000"}, small_exit);
+  const long big = inbetween::test::peak_rss_kib({"bake", scene.string(), "--frames", "1:1000000"}, big_exit);
   ASSERT_EQ(small_exit, 0);
   ASSERT_EQ(big_exit, 0);
   ASSERT_GT(small, 0);

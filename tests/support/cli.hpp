@@ -3,6 +3,9 @@
 // standard output and standard error captured separately, and the exit code.  Every test gets its
 // own scratch folder (test name + process id), because ctest runs the cases in parallel.
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace inbetween::test {
 
@@ -64,6 +68,31 @@ inline CliRun run_cli(const std::string& args, const std::string& input = "") {
   r.out = slurp(out);
   r.err = slurp(err);
   return r;
+}
+
+/// Peak resident memory (KiB, the child's own rusage from wait4) of one run of the tool with
+/// standard output to /dev/null.
+inline long peak_rss_kib(const std::vector<std::string>& args, int& exit_code) {
+  std::vector<char*> argv;
+  const char* other = std::getenv("INBETWEEN_TEST_CLI");
+  std::string cli = other && *other ? other : INBETWEEN_CLI;
+  argv.push_back(cli.data());
+  std::vector<std::string> copy = args;
+  for (auto& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, cli.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  exit_code = -1;
+  if (spawned != 0) return -1;
+  int status = 0;
+  rusage usage{};
+  if (wait4(pid, &status, 0, &usage) != pid) return -1;
+  exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return usage.ru_maxrss;
 }
 
 }  // namespace inbetween::test

@@ -168,6 +168,63 @@ TEST(Refit, RotationsAreRefittedOnTheSphere) {
   }
 }
 
+// RefitOptions::holds: a sine over [0, 20], still at its last value for 10 000 frames, then a
+// sine again over [10 020, 10 040].  The full grid (4 points a frame) and the grid without the
+// inside of the still stretch (its two ends and a hold) give fits that agree with the source at
+// every point of the FULL grid within the tolerance, for every kind: the hold is a segment of
+// its own with the value held (zero slopes), so no cubic bulges over the 40 000 points it was not
+// shown.
+TEST(Refit, HoldsKeepAStillStretchStillWithoutItsGridPoints) {
+  auto f = [](double t) {
+    if (t <= 20) return std::sin(t * 0.3);
+    if (t < 10020) return std::sin(20 * 0.3);
+    return std::sin(20 * 0.3) + 0.5 * std::sin((t - 10020) * 0.3);
+  };
+  const std::vector<double> full = grid(0, 10040, 4);
+  std::vector<double> full_values;
+  for (double t : full) full_values.push_back(f(t));
+  std::vector<double> reduced, values;
+  std::vector<std::size_t> holds;
+  for (double t : full) {
+    if (t > 20 && t < 10020) continue;
+    if (t == 10020) holds.push_back(reduced.size() - 1);  // frames 20 and 10 020 hold sin(6)
+    reduced.push_back(t);
+    values.push_back(f(t));
+  }
+  ASSERT_EQ(holds.size(), 1u);
+  ASSERT_EQ(reduced.size(), full.size() - (10020 - 20) * 4 + 1);
+  constexpr double kTolerance = 1e-4;
+  for (const RefitOptions kind : {RefitOptions{.tolerance = kTolerance, .allow_linear = false, .allow_cubic = false},
+                                  RefitOptions{.tolerance = kTolerance, .allow_step = false, .allow_cubic = false},
+                                  RefitOptions{.tolerance = kTolerance, .allow_step = false, .allow_linear = false}}) {
+    RefitOptions o = kind;
+    o.holds = holds;
+    const auto k = refit_vector(reduced, values, 1, o);
+    ASSERT_TRUE(k) << k.error().message;
+    EXPECT_LE(remeasure(*k, full, full_values), kTolerance) << "kind " << int(k->interpolation);
+    // Keys on both ends of the hold.
+    EXPECT_NE(std::find(k->frames.begin(), k->frames.end(), 20.0), k->frames.end());
+    EXPECT_NE(std::find(k->frames.begin(), k->frames.end(), 10020.0), k->frames.end());
+  }
+  // Rotations: about z by the same angle function.
+  std::vector<Quatd> quats;
+  for (double t : reduced) quats.push_back(Quatd::from_wxyz(std::cos(f(t) / 2), 0, 0, std::sin(f(t) / 2)));
+  const auto r = refit_rotation(reduced, quats, {.tolerance = kTolerance, .holds = holds});
+  ASSERT_TRUE(r) << r.error().message;
+  double worst = 0;
+  for (double t : full) {
+    worst = std::max(worst, rotation_angle_between(evaluate_refit_rotation(*r, t), Quatd::from_wxyz(std::cos(f(t) / 2), 0, 0, std::sin(f(t) / 2))));
+  }
+  EXPECT_LE(worst, kTolerance);
+  // A hold between samples that differ, or out of order, is refused with its index.
+  const std::vector<std::size_t> wrong{holds[0] - 1};
+  const auto bad = refit_vector(reduced, values, 1, {.tolerance = kTolerance, .holds = wrong});
+  ASSERT_FALSE(bad);
+  EXPECT_EQ(bad.error().code, ErrorCode::InvalidArgument);
+  const std::vector<std::size_t> past{reduced.size() - 1};
+  EXPECT_FALSE(refit_vector(reduced, values, 1, {.tolerance = kTolerance, .holds = past}));
+}
+
 TEST(Refit, BadInputGetsAnErrorWithAPlace) {
   const std::vector<double> f = {0, 1, 1, 2};
   const std::vector<double> v = {0, 1, 2, 3};

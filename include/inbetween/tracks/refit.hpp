@@ -40,6 +40,13 @@ struct RefitOptions {
   /// Rotations: LINEAR segments must also stay within the tolerance when played component-wise
   /// (normalised lerp), as Blender's glTF importer plays them; the keys then serve both players.
   bool linear_rotation_also_nlerp = false;
+  /// Still stretches the caller left out of its grid: each j (strictly increasing, below the last
+  /// sample) says that the channel holds the value of sample j, equal to sample j + 1, at every
+  /// frame between them.  Keys are then placed on both and the segment between them holds the
+  /// value (zero slopes), whatever the kind, so that a long idle part of a range costs two grid
+  /// points instead of a grid point per step.  Unequal samples at a hold are InvalidArgument
+  /// ({"holds", i}).
+  std::span<const std::size_t> holds{};
 };
 
 /// Keys of a refitted channel of `dim` components.  Slopes are per frame (glTF tangent = slope ×
