@@ -96,6 +96,7 @@ screenshots: build
 # bench/RESULTS.md (tools/bench/write_results.py; the hand-written analysis below it stays).
 BENCH_MIN_TIME ?= 0.1
 bench: build
+	cmake --build --preset $(PRESET) -j $(JOBS) --target inbetween_benchmarks
 	python3 tools/bench/write_results.py --build-dir $(BUILD) --min-time $(BENCH_MIN_TIME) \
 	  --command "make bench PRESET=$(PRESET)"
 

@@ -80,7 +80,7 @@ if ls "$BUILD"/bench/inbetween_bench_*.json >/dev/null 2>&1; then
     --ozz-json "$OUT/ozz_rig_bench.json" \
     --command "make bench PRESET=$PRESET (re-rendered from its JSON by make bench-ozz)"
 else
-  cmake --build --preset "$PRESET" -j "$JOBS"
+  cmake --build --preset "$PRESET" -j "$JOBS" --target inbetween_benchmarks
   python3 tools/bench/write_results.py --build-dir "$BUILD" --min-time "$BENCH_MIN_TIME" \
     --ozz-json "$OUT/ozz_rig_bench.json" --command "make bench-ozz PRESET=$PRESET"
 fi
