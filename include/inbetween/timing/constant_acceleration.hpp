@@ -28,11 +28,11 @@ namespace inbetween {
 /// over time 1); unset members are solved for.  Exactly two must be set.
 template <Real T>
 struct ConstantAccelerationParams {
-  std::optional<T> t1;            ///< end of the acceleration phase, in [0, 1]
-  std::optional<T> t2;            ///< start of the deceleration phase, in [t1, 1]
-  std::optional<T> v0;            ///< cruising velocity (normalised distance per normalised time), in [1, 2]
-  std::optional<T> acceleration;  ///< a = v0/t1 (normalised), > 0
-  std::optional<T> deceleration;  ///< d = v0/(1 − t2), the magnitude of the slowing down, > 0
+  std::optional<T> t1{};            ///< end of the acceleration phase, in [0, 1]
+  std::optional<T> t2{};            ///< start of the deceleration phase, in [t1, 1]
+  std::optional<T> v0{};            ///< cruising velocity (normalised distance per normalised time), in [1, 2]
+  std::optional<T> acceleration{};  ///< a = v0/t1 (normalised), > 0
+  std::optional<T> deceleration{};  ///< d = v0/(1 − t2), the magnitude of the slowing down, > 0
 };
 
 /// The complete acceleration graph of Figure 3.16 over normalised time 1 with its distance.
@@ -49,10 +49,10 @@ struct ConstantAccelerationGraph {
 /// The three-of-four form of Figure 3.16 (unset members are solved for); exactly three must be set.
 template <Real T>
 struct EqualAreasParams {
-  std::optional<T> acceleration;  ///< a > 0 on [0, t1]
-  std::optional<T> deceleration;  ///< d > 0 on [t2, 1]
-  std::optional<T> t1;            ///< in (0, 1)
-  std::optional<T> t2;            ///< in [t1, 1)
+  std::optional<T> acceleration{};  ///< a > 0 on [0, t1]
+  std::optional<T> deceleration{};  ///< d > 0 on [t2, 1]
+  std::optional<T> t1{};            ///< in (0, 1)
+  std::optional<T> t2{};            ///< in [t1, 1)
 };
 
 /// The ease fixed by exactly two of `p`'s members (closed forms, no iteration):
