@@ -10,6 +10,7 @@
 #include "inbetween/arclength/arc_length.hpp"
 #include "inbetween/arclength/arc_length_table.hpp"
 #include "inbetween/timing/cubic_bezier_timing.hpp"
+#include "inbetween/timing/constant_acceleration.hpp"
 #include "inbetween/timing/ease.hpp"
 #include "inbetween/timing/motion.hpp"
 
@@ -51,6 +52,15 @@ void run(std::ostream& out) {
       << format_number(SineEase<double>{}(0.25)) << ", " << format_number(SineEase<double>{}(0.75)) << "\n";
   out << "  constant acceleration: v0 = 2/(t2 - t1 + 1) = " << format_number(const_acc.v0())
       << " (Eq. 3.22 corrected)\n";
+  // Parent §3.2.3, Fig. 3.16: the same profile family from its accelerations.
+  if (const auto rates = solve_constant_acceleration(ConstantAccelerationParams<double>{.acceleration = 16.0 / 3, .deceleration = 16.0 / 3})) {
+    out << "  from acceleration = deceleration = 16/3 (two of t1, t2, v0, a, d): t1 = " << format_number(rates->t1())
+        << ", t2 = " << format_number(rates->t2()) << ", v0 = " << format_number(rates->v0()) << "\n";
+  }
+  if (const auto g = solve_equal_areas(EqualAreasParams<double>{.acceleration = 2, .deceleration = 1, .t1 = 0.25})) {
+    out << "  Fig. 3.16, three of four: a = 2, d = 1, t1 = 0.25 -> t2 = " << format_number(g->t2)
+        << " (a*t1 = d*(1 - t2)), distance " << format_number(g->distance) << " (Eq. 3.21)\n";
+  }
 
   // 2. Table 3.1.
   std::vector<double> u, s = {0.000, 0.080, 0.150, 0.230, 0.320, 0.400, 0.500, 0.600, 0.720, 0.800, 0.860,

@@ -765,7 +765,7 @@ class Plotter {
 
   // The normalised phase boundaries of an ease (t1, t2 of constant acceleration; k1, k2 of sine
   // pieces) as (frame, label) markers.
-  void ease_markers(const RawPathLeg& leg, std::vector<std::pair<double, std::string>>& out) const {
+  void ease_markers(const RawPathLeg& leg, const PathMotion& motion, std::vector<std::pair<double, std::string>>& out) const {
     const RawSpeed& s = leg.speed;
     // Keyed forms: their keys are where the speed form changes piece (the acceleration may jump;
     // constraint tuples are C² only where they give an acceleration, acceleration keys of shape
@@ -789,23 +789,22 @@ class Plotter {
         }
       }
     }
-    if (s.kind != SpeedKind::ease) return;
-    const double span = s.end_frame - s.start_frame;
+    // Ease: the built ease's own phase boundaries (so every way of giving them — t1/accel_frames,
+    // t2/decel_frames, v0, accelerations, Eq. 3.21 or the equal areas of Figure 3.16 — is read back
+    // from the one solver in timing/constant_acceleration.hpp).
+    const auto* ease = motion.unit_ease();
+    if (!ease) return;
+    const Interval<double> fr = motion.frame_range();
+    const double span = fr.hi - fr.lo;
     auto at = [&](double t, const std::string& label) {
-      if (std::isfinite(t)) out.emplace_back(s.start_frame + t * span, label + " = " + short_text(t, 4));
+      if (std::isfinite(t)) out.emplace_back(fr.lo + t * span, label + " = " + short_text(t, 4));
     };
-    if (s.ease.kind == EaseKind::constant_acceleration) {
-      std::optional<double> t1 = s.ease.t1, t2 = s.ease.t2;
-      if (!t1 && s.ease.accel_frames) t1 = *s.ease.accel_frames / span;
-      if (!t2 && s.ease.decel_frames) t2 = 1 - *s.ease.decel_frames / span;
-      // Eq. 3.21: v0 = 2 / (t2 − t1 + 1).
-      if (s.ease.v0 && t1 && !t2) t2 = *t1 + 2 / *s.ease.v0 - 1;
-      if (s.ease.v0 && t2 && !t1) t1 = *t2 - 2 / *s.ease.v0 + 1;
-      if (t1) at(*t1, "t1");
-      if (t2) at(*t2, "t2");
-    } else if (s.ease.kind == EaseKind::sine_pieces) {
-      if (s.ease.k1) at(*s.ease.k1, "k1");
-      if (s.ease.k2) at(*s.ease.k2, "k2");
+    if (const auto* ca = std::get_if<ConstantAccelerationEase<double>>(ease)) {
+      at(ca->t1(), "t1");
+      at(ca->t2(), "t2");
+    } else if (const auto* sp = std::get_if<SineAccelDecelEase<double>>(ease)) {
+      at(sp->k1(), "k1");
+      at(sp->k2(), "k2");
     }
   }
 
@@ -821,7 +820,7 @@ class Plotter {
       const std::string leg = legs.size() > 1 ? "leg " + std::to_string(k + 1) + " " : "";
       markers.emplace_back(fr.lo, leg + "start");
       markers.emplace_back(fr.hi, leg + "end");
-      if (raw && k < raw->path.size()) ease_markers(raw->path[k], markers);
+      if (raw && k < raw->path.size()) ease_markers(raw->path[k], legs[k].motion, markers);
     }
     // One marker per frame: "leg 1 end / leg 2 start".
     std::stable_sort(markers.begin(), markers.end(), [](const auto& x, const auto& y) { return x.first < y.first; });

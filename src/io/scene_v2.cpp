@@ -233,7 +233,8 @@ Expected<RawEase> read_ease(const json& e, const Loc& loc) {
   ease.kind = *kind;
   for (auto [name, target] : {std::pair<std::string_view, std::optional<double>*>{"k1", &ease.k1},
                               {"k2", &ease.k2}, {"t1", &ease.t1}, {"t2", &ease.t2}, {"v0", &ease.v0},
-                              {"accel_frames", &ease.accel_frames}, {"decel_frames", &ease.decel_frames}}) {
+                              {"accel_frames", &ease.accel_frames}, {"decel_frames", &ease.decel_frames},
+                              {"acceleration", &ease.acceleration}, {"deceleration", &ease.deceleration}}) {
     auto v = optional_number(e, loc, name);
     if (!v) return v.error();
     *target = *v;
@@ -290,7 +291,7 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
   if (!repair) return repair.error();
   sp.repair = *repair;
   auto ease = object_member(sj, loc, "ease",
-                            {"kind", "k1", "k2", "t1", "t2", "v0", "accel_frames", "decel_frames", "x1", "y1", "x2", "y2",
+                            {"kind", "k1", "k2", "t1", "t2", "v0", "accel_frames", "decel_frames", "acceleration", "deceleration", "x1", "y1", "x2", "y2",
                              "curve", "direction", "params"});
   if (!ease) return ease.error();
   if (*ease) {

@@ -226,7 +226,8 @@ class Writer {
     json j = json::object();
     j["kind"] = std::string(to_string(e.kind));
     for (auto [name, v] : {std::pair<const char*, const std::optional<double>*>{"k1", &e.k1}, {"k2", &e.k2}, {"t1", &e.t1},
-                           {"t2", &e.t2}, {"v0", &e.v0}, {"accel_frames", &e.accel_frames}, {"decel_frames", &e.decel_frames}}) {
+                           {"t2", &e.t2}, {"v0", &e.v0}, {"accel_frames", &e.accel_frames}, {"decel_frames", &e.decel_frames},
+                           {"acceleration", &e.acceleration}, {"deceleration", &e.deceleration}}) {
       if (*v) j[name] = number(**v, at(loc, name));
     }
     for (auto [name, v, dv] : {std::tuple<const char*, double, double>{"x1", e.x1, d.x1}, {"y1", e.y1, d.y1}, {"x2", e.x2, d.x2},

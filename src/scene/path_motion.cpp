@@ -13,6 +13,7 @@
 #include "inbetween/math/rotation.hpp"
 #include "inbetween/paths/banking.hpp"
 #include "inbetween/paths/path_frame.hpp"
+#include "inbetween/timing/constant_acceleration.hpp"
 
 namespace inbetween {
 namespace {
@@ -55,7 +56,85 @@ constexpr int kEaseCheckSamples = 4096;
 // Samples per F-curve segment when looking for negative slope.
 constexpr int kTrackCheckSamples = 64;
 
-Expected<PathMotion::UnitEase> make_unit_ease(const RawEase& e, double span) {
+// A constant-acceleration ease (timing/constant_acceleration.hpp) and, when the ease fixes it
+// (three of acceleration, deceleration, t1, t2 with speed.to left out), the distance it covers in
+// the speed's units.
+struct ConstantAccelerationMade {
+  ConstantAccelerationEase<double> ease;
+  std::optional<double> distance;
+};
+
+// `span` frames = `seconds`; `distance`: to − from in length units; `distance_free`: speed.to was
+// left out (then three of a, d, t1, t2 fix the distance instead).  Accelerations are in the
+// speed's units per second² (× `scale` = length units); normalised ones are a·seconds²/distance.
+Expected<ConstantAccelerationMade> make_constant_acceleration(const RawEase& e, double span, double seconds, double scale,
+                                                              double distance, bool distance_free) {
+  const Loc at = {"speed", "ease"};
+  if (e.t1 && e.accel_frames) return fail(ErrorCode::InvalidArgument, sub(at, "accel_frames"), "give t1 or accel_frames, not both");
+  if (e.t2 && e.decel_frames) return fail(ErrorCode::InvalidArgument, sub(at, "decel_frames"), "give t2 or decel_frames, not both");
+  std::optional<double> t1 = e.t1, t2 = e.t2;
+  if (e.accel_frames) {
+    if (!std::isfinite(*e.accel_frames) || *e.accel_frames < 0 || *e.accel_frames > span)
+      return fail(ErrorCode::InvalidArgument, sub(at, "accel_frames"),
+                  "accel_frames = " + num(*e.accel_frames) + " must lie in [0, " + num(span) + "] (the frame span)");
+    t1 = *e.accel_frames / span;
+  }
+  if (e.decel_frames) {
+    if (!std::isfinite(*e.decel_frames) || *e.decel_frames < 0 || *e.decel_frames > span)
+      return fail(ErrorCode::InvalidArgument, sub(at, "decel_frames"),
+                  "decel_frames = " + num(*e.decel_frames) + " must lie in [0, " + num(span) + "] (the frame span)");
+    t2 = 1.0 - *e.decel_frames / span;
+  }
+  // The library names t1 and t2; the file may have said accel_frames or decel_frames.
+  auto placed = [&](Error err) {
+    if (err.location.size() == 1) {
+      if (e.accel_frames && err.location[0] == LocationStep{std::string("t1")}) err.location[0] = std::string("accel_frames");
+      if (e.decel_frames && err.location[0] == LocationStep{std::string("t2")}) err.location[0] = std::string("decel_frames");
+    }
+    return place(std::move(err), at);
+  };
+  const double time2 = seconds * seconds * scale;  // physical a = normalised a · distance / seconds²
+  for (auto [name, v] : {std::pair{"acceleration", &e.acceleration}, std::pair{"deceleration", &e.deceleration}}) {
+    if (*v && !std::isfinite(**v)) return fail(ErrorCode::NotFinite, sub(at, name), std::string(name) + " is not finite");
+  }
+  const int rates_and_times = int(t1.has_value()) + int(t2.has_value()) + int(e.acceleration.has_value()) + int(e.deceleration.has_value());
+  if (distance_free && !e.v0 && rates_and_times == 3) {
+    // Figure 3.16 with the distance free: the fourth from a·t1 = d·(1 − t2), the distance from Eq. 3.21.
+    EqualAreasParams<double> p{.t1 = t1, .t2 = t2};
+    if (e.acceleration) p.acceleration = *e.acceleration * time2;
+    if (e.deceleration) p.deceleration = *e.deceleration * time2;
+    auto g = solve_equal_areas(p);
+    if (!g) return placed(g.error());
+    auto ease = ConstantAccelerationEase<double>::make(g->t1, g->t2);
+    if (!ease) return placed(ease.error());
+    return ConstantAccelerationMade{*ease, g->distance};
+  }
+  ConstantAccelerationParams<double> p{.t1 = t1, .t2 = t2, .v0 = e.v0};
+  const double d = distance;
+  if (e.acceleration || e.deceleration) {
+    if (!(d > 0)) {
+      const char* name = e.acceleration ? "acceleration" : "deceleration";
+      return fail(ErrorCode::InvalidArgument, sub(at, name),
+                  std::string(name) + " needs a distance to cover, but from = to; give t1, t2 or v0 instead");
+    }
+    if (e.acceleration) p.acceleration = *e.acceleration * time2 / d;
+    if (e.deceleration) p.deceleration = *e.deceleration * time2 / d;
+  }
+  auto ease = solve_constant_acceleration(p);
+  if (!ease) {
+    Error err = ease.error();
+    if (err.message.starts_with("over-determined") && !distance_free && !e.v0 && rates_and_times == 3)
+      err.message += " (or leave speed.to out: three of acceleration, deceleration, t1, t2 fix the distance)";
+    // Normalised rates in a message would not be the file's numbers: say which were converted.
+    if (e.acceleration || e.deceleration)
+      err.message += " [accelerations normalised: a·(span in s)²/distance, span " + num(seconds) + " s, distance " + num(d) + "]";
+    return placed(std::move(err));
+  }
+  return ConstantAccelerationMade{*ease, std::nullopt};
+}
+
+// Every ease but constant acceleration with its distance free (the caller handles that one).
+Expected<PathMotion::UnitEase> make_unit_ease(const RawEase& e, double span, double seconds, double scale, double distance) {
   const Loc at = {"speed", "ease"};
   switch (e.kind) {
     case EaseKind::linear: return PathMotion::UnitEase{LinearEase<double>{}};
@@ -69,38 +148,9 @@ Expected<PathMotion::UnitEase> make_unit_ease(const RawEase& e, double span) {
       return PathMotion::UnitEase{*made};
     }
     case EaseKind::constant_acceleration: {
-      if (e.t1 && e.accel_frames) return fail(ErrorCode::InvalidArgument, sub(at, "accel_frames"), "give t1 or accel_frames, not both");
-      if (e.t2 && e.decel_frames) return fail(ErrorCode::InvalidArgument, sub(at, "decel_frames"), "give t2 or decel_frames, not both");
-      std::optional<double> t1 = e.t1, t2 = e.t2;
-      if (e.accel_frames) {
-        if (!std::isfinite(*e.accel_frames) || *e.accel_frames < 0 || *e.accel_frames > span)
-          return fail(ErrorCode::InvalidArgument, sub(at, "accel_frames"),
-                      "accel_frames = " + num(*e.accel_frames) + " must lie in [0, " + num(span) + "] (the frame span)");
-        t1 = *e.accel_frames / span;
-      }
-      if (e.decel_frames) {
-        if (!std::isfinite(*e.decel_frames) || *e.decel_frames < 0 || *e.decel_frames > span)
-          return fail(ErrorCode::InvalidArgument, sub(at, "decel_frames"),
-                      "decel_frames = " + num(*e.decel_frames) + " must lie in [0, " + num(span) + "] (the frame span)");
-        t2 = 1.0 - *e.decel_frames / span;
-      }
-      const int given = int(t1.has_value()) + int(t2.has_value()) + int(e.v0.has_value());
-      if (given != 2)
-        return fail(ErrorCode::InvalidArgument, at,
-                    "constant_acceleration needs exactly two of t1 (or accel_frames), t2 (or decel_frames) and v0; got " +
-                        std::to_string(given));
-      if (e.v0) {
-        // Eq. 3.21: 1 = v0·(t2 − t1 + 1)/2, so t2 − t1 = 2/v0 − 1 ∈ [0, 1] needs v0 ∈ [1, 2].
-        const double v0 = *e.v0;
-        if (!std::isfinite(v0) || v0 < 1 || v0 > 2)
-          return fail(ErrorCode::InvalidArgument, sub(at, "v0"),
-                      "v0 = " + num(v0) + " must lie in [1, 2] (the cruise covers 2/v0 − 1 of the time)");
-        if (t1) t2 = *t1 + 2.0 / v0 - 1.0;
-        else t1 = *t2 - (2.0 / v0 - 1.0);
-      }
-      auto made = ConstantAccelerationEase<double>::make(*t1, *t2);
-      if (!made) return place(made.error(), at);
-      return PathMotion::UnitEase{*made};
+      auto made = make_constant_acceleration(e, span, seconds, scale, distance, false);
+      if (!made) return made.error();
+      return PathMotion::UnitEase{made->ease};
     }
     case EaseKind::cubic_bezier: {
       auto made = CubicBezierTiming<double>::make(e.x1, e.y1, e.x2, e.y2);
@@ -149,9 +199,15 @@ Expected<void> check_distance(double d, double length, const Loc& where, const s
 
 }  // namespace
 
+const PathMotion::UnitEase* PathMotion::unit_ease() const noexcept {
+  const auto* e = std::get_if<EaseSpeed>(&speed_);
+  return e ? &e->ease : nullptr;
+}
+
 EaseSample<double> PathMotion::PennerUnitEase::sample(double t) const noexcept {
   t = detail::clamp_unit_time(t);
-  return {ease_unit(curve, direction, t, params), ease_unit_velocity(curve, direction, t, params), 0.0};
+  return {ease_unit(curve, direction, t, params), ease_unit_velocity(curve, direction, t, params),
+          penner_ease_acceleration(curve, direction, t, 1.0, 1.0, params)};
 }
 
 Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
@@ -175,14 +231,28 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
                         ": end_frame " + num(sp.end_frame) + " must be after start_frame " + num(sp.start_frame));
       const double span = sp.end_frame - sp.start_frame;
       const double from = sp.from.value_or(0.0) * scale;
-      const double to = sp.to.value_or(full) * scale;
+      double to = sp.to.value_or(full) * scale;
       if (auto ok = check_distance(from, L, Loc{"speed", "from"}, "from"); !ok) return ok.error();
+      const double seconds = span / fps;
+      std::optional<PathMotion::UnitEase> fixed;  // an ease that fixes the distance itself
+      if (sp.ease.kind == EaseKind::constant_acceleration && !sp.to) {
+        auto made = make_constant_acceleration(sp.ease, span, seconds, scale, to - from, true);
+        if (!made) return made.error();
+        if (made->distance) {
+          to = from + *made->distance;
+          if (to > L * (1 + kLengthSlack))
+            return fail(ErrorCode::InvalidArgument, {"speed", "ease"},
+                        "the acceleration graph covers " + num(*made->distance / scale) + (sp.fraction ? " of the length" : "") +
+                            " from " + num(from / scale) + ", beyond the path's end (" + num(full) + ")");
+        }
+        fixed = PathMotion::UnitEase{made->ease};
+      }
       if (auto ok = check_distance(to, L, Loc{"speed", "to"}, "to"); !ok) return ok.error();
       if (to < from)
         return fail(ErrorCode::NotMonotone, {"speed", "to"},
                     "the distance runs backwards from " + num(from) + " to " + num(to) + " " +
                         frames_text(sp.start_frame, sp.end_frame) + " (reverse the path instead)");
-      auto ease = make_unit_ease(sp.ease, span);
+      auto ease = fixed ? Expected<PathMotion::UnitEase>(*fixed) : make_unit_ease(sp.ease, span, seconds, scale, to - from);
       if (!ease) return ease.error();
       if (to > from) {
         if (const auto back = ease_backwards(*ease, sp.start_frame, span))

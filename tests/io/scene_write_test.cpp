@@ -231,6 +231,7 @@ TEST(SceneWrite, Version2PathsAndCamerasSurviveWriteThenRead) {
         "\"sine_pieces\"", "\"k2\": 0.7", "\"yfov_deg\": 30.0", "\"up\": [0.0, 0.0, 1.0]", "\"tilt_deg\": 5.0", "\"count\": 3",
         "\"spread\": 0.5", "\"up_path\": \"a\"", "\"tilt_track\": \"tilt\"", "\"coi_path\": \"b\"", "\"hold_until\": 10.0",
         "\"move_frames\": 15.0", "\"target\": \"flyer\"", "\"t2\": 0.6", "\"parent\": \"walker\"",
+        "\"acceleration\": 2.0", "\"deceleration\": 1.0",
         // paths2's members: constraint tuples with a key acceleration, acceleration keys with their
         // shape and start speed, the RMF closing.
         "\"kind\": \"constraints\"", "\"acceleration\": -0.25", "\"kind\": \"acceleration_keys\"", "\"accelerations\"",

@@ -725,6 +725,83 @@ TEST(PathMotion, TrackLegsHaveTheTracksSecondDerivative) {
   EXPECT_EQ(m.distance_at(45).acceleration, 0.0);  // and after
 }
 
+// Constant acceleration given by its accelerations (Parent §3.2.3, Fig. 3.16) in length units per
+// second², over 45 frames at 24 fps (T = 1.875 s).
+TEST(PathMotion, ConstantAccelerationFromPhysicalAccelerations) {
+  const AnyCurve path = test_path();
+  const double start = 10, end = 55, T = (end - start) / kFps;
+  const double L = build(RawPathMotion{.path = path}).length();
+  for (bool fraction : {false, true}) {
+    SCOPED_TRACE(fraction ? "fraction" : "length units");
+    const double unit = fraction ? 1.0 : L;  // the length in the speed's units
+    // Two of five, the distance given (0.8 of the length from 0.1): normalised a = d = 16/3 is
+    // t1 = 1/4, t2 = 3/4 (docs/timing.md), so the physical rate is (16/3)·D/T².
+    const double D = 0.8 * unit, A = 16.0 / 3 * D / (T * T);
+    RawPathMotion raw{.path = path};
+    raw.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = start, .end_frame = end, .from = 0.1 * unit, .to = 0.9 * unit,
+                         .fraction = fraction,
+                         .ease = RawEase{.kind = EaseKind::constant_acceleration, .acceleration = A, .deceleration = A}};
+    const PathMotion m = build(raw);
+    const Closed c = closed_constant_acceleration(0.25, 0.75);
+    for (int i = 0; i <= 45; ++i) {
+      const double frame = start + i, t = i / 45.0;
+      EXPECT_NEAR(m.sample(frame).distance, 0.1 * L + 0.8 * L * c.s(t), kRelLength * L) << frame;
+    }
+    // d²s/dframe² = A/fps² (scaled to length units) while accelerating, −A/fps² while braking.
+    const double per_frame2 = A * (L / unit) / (kFps * kFps);
+    EXPECT_NEAR(m.distance_at(start + 5).acceleration, per_frame2, kRelLength * per_frame2);
+    EXPECT_NEAR(m.distance_at(end - 5).acceleration, -per_frame2, kRelLength * per_frame2);
+
+    // Three of four with `to` left out (the texts' form): a = 2·d, t1 = 1/4 → t2 = 1/2, and the
+    // distance is A·T²·t1·(1 + t2 − t1)/2 = A·T²·5/32; A is chosen to cover half the length.
+    const double A3 = 0.5 * unit / (T * T * 5.0 / 32);
+    raw.speed.to.reset();
+    raw.speed.ease = RawEase{.kind = EaseKind::constant_acceleration, .t1 = 0.25, .acceleration = A3, .deceleration = A3 / 2};
+    const PathMotion free = build(raw);
+    const Closed c3 = closed_constant_acceleration(0.25, 0.5);
+    for (int i = 0; i <= 45; ++i) {
+      const double frame = start + i, t = i / 45.0;
+      EXPECT_NEAR(free.sample(frame).distance, 0.1 * L + 0.5 * L * c3.s(t), kRelLength * L) << frame;
+    }
+    EXPECT_NEAR(free.distance_at(start + 5).acceleration, A3 * (L / unit) / (kFps * kFps), kRelLength * L);
+    // The same three with `to` given are one too many.
+    raw.speed.to = 0.9 * unit;
+    auto over = build_path_motion(raw, kFps);
+    ASSERT_FALSE(over);
+    EXPECT_EQ(json_pointer(over.error().location), "/speed/ease/deceleration");
+    EXPECT_NE(over.error().message.find("leave speed.to out"), std::string::npos) << over.error().message;
+    // Left out again, a graph that covers more than the rest of the path.
+    raw.speed.to.reset();
+    raw.speed.ease.acceleration = 4 * A3, raw.speed.ease.deceleration = 2 * A3;  // twice the length
+    auto beyond = build_path_motion(raw, kFps);
+    ASSERT_FALSE(beyond);
+    EXPECT_EQ(json_pointer(beyond.error().location), "/speed/ease");
+    EXPECT_NE(beyond.error().message.find("beyond the path's end"), std::string::npos) << beyond.error().message;
+    // An acceleration with nothing to cover.
+    raw.speed.from = raw.speed.to = 0.5 * unit;
+    raw.speed.ease = RawEase{.kind = EaseKind::constant_acceleration, .t1 = 0.25, .acceleration = 1};
+    auto empty = build_path_motion(raw, kFps);
+    ASSERT_FALSE(empty);
+    EXPECT_EQ(json_pointer(empty.error().location), "/speed/ease/acceleration");
+  }
+}
+
+// A Penner ease reports its second derivative (it reported 0 until the plot check of
+// examples/scenes/distance_time.json caught it): quad out is 1 − (1 − t)² = (2 − t)·t (Parent
+// Fig. 3.10), s'' = −2 per unit time², so d²s/dframe² = −2·L/span²; quad in_out is +4 then −4.
+TEST(PathMotion, PennerEasesReportTheirAcceleration) {
+  RawPathMotion raw{.path = test_path()};
+  raw.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 24,
+                       .ease = RawEase{.kind = EaseKind::penner, .curve = EasingCurve::quad, .direction = EasingDirection::out}};
+  const PathMotion out = build(raw);
+  const double L = out.length(), per_frame2 = L / (24.0 * 24.0);
+  for (double f : {0.5, 6.0, 12.0, 23.5}) EXPECT_NEAR(out.distance_at(f).acceleration, -2 * per_frame2, kRelLength * per_frame2) << f;
+  raw.speed.ease.direction = EasingDirection::in_out;
+  const PathMotion in_out = build(raw);
+  EXPECT_NEAR(in_out.distance_at(6).acceleration, 4 * per_frame2, kRelLength * per_frame2);
+  EXPECT_NEAR(in_out.distance_at(18).acceleration, -4 * per_frame2, kRelLength * per_frame2);
+}
+
 // ---- errors
 
 TEST(PathMotion, BadSpecsAreErrorsThatSayWhere) {
@@ -780,15 +857,21 @@ TEST(PathMotion, BadSpecsAreErrorsThatSayWhere) {
   // from > to runs backwards.
   e = err(RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 10, .from = 3.0, .to = 1.0});
   EXPECT_EQ(json_pointer(e.location), "/speed/to");
-  // Constant acceleration needs exactly two of t1, t2, v0.
+  // Constant acceleration needs exactly two of t1, t2, v0, acceleration, deceleration (with `to`).
   e = err(RawSpeed{.kind = SpeedKind::ease, .end_frame = 10,
                    .ease = RawEase{.kind = EaseKind::constant_acceleration, .t1 = 0.2, .t2 = 0.8, .v0 = 1.5}});
-  EXPECT_EQ(json_pointer(e.location), "/speed/ease");
+  EXPECT_EQ(json_pointer(e.location), "/speed/ease/v0");  // the first one too many
+  EXPECT_NE(e.message.find("over-determined"), std::string::npos) << e.message;
   e = err(RawSpeed{.kind = SpeedKind::ease, .end_frame = 10, .ease = RawEase{.kind = EaseKind::constant_acceleration, .t1 = 0.2}});
   EXPECT_EQ(json_pointer(e.location), "/speed/ease");
+  EXPECT_NE(e.message.find("under-determined"), std::string::npos) << e.message;
   e = err(RawSpeed{.kind = SpeedKind::ease, .end_frame = 10,
                    .ease = RawEase{.kind = EaseKind::constant_acceleration, .t1 = 0.9, .v0 = 1.2}});
-  EXPECT_EQ(json_pointer(e.location), "/speed/ease/t2");  // t2 = 0.9 + 2/1.2 − 1 > 1
+  EXPECT_EQ(json_pointer(e.location), "/speed/ease/v0");  // t2 = 0.9 + 2/1.2 − 1 > 1: v0 ≥ 2/(2 − 0.9)
+  // The library's t1 is the file's accel_frames when that is how it was given.
+  e = err(RawSpeed{.kind = SpeedKind::ease, .end_frame = 10,
+                   .ease = RawEase{.kind = EaseKind::constant_acceleration, .accel_frames = 5, .decel_frames = 8}});
+  EXPECT_EQ(json_pointer(e.location), "/speed/ease/decel_frames") << e.message;  // t2 = 0.2 before t1 = 0.5
   e = err(RawSpeed{.kind = SpeedKind::ease, .end_frame = 10, .ease = RawEase{.kind = EaseKind::sine_pieces, .k1 = 0.5}});
   EXPECT_EQ(json_pointer(e.location), "/speed/ease/k2");
   // A track that leaves the path.

@@ -59,7 +59,11 @@ struct RawEase {
   /// sine_pieces: start of the deceleration phase, k2 ≤ 1.
   std::optional<double> k2;
   /// constant_acceleration: end of the acceleration phase (normalised time).  Give exactly two of
-  /// {t1 or accel_frames}, {t2 or decel_frames}, v0; the third follows from Eq. 3.21.
+  /// {t1 or accel_frames}, {t2 or decel_frames}, v0, acceleration, deceleration (the rest follow
+  /// from Eq. 3.21 and v0 = a·t1 = d·(1 − t2); timing/constant_acceleration.hpp), or — with
+  /// speed.to left out — three of acceleration, deceleration, {t1 or accel_frames}, {t2 or
+  /// decel_frames}: the fourth follows from the equal areas of Figure 3.16 and the distance
+  /// covered, hence `to`, from Eq. 3.21.
   std::optional<double> t1;
   /// constant_acceleration: start of the deceleration phase (normalised time).
   std::optional<double> t2;
@@ -70,6 +74,11 @@ struct RawEase {
   std::optional<double> accel_frames;
   /// constant_acceleration: the deceleration time in frames (t2 = 1 − decel_frames / span).
   std::optional<double> decel_frames;
+  /// constant_acceleration: the acceleration on [start, t1] in length units per second² (fraction of
+  /// the length per second² with speed.fraction), > 0.
+  std::optional<double> acceleration;
+  /// constant_acceleration: the deceleration on [t2, end] (its magnitude), same units, > 0.
+  std::optional<double> deceleration;
   double x1 = 0.25;  ///< cubic_bezier: first control point x, in [0, 1] (default: CSS "ease")
   double y1 = 0.1;   ///< cubic_bezier: first control point y
   double x2 = 0.25;  ///< cubic_bezier: second control point x, in [0, 1]
@@ -248,12 +257,17 @@ class PathMotion {
     EasingCurve curve = EasingCurve::sine;                ///< the curve
     EasingDirection direction = EasingDirection::in_out;  ///< its direction
     PennerParams<double> params{};                        ///< its shape
-    /// s = ease_unit, velocity = ease_unit_velocity, acceleration 0 (not used), t clamped to [0, 1].
+    /// s = ease_unit, velocity = ease_unit_velocity, acceleration = penner_ease_acceleration (all of
+    /// the normalised ease, duration 1), t clamped to [0, 1].
     EaseSample<double> sample(double t) const noexcept;
   };
   /// Any of the normalised eases.
   using UnitEase = std::variant<LinearEase<double>, SineEase<double>, SineAccelDecelEase<double>, CubicEase<double>,
                                 ConstantAccelerationEase<double>, CubicBezierTiming<double>, PennerUnitEase>;
+  /// The normalised ease of an ease speed (with the frames it spans: frame_range()), or null when
+  /// the speed is given another way (keys, a track, …).  Plots read phase boundaries from it.
+  [[nodiscard]] const UnitEase* unit_ease() const noexcept;
+
 
  private:
   struct EaseSpeed {
