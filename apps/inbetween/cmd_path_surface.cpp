@@ -114,7 +114,7 @@ std::string surface_paths(const Args& a, const std::string& text, bool by_method
   SurfaceWalkOptions<double> options;
   options.mode = SurfaceWalk::Downhill;
   options.up = {a.up[0], a.up[1], a.up[2]};
-  options.step = has_step ? a.step : surface->scale() / kStepsPerScale;
+  options.step = a.step == 0 ? surface->scale() / kStepsPerScale : a.step;
   options.max_steps = a.max_steps;
   auto path = walk_on_surface(*surface, from, options);
   if (!path) fail(path.error(), a);
@@ -156,8 +156,9 @@ void setup(CLI::App& root) {
   auto* count = surface->add_option("--count", args->count, "surface file: points on the (u, v) line, 2 or more")
                     ->capture_default_str();
   auto* step = surface->add_option("--step", args->step,
-                                   "surface file, downhill: distance per step (default: the surface's scale / 20 — sphere "
-                                   "radius, torus minor radius, grid spacing, plane axis)");
+                                   "surface file, downhill: distance per step; 0: the surface's scale / 20 (sphere radius, torus "
+                                   "minor radius, grid spacing, plane axis)")
+                    ->capture_default_str();
   auto* max_steps = surface->add_option("--max-steps", args->max_steps, "surface file, downhill: steps at most")
                         ->capture_default_str();
   surface->add_option("-o,--output", args->output, "output CSV (default: standard output)");
