@@ -1,6 +1,7 @@
 #pragma once
 /// Obstacle environments for 3-D path finding (texts 004 §3.4.5).  The moving object is
-/// approximated by a sphere of radius r, and every obstacle is grown by r ("increasing the size of
+/// approximated by a sphere of radius r (or is a capsule of radius r, CapsuleMover, whose swept
+/// moves and turns the planner checks as segments), and every obstacle is grown by r ("increasing the size of
 /// the obstacles by the size of the approximating sphere"), so the object's centre moves as a
 /// point among the grown obstacles.  A grown sphere is a sphere of radius R + r; a grown box
 /// (axis-aligned or oriented) is the rounded box {p : distance(p, box) < r}, computed exactly
