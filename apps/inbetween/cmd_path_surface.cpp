@@ -80,7 +80,18 @@ bool is_surface_file(const std::string& text) {
 std::string surface_paths(const Args& a, const std::string& text, bool by_method, bool has_method, bool has_from,
                           bool has_to, bool has_downhill, bool has_count, bool has_step, bool has_max_steps) {
   auto surface = parse_surface_json(text, a.input);
-  if (!surface) throw CommandError{surface.error().describe()};
+  if (!surface) {
+    // A JSON file of another kind inbetween reads: say so and name the command that reads it.
+    const std::string kind = json_file_kind(text);
+    if (kind == "scene" || kind == "curve")
+      throw CommandError{a.input + ": a " + kind + " file, not a surface file (\"inbetween_surface\": 1, docs/paths.md); " +
+                         (kind == "scene" ? "scene files are read by inbetween bake, plot, view and convert"
+                                          : "curve files are read by inbetween curve info, curve sample and curve plot")};
+    if (text.find("\"inbetween_env\"") != std::string::npos && text.find("\"inbetween_surface\"") == std::string::npos)
+      throw CommandError{a.input + ": an environment file, not a surface file (\"inbetween_surface\": 1, docs/paths.md); "
+                                   "environment files are read by inbetween path find"};
+    throw CommandError{surface.error().describe()};
+  }
   if (has_method && a.method != "uv" && a.method != "downhill")
     throw CommandError{"--method " + a.method + ": a surface file takes --method uv (the (u, v) line) or downhill"};
   const bool downhill = by_method || has_downhill;
