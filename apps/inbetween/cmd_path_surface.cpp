@@ -105,6 +105,10 @@ std::string surface_paths(const Args& a, const std::string& text, bool by_method
     const auto points = parametric_surface_path<double>(
         [&](double u, double v) { return surface->point(u, v); }, Vec2d{a.from[0], a.from[1]}, Vec2d{a.to[0], a.to[1]},
         a.count);
+    for (const Vec3d& p : points)
+      if (!is_finite(p))
+        throw CommandError{spelled("--from", a.from) + " " + spelled("--to", a.to) +
+                           ": the (u, v) line leaves the range of finite numbers on this surface"};
     std::string out = "u,v,x,y,z\n";
     for (int i = 0; i < a.count; ++i) {
       const Vec2d uv = lerp(Vec2d{a.from[0], a.from[1]}, Vec2d{a.to[0], a.to[1]}, double(i) / double(a.count - 1));

@@ -164,13 +164,15 @@ TEST(SurfaceShapes, BuildErrorsNameThePlace) {
     std::string pointer, text;
   };
   const std::vector<Case> cases{
-      {SphereShape{{}, 0}, "/sphere/radius", "radius must be finite and > 0"},
+      {SphereShape{{}, 0}, "/sphere/radius", "radius must be > 0 and at most 1e150"},
+      {SphereShape{{0, 1e151, 0}, 1}, "/sphere/center", "beyond 1e150"},
       {TorusShape{{}, 1, 1}, "/torus/major_radius", "> minor_radius"},
       {TorusShape{{}, 2, -1}, "/torus/minor_radius", "minor_radius must be"},
       {PlaneShape{{}, {1, 0, 0}, {2, 0, 0}}, "/plane/v_axis", "parallel"},
       {HeightGridShape{{}, {1, 0}, 2, 2, {0, 0, 0, 0}}, "/height_field/spacing", "spacing"},
       {HeightGridShape{{}, {1, 1}, 1, 2, {0, 0}}, "/height_field/heights", "at least 2 rows"},
       {HeightGridShape{{}, {1, 1}, 2, 2, {0, 0, NAN, 0}}, "/height_field/heights/1/0", "not finite"},
+      {HeightGridShape{{}, {1, 1}, 2, 2, {0, 0, 0, -1e200}}, "/height_field/heights/1/1", "beyond 1e150"},
   };
   for (const Case& c : cases) {
     auto s = SurfaceShape::build(c.raw);

@@ -70,6 +70,10 @@ struct BezierPatchShape {
   std::array<Vec3d, 16> points{};  ///< control points, 4 rows of 4
 };
 
+/// The largest magnitude of any number of a surface (coordinates, sizes, heights): squares and
+/// sums of squares of coordinates stay finite.
+inline constexpr double kSurfaceMaxMagnitude = 1e150;
+
 /// One surface as authored.
 using RawSurface = std::variant<PlaneShape, SphereShape, TorusShape, HeightGridShape, BezierPatchShape>;
 
@@ -83,7 +87,8 @@ class SurfaceShape {
  public:
   using scalar_type = double;  ///< scalar of the Surface concept
 
-  /// Checks and builds.  Errors (Error::location in the file's shape): a non-finite number, a size
+  /// Checks and builds.  Errors (Error::location in the file's shape): a number that is not finite
+  /// or beyond kSurfaceMaxMagnitude, a size
   /// ≤ 0 ("/sphere/radius", "/torus/minor_radius", "/height_field/spacing"), a torus whose tube
   /// reaches the axis ("/torus/major_radius"), parallel plane axes ("/plane/v_axis"), a grid with
   /// fewer than 2 rows or columns or rows of unequal length ("/height_field/heights", …/j).
