@@ -131,8 +131,8 @@ Expected<Environment> Environment::build(const RawEnvironment& raw) {
     const auto at = [](const char* field) {
       return std::vector<LocationStep>{std::string("mover"), std::string("capsule"), std::string(field)};
     };
-    if (!(raw.capsule->half_length > 0) || !std::isfinite(raw.capsule->half_length))
-      return Error{ErrorCode::InvalidArgument, "the capsule's half_length must be finite and > 0", "", at("half_length")};
+    if (!(raw.capsule->half_length > 0) || !(raw.capsule->half_length <= kCapsuleMaxHalfLength))
+      return Error{ErrorCode::InvalidArgument, "the capsule's half_length must be > 0 and at most 1e150", "", at("half_length")};
     if (!(raw.capsule->turn_rate_deg > 0) || !std::isfinite(raw.capsule->turn_rate_deg))
       return Error{ErrorCode::InvalidArgument, "the capsule's turn_rate_deg must be finite and > 0", "", at("turn_rate_deg")};
     for (std::size_t k = 0; k < raw.obstacles.size(); ++k)

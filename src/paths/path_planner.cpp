@@ -733,6 +733,10 @@ Expected<CapsuleMotion> capsule_motion(const Environment& env, std::span<const V
     prev_dir = d;
   }
   m.leave[n - 1] = m.arrive[n - 1];
+  if (!std::isfinite(m.arrive.back()))
+    return Error{ErrorCode::InvalidArgument,
+                 "the capsule's motion lasts beyond the range of double (speed or turn_rate_deg too small)", "",
+                 {std::string("mover"), std::string("capsule"), std::string("turn_rate_deg")}};
   return m;
 }
 

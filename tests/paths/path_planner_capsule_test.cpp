@@ -142,6 +142,17 @@ TEST(CapsuleMover, BuildErrorsNameTheMoverOrTheMovingSphere) {
   auto e = Environment::build(raw);
   ASSERT_FALSE(e);
   EXPECT_EQ(json_pointer(e.error().location), "/mover/capsule/half_length");
+  raw.capsule = CapsuleMover{1e200, 90};  // its ends would overflow the squared distances
+  e = Environment::build(raw);
+  ASSERT_FALSE(e);
+  EXPECT_EQ(json_pointer(e.error().location), "/mover/capsule/half_length");
+  // A turn rate so small that the turns last beyond the range of double: an error, no infinite time.
+  raw.capsule = CapsuleMover{1, 1e-320};
+  e = Environment::build(raw);
+  ASSERT_TRUE(e);
+  const auto slow = find_path(*e, kSlotEnds, {.planner = {.cell_size = 0.25}});
+  ASSERT_FALSE(slow);
+  EXPECT_EQ(json_pointer(slow.error().location), "/mover/capsule/turn_rate_deg");
   raw.capsule = CapsuleMover{1, std::nan("")};
   e = Environment::build(raw);
   ASSERT_FALSE(e);

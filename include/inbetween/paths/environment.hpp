@@ -71,9 +71,12 @@ using RawObstacle = std::variant<SphereObstacle, BoxObstacle, OrientedBoxObstacl
 /// turns in place at the vertices of its polyline, at `turn_rate_deg` degrees per second
 /// (path_planner.hpp, docs/paths.md).
 struct CapsuleMover {
-  double half_length = 1;     ///< > 0, half the length of the axis segment
+  double half_length = 1;     ///< > 0 and ≤ kCapsuleMaxHalfLength, half the length of the axis segment
   double turn_rate_deg = 90;  ///< > 0, degrees per second while turning in place
 };
+
+/// The longest half length of a capsule mover (so that its ends and their squared distances stay finite).
+inline constexpr double kCapsuleMaxHalfLength = 1e150;
 
 /// Plain, unchecked environment data.
 struct RawEnvironment {
@@ -107,8 +110,8 @@ class Environment {
   /// Checks and builds.  Errors (Error::location in the file's shape, shown here as JSON pointers): radius not finite or < 0
   /// ("/radius"), bounds not finite or empty ("/bounds/min", "/bounds/max"), and per obstacle k a
   /// non-finite number, a size ≤ 0, box min not below max, or a zero rotation
-  /// ("/obstacles/k/<kind>/<field>", message naming "obstacle k"), a capsule's half_length or
-  /// turn_rate_deg not finite and > 0 ("/mover/capsule/half_length"), a capsule among moving
+  /// ("/obstacles/k/<kind>/<field>", message naming "obstacle k"), a capsule's half_length not in
+  /// (0, kCapsuleMaxHalfLength] or turn_rate_deg not finite and > 0 ("/mover/capsule/half_length"), a capsule among moving
   /// spheres ("/mover/capsule": the timing around movers is for a sphere).
   static Expected<Environment> build(const RawEnvironment& raw);
 
