@@ -1,4 +1,4 @@
-// `inbetween path find ENV.json -o PATH.json [--timing FILE]`: path finding among obstacles in 3-D
+// `inbetween path find ENV.json -o PATH.json [--timing FILE] [--poses FILE]`: path finding among obstacles in 3-D
 // (texts 004 §3.4.5).  Reads an environment file (docs/paths.md), plans a collision-free path
 // through the static obstacles and the via points, smooths it into a Catmull-Rom curve that still
 // clears every grown obstacle, times the motion along it around the moving spheres, and writes the
@@ -105,7 +105,9 @@ void setup(CLI::App& root) {
   if (path == nullptr) path = root.add_subcommand("path", kPathDescription);
   path->require_subcommand(1);
   auto* find = path->add_subcommand(
-      "find", "Find a collision-free path among 3-D obstacles (Parent, Computer Animation, section 3.4.5) and its timing");
+      "find",
+      "Find a collision-free path among 3-D obstacles for a sphere or a capsule that turns along its path (Parent, "
+      "Computer Animation, section 3.4.5) and its timing");
   auto args = std::make_shared<Args>();
   find->add_option("ENV", args->input, "environment file (JSON, docs/paths.md); - for stdin")->required();
   find->add_option("-o,--output", args->output, "output curve file (catmull-rom, readable by `curve sample`)")
