@@ -76,9 +76,14 @@ bool is_surface_file(const std::string& text) {
   return first != std::string::npos && text[first] == '{';
 }
 
+// Which options the user gave.
+struct Given {
+  bool by_method = false;  // --method downhill
+  bool method = false, from = false, to = false, downhill = false, count = false, step = false, max_steps = false;
+};
+
 // --from/--to (uv line) or --downhill (walk) on a surface file.
-std::string surface_paths(const Args& a, const std::string& text, bool by_method, bool has_method, bool has_from,
-                          bool has_to, bool has_downhill, bool has_count, bool has_step, bool has_max_steps) {
+std::string surface_paths(const Args& a, const std::string& text, const Given& given) {
   auto surface = parse_surface_json(text, a.input);
   if (!surface) {
     // A JSON file of another kind inbetween reads: say so and name the command that reads it.
@@ -92,14 +97,14 @@ std::string surface_paths(const Args& a, const std::string& text, bool by_method
                                    "environment files are read by inbetween path find"};
     throw CommandError{surface.error().describe()};
   }
-  if (has_method && a.method != "uv" && a.method != "downhill")
+  if (given.method && a.method != "uv" && a.method != "downhill")
     throw CommandError{"--method " + a.method + ": a surface file takes --method uv (the (u, v) line) or downhill"};
-  const bool downhill = by_method || has_downhill;
+  const bool downhill = given.by_method || given.downhill;
   if (!downhill) {
-    if (!has_from || !has_to) throw CommandError{"give --from U V and --to U V, or --downhill U V"};
+    if (!given.from || !given.to) throw CommandError{"give --from U V and --to U V, or --downhill U V"};
     if (a.from.size() != 2) throw CommandError{spelled("--from", a.from) + ": on a surface file --from takes two numbers U V"};
     if (a.to.size() != 2) throw CommandError{spelled("--to", a.to) + ": on a surface file --to takes two numbers U V"};
-    if (has_step || has_max_steps) throw CommandError{"--step and --max-steps are for --downhill; the (u, v) line takes --count"};
+    if (given.step || given.max_steps) throw CommandError{"--step and --max-steps are for --downhill; the (u, v) line takes --count"};
     if (a.count < 2 || a.count > kMaxCount)
       throw CommandError{"--count " + std::to_string(a.count) + ": must be 2 … " + std::to_string(kMaxCount)};
     const auto points = parametric_surface_path<double>(
@@ -118,7 +123,7 @@ std::string surface_paths(const Args& a, const std::string& text, bool by_method
     }
     return out;
   }
-  if (has_count) throw CommandError{"--count is for the (u, v) line; --downhill takes --step and --max-steps"};
+  if (given.count) throw CommandError{"--count is for the (u, v) line; --downhill takes --step and --max-steps"};
   const std::vector<double>& start = a.downhill;
   if (start.size() != 2 && start.size() != 3)
     throw CommandError{spelled("--downhill", start) + ": on a surface file the start is U V or a point X Y Z"};
@@ -190,9 +195,9 @@ void setup(CLI::App& root) {
     if (is_surface_file(text)) {
       if (!by_method && downhill->count() > 0 && (from->count() > 0 || to->count() > 0 || method->count() > 0))
         throw CommandError{"--downhill takes no --from, --to or --method"};
-      write_output(args->output, surface_paths(*args, text, by_method, method->count() > 0, from->count() > 0,
-                                               to->count() > 0, downhill->count() > 0, count->count() > 0,
-                                               step->count() > 0, max_steps->count() > 0));
+      const Given given{by_method,          method->count() > 0, from->count() > 0,  to->count() > 0,
+                        downhill->count() > 0, count->count() > 0,  step->count() > 0, max_steps->count() > 0};
+      write_output(args->output, surface_paths(*args, text, given));
       return;
     }
     if (method->count() > 0 && args->method == "uv")

@@ -246,10 +246,11 @@ std::vector<Vec3d> capsule_search(Lattice& lat, const Vec3d& a, const Vec3d& b, 
     return {a, b};
   }
   constexpr int kSlots = 27;  // 0 … 26 minus kNoMove: arrived along a lattice direction; kNoMove: joined from a
+  // State s = node·kSlots + slot, plus the start and the goal; at most max_nodes of them (plan_polyline).
   const long long N = lat.count();
   const long long start = N * kSlots, goal = start + 1;
   std::vector<double> g(std::size_t(goal) + 1, kInf);
-  std::vector<long long> parent(std::size_t(goal) + 1, -1);
+  std::vector<std::int64_t> parent(std::size_t(goal) + 1, -1);
   std::vector<std::uint8_t> closed(std::size_t(goal) + 1, 0);
   std::vector<std::int8_t> move_ok(std::size_t(N) * 27, -1);  // per (node, direction): the move is clear
   auto pos = [&](long long s) { return s == start ? a : s == goal ? b : lat.point(int(s / kSlots)); };
