@@ -8,10 +8,13 @@
 // inbetween/paths/mesh_path.hpp, surface_path.hpp and surface_shapes.hpp.
 #include <cmath>
 #include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
 #include "command.hpp"
+#include "inbetween/curves/catmull_rom.hpp"
+#include "inbetween/io/curve_file.hpp"
 #include "inbetween/io/obj.hpp"
 #include "inbetween/io/surface_file.hpp"
 #include "inbetween/paths/mesh_path.hpp"
@@ -27,7 +30,7 @@ constexpr int kDefaultCount = 33;
 constexpr int kMaxCount = 10'000'000;
 
 struct Args {
-  std::string input, output = "-", method = "plane";
+  std::string input, output = "-", method = "plane", curve;
   std::vector<double> from, to, downhill;
   std::vector<double> up{0, 1, 0};
   int count = kDefaultCount;
@@ -70,6 +73,25 @@ std::string xyz_rows(const std::vector<Vec3d>& points) {
   return text;
 }
 
+// The centripetal Catmull-Rom curve file through the path's points (repeated points dropped), for
+// --curve; it passes through every point.
+std::string curve_through(const std::vector<Vec3d>& points) {
+  std::vector<Vec3d> kept;
+  for (const Vec3d& p : points)
+    if (kept.empty() || distance(kept.back(), p) > 0) kept.push_back(p);
+  if (kept.size() < 2) throw CommandError{"--curve: the path is a single point; there is no curve through it"};
+  auto spline = build_catmull_rom(kept, CatmullRomOptions<double>{.alpha = 0.5});
+  if (!spline) throw CommandError{"--curve: " + spline.error().describe()};
+  return write_curve_json(AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{std::move(*spline)}});
+}
+
+// Writes the CSV and, with --curve, the curve file (both checked before either is written).
+void write_results(const Args& a, const std::string& csv, const std::vector<Vec3d>& points) {
+  const std::string curve = a.curve.empty() ? "" : curve_through(points);
+  write_output(a.output, csv);
+  if (!a.curve.empty()) write_output(a.curve, curve);
+}
+
 // A surface file is JSON: its first non-blank character is '{' (an OBJ line never starts so).
 bool is_surface_file(const std::string& text) {
   const auto first = text.find_first_not_of(" \t\r\n");
@@ -83,7 +105,7 @@ struct Given {
 };
 
 // --from/--to (uv line) or --downhill (walk) on a surface file.
-std::string surface_paths(const Args& a, const std::string& text, const Given& given) {
+std::pair<std::string, std::vector<Vec3d>> surface_paths(const Args& a, const std::string& text, const Given& given) {
   auto surface = parse_surface_json(text, a.input);
   if (!surface) {
     // A JSON file of another kind inbetween reads: say so and name the command that reads it.
@@ -121,7 +143,7 @@ std::string surface_paths(const Args& a, const std::string& text, const Given& g
       out += format_number(uv.x) + ',' + format_number(uv.y) + ',' + format_number(p.x) + ',' + format_number(p.y) + ',' +
              format_number(p.z) + '\n';
     }
-    return out;
+    return {out, points};
   }
   if (given.count) throw CommandError{"--count is for the (u, v) line; --downhill takes --step and --max-steps"};
   const std::vector<double>& start = a.downhill;
@@ -138,7 +160,7 @@ std::string surface_paths(const Args& a, const std::string& text, const Given& g
   options.max_steps = a.max_steps;
   auto path = walk_on_surface(*surface, from, options);
   if (!path) fail(path.error(), a);
-  return xyz_rows(*path);
+  return {xyz_rows(*path), *path};
 }
 
 void setup(CLI::App& root) {
@@ -182,6 +204,8 @@ void setup(CLI::App& root) {
   auto* max_steps = surface->add_option("--max-steps", args->max_steps, "surface file, downhill: steps at most")
                         ->capture_default_str();
   surface->add_option("-o,--output", args->output, "output CSV (default: standard output)");
+  surface->add_option("--curve", args->curve,
+                      "also write a curve file (centripetal catmull-rom through the points, readable by `curve sample`)");
   surface->callback([args, from, to, method, downhill, count, step, max_steps] {
     // --method downhill --from … is --downhill ….
     const bool by_method = args->method == "downhill";
@@ -191,13 +215,16 @@ void setup(CLI::App& root) {
       if (from->count() == 0) throw CommandError{"--method downhill needs --from, the start"};
       args->downhill = args->from;
     }
+    if (!args->curve.empty() && args->curve == args->output)
+      throw CommandError{"--curve: the curve and the CSV cannot both go to " + args->curve};
     const std::string text = read_input(args->input);
     if (is_surface_file(text)) {
       if (!by_method && downhill->count() > 0 && (from->count() > 0 || to->count() > 0 || method->count() > 0))
         throw CommandError{"--downhill takes no --from, --to or --method"};
       const Given given{by_method,          method->count() > 0, from->count() > 0,  to->count() > 0,
                         downhill->count() > 0, count->count() > 0,  step->count() > 0, max_steps->count() > 0};
-      write_output(args->output, surface_paths(*args, text, given));
+      const auto [csv, points] = surface_paths(*args, text, given);
+      write_results(*args, csv, points);
       return;
     }
     if (method->count() > 0 && args->method == "uv")
@@ -223,7 +250,7 @@ void setup(CLI::App& root) {
       else points = edge_mesh_path(*mesh, i, j);
     }
     if (!points) fail(points.error(), *args);
-    write_output(args->output, xyz_rows(*points));
+    write_results(*args, xyz_rows(*points), *points);
   });
 }
 

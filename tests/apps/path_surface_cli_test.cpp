@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "inbetween/io/curve_file.hpp"
 #include "inbetween/io/obj.hpp"
 #include "inbetween/paths/mesh_path.hpp"
 #include "support/cli.hpp"
@@ -215,6 +218,33 @@ TEST(PathSurfaceCli, UvLineOnTheSphereIsACircleOfLatitude) {
     EXPECT_NEAR(rows[i][3], 2 * std::sin(0.5), 1e-15);
     EXPECT_NEAR(std::atan2(rows[i][4], rows[i][2]), rows[i][0], 1e-14);
   }
+}
+
+TEST(PathSurfaceCli, CurveFilePassesThroughThePoints) {
+  // --curve: a catmull-rom curve file whose control points are the CSV's points (the curve
+  // interpolates them), for a surface file and a mesh alike.
+  for (const std::string& args : {kExamples + "sphere.json --from 0 0.5 --to 1.5 0.5 --count 5",
+                                  kTorus + " --from 0 --to 24 --method plane"}) {
+    SCOPED_TRACE(args);
+    const auto curve = test_dir() / "c.json";
+    const CliRun r = run_cli("path surface " + args + " --curve " + curve.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::istringstream in(r.out);
+    std::string header;
+    std::getline(in, header);
+    const std::size_t columns = header == "u,v,x,y,z" ? 5 : 3;
+    const auto rows = numeric_rows(r.out, header, columns);
+    auto file = inbetween::parse_curve_json(slurp(curve), "c.json");
+    ASSERT_TRUE(file) << file.error().describe();
+    const auto json = nlohmann::json::parse(slurp(curve));
+    EXPECT_EQ(json["type"], "catmull-rom");
+    ASSERT_EQ(json["points"].size(), rows.size());
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(json["points"][i][c].get<double>(), rows[i][columns - 3 + c]);
+  }
+  const CliRun single = run_cli("path surface " + kExamples + "sphere.json --from 0 0.5 --to 0 0.5 --curve x.json");
+  EXPECT_EQ(single.exit_code, 2);
+  EXPECT_NE(single.err.find("--curve: the path is a single point"), std::string::npos) << single.err;
 }
 
 TEST(PathSurfaceCli, DownhillOnTheBowlAndTheSphere) {
