@@ -1,4 +1,4 @@
-// `inbetween path find ENV.json -o PATH.json [--timing FILE]`: path finding among obstacles in 3-D
+// `inbetween path find ENV.json -o PATH.json [--timing FILE] [--poses FILE]`: path finding among obstacles in 3-D
 // (texts 004 §3.4.5).  Reads an environment file (docs/paths.md), plans a collision-free path
 // through the static obstacles and the via points, smooths it into a Catmull-Rom curve that still
 // clears every grown obstacle, times the motion along it around the moving spheres, and writes the
@@ -20,7 +20,7 @@ namespace inbetween::cli {
 namespace {
 
 struct Args {
-  std::string input, output, timing = "-";
+  std::string input, output, timing = "-", poses;
   bool no_steering = false;
 };
 
@@ -31,7 +31,7 @@ struct Args {
   throw CommandError{located.describe()};
 }
 
-std::string timing_json(const FoundPath& f, const PathTimingOptions& options) {
+std::string timing_json(const FoundPath& f, const PathTimingOptions& options, const CapsuleMover& capsule) {
   const PathTiming& t = f.timing;
   nlohmann::json j;
   j["inbetween_timing"] = 1;
@@ -51,6 +51,20 @@ std::string timing_json(const FoundPath& f, const PathTimingOptions& options) {
                        {"side", d.front ? "front" : "behind"},
                        {"point", {d.point.x, d.point.y, d.point.z}}});
   j["detours"] = detours;
+  if (f.capsule) {
+    // The capsule's turns in place, at the polyline's inner vertices.
+    nlohmann::json turns = nlohmann::json::array();
+    const CapsuleMotion& m = *f.capsule;
+    for (std::size_t i = 1; i + 1 < m.points.size(); ++i)
+      turns.push_back({{"point", {m.points[i].x, m.points[i].y, m.points[i].z}},
+                       {"angle_deg", m.turn_rad[i] * 180 / pi_v<double>},
+                       {"t0", m.arrive[i]},
+                       {"t1", m.leave[i]}});
+    j["mover"] = {{"capsule", {{"half_length", capsule.half_length}, {"turn_rate_deg", capsule.turn_rate_deg}}}};
+    j["turns"] = turns;
+  } else {
+    j["mover"] = {{"sphere", nlohmann::json::object()}};
+  }
   const PlannedPolyline& poly = f.polyline;
   j["polyline"] = {{"points", poly.points.size()},       {"length", poly.length},
                    {"lattice_length", poly.lattice_length}, {"cell_size", poly.cell_size},
@@ -62,6 +76,28 @@ std::string timing_json(const FoundPath& f, const PathTimingOptions& options) {
   return j.dump(2) + "\n";
 }
 
+// The most rows --poses writes.
+constexpr double kMaxPoseRows = 1e7;
+
+// The capsule's pose at every frame 0, 1/fps, … and at the end: CSV t,x,y,z,qw,qx,qy,qz.
+std::string poses_csv(const CapsuleMotion& m, double fps) {
+  std::string out = "t,x,y,z,qw,qx,qy,qz\n";
+  const double end = m.arrive.back();
+  if (!(end * fps <= kMaxPoseRows))
+    throw CommandError{"--poses: " + format_number(end) + " s at " + format_number(fps) + " fps is more than " +
+                       format_number(kMaxPoseRows) + " rows; lower fps"};
+  auto row = [&](double t) {
+    const MoverPose p = capsule_pose_at(m, t);
+    for (double v : {t, p.position.x, p.position.y, p.position.z, p.rotation.w, p.rotation.x, p.rotation.y})
+      out += format_number(v) + ',';
+    out += format_number(p.rotation.z) + '\n';
+  };
+  long long j = 0;
+  for (; double(j) / fps < end; ++j) row(double(j) / fps);
+  row(end);
+  return out;
+}
+
 void setup(CLI::App& root) {
   // `path` may already exist (path fit, path smooth); share it.
   CLI::App* path = nullptr;
@@ -69,21 +105,30 @@ void setup(CLI::App& root) {
   if (path == nullptr) path = root.add_subcommand("path", kPathDescription);
   path->require_subcommand(1);
   auto* find = path->add_subcommand(
-      "find", "Find a collision-free path among 3-D obstacles (Parent, Computer Animation, section 3.4.5) and its timing");
+      "find",
+      "Find a collision-free path among 3-D obstacles for a sphere or a capsule that turns along its path (Parent, "
+      "Computer Animation, section 3.4.5) and its timing");
   auto args = std::make_shared<Args>();
   find->add_option("ENV", args->input, "environment file (JSON, docs/paths.md); - for stdin")->required();
   find->add_option("-o,--output", args->output, "output curve file (catmull-rom, readable by `curve sample`)")
       ->required();
   find->add_option("--timing", args->timing, "where the timing JSON goes (default: standard output)")
       ->capture_default_str();
+  find->add_option("--poses", args->poses,
+                   "capsule mover: CSV t,x,y,z,qw,qx,qy,qz of the centre and the rotation (local +x = the capsule's axis) "
+                   "at every frame (fps of the environment file) and the end");
   find->add_flag("--no-steering", args->no_steering,
                  "avoid moving spheres by the timing only (no detours in front of or behind them)");
   find->callback([args] {
     const std::string& file = args->input;
     if (args->output == args->timing && args->output != "")
       throw CommandError{"--timing: the timing and the curve cannot both go to " + args->output};
+    if (!args->poses.empty() && (args->poses == args->output || args->poses == args->timing))
+      throw CommandError{"--poses: the poses cannot go to the same place as the curve or the timing (" + args->poses + ")"};
     const auto parsed = parse_environment_json(read_input(file), file);
     if (!parsed) throw CommandError{parsed.error().describe()};
+    if (!args->poses.empty() && !parsed->environment.capsule)
+      throw CommandError{"--poses: " + file + " has a spherical mover, which has no orientation; poses are for \"mover\": {\"capsule\": …}"};
     const auto env = Environment::build(parsed->environment);
     if (!env) fail(env.error(), file);
     const auto found = find_path(*env, parsed->ends,
@@ -98,9 +143,11 @@ void setup(CLI::App& root) {
       fail(found.error(), file, timing ? "no timing: " : option ? "" : "no path: ");
     }
     const std::string curve = write_curve_json(AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{found->smooth.curve}});
-    const std::string report = timing_json(*found, parsed->timing);
+    const std::string report = timing_json(*found, parsed->timing, env->capsule().value_or(CapsuleMover{}));
+    const std::string poses = found->capsule ? poses_csv(*found->capsule, parsed->timing.fps) : "";
     write_output(args->output, curve);
     write_output(args->timing, report);
+    if (!args->poses.empty()) write_output(args->poses, poses);
   });
 }
 

@@ -65,7 +65,8 @@ void write_output(const std::string& path, const std::string& content);
 /// Reads a whole file ("-" means standard input); throws CommandError naming the file on failure.
 /// The `path` command's one-line description, the same whichever path subcommand registers it first.
 inline constexpr const char* kPathDescription =
-    "Paths: fit curves to samples, smooth point lists, walk on mesh surfaces (across faces, along edges, downhill) and find paths around obstacles";
+    "Paths: fit curves to samples, smooth point lists, walk on meshes and named surfaces (across faces, along edges, "
+    "(u, v) lines, downhill) and find paths around obstacles for a sphere or a turning capsule";
 
 std::string read_input(const std::string& path);
 

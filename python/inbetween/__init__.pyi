@@ -207,3 +207,8 @@ def downhill_path(obj: str | PathLike[str], start_vertex: int, up: ArrayLike = .
     """The downhill path on a triangle mesh from a vertex: points (n, 3)."""
 def find_path(environment: Source, steering: bool = True) -> tuple[Curve, dict[str, Any]]:
     """Path finding among obstacles: (Curve, timing dict)."""
+def surface_uv_path(surface: Source, from_uv: ArrayLike, to_uv: ArrayLike, count: int = 33) -> NDArray:
+    """The straight (u, v) line mapped onto a named surface: points (n, 3)."""
+def surface_downhill_path(surface: Source, start: ArrayLike, up: ArrayLike = ..., step: float = 0.0,
+                          max_steps: int = 100000) -> NDArray:
+    """Downhill on a named surface from S(u, v) or a point (x, y, z): points (n, 3)."""

@@ -12,9 +12,11 @@
 #include "inbetween/io/environment_file.hpp"
 #include "inbetween/io/obj.hpp"
 #include "inbetween/io/read_file.hpp"
+#include "inbetween/io/surface_file.hpp"
 #include "inbetween/paths/mesh_path.hpp"
 #include "inbetween/paths/path_planner.hpp"
 #include "inbetween/paths/smoothing.hpp"
+#include "inbetween/paths/surface_path.hpp"
 #include "inbetween/timing/bspline_fit.hpp"
 
 namespace inbetween::python {
@@ -49,7 +51,7 @@ Array array_of(const std::vector<Vec3d>& pts, int dim, bool flat) {
 
 std::string text_of(const py::object& source, std::string& name) {
   if (py::isinstance<py::dict>(source)) {
-    name = "environment";
+    name = source.contains("inbetween_surface") ? "surface" : "environment";
     return json_text(source);
   }
   if (py::isinstance<py::str>(source)) {
@@ -165,11 +167,57 @@ void bind_paths(py::module_& m) {
     timing["wait"] = found->timing.wait;
     timing["length"] = found->arc.length();
     timing["keys"] = keys;
+    if (found->capsule) {
+      // The capsule's pose at every frame and the end, as `path find --poses` writes it.
+      const CapsuleMotion& m = *found->capsule;
+      const double end = m.arrive.back(), fps = parsed.timing.fps;
+      if (!(end * fps <= 1e7)) throw py::value_error("find_path: more than 1e7 poses; lower fps");
+      std::vector<std::array<double, 8>> poses;
+      auto row = [&](double t) {
+        const MoverPose p = capsule_pose_at(m, t);
+        poses.push_back({t, p.position.x, p.position.y, p.position.z, p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z});
+      };
+      for (long long j = 0; double(j) / fps < end; ++j) row(double(j) / fps);
+      row(end);
+      timing["poses"] = poses;
+    }
     return py::make_tuple(c, timing);
   }, py::arg("environment"), py::arg("steering") = true,
      "Path finding among obstacles (`inbetween path find`; docs/paths.md): an environment file (path, dict or JSON "
      "text) → (Curve of type catmull-rom clear of the grown obstacles, timing dict with duration, wait, length and "
-     "keys [(t, s)] around the moving spheres).");
+     "keys [(t, s)] around the moving spheres; with a capsule mover also poses [(t, x, y, z, qw, qx, qy, qz)] at every "
+     "frame and the end, as `path find --poses`).");
+
+  m.def("surface_uv_path", [](const py::object& surface, const Array& from_uv, const Array& to_uv, int count) {
+    std::string name;
+    const std::string text = text_of(surface, name);
+    const SurfaceShape s = take(parse_surface_json(text, name));
+    if (from_uv.size() != 2 || to_uv.size() != 2) throw py::value_error("surface_uv_path: from_uv and to_uv take 2 numbers (u, v)");
+    if (count < 2) throw py::value_error("surface_uv_path: count must be >= 2");
+    const Vec2d a{from_uv.data()[0], from_uv.data()[1]}, b{to_uv.data()[0], to_uv.data()[1]};
+    return array_of(parametric_surface_path<double>([&](double u, double v) { return s.point(u, v); }, a, b, count), 3, false);
+  }, py::arg("surface"), py::arg("from_uv"), py::arg("to_uv"), py::arg("count") = 33,
+     "The straight line from from_uv to to_uv in a named surface's (u, v) space mapped onto it, `count` points (n, 3) "
+     "(`inbetween path surface SURFACE.json --from U V --to U V`; surface file as path, dict or JSON text, docs/paths.md).");
+
+  m.def("surface_downhill_path", [](const py::object& surface, const Array& start, const Array& up, double step, int max_steps) {
+    std::string name;
+    const std::string text = text_of(surface, name);
+    const SurfaceShape s = take(parse_surface_json(text, name));
+    if (!s.has_implicit()) throw py::value_error("surface_downhill_path: a " + std::string(s.kind()) + " has no implicit form");
+    if (start.size() != 2 && start.size() != 3) throw py::value_error("surface_downhill_path: start is (u, v) or (x, y, z)");
+    if (up.size() != 3) throw py::value_error("surface_downhill_path: up takes 3 numbers");
+    const double* p = start.data();
+    const Vec3d from = start.size() == 2 ? s.point(p[0], p[1]) : Vec3d{p[0], p[1], p[2]};
+    SurfaceWalkOptions<double> o;
+    o.up = {up.data()[0], up.data()[1], up.data()[2]};
+    o.step = step == 0 ? s.scale() / 20 : step;
+    o.max_steps = max_steps;
+    return array_of(take(walk_on_surface(s, from, o), name), 3, false);
+  }, py::arg("surface"), py::arg("start"), py::arg("up") = std::vector<double>{0, 1, 0}, py::arg("step") = 0.0,
+     py::arg("max_steps") = 100000,
+     "Downhill on a named surface's implicit form from S(u, v) or a point (x, y, z) pulled onto it; step 0 is the "
+     "surface's scale / 20 (`inbetween path surface SURFACE.json --downhill …`).  Points (n, 3).");
 }
 
 }  // namespace inbetween::python

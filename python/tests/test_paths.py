@@ -104,3 +104,35 @@ def test_a_device_mesh_is_refused_at_once():
     # Issue 21: surface_path("/dev/zero") read the device until memory ran out.
     with pytest.raises(inbetween.Error, match="not a regular file"):
         inbetween.surface_path("/dev/zero", 0, 1)
+
+
+def test_surface_uv_and_downhill_paths_equal_the_tools(source_dir, cli):
+    # Named surfaces (docs/paths.md): the same doubles as `path surface SURFACE.json`.
+    sphere = source_dir / "examples" / "surfaces" / "sphere.json"
+    pts = inbetween.surface_uv_path(sphere, [0, 0.5], [1.5, 0.5], count=7)
+    rows = cli("path", "surface", sphere, "--from", 0, 0.5, "--to", 1.5, 0.5, "--count", 7).stdout.split()
+    assert rows[0] == "u,v,x,y,z"
+    theirs = np.array([[float(x) for x in r.split(",")] for r in rows[1:]])
+    np.testing.assert_array_equal(pts, theirs[:, 2:])
+    # A circle of latitude (closed form): distance 2 cos 0.5 from the axis, height 2 sin 0.5.
+    np.testing.assert_allclose(np.hypot(pts[:, 0], pts[:, 2]), 2 * np.cos(0.5), rtol=0, atol=1e-14)
+    bowl = source_dir / "examples" / "surfaces" / "bowl.json"
+    down = inbetween.surface_downhill_path(bowl, [1.5, 1])
+    rows = cli("path", "surface", bowl, "--downhill", 1.5, 1).stdout.split()
+    np.testing.assert_array_equal(down, np.array([[float(x) for x in r.split(",")] for r in rows[1:]]))
+    assert np.hypot(down[-1, 0], down[-1, 2]) <= 0.5 / 20  # the bottom of y = x² + z², within a step
+    # From a dictionary, and the errors.
+    assert inbetween.surface_uv_path(json.loads(sphere.read_text()), [0, 0], [1, 0], count=2).shape == (2, 3)
+    with pytest.raises(inbetween.Error, match="radius"):
+        inbetween.surface_uv_path({"inbetween_surface": 1, "sphere": {"radius": -1}}, [0, 0], [1, 0])
+
+
+def test_find_path_gives_a_capsules_poses_as_the_tool(source_dir, cli, tmp_path):
+    env = source_dir / "examples" / "environments" / "capsule_slot.json"
+    _, timing = inbetween.find_path(env)
+    poses = tmp_path / "poses.csv"
+    cli("path", "find", env, "-o", tmp_path / "p.json", "--poses", poses)
+    rows = poses.read_text().split()
+    assert rows[0] == "t,x,y,z,qw,qx,qy,qz"
+    theirs = np.array([[float(x) for x in r.split(",")] for r in rows[1:]])
+    np.testing.assert_array_equal(np.array(timing["poses"]), theirs)

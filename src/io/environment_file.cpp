@@ -164,7 +164,7 @@ Expected<EnvironmentFile> read_environment(const json& doc) {
                   ErrorCode::Unsupported);
   }
   if (auto ok = only_fields(doc, root, {"inbetween_env", "radius", "start", "goal", "via", "bounds", "obstacles", "speed",
-                                        "fps", "cell_size", "margin"});
+                                        "fps", "cell_size", "margin", "mover"});
       !ok)
     return ok.error();
   EnvironmentFile out;
@@ -182,6 +182,32 @@ Expected<EnvironmentFile> read_environment(const json& doc) {
   if (!hi) return hi.error();
   out.environment.bounds_min = *lo;
   out.environment.bounds_max = *hi;
+  if (doc.contains("mover")) {
+    const json& m = doc["mover"];
+    const Loc mover_at = join(root, "mover");
+    if (!m.is_object() || m.size() != 1) return fail(mover_at, "expected an object with one key: sphere or capsule");
+    const std::string kind = m.begin().key();
+    const json& v = m.begin().value();
+    const Loc at = join(mover_at, kind);
+    if (kind == "sphere") {
+      if (!v.is_object() || !v.empty()) return fail(at, "expected {} (the sphere's radius is the top-level radius)");
+    } else if (kind == "capsule") {
+      if (!v.is_object()) return fail(at, "expected an object with half_length (and turn_rate_deg)");
+      if (auto ok = only_fields(v, at, {"half_length", "turn_rate_deg"}); !ok) return ok.error();
+      CapsuleMover c;
+      auto half = read_number_field(v, at, "half_length");
+      if (!half) return half.error();
+      c.half_length = *half;
+      if (v.contains("turn_rate_deg")) {
+        auto rate = read_number(v["turn_rate_deg"], join(at, "turn_rate_deg"));
+        if (!rate) return rate.error();
+        c.turn_rate_deg = *rate;
+      }
+      out.environment.capsule = c;
+    } else {
+      return fail(at, "unknown mover; expected sphere or capsule", ErrorCode::Unsupported);
+    }
+  }
   auto start = read_vec3_field(doc, root, "start");
   if (!start) return start.error();
   auto goal = read_vec3_field(doc, root, "goal");

@@ -127,6 +127,22 @@ Expected<Environment> Environment::build(const RawEnvironment& raw) {
   if (!finite(raw.bounds_max - raw.bounds_min))
     return Error{ErrorCode::NotFinite, "the size of the bounds (max - min) overflows", "", {std::string("bounds"), std::string("max")}};
   Environment env;
+  if (raw.capsule) {
+    const auto at = [](const char* field) {
+      return std::vector<LocationStep>{std::string("mover"), std::string("capsule"), std::string(field)};
+    };
+    if (!(raw.capsule->half_length > 0) || !(raw.capsule->half_length <= kCapsuleMaxHalfLength))
+      return Error{ErrorCode::InvalidArgument, "the capsule's half_length must be > 0 and at most 1e150", "", at("half_length")};
+    if (!(raw.capsule->turn_rate_deg > 0) || !std::isfinite(raw.capsule->turn_rate_deg))
+      return Error{ErrorCode::InvalidArgument, "the capsule's turn_rate_deg must be finite and > 0", "", at("turn_rate_deg")};
+    for (std::size_t k = 0; k < raw.obstacles.size(); ++k)
+      if (std::holds_alternative<MovingSphereObstacle>(raw.obstacles[k]))
+        return Error{ErrorCode::Unsupported,
+                     "a capsule mover is planned among static obstacles only; obstacle " + std::to_string(k) +
+                         " is a moving sphere (the timing around moving spheres is for a spherical mover)",
+                     "", {std::string("mover"), std::string("capsule")}};
+    env.capsule_ = raw.capsule;
+  }
   env.radius_ = raw.radius;
   env.min_ = raw.bounds_min;
   env.max_ = raw.bounds_max;

@@ -1,7 +1,10 @@
 // Path finding in 3-D (texts 004 §3.4.5); see include/inbetween/paths/path_planner.hpp.
 #include "inbetween/paths/path_planner.hpp"
 
+#include "inbetween/math/orientation_interp.hpp"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -166,6 +169,187 @@ std::vector<Vec3d> shortcut(const Environment& env, const std::vector<Vec3d>& pt
   return out;
 }
 
+
+// ---- A capsule mover (see the header's file comment) ----
+
+// The 26 lattice directions, index e = (dk + 1)·9 + (dj + 1)·3 + (di + 1), skipping 13 (no move).
+struct LatticeDirs {
+  std::array<Vec3d, 27> unit{};
+  std::array<int, 27> di{}, dj{}, dk{};
+  LatticeDirs() {
+    for (int e = 0; e < 27; ++e) {
+      di[std::size_t(e)] = e % 3 - 1;
+      dj[std::size_t(e)] = (e / 3) % 3 - 1;
+      dk[std::size_t(e)] = e / 9 - 1;
+      unit[std::size_t(e)] = normalized(Vec3d{double(di[std::size_t(e)]), double(dj[std::size_t(e)]), double(dk[std::size_t(e)])}, Vec3d{});
+    }
+  }
+};
+constexpr int kNoMove = 13;
+// A turn closer to 180° than this (radians) is a reversal: its plane is not defined, not taken.
+constexpr double kReversal = 1e-6;
+// The fan's sampling slack δ is at least the lattice spacing over this.
+constexpr double kFanSlackCells = 64;
+
+struct CapsuleSweep {
+  const Environment& env;
+  double a = 0;      // half length
+  double delta = 0;  // fan slack δ
+  double dtheta = 0; // fan sampling step, a·sin(Δθ/2) = δ
+
+  CapsuleSweep(const Environment& e, double h, double margin)
+      : env(e), a(e.capsule()->half_length), delta(std::max(margin, h / kFanSlackCells)) {
+    dtheta = 2 * std::asin(std::min(1.0, delta / a));
+  }
+  // The capsule along d translated from p to q clears by r + margin.
+  bool move_clear(const Vec3d& p, const Vec3d& q, const Vec3d& d, double margin) const {
+    return env.blocking_static(p - d * a, q + d * a, margin) < 0;
+  }
+  // The turn in place at p from d0 to d1 (unit) clears by r (sampled with slack δ).
+  bool turn_clear(const Vec3d& p, const Vec3d& d0, const Vec3d& d1, double margin) const {
+    const Vec3d c = cross(d0, d1);
+    const double angle = std::atan2(norm(c), dot(d0, d1));
+    if (!(angle > 0)) return true;  // no turn: the capsule along d0 is part of both moves
+    if (angle > pi_v<double> - kReversal) return false;
+    const int K = std::max(1, int(std::ceil(angle / dtheta)));
+    const Vec3d axis = normalized(c, Vec3d{0, 0, 1});
+    const double m = std::max(margin, delta);
+    for (int k = 0; k <= K; ++k) {
+      const Vec3d d = rotate(Quatd::from_axis_angle(axis, angle * double(k) / double(K)), d0);
+      if (env.blocking_static(p - d * a, p + d * a, m) >= 0) return false;
+    }
+    return true;
+  }
+};
+
+// A* over (node, direction of arrival) from a to b (see the header).  `d_in`: the direction the
+// capsule has at a (none at the very start).  Returns the point path, empty when there is none.
+std::vector<Vec3d> capsule_search(Lattice& lat, const Vec3d& a, const Vec3d& b, const std::optional<Vec3d>& d_in,
+                                  double& lattice_length, long long& expanded) {
+  const Environment& env = lat.env;
+  const CapsuleSweep sweep(env, lat.h, lat.margin);
+  static const LatticeDirs dirs;
+  auto turn_ok = [&](const std::optional<Vec3d>& from, const Vec3d& p, const Vec3d& d, double margin) {
+    return !from || sweep.turn_clear(p, *from, d, margin);
+  };
+  // A turn by θ costs a·θ, the distance the capsule's ends travel, so that needless turns are avoided.
+  auto turn_cost = [&](const std::optional<Vec3d>& from, const Vec3d& d) {
+    return from ? sweep.a * std::atan2(norm(cross(*from, d)), dot(*from, d)) : 0.0;
+  };
+  if (distance(a, b) == 0) {
+    lattice_length = 0;
+    return {a, b};
+  }
+  const Vec3d ab = normalized(Vec3d(b - a), Vec3d{});
+  if (sweep.move_clear(a, b, ab, 0) && turn_ok(d_in, a, ab, 0)) {
+    lattice_length = distance(a, b);
+    return {a, b};
+  }
+  constexpr int kSlots = 27;  // 0 … 26 minus kNoMove: arrived along a lattice direction; kNoMove: joined from a
+  // State s = node·kSlots + slot, plus the start and the goal; at most max_nodes of them (plan_polyline).
+  const long long N = lat.count();
+  const long long start = N * kSlots, goal = start + 1;
+  std::vector<double> g(std::size_t(goal) + 1, kInf);
+  std::vector<std::int64_t> parent(std::size_t(goal) + 1, -1);
+  std::vector<std::uint8_t> closed(std::size_t(goal) + 1, 0);
+  std::vector<std::int8_t> move_ok(std::size_t(N) * 27, -1);  // per (node, direction): the move is clear
+  auto pos = [&](long long s) { return s == start ? a : s == goal ? b : lat.point(int(s / kSlots)); };
+  auto arrival = [&](long long s) -> std::optional<Vec3d> {
+    if (s == start) return d_in;
+    const int slot = int(s % kSlots);
+    if (slot == kNoMove) return normalized(Vec3d(lat.point(int(s / kSlots)) - a), Vec3d{1, 0, 0});
+    return dirs.unit[std::size_t(slot)];
+  };
+  using Item = std::tuple<double, double, long long>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
+  auto relax = [&](long long from, long long to, double cost) {
+    const double ng = g[std::size_t(from)] + cost;
+    if (ng < g[std::size_t(to)]) {
+      g[std::size_t(to)] = ng;
+      parent[std::size_t(to)] = from;
+      open.emplace(ng + distance(pos(to), b), -ng, to);
+    }
+  };
+  const auto goal_list = lat.joins(b);
+  std::map<int, double> goal_joins(goal_list.begin(), goal_list.end());
+  g[std::size_t(start)] = 0;
+  open.emplace(distance(a, b), 0.0, start);
+  while (!open.empty()) {
+    const auto [f, neg_g, s] = open.top();
+    open.pop();
+    if (closed[std::size_t(s)]) continue;
+    closed[std::size_t(s)] = 1;
+    ++expanded;
+    if (s == goal) break;
+    const std::optional<Vec3d> din = arrival(s);
+    if (s == start) {
+      for (const auto& [m, c] : lat.joins(a)) {
+        const Vec3d q = lat.point(m);
+        const Vec3d d = normalized(Vec3d(q - a), Vec3d{1, 0, 0});
+        if (sweep.move_clear(a, q, d, 0) && turn_ok(din, a, d, 0))
+          relax(s, (long long)m * kSlots + kNoMove, c + turn_cost(din, d));
+      }
+      continue;
+    }
+    const int n = int(s / kSlots);
+    const Vec3d p = lat.point(n);
+    if (auto it = goal_joins.find(n); it != goal_joins.end()) {
+      const Vec3d d = normalized(Vec3d(b - p), Vec3d{1, 0, 0});
+      if (distance(p, b) == 0) relax(s, goal, 0);
+      else if (sweep.move_clear(p, b, d, 0) && turn_ok(din, p, d, 0)) relax(s, goal, it->second + turn_cost(din, d));
+    }
+    const int i = n % lat.nx, j = (n / lat.nx) % lat.ny, k = n / (lat.nx * lat.ny);
+    for (int e = 0; e < 27; ++e) {
+      if (e == kNoMove) continue;
+      const int ii = i + dirs.di[std::size_t(e)], jj = j + dirs.dj[std::size_t(e)], kk = k + dirs.dk[std::size_t(e)];
+      if (ii < 0 || jj < 0 || kk < 0 || ii >= lat.nx || jj >= lat.ny || kk >= lat.nz) continue;
+      const int m = lat.id(ii, jj, kk);
+      const long long to = (long long)m * kSlots + e;
+      if (closed[std::size_t(to)] || !lat.is_usable(m)) continue;
+      const Vec3d q = lat.point(m);
+      const double cost = distance(p, q) + turn_cost(din, dirs.unit[std::size_t(e)]);
+      if (g[std::size_t(s)] + cost >= g[std::size_t(to)]) continue;
+      std::int8_t& ok = move_ok[std::size_t(n) * 27 + std::size_t(e)];
+      if (ok < 0) ok = sweep.move_clear(p, q, dirs.unit[std::size_t(e)], lat.margin) ? 1 : 0;
+      if (ok == 0 || !turn_ok(din, p, dirs.unit[std::size_t(e)], lat.margin)) continue;
+      relax(s, to, cost);
+    }
+  }
+  if (!closed[std::size_t(goal)]) return {};
+  std::vector<Vec3d> out;
+  for (long long s = goal; s >= 0; s = parent[std::size_t(s)]) out.push_back(pos(s));
+  std::reverse(out.begin(), out.end());
+  lattice_length = polyline_length(out);  // the length alone, without the turns' cost
+  return out;
+}
+
+// Greedy shortcutting that keeps the capsule's moves and turns clear: from vertex i (arrived in
+// direction d_in) jump to the farthest j whose move, turn at i and turn at j (onto the path's next
+// segment) are all clear; i + 1 always is (the search checked it).
+std::vector<Vec3d> capsule_shortcut(const Environment& env, const std::vector<Vec3d>& pts, std::optional<Vec3d> d_in,
+                                    double h, double margin) {
+  if (pts.size() <= 2) return pts;
+  const CapsuleSweep sweep(env, h, margin);
+  auto dir = [](const Vec3d& p, const Vec3d& q) { return normalized(Vec3d(q - p), Vec3d{1, 0, 0}); };
+  std::vector<Vec3d> out{pts.front()};
+  std::size_t i = 0;
+  while (i + 1 < pts.size()) {
+    std::size_t next = i + 1;
+    for (std::size_t j = pts.size() - 1; j > i + 1; --j) {
+      const Vec3d d = dir(pts[i], pts[j]);
+      if (!sweep.move_clear(pts[i], pts[j], d, margin)) continue;
+      if (d_in && !sweep.turn_clear(pts[i], *d_in, d, margin)) continue;
+      if (j + 1 < pts.size() && !sweep.turn_clear(pts[j], d, dir(pts[j], pts[j + 1]), margin)) continue;
+      next = j;
+      break;
+    }
+    d_in = dir(pts[i], pts[next]);
+    out.push_back(pts[next]);
+    i = next;
+  }
+  return out;
+}
+
 }  // namespace
 
 Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& ends, const PlannerOptions& options) {
@@ -180,9 +364,12 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
   if (margin < 0) margin = h / 4;
   Lattice lat{env, h, margin, 0, 0, 0, {}};
   const double nxd = std::floor(extent.x / h) + 1, nyd = std::floor(extent.y / h) + 1, nzd = std::floor(extent.z / h) + 1;
-  if (!(nxd * nyd * nzd <= double(options.max_nodes)) || nxd * nyd * nzd > 1e9)
+  // A capsule searches 27 states per node (its direction of arrival): the limit counts states.
+  const double per_node = env.capsule() ? 27 : 1;
+  if (!(nxd * nyd * nzd * per_node <= double(options.max_nodes)) || nxd * nyd * nzd > 1e9)
     return Error{ErrorCode::InvalidArgument,
-                 "cell_size " + num(h) + " gives " + num(nxd * nyd * nzd) + " lattice nodes, more than the limit of " +
+                 "cell_size " + num(h) + " gives " + num(nxd * nyd * nzd) + " lattice nodes" +
+                     (env.capsule() ? " (× 27 directions for the capsule)" : "") + ", more than the limit of " +
                      std::to_string(options.max_nodes), "", {std::string("cell_size")}};
   lat.nx = int(nxd);
   lat.ny = int(nyd);
@@ -208,21 +395,37 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
                    "", s.where};
   }
 
+  std::optional<Vec3d> d_in;  // a capsule's direction at the start of the next leg
   PlannedPolyline out;
   out.cell_size = h;
   out.margin = margin;
   out.points.push_back(ends.start);
   for (std::size_t leg = 0; leg + 1 < stops.size(); ++leg) {
     double lattice_length = 0;
-    std::vector<Vec3d> pts = lattice_search(lat, stops[leg].p, stops[leg + 1].p, lattice_length, out.expanded);
+    std::vector<Vec3d> pts = env.capsule()
+                                 ? capsule_search(lat, stops[leg].p, stops[leg + 1].p, d_in, lattice_length, out.expanded)
+                                 : lattice_search(lat, stops[leg].p, stops[leg + 1].p, lattice_length, out.expanded);
     if (pts.empty())
       return Error{ErrorCode::InvalidArgument,
                    stops[leg + 1].name + " cannot be reached from " + stops[leg].name +
-                       ": no path on the lattice of spacing " + num(h) + " inside the bounds (a gap narrower than about " +
-                       num(h + 2 * (env.radius() + margin)) + " may be missed; try a smaller cell_size)",
+                       ": no path on the lattice of spacing " + num(h) + " inside the bounds" +
+                       (env.capsule() ? " for the capsule of half length " + num(env.capsule()->half_length) + " and radius " +
+                                            num(env.radius()) + " moving along its axis and turning in place"
+                                      : std::string()) +
+                       " (a gap narrower than about " + num(h + 2 * (env.radius() + margin)) +
+                       " may be missed; try a smaller cell_size)",
                    "", stops[leg + 1].where};
     out.lattice_length += lattice_length;
-    pts = shortcut(env, pts, margin);
+    if (env.capsule()) {
+      pts = capsule_shortcut(env, pts, d_in, h, margin);
+      for (std::size_t i = pts.size() - 1; i > 0; --i)
+        if (distance(pts[i - 1], pts[i]) > 0) {
+          d_in = normalized(Vec3d(pts[i] - pts[i - 1]), Vec3d{1, 0, 0});
+          break;
+        }
+    } else {
+      pts = shortcut(env, pts, margin);
+    }
     out.points.insert(out.points.end(), pts.begin() + 1, pts.end());
     if (leg + 2 < stops.size()) out.via_index.push_back(int(out.points.size()) - 1);
   }
@@ -237,6 +440,13 @@ Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPo
   out.control_points = polyline.points;
   if (out.control_points.size() == 1) out.control_points.push_back(out.control_points[0]);
   out.via_control_index = polyline.via_index;
+  if (env.capsule()) {  // the capsule turns in place at the vertices: the polyline is its path
+    auto curve = build_catmull_rom(out.control_points, {.alpha = options.alpha, .tension = 0.0});
+    if (!curve) return curve.error();
+    out.curve = std::move(*curve);
+    out.polyline_fallback = true;
+    return out;
+  }
   const double step = options.sample_step > 0 ? options.sample_step
                       : polyline.cell_size > 0 ? polyline.cell_size / 4
                                                : std::max(polyline.length, 1.0) / 256;
@@ -488,7 +698,101 @@ Meeting first_meeting(const Environment& env, const ArcLength<CatmullRomSpline<V
 
 }  // namespace
 
+Expected<CapsuleMotion> capsule_motion(const Environment& env, std::span<const Vec3d> polyline, double speed) {
+  if (!env.capsule())
+    return Error{ErrorCode::InvalidArgument, "the environment's mover is a sphere, not a capsule", "", {std::string("mover")}};
+  if (!(speed > 0) || !std::isfinite(speed))
+    return Error{ErrorCode::InvalidArgument, "speed must be finite and > 0", "", {std::string("speed")}};
+  if (polyline.empty()) return Error{ErrorCode::TooFewPoints, "the polyline has no points", "", {std::string("points")}};
+  const double rate = env.capsule()->turn_rate_deg * pi_v<double> / 180;
+  CapsuleMotion m;
+  for (const Vec3d& p : polyline)
+    if (m.points.empty() || distance(m.points.back(), p) > 0) m.points.push_back(p);
+  const std::size_t n = m.points.size();
+  m.arrive.assign(n, 0);
+  m.leave.assign(n, 0);
+  m.turn_rad.assign(n, 0);
+  if (n == 1) {
+    m.rotations.push_back(Quatd{});
+    return m;
+  }
+  Vec3d prev_dir{1, 0, 0};
+  Quatd q{};
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const Vec3d d = normalized(Vec3d(m.points[i + 1] - m.points[i]), Vec3d{1, 0, 0});
+    // The shortest rotation from the previous direction (from +x for the first segment).
+    const Vec3d c = cross(prev_dir, d);
+    const double angle = std::atan2(norm(c), dot(prev_dir, d));
+    const Vec3d axis = norm(c) > 0 ? normalized(c, Vec3d{0, 0, 1}) : detail::any_perpendicular(prev_dir);
+    q = normalized(Quatd::from_axis_angle(axis, angle) * q);
+    m.rotations.push_back(q);
+    if (i > 0) {
+      m.turn_rad[i] = angle;
+      m.leave[i] = m.arrive[i] + angle / rate;
+    }
+    m.arrive[i + 1] = m.leave[i] + distance(m.points[i], m.points[i + 1]) / speed;
+    prev_dir = d;
+  }
+  m.leave[n - 1] = m.arrive[n - 1];
+  if (!std::isfinite(m.arrive.back()))
+    return Error{ErrorCode::InvalidArgument,
+                 "the capsule's motion lasts beyond the range of double (speed or turn_rate_deg too small)", "",
+                 {std::string("mover"), std::string("capsule"), std::string("turn_rate_deg")}};
+  return m;
+}
+
+MoverPose capsule_pose_at(const CapsuleMotion& m, double t) noexcept {
+  const std::size_t n = m.points.size();
+  if (n == 0) return {};
+  if (n == 1 || !(t > 0)) return {m.points[0], m.rotations.empty() ? Quatd{} : m.rotations[0]};
+  for (std::size_t i = 0; i < n; ++i) {
+    if (t <= m.arrive[i]) {  // on segment i − 1 (i ≥ 1 here, since arrive[0] = 0 < t)
+      const double span = m.arrive[i] - m.leave[i - 1];
+      const double f = span > 0 ? (t - m.leave[i - 1]) / span : 1;
+      return {lerp(m.points[i - 1], m.points[i], f), m.rotations[i - 1]};
+    }
+    if (t <= m.leave[i]) {  // turning at p_i (0 < i < n − 1)
+      const double f = (t - m.arrive[i]) / (m.leave[i] - m.arrive[i]);
+      return {m.points[i], slerp(m.rotations[i - 1], m.rotations[i], f)};
+    }
+  }
+  return {m.points[n - 1], m.rotations[n - 2]};
+}
+
 Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, const FindPathOptions& options) {
+  if (env.capsule()) {
+    auto poly = plan_polyline(env, ends, options.planner);
+    if (!poly) return poly.error();
+    auto smooth = smooth_planned_path(env, *poly, options.smoothing);
+    if (!smooth) return smooth.error();
+    auto arc = ArcLength<CatmullRomSpline<Vec3d>>::build(smooth->curve);
+    if (!arc) return arc.error();
+    auto motion = capsule_motion(env, poly->points, options.timing.speed);
+    if (!motion) return motion.error();
+    if (!(options.timing.fps > 0) || !std::isfinite(options.timing.fps))
+      return Error{ErrorCode::InvalidArgument, "fps must be finite and > 0", "", {std::string("fps")}};
+    // s(t): the arc length at each vertex (the curve passes them at its breakpoints), constant
+    // while turning.
+    std::vector<TimeDistanceKey<double>> keys;
+    double wait = 0, s = 0;
+    for (std::size_t i = 0; i < motion->points.size(); ++i) {
+      if (i > 0) s += distance(motion->points[i - 1], motion->points[i]);
+      s = std::min(s, arc->length());
+      if (i == 0 || motion->arrive[i] > keys.back().t) keys.push_back({motion->arrive[i], s});
+      if (motion->leave[i] > motion->arrive[i]) {
+        keys.push_back({motion->leave[i], s});
+        wait += motion->leave[i] - motion->arrive[i];
+      }
+    }
+    keys.back().s = arc->length();
+    if (keys.size() == 1) keys.push_back({1 / options.timing.fps, keys[0].s});
+    auto curve = DistanceTimeCurve<double>::from_positions(keys, PositionInterpolation::Linear);
+    if (!curve) return curve.error();
+    const double duration = keys.back().t;
+    PathTiming timing{std::move(*curve), std::move(keys), Avoidance::None, duration, wait, 0};
+    return FoundPath{std::move(*poly), std::move(*smooth), std::move(*arc), std::move(timing), Avoidance::None, {}, ends,
+                     std::move(*motion)};
+  }
   auto first = attempt(env, ends, options);
   if (!first) return first.error();
   Attempt cur = std::move(*first);
@@ -550,7 +854,7 @@ Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, cons
   }
   const Avoidance avoidance = detours.empty() ? cur.timing->value().avoidance : Avoidance::Steering;
   return FoundPath{std::move(*cur.polyline), std::move(*cur.smooth), std::move(*cur.arc),
-                   std::move(*cur.timing).value(), avoidance, std::move(detours), std::move(cur_ends)};
+                   std::move(*cur.timing).value(), avoidance, std::move(detours), std::move(cur_ends), std::nullopt};
 }
 
 }  // namespace inbetween

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "inbetween/arclength/arc_length.hpp"
@@ -198,6 +199,69 @@ TEST(PathFindCli, MalformedFilesExit2WithThePointer) {
   r = run_cli("path find /nonexistent/env.json -o x.json");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("/nonexistent/env.json"), std::string::npos) << r.err;
+}
+
+
+// A capsule mover (examples/environments/capsule_slot.json): the poses written by --poses, read
+// back from the CSV, keep the capsule (axis = the rotation's +x, half length 1, radius 0.2) clear
+// of both walls by the exact segment-to-box distance at every frame, lie on the curve written by
+// -o, and the timing lists the turns.
+TEST(PathFindCli, CapsulePosesClearTheWallsAtEveryFrame) {
+  const std::string env = std::string(INBETWEEN_SOURCE_DIR) + "/examples/environments/capsule_slot.json";
+  const fs::path dir = inbetween::test::test_dir();
+  const CliRun r = run_cli("path find " + env + " -o " + (dir / "capsule.json").string() + " --poses " +
+                           (dir / "poses.csv").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json timing = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(timing["mover"].contains("capsule"));
+  ASSERT_GE(timing["turns"].size(), 1u);
+  const BoxObstacle walls[] = {{{4.5, -1, -1}, {5.5, 4.6, 1.5}}, {{4.5, 5.4, -1}, {5.5, 11, 1.5}}};
+  std::istringstream in(slurp(dir / "poses.csv"));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "t,x,y,z,qw,qx,qy,qz");
+  int rows = 0;
+  double worst = 1e300, last_t = -1;
+  while (std::getline(in, line)) {
+    double v[8];
+    char comma = 0;
+    std::istringstream ls(line);
+    ls >> v[0];
+    for (int k = 1; k < 8; ++k) ls >> comma >> v[k];
+    ASSERT_TRUE(ls) << line;
+    EXPECT_GT(v[0], last_t);
+    last_t = v[0];
+    const Vec3d p{v[1], v[2], v[3]};
+    const Vec3d axis = rotate(Quatd::from_wxyz(v[4], v[5], v[6], v[7]), Vec3d{1, 0, 0});
+    EXPECT_NEAR(norm(axis), 1.0, kExact);
+    for (const BoxObstacle& w : walls) worst = std::min(worst, segment_distance_to_obstacle(w, p - axis, p + axis) - 0.2);
+    ++rows;
+  }
+  // One row per frame at 24 fps over the duration, and the end.
+  const double duration = timing["duration"];
+  EXPECT_EQ(rows, int(std::ceil(duration * 24)) + 1);
+  EXPECT_NEAR(last_t, duration, kExact);
+  EXPECT_GE(worst, -kExact);
+  // --poses needs a capsule.
+  const CliRun sphere = run_cli("path find " + kExample + " -o " + (dir / "s.json").string() + " --poses " +
+                                (dir / "s.csv").string());
+  EXPECT_EQ(sphere.exit_code, 2);
+  EXPECT_NE(sphere.err.find("--poses: "), std::string::npos) << sphere.err;
+  EXPECT_FALSE(fs::exists(dir / "s.json"));
+  // A capsule among moving spheres is refused, naming the mover.
+  auto doc = nlohmann::json::parse(slurp(env));
+  doc["obstacles"].push_back({{"moving_sphere", {{"center", {5, 5, 0}}, {"velocity", {0, 1, 0}}, {"radius", 0.3}}}});
+  const CliRun moving = run_cli("path find " + write_test_file("env.json", doc.dump()).string() + " -o x.json");
+  EXPECT_EQ(moving.exit_code, 2);
+  EXPECT_NE(moving.err.find("env.json:/mover/capsule: a capsule mover is planned among static obstacles only"), std::string::npos)
+      << moving.err;
+  // A slot narrower than 2r: no path, with the reason.
+  doc = nlohmann::json::parse(slurp(env));
+  doc["obstacles"][1]["box"]["min"][1] = 4.9;
+  const CliRun narrow = run_cli("path find " + write_test_file("env.json", doc.dump()).string() + " -o x.json");
+  EXPECT_EQ(narrow.exit_code, 2);
+  EXPECT_NE(narrow.err.find("env.json:/goal: no path: the goal cannot be reached from the start"), std::string::npos) << narrow.err;
+  EXPECT_NE(narrow.err.find("for the capsule of half length 1 and radius 0.2"), std::string::npos) << narrow.err;
 }
 
 }  // namespace

@@ -59,6 +59,20 @@ TEST(EnvironmentFile, ExampleParsesEveryField) {
 
 // Each edit of the example breaks it at one place: the reader names that pointer, and the schema
 // (where it can see the fault) rejects it too.
+TEST(EnvironmentFile, CapsuleMoverIsRead) {
+  const auto f = parse_environment_json(slurp(std::string(INBETWEEN_SOURCE_DIR) + "/examples/environments/capsule_slot.json"),
+                                        "capsule_slot.json");
+  ASSERT_TRUE(f) << f.error().describe();
+  ASSERT_TRUE(f->environment.capsule);
+  EXPECT_EQ(f->environment.capsule->half_length, 1.0);
+  EXPECT_EQ(f->environment.capsule->turn_rate_deg, 90.0);
+  EXPECT_EQ(f->environment.radius, 0.2);
+  const auto sphere = parse_environment_json(R"({"inbetween_env": 1, "radius": 0.5, "mover": {"sphere": {}},
+      "start": [0, 0, 0], "goal": [1, 1, 1], "bounds": {"min": [0, 0, 0], "max": [1, 1, 1]}, "obstacles": []})", "e.json");
+  ASSERT_TRUE(sphere) << sphere.error().describe();
+  EXPECT_FALSE(sphere->environment.capsule);
+}
+
 TEST(EnvironmentFile, MalformedFilesNameThePointer) {
   const nlohmann::json good = nlohmann::json::parse(slurp(kExample));
   struct Case {
@@ -78,6 +92,10 @@ TEST(EnvironmentFile, MalformedFilesNameThePointer) {
       {"/obstacles/3/obb/rotation", nlohmann::json::array({1, 0, 0}), "env.json:/obstacles/3/obb/rotation", true},
       {"/via/0", "here", "env.json:/via/0", true},
       {"/speed", "fast", "env.json:/speed", true},
+      {"/mover", nlohmann::json::object({{"cube", nlohmann::json::object()}}), "env.json:/mover/cube", false},
+      {"/mover", nlohmann::json::object({{"capsule", {{"length", 1}}}}), "env.json:/mover/capsule/length", true},
+      {"/mover", nlohmann::json::object({{"capsule", {{"turn_rate_deg", 1}}}}), "env.json:/mover/capsule/half_length", false},
+      {"/mover", nlohmann::json::object({{"capsule", {{"half_length", "long"}}}}), "env.json:/mover/capsule/half_length", false},
   };
   for (const Case& c : cases) {
     nlohmann::json doc = good;

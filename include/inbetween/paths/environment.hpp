@@ -1,6 +1,7 @@
 #pragma once
 /// Obstacle environments for 3-D path finding (texts 004 §3.4.5).  The moving object is
-/// approximated by a sphere of radius r, and every obstacle is grown by r ("increasing the size of
+/// approximated by a sphere of radius r (or is a capsule of radius r, CapsuleMover, whose swept
+/// moves and turns the planner checks as segments), and every obstacle is grown by r ("increasing the size of
 /// the obstacles by the size of the approximating sphere"), so the object's centre moves as a
 /// point among the grown obstacles.  A grown sphere is a sphere of radius R + r; a grown box
 /// (axis-aligned or oriented) is the rounded box {p : distance(p, box) < r}, computed exactly
@@ -19,6 +20,7 @@
 /// the grown obstacle is allowed); a segment is clear when every point of it is.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <variant>
@@ -63,12 +65,26 @@ struct MovingSphereObstacle {
 /// One obstacle of an environment file.
 using RawObstacle = std::variant<SphereObstacle, BoxObstacle, OrientedBoxObstacle, MovingSphereObstacle>;
 
+/// A mover that is a capsule rather than a sphere: the points within the environment's radius r of
+/// a segment of length 2·half_length through its centre.  The segment is the mover's local +x
+/// axis, and the mover keeps it along the direction of travel: it moves along its own axis and
+/// turns in place at the vertices of its polyline, at `turn_rate_deg` degrees per second
+/// (path_planner.hpp, docs/paths.md).
+struct CapsuleMover {
+  double half_length = 1;     ///< > 0 and ≤ kCapsuleMaxHalfLength, half the length of the axis segment
+  double turn_rate_deg = 90;  ///< > 0, degrees per second while turning in place
+};
+
+/// The longest half length of a capsule mover (so that its ends and their squared distances stay finite).
+inline constexpr double kCapsuleMaxHalfLength = 1e150;
+
 /// Plain, unchecked environment data.
 struct RawEnvironment {
-  double radius = 0;                ///< radius r ≥ 0 of the sphere approximating the moving object
+  double radius = 0;                ///< radius r ≥ 0 of the sphere approximating the moving object (a capsule's radius)
   Vec3d bounds_min{};               ///< the search space [bounds_min, bounds_max] of the object's centre
   Vec3d bounds_max{};               ///< each component > bounds_min's
   std::vector<RawObstacle> obstacles;  ///< in file order; indices name them in errors and reports
+  std::optional<CapsuleMover> capsule;  ///< when set, the mover is this capsule of radius r (no moving spheres then)
 };
 
 /// Unsigned distance from p to a solid sphere, box or oriented box (0 inside).  Exact (closed form).
@@ -94,11 +110,15 @@ class Environment {
   /// Checks and builds.  Errors (Error::location in the file's shape, shown here as JSON pointers): radius not finite or < 0
   /// ("/radius"), bounds not finite or empty ("/bounds/min", "/bounds/max"), and per obstacle k a
   /// non-finite number, a size ≤ 0, box min not below max, or a zero rotation
-  /// ("/obstacles/k/<kind>/<field>", message naming "obstacle k").
+  /// ("/obstacles/k/<kind>/<field>", message naming "obstacle k"), a capsule's half_length not in
+  /// (0, kCapsuleMaxHalfLength] or turn_rate_deg not finite and > 0 ("/mover/capsule/half_length"), a capsule among moving
+  /// spheres ("/mover/capsule": the timing around movers is for a sphere).
   static Expected<Environment> build(const RawEnvironment& raw);
 
   /// Radius r of the moving object.
   double radius() const noexcept { return radius_; }
+  /// The capsule mover, when the mover is one (else a sphere of radius r).
+  const std::optional<CapsuleMover>& capsule() const noexcept { return capsule_; }
   /// Lower corner of the search bounds.
   const Vec3d& bounds_min() const noexcept { return min_; }
   /// Upper corner of the search bounds.
@@ -137,6 +157,7 @@ class Environment {
   double static_segment_distance(int k, const Vec3d& a, const Vec3d& b) const noexcept;
 
   double radius_ = 0;
+  std::optional<CapsuleMover> capsule_;
   Vec3d min_{}, max_{};
   std::vector<RawObstacle> obstacles_;
   std::vector<int> static_;         // file indices of static obstacles

@@ -16,7 +16,19 @@
 ///   as long as the shortest lattice path.
 /// - Via points: each leg start → via_1 → … → goal is planned on its own, so the path passes the
 ///   via points exactly and in order.
+/// - A capsule mover (Environment::capsule(), half length a, radius r) moves along its own axis and
+///   turns in place at the polyline's vertices.  Its states are (lattice node, direction of
+///   arrival); an edge p → q in direction d is usable when the capsule translated along it, the
+///   segment [p − a·d, q + a·d], clears by r + margin (exact); a turn at p from d₀ to d₁ sweeps the
+///   axis over the plane fan between them, checked at directions Δθ apart with the capsule
+///   grown by δ = max(margin, h/64) where a·sin(Δθ/2) = δ, which covers every direction in between
+///   (a point of the fan is within a·sin(Δθ/2) of the nearer sampled axis), so the swept turn clears
+///   by r.  Reversals (180° turns, whose plane is not defined) are not taken.  A turn by θ costs
+///   a·θ (the distance the capsule's ends travel) on top of the length, so the search prefers
+///   fewer and smaller turns; lattice_length stays the path's length.  Shortcuts keep both
+///   turns they change checked; the next leg starts with the direction the last one arrived in.
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -24,6 +36,7 @@
 #include "inbetween/arclength/arc_length.hpp"
 #include "inbetween/curves/catmull_rom.hpp"
 #include "inbetween/math/expected.hpp"
+#include "inbetween/math/quat.hpp"
 #include "inbetween/paths/environment.hpp"
 #include "inbetween/timing/distance_time.hpp"
 
@@ -58,7 +71,7 @@ struct PlannedPolyline {
   long long expanded = 0;      ///< lattice nodes taken from the open list, all legs
 };
 
-/// Plans start → via → goal through the static obstacles.  Errors (Error::location in the
+/// Plans start → via → goal through the static obstacles (for a capsule mover, see the file comment).  Errors (Error::location in the
 /// environment file's shape, shown as JSON pointers): a point outside the bounds or inside a grown static obstacle ("/start",
 /// "/via/i", "/goal", naming the obstacle), options out of range ("/cell_size", "/margin"), and a
 /// leg without a path ("/via/i" or "/goal": "cannot be reached from …").
@@ -86,7 +99,9 @@ struct SmoothPath {
   double sample_step = 0;              ///< Δs used by the check
 };
 
-/// A centripetal Catmull-Rom spline through the polyline's vertices, checked by sampling (see
+/// For a capsule mover the spline is the polyline itself (tension 0, `polyline_fallback`): the
+/// capsule turns in place at the vertices, which a smooth curve would not let it do.  Otherwise:
+/// a centripetal Catmull-Rom spline through the polyline's vertices, checked by sampling (see
 /// PathSmoothingOptions::sample_step; ℓ is taken 1e-9·L longer than measured to cover the arc-length
 /// table's error) and refined where a sample fails: points are inserted at
 /// 1/4 and 3/4 of the polyline pieces under the failing spans, which pulls the spline onto the
@@ -139,6 +154,34 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
 
 namespace inbetween {
 
+/// A capsule mover's motion along its polyline: it travels each segment at `speed` with its axis
+/// (local +x) along the segment, and turns in place at each inner vertex at the capsule's turn
+/// rate about d_{i−1} × d_i (the shortest rotation, so the orientation is the discrete
+/// rotation-minimising frame: no roll about the axis is ever added).
+struct CapsuleMotion {
+  std::vector<Vec3d> points;     ///< the polyline's vertices p_0 … p_n (coincident ones dropped)
+  std::vector<Quatd> rotations;  ///< per segment i (p_i → p_{i+1}): rotations[i] maps +x to its direction
+  std::vector<double> arrive;    ///< t at which the capsule reaches p_i (seconds)
+  std::vector<double> leave;     ///< t at which it leaves p_i (after turning); leave[i] − arrive[i] = turn time
+  std::vector<double> turn_rad;  ///< the angle turned at p_i (0 at both ends)
+};
+
+/// The motion of env's capsule along `polyline` at `speed`.  Errors: no capsule in env
+/// ("/mover"), speed not finite and > 0 ("/speed").  A polyline of one point (start = goal) gives
+/// one point, the identity rotation and zero times.
+Expected<CapsuleMotion> capsule_motion(const Environment& env, std::span<const Vec3d> polyline, double speed);
+
+/// A pose of the mover: where its centre is and how it is turned (local +x = the capsule's axis).
+struct MoverPose {
+  Vec3d position{};  ///< centre
+  Quatd rotation{};  ///< world_from_mover
+};
+
+/// The pose at time t (seconds), clamped to [0, arrive.back()]: on a segment the position moves
+/// linearly at constant speed with that segment's rotation; during a turn the position stays and
+/// the rotation is the slerp between the two segments' rotations (the swept fan of the planner).
+MoverPose capsule_pose_at(const CapsuleMotion& motion, double t) noexcept;
+
 /// Options of find_path().
 struct FindPathOptions {
   PlannerOptions planner{};           ///< the static planner
@@ -164,6 +207,7 @@ struct FoundPath {
   Avoidance avoidance = Avoidance::None;     ///< none, timing, or steering (when detours were added)
   std::vector<Detour> detours;               ///< in the order they were added
   PathEnds ends;                             ///< the ends with the detour points among the via points
+  std::optional<CapsuleMotion> capsule;      ///< a capsule mover's motion (the timing's keys wait while it turns)
 };
 
 /// The whole of texts 004 §3.4.5: plan_polyline, smooth_planned_path, ArcLength, time_path, and
@@ -175,7 +219,9 @@ struct FoundPath {
 /// (R_k + r), as extra via points (inside the bounds and clear of the static obstacles), and keep
 /// the first whose timing succeeds, or else the first that meets its first mover later.  Every
 /// result has passed time_path, so its guarantee holds.  Errors: those of the steps; when steering
-/// fails too, the timing error of the path without detours.
+/// fails too, the timing error of the path without detours.  With a capsule mover (no moving
+/// spheres, Environment::build): plan, the polyline as the curve, and the timing of capsule_motion
+/// (constant speed on segments, waits while turning); `capsule` holds the motion.
 Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, const FindPathOptions& options = {});
 
 }  // namespace inbetween
