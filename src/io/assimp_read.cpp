@@ -6,6 +6,7 @@
 #include "inbetween/io/axes.hpp"
 
 #include "assimp_scene.hpp"
+#include "key_time.hpp"
 
 #include <assimp/BaseImporter.h>
 #include <assimp/IOSystem.hpp>
@@ -659,7 +660,14 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
     }
     scene.objects.push_back(std::move(object));
   }
-  if (start <= end) scene.range = {start, end};
+  if (start <= end) {
+    // Key times are seconds (ticks over ticks per second): glTF's rule for a range end within the
+    // key time's precision of a whole frame (key_time.hpp; Collada's float text 1.666667 s is frame
+    // 39.9999989 at 24 fps, and every baked frame would be that far off).
+    const double fps = scene.fps;
+    const double first = io_detail::whole_frame_within_key_precision(start / fps, fps);
+    scene.range = {first, std::max(first, io_detail::whole_frame_within_key_precision(end / fps, fps))};
+  }
   if (notes && rotation_states > 0) {
     notes->push_back(timing.head + ": rotation keys hold their end keys outside the keyed range; " + std::to_string(rotation_states) +
                      " node(s) ask for LINEAR or REPEAT (first: " + first_rotation_state + ")");

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "inbetween/io/read_file.hpp"
+#include "key_time.hpp"
 #include "inbetween/math/format.hpp"
 #include "inbetween/math/quote.hpp"
 #include "inbetween/math/mat.hpp"
@@ -663,20 +664,7 @@ Expected<std::optional<RawCameraViewd>> node_camera(const tg::Model& model, std:
   return std::optional<RawCameraViewd>{view};
 }
 
-// A range end t·fps within the precision of its key time t of a whole frame is that frame: key
-// times authored on frames come back as float32 (Fox.glb's 17/24 s → frame 16.9999995) or as
-// six significant digits (BoxAnimated's 89/24 s written 3.70833 → frame 88.99992), and the default
-// range would lose that frame.  Precision: the larger of 4 float32 ulp of t and 5·10⁻⁶·|t| (half a
-// unit in the sixth digit), times fps, at most 10⁻³ frame above the float32 term (docs/gltf.md).
-double whole_frame_within_key_precision(double t, double fps) {
-  const double frame = t * fps;
-  const double whole = std::round(frame);
-  const float tf = float(t);
-  const double ulp = double(std::nextafter(std::abs(tf), std::numeric_limits<float>::infinity())) - double(std::abs(tf));
-  const double float_tol = 4 * ulp * fps;
-  const double tol = std::max(float_tol, std::min(5e-6 * std::abs(t) * fps, float_tol + 1e-3));
-  return std::abs(frame - whole) <= tol ? whole : frame;
-}
+using io_detail::whole_frame_within_key_precision;  // key_time.hpp
 
 Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& options) {
   if (!(options.fps > 0) || !std::isfinite(options.fps)) {

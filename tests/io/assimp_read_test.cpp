@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -166,6 +167,32 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   const auto at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   return text.replace(at, from.size(), to);
+}
+
+// Issue 26's range rule on assimp's input as on glTF's: Collada writes key times as float text
+// (box_nested_animation.dae: 0.04166662 … 1.666667 s, 40 keys on frames 1–40 at 24 fps), which
+// gave a range of [0.9999989, 39.9999989] and every baked frame off by 1.1e-6.  A range end within
+// its key time's float32 precision of a whole frame is that frame (src/io/key_time.hpp): [1, 40].
+// A time between frames stays as it is (a key at 1.65 s: frame 39.6).
+TEST(AssimpRead, ColladaRangeEndsOnWholeFramesWithinKeyTimePrecision) {
+  const fs::path dae = kModels / "Collada/box_nested_animation.dae";
+  if (!fs::exists(dae)) GTEST_SKIP() << dae << " is not installed (Debian assimp-testmodels)";
+  auto raw = read_input_file(dae, {.fps = 24});
+  ASSERT_TRUE(raw) << raw.error().describe();
+  EXPECT_EQ(raw->range[0], 1.0);
+  EXPECT_EQ(raw->range[1], 40.0);
+  // The text with the last key moved off the frame grid keeps its fraction.
+  std::ifstream in(dae);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find(" 1.666667<");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 10, " 1.65<");
+  const fs::path moved = inbetween::test::write_test_file("moved.dae", text);
+  auto off = read_input_file(moved, {.fps = 24});
+  ASSERT_TRUE(off) << off.error().describe();
+  EXPECT_EQ(off->range[0], 1.0);
+  EXPECT_NEAR(off->range[1], 39.6, 1e-5);
+  EXPECT_NE(off->range[1], 40.0);
 }
 
 TEST(AssimpRead, DirectXKeysInterpolateLinearlyAndBySlerp) {
