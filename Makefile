@@ -117,7 +117,7 @@ asan:
 # Each libFuzzer target for FUZZ_SECONDS (asan preset); the corpus grows in build/asan/fuzz/corpus-*,
 # crashes land in build/asan/fuzz/artifacts-*/ (see fuzz/README.md for what to do with them).
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := scene curve csv rotation_line obj environment gltf bvh assimp
+FUZZ_TARGETS := scene curve csv rotation_line obj environment gltf bvh assimp surface
 fuzz:
 	$(MAKE) configure PRESET=asan
 	cmake --build --preset asan -j $(JOBS) --target $(addprefix inbetween_fuzz_,$(FUZZ_TARGETS))
