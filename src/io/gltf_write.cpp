@@ -78,6 +78,24 @@ Grid make_grid(const Scene& scene, double first, double last, int substeps) {
   return g;
 }
 
+// A glTF clip lasts until its latest key time, and players stop it there (three.js's
+// AnimationMixer returns the nodes to their rest pose after it), while the scene holds every value
+// to the end of its range.  When no channel reaches the range's end (every channel kept with its
+// authored keys, the last of them before the end), the channel with the latest key gets one more
+// key at the end holding its value (zero slopes on both sides for CUBICSPLINE).  `end_s`: the
+// range's end in float seconds; `k` as written (seconds, slopes per second).
+void hold_to(RefitKeys& k, double end_s) {
+  const std::size_t d = k.dim, n = k.frames.size();
+  k.frames.push_back(end_s);
+  const std::vector<double> held(k.values.end() - std::ptrdiff_t(d), k.values.end());
+  k.values.insert(k.values.end(), held.begin(), held.end());
+  if (k.interpolation == RefitInterpolation::cubic) {
+    std::fill(k.out_slopes.begin() + std::ptrdiff_t((n - 1) * d), k.out_slopes.end(), 0.0);
+    k.in_slopes.insert(k.in_slopes.end(), d, 0.0);
+    k.out_slopes.insert(k.out_slopes.end(), d, 0.0);
+  }
+}
+
 // Why a vector channel's authored keys cannot be written exactly (empty: they can), and the kind.
 std::string vec3_exactness(const RawVec3Channel& ch, double first, double last, RefitInterpolation& kind) {
   const auto& k = ch.keys;
@@ -431,8 +449,16 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
     rep.refitted = true;
     return fit;
   };
-  // Writes a channel and completes its report with the error of what is written (float keys
-  // played with glTF's formulas) against the grid samples.
+  // The channels as written, added to the file at the end (after hold_to, which needs them all).
+  struct Pending {
+    RefitKeys written;
+    std::size_t node;
+    std::string path;
+    bool rotation;
+  };
+  std::vector<Pending> pending;
+  // Completes a channel's report with the error of what is written (float keys played with glTF's
+  // formulas) against the grid samples, and queues it.
   auto write_vec3 = [&](std::size_t i, const RefitKeys& keys, const std::vector<double>& samples,
                         GltfChannelReport rep) -> Expected<void> {
     const RefitKeys written = as_written(keys, first, fps);
@@ -445,7 +471,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
     rep.max_error = worst;
     rep.keys_after = written.size();
     rep.interpolation = sampler_name(written.interpolation);
-    b.add_channel(written, int(i), rep.path, false);
+    pending.push_back({written, i, rep.path, false});
     result.channels.push_back(rep);
     return {};
   };
@@ -460,7 +486,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
     rep.max_error = worst;
     rep.keys_after = written.size();
     rep.interpolation = sampler_name(written.interpolation);
-    b.add_channel(written, int(i), "rotation", true);
+    pending.push_back({written, i, "rotation", true});
     result.channels.push_back(rep);
     return {};
   };
@@ -607,6 +633,19 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
       if (auto ok = write_rot(i, keys, samples, rep); !ok) return ok.error();
     }
     if (auto ok = vec3_channel("scale", node.local.scale, ro.scale); !ok) return ok.error();
+  }
+  {
+    const double end_s = double(float((last - first) / fps));
+    std::size_t latest = pending.size();
+    for (std::size_t c = 0; c < pending.size(); ++c) {
+      if (latest == pending.size() || pending[c].written.frames.back() > pending[latest].written.frames.back()) latest = c;
+    }
+    if (latest < pending.size() && pending[latest].written.frames.back() < end_s) {
+      hold_to(pending[latest].written, end_s);
+      result.channels[latest].keys_after += 1;
+      result.channels[latest].held_to_range_end = true;
+    }
+    for (const Pending& c : pending) b.add_channel(c.written, int(c.node), c.path, c.rotation);
   }
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (nodes[i].parent) b.model.nodes[*nodes[i].parent].children.push_back(int(i));

@@ -152,6 +152,7 @@ TEST(GltfWrite, EveryRefittedChannelIsReportedWithinTolerance) {
     }
     for (const char* kept : {"base.translation", "base.rotation", "base.scale", "lamp.translation", "lamp.rotation"}) {
       EXPECT_FALSE(rep.at(kept).refitted) << kept;
+      EXPECT_FALSE(rep.at(kept).held_to_range_end) << kept << ": refitted channels reach the range's end";
       EXPECT_EQ(rep.at(kept).keys_before, rep.at(kept).keys_after);
       EXPECT_LE(rep.at(kept).max_error, 1e-6) << kept;  // float storage only
     }
@@ -237,6 +238,36 @@ TEST(GltfWrite, ExportsPassTheKhronosValidator) {
                     int(j["issues"]["numInfos"]));
       }
     }
+  }
+}
+
+// A glTF clip ends at its latest key time.  A scene whose range goes on after every channel's last
+// key (examples/scenes/bouncing_ball.json: keys to frame 60, range to 66) would lose its last
+// frames in a player (three.js returns the nodes to their rest pose after the clip); the channel
+// with the latest key gets one more key at the range's end holding its value, and only when no
+// channel reaches the end (an imported glTF keeps its accessors: ImportedGltfReexports…).
+TEST(GltfWrite, AClipLastsTheWholeRangeWhenEveryChannelEndsBeforeIt) {
+  const Loaded s = load(kSource / "examples/scenes/bouncing_ball.json");
+  ASSERT_EQ(s.scene.range_end(), 66.0);
+  auto out = export_gltf(s.raw, s.scene, {});
+  ASSERT_TRUE(out) << out.error().describe();
+  int held = 0;
+  for (const GltfChannelReport& c : out->channels) {
+    if (!c.held_to_range_end) continue;
+    ++held;
+    EXPECT_EQ(c.keys_after, c.keys_before + 1) << c.object << "." << c.path;
+  }
+  EXPECT_EQ(held, 1);
+  const fs::path file = test::write_test_file("ball.glb", out->bytes);
+  auto back = read_gltf_file(file);
+  ASSERT_TRUE(back) << back.error().describe();
+  EXPECT_EQ(back->range[1], 66.0);
+  const Scene played = *build_scene(*back);
+  std::vector<double> a(s.scene.columns().size()), b(played.columns().size());
+  for (double f : {60.0, 63.5, 66.0}) {
+    s.scene.sample(f, a);
+    played.sample(f, b);
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_NEAR(a[c], b[c], 1e-6) << "frame " << f;
   }
 }
 

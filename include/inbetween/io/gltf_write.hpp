@@ -69,6 +69,9 @@ struct GltfChannelReport {
   /// glTF's formulas) against the scene's own local channel: value units, radians for rotations.
   double max_error = 0;
   double tolerance = 0;      ///< the absolute tolerance used (refitted channels)
+  /// One key more than authored at the range's end, holding the value: no channel reached the end,
+  /// and a glTF clip ends at its latest key (docs/gltf-export.md).
+  bool held_to_range_end = false;
 };
 
 /// The exported file and the report.
