@@ -917,15 +917,16 @@ std::optional<Error> missing_required(const nlohmann::json& root) {
   });
   each(root, {}, "cameras", [&](const nlohmann::json& c, const Steps& at) {
     require(c, at, {{"type", Want::string}});
-    for (const auto& [kind, members] :
-         {std::pair{"perspective", std::initializer_list<std::pair<const char*, Want>>{{"yfov", Want::number}, {"znear", Want::number}}},
-          std::pair{"orthographic", std::initializer_list<std::pair<const char*, Want>>{
-                                        {"xmag", Want::number}, {"ymag", Want::number}, {"zfar", Want::number}, {"znear", Want::number}}}}) {
-      if (found || !c.contains(kind) || !c[kind].is_object()) continue;
+    // Each projection's members in a call of its own: an initializer_list kept inside a pair
+    // outlives its array (found by the gltf fuzz target under ASan: stack-use-after-scope).
+    auto projection = [&](const char* kind, std::initializer_list<std::pair<const char*, Want>> members) {
+      if (found || !c.contains(kind) || !c[kind].is_object()) return;
       Steps k = at;
       k.emplace_back(std::string(kind));
       require(c[kind], k, members);
-    }
+    };
+    projection("perspective", {{"yfov", Want::number}, {"znear", Want::number}});
+    projection("orthographic", {{"xmag", Want::number}, {"ymag", Want::number}, {"zfar", Want::number}, {"znear", Want::number}});
   });
   each(root, {}, "skins", [&](const nlohmann::json& s, const Steps& at) { require(s, at, {{"joints", Want::array}}); });
   each(root, {}, "meshes", [&](const nlohmann::json& m, const Steps& at) {
