@@ -9,7 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <regex>
+#include <cctype>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -31,10 +31,16 @@ constexpr double kUnchanged = 1e-12;
 
 std::string example(const std::string& name) { return std::string(INBETWEEN_SOURCE_DIR) + "/examples/curves/" + name; }
 
+// The value of attribute `name` in an SVG element's line (found by hand: std::regex recurses per
+// character and overflowed the stack on long point lists under AddressSanitizer).
 std::string attr(const std::string& line, const std::string& name) {
-  const std::regex re("\\s" + name + "=\"([^\"]*)\"");
-  std::smatch m;
-  return std::regex_search(line, m, re) ? m[1].str() : std::string();
+  const std::string key = name + "=\"";
+  for (std::size_t at = line.find(key); at != std::string::npos; at = line.find(key, at + 1)) {
+    if (at == 0 || !std::isspace(static_cast<unsigned char>(line[at - 1]))) continue;
+    const std::size_t begin = at + key.size(), end = line.find('"', begin);
+    return end == std::string::npos ? std::string() : line.substr(begin, end - begin);
+  }
+  return std::string();
 }
 
 std::vector<double> numbers(const std::string& text) {
