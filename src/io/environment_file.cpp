@@ -18,46 +18,17 @@ namespace {
 
 using io_detail::json;
 using io_detail::located;
-using Loc = std::vector<LocationStep>;
+using io_detail::fail;
+using io_detail::join;
+using io_detail::Loc;
+using io_detail::only_fields;
+using io_detail::read_number;
 
-// Longest member name kept in a location step or a message (a file's odd keys stay bounded).
-constexpr std::size_t kMaxQuotedKey = 40;
-
-// `base` one member further in; the name cut to kMaxQuotedKey characters with "..." when longer.
-Loc join(Loc base, std::string_view field) {
-  std::string name(field.substr(0, std::min(field.size(), kMaxQuotedKey)));
-  if (field.size() > kMaxQuotedKey) name.append("...");
-  base.emplace_back(std::move(name));
-  return base;
-}
-// `base` one index further in.
-Loc join(Loc base, std::size_t i) {
-  base.emplace_back(i);
-  return base;
-}
-
-Error fail(Loc loc, std::string message, ErrorCode code = ErrorCode::Parse) {
-  return Error{code, std::move(message), "", std::move(loc)};
-}
-
-// Rejects fields other than `known` (so a misspelt "raduis" is not silently ignored).
-Expected<void> only_fields(const json& obj, const Loc& at, std::initializer_list<std::string_view> known) {
-  for (const auto& item : obj.items())
-    if (std::find(known.begin(), known.end(), item.key()) == known.end()) return fail(join(at, item.key()), "unknown field");
-  return {};
-}
-
+// The required member `name` of `obj`.
 Expected<const json*> field(const json& obj, const Loc& at, std::string_view name) {
   const auto it = obj.find(std::string(name));
   if (it == obj.end()) return fail(join(at, name), "missing required field");
   return &*it;
-}
-
-Expected<double> read_number(const json& v, const Loc& at) {
-  if (!v.is_number()) return fail(at, "expected a number, got " + std::string(v.type_name()));
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) return fail(at, "number is not finite", ErrorCode::NotFinite);
-  return d;
 }
 
 Expected<Vec3d> read_vec3(const json& v, const Loc& at) {

@@ -1,11 +1,15 @@
 #pragma once
-// Private helpers of the io readers (curve files, environment files): errors located by
+// Private helpers of the io readers (curve, environment and surface files): errors located by
 // "<source>:<JSON pointer>" and numbers read with their pointer.  Not installed.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "inbetween/math/expected.hpp"
 
@@ -44,6 +48,47 @@ inline Expected<double> read_number(const Reader& r, const json& v, const std::s
   if (!v.is_number()) return r.fail(pointer, "expected a number, got " + std::string(v.type_name()));
   const double d = v.get<double>();
   if (!std::isfinite(d)) return r.fail(pointer, "number is not finite", ErrorCode::NotFinite);
+  return d;
+}
+
+// ---- Readers that build Error::location (environment and surface files): the same helpers.
+
+// A place in a file's shape (Error::location).
+using Loc = std::vector<LocationStep>;
+
+// Longest member name kept in a location step or a message (a file's odd keys stay bounded).
+inline constexpr std::size_t kMaxQuotedKey = 40;
+
+// `base` one member further in; the name cut to kMaxQuotedKey characters with "..." when longer.
+inline Loc join(Loc base, std::string_view field) {
+  std::string name(field.substr(0, std::min(field.size(), kMaxQuotedKey)));
+  if (field.size() > kMaxQuotedKey) name.append("...");
+  base.emplace_back(std::move(name));
+  return base;
+}
+// `base` one index further in.
+inline Loc join(Loc base, std::size_t i) {
+  base.emplace_back(i);
+  return base;
+}
+
+// An error at `loc`.
+inline Error fail(Loc loc, std::string message, ErrorCode code = ErrorCode::Parse) {
+  return Error{code, std::move(message), "", std::move(loc)};
+}
+
+// Rejects fields other than `known` (so a misspelt "raduis" is not silently ignored).
+inline Expected<void> only_fields(const json& obj, const Loc& at, std::initializer_list<std::string_view> known) {
+  for (const auto& item : obj.items())
+    if (std::find(known.begin(), known.end(), item.key()) == known.end()) return fail(join(at, item.key()), "unknown field");
+  return {};
+}
+
+// A finite number at `at`.
+inline Expected<double> read_number(const json& v, const Loc& at) {
+  if (!v.is_number()) return fail(at, "expected a number, got " + std::string(v.type_name()));
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) return fail(at, "number is not finite", ErrorCode::NotFinite);
   return d;
 }
 

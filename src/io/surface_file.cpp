@@ -17,36 +17,11 @@ namespace inbetween {
 namespace {
 
 using io_detail::json;
-using Loc = std::vector<LocationStep>;
-
-constexpr std::size_t kMaxQuotedKey = 40;
-
-Loc join(Loc base, std::string_view field) {
-  std::string name(field.substr(0, std::min(field.size(), kMaxQuotedKey)));
-  if (field.size() > kMaxQuotedKey) name.append("...");
-  base.emplace_back(std::move(name));
-  return base;
-}
-Loc join(Loc base, std::size_t i) {
-  base.emplace_back(i);
-  return base;
-}
-Error fail(Loc loc, std::string message, ErrorCode code = ErrorCode::Parse) {
-  return Error{code, std::move(message), "", std::move(loc)};
-}
-
-Expected<void> only_fields(const json& obj, const Loc& at, std::initializer_list<std::string_view> known) {
-  for (const auto& item : obj.items())
-    if (std::find(known.begin(), known.end(), item.key()) == known.end()) return fail(join(at, item.key()), "unknown field");
-  return {};
-}
-
-Expected<double> read_number(const json& v, const Loc& at) {
-  if (!v.is_number()) return fail(at, "expected a number, got " + std::string(v.type_name()));
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) return fail(at, "number is not finite", ErrorCode::NotFinite);
-  return d;
-}
+using io_detail::fail;
+using io_detail::join;
+using io_detail::Loc;
+using io_detail::only_fields;
+using io_detail::read_number;
 
 // An array of n numbers into out[0 … n − 1].
 Expected<void> read_numbers(const json& v, const Loc& at, double* out, std::size_t n) {
