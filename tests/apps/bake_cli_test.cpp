@@ -348,13 +348,7 @@ TEST(BakeCli, ProgressBarOnlyWhenAsked) {
 // generous and still fails on it.  Skipped under AddressSanitizer, whose quarantine of freed
 // memory grows with the number of allocations.
 TEST(BakeCli, MemoryDoesNotGrowWithFrameCount) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "AddressSanitizer's quarantine grows with allocations";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  GTEST_SKIP() << "AddressSanitizer's quarantine grows with allocations";
-#endif
-#endif
+  if (inbetween::test::kUnderAddressSanitizer) GTEST_SKIP() << "AddressSanitizer's quarantine grows with allocations";
   std::string tracks;
   for (int t = 0; t < 20; ++t) {
     tracks += std::string(t ? ", " : "") + R"({"name": "t)" + std::to_string(t) +

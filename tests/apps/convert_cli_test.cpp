@@ -178,13 +178,7 @@ namespace {
 // frame, so the bound fails on it).  The file written still plays the motion and the rest (key
 // times and values read back).  Skipped under AddressSanitizer (its quarantine grows with allocations).
 TEST(ConvertCli, MemoryDoesNotGrowWithTheIdlePartOfTheRange) {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "AddressSanitizer's quarantine grows with allocations";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  GTEST_SKIP() << "AddressSanitizer's quarantine grows with allocations";
-#endif
-#endif
+  if (inbetween::test::kUnderAddressSanitizer) GTEST_SKIP() << "AddressSanitizer's quarantine grows with allocations";
   const fs::path dir = inbetween::test::test_dir();
   auto scene = [&](const char* end) {
     return inbetween::test::write_test_file(

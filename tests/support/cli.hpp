@@ -16,7 +16,23 @@
 #include <string>
 #include <vector>
 
+#if defined(__SANITIZE_ADDRESS__)
+#define INBETWEEN_TEST_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define INBETWEEN_TEST_UNDER_ASAN 1
+#endif
+#endif
+
 namespace inbetween::test {
+
+/// True in a build with AddressSanitizer (GCC says so with __SANITIZE_ADDRESS__, clang with
+/// __has_feature): its quarantine of freed memory makes peak-memory figures meaningless.
+#if defined(INBETWEEN_TEST_UNDER_ASAN)
+inline constexpr bool kUnderAddressSanitizer = true;
+#else
+inline constexpr bool kUnderAddressSanitizer = false;
+#endif
 
 /// What one run of the tool gave.
 struct CliRun {
