@@ -220,18 +220,7 @@ Expected<EnvironmentFile> read_environment(const json& doc) {
 Expected<EnvironmentFile> parse_environment_json(std::string_view text, std::string_view source_name) {
   const std::string source(source_name);
   const io_detail::JsonText parsed = io_detail::parse_json_text(text);
-  const std::string at_text = " at line " + std::to_string(parsed.line) + ", column " + std::to_string(parsed.column);
-  switch (parsed.failure) {
-    case io_detail::JsonFailure::none:
-      break;
-    case io_detail::JsonFailure::syntax:
-      return Error{ErrorCode::Parse, "invalid JSON" + at_text + ": " + parsed.detail, source};
-    case io_detail::JsonFailure::number_out_of_range:
-      return Error{ErrorCode::Parse, "invalid JSON: the number " + parsed.detail + at_text + " is beyond double precision's range",
-                   source};
-    case io_detail::JsonFailure::too_deep:
-      return Error{ErrorCode::Parse, "invalid JSON: " + parsed.detail + at_text, source};
-  }
+  if (auto bad = io_detail::json_text_error(parsed, source)) return *bad;
   auto file = read_environment(parsed.value);
   if (file) return file;
   return locate_environment_error(file.error(), source_name);

@@ -128,4 +128,20 @@ std::string short_dump(const json& value) {
   return value.dump();
 }
 
+std::optional<Error> json_text_error(const JsonText& parsed, const std::string& source) {
+  const std::string at_text = " at line " + std::to_string(parsed.line) + ", column " + std::to_string(parsed.column);
+  switch (parsed.failure) {
+    case JsonFailure::none:
+      return std::nullopt;
+    case JsonFailure::syntax:
+      return Error{ErrorCode::Parse, "invalid JSON" + at_text + ": " + parsed.detail, source};
+    case JsonFailure::number_out_of_range:
+      return Error{ErrorCode::Parse, "invalid JSON: the number " + parsed.detail + at_text + " is beyond double precision's range",
+                   source};
+    case JsonFailure::too_deep:
+      return Error{ErrorCode::Parse, "invalid JSON: " + parsed.detail + at_text, source};
+  }
+  return std::nullopt;
+}
+
 }  // namespace inbetween::io_detail

@@ -3,7 +3,10 @@
 // a position and a short description (no exception escapes, no unbounded input in a message).
 #include <nlohmann/json.hpp>
 
+#include "inbetween/math/expected.hpp"
+
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -30,6 +33,11 @@ std::string truncated(std::string_view text);
 
 /// Reads `text` as one JSON document; never throws.
 JsonText parse_json_text(std::string_view text);
+
+/// The error of a text that is not a JSON document, `where` = `source` ("invalid JSON at line L,
+/// column C: …", the number beyond double's range, or the nesting limit); nothing when it parsed.
+/// The environment and surface readers' message.
+std::optional<Error> json_text_error(const JsonText& parsed, const std::string& source);
 
 /// A short rendering of a value for a message: numbers, booleans, null and short strings as JSON,
 /// others by their type name ("array"), cut to kMaxQuoted characters.
