@@ -13,7 +13,7 @@
 #include <span>
 #include <vector>
 
-#include "fuzz_check.hpp"
+#include "fuzz_scene.hpp"
 #include "inbetween/io/assimp.hpp"
 #include "inbetween/scene/scene.hpp"
 
@@ -22,15 +22,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size > (std::size_t(1) << 20)) return 0;  // the seeds are a few KB; keep each run short
   const auto raw = read_assimp(std::as_bytes(std::span<const std::uint8_t>(data, size)), "", {});
   if (!raw) return 0;
-  const auto scene = build_scene(*raw);
-  if (!scene) fuzz::fail("the assimp reader returned a scene that build_scene() refuses");
-  std::vector<double> out(scene->columns().size());
-  const double a = scene->range_start(), b = scene->range_end();
-  const double frames[] = {a, b, fuzz::lerp_in(a, b, 0.5), fuzz::lerp_in(a, b, 0.37), a - 1.5, b + 2.25, 0.0};
-  for (const double frame : frames) {
-    if (!std::isfinite(frame)) continue;
-    scene->sample(frame, out);
-    for (const double v : out) fuzz::require_finite(v, "assimp scene value", frame);
-  }
+  fuzz::require_builds_and_samples(*raw, "the assimp reader returned a scene that build_scene() refuses", "assimp scene value");
   return 0;
 }

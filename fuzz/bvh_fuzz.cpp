@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "fuzz_check.hpp"
+#include "fuzz_scene.hpp"
 #include "inbetween/io/bvh.hpp"
 #include "inbetween/scene/scene.hpp"
 
@@ -23,16 +23,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (raw.error().where.empty() || raw.error().message.empty()) fuzz::fail("a BVH error without a place or message");
     return 0;
   }
-  const auto scene = build_scene(*raw);
-  if (!scene) fuzz::fail("the BVH reader returned a scene that build_scene() refuses");
-  std::vector<double> out(scene->columns().size());
-  const double a = scene->range_start(), b = scene->range_end();
-  const double frames[] = {a, b, fuzz::lerp_in(a, b, 0.5), fuzz::lerp_in(a, b, 0.37), a - 1.5, b + 2.25};
-  for (const double frame : frames) {
-    scene->sample(frame, out);
-    for (const double v : out) fuzz::require_finite(v, "BVH scene value", frame);
-  }
-  const auto written = write_bvh(*scene);
+  const Scene scene = fuzz::require_builds_and_samples(*raw, "the BVH reader returned a scene that build_scene() refuses",
+                                                      "BVH scene value");
+  const auto written = write_bvh(scene);
   if (!written) return 0;  // e.g. two names equal once blanks become '_'
   const auto back = read_bvh(written->text);
   if (!back) fuzz::fail("write_bvh() wrote a file that read_bvh() refuses");

@@ -12,7 +12,7 @@
 #include <span>
 #include <vector>
 
-#include "fuzz_check.hpp"
+#include "fuzz_scene.hpp"
 #include "inbetween/io/gltf.hpp"
 #include "inbetween/scene/scene.hpp"
 
@@ -20,15 +20,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace inbetween;
   const auto raw = read_gltf(std::as_bytes(std::span<const std::uint8_t>(data, size)), "", {});
   if (!raw) return 0;
-  const auto scene = build_scene(*raw);
-  if (!scene) fuzz::fail("the glTF reader returned a scene that build_scene() refuses");
-  std::vector<double> out(scene->columns().size());
-  const double a = scene->range_start(), b = scene->range_end();
-  const double frames[] = {a, b, fuzz::lerp_in(a, b, 0.5), fuzz::lerp_in(a, b, 0.37), a - 1.5, b + 2.25, 0.0};
-  for (const double frame : frames) {
-    if (!std::isfinite(frame)) continue;
-    scene->sample(frame, out);
-    for (const double v : out) fuzz::require_finite(v, "glTF scene value", frame);
-  }
+  fuzz::require_builds_and_samples(*raw, "the glTF reader returned a scene that build_scene() refuses", "glTF scene value");
   return 0;
 }
