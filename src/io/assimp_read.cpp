@@ -622,6 +622,11 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
         const bool post_differs = ch->mPostState == aiAnimBehaviour_DEFAULT && !(keys.back().value == rest_value);
         if ((pre_differs || post_differs) && held_default++ == 0) first_held = names[i];
       };
+      // The range covers every channel's keys.
+      auto cover = [&](const auto& keys) {
+        start = std::min(start, keys.front().frame);
+        end = std::max(end, keys.back().frame);
+      };
       if (ch->mNumPositionKeys > 0) {
         if (!ch->mPositionKeys) return Error{ErrorCode::Parse, where + ": position keys are missing", ""};
         auto keys = vec3_keys(ch->mPositionKeys, ch->mNumPositionKeys, true, convert, timing, where + ", position");
@@ -629,8 +634,7 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
         keys->before = before;
         keys->after = after;
         note_extend(keys->keys, rest->translation);
-        start = std::min(start, keys->keys.front().frame);
-        end = std::max(end, keys->keys.back().frame);
+        cover(keys->keys);
         object.translation = std::move(*keys);
       }
       if (ch->mNumRotationKeys > 0) {
@@ -642,8 +646,7 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
           if (rotation_states++ == 0) first_rotation_state = names[i] + "'s (pre " + state_name(ch->mPreState) + ", post " + state_name(ch->mPostState) + ")";
         }
         note_extend(keys->keys, rest->rotation);
-        start = std::min(start, keys->keys.front().frame);
-        end = std::max(end, keys->keys.back().frame);
+        cover(keys->keys);
         object.rotation = std::move(*keys);
       }
       if (ch->mNumScalingKeys > 0) {
@@ -653,8 +656,7 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
         keys->before = before;
         keys->after = after;
         note_extend(keys->keys, rest->scale);
-        start = std::min(start, keys->keys.front().frame);
-        end = std::max(end, keys->keys.back().frame);
+        cover(keys->keys);
         object.scale = std::move(*keys);
       }
     }
