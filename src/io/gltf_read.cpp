@@ -585,8 +585,7 @@ RawQuatKeys rotation_channel(const Channel& ch, double fps) {
       case Sampling::linear: key.interpolation = QuatInterpolation::slerp; break;
       case Sampling::cubic:
         key.interpolation = QuatInterpolation::gltf_cubic;
-        key.in_tangent = quat_xyzw(element(ch, k, 0)) * (1.0 / fps);
-        key.out_tangent = quat_xyzw(element(ch, k, 2)) * (1.0 / fps);
+        out.tangents.push_back({quat_xyzw(element(ch, k, 0)) * (1.0 / fps), quat_xyzw(element(ch, k, 2)) * (1.0 / fps)});
         break;
     }
     out.keys.push_back(key);

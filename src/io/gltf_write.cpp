@@ -616,8 +616,9 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
             // glTF cubic: the authored signs and tangents (see quat_track.hpp).
             const Quatd q = authored;
             keys.values.insert(keys.values.end(), {q.w, q.x, q.y, q.z});
-            keys.in_slopes.insert(keys.in_slopes.end(), {a.in_tangent.w, a.in_tangent.x, a.in_tangent.y, a.in_tangent.z});
-            keys.out_slopes.insert(keys.out_slopes.end(), {a.out_tangent.w, a.out_tangent.x, a.out_tangent.y, a.out_tangent.z});
+            const QuatKeyTangents<double> t = rc.tangents.empty() ? QuatKeyTangents<double>{} : rc.tangents[k];
+            keys.in_slopes.insert(keys.in_slopes.end(), {t.in.w, t.in.x, t.in.y, t.in.z});
+            keys.out_slopes.insert(keys.out_slopes.end(), {t.out.w, t.out.x, t.out.y, t.out.z});
           } else {
             // Signs continuous (the track's choice), otherwise as authored.
             const Quatd q = dot(track.keys()[k], authored) < 0 ? -authored : authored;

@@ -410,9 +410,9 @@ TEST(GltfWrite, GltfKeysGoBackByteForByte) {
       const auto qi = f3(), qo = f3();
       rot_out.insert(rot_out.end(), {qi[0], qi[1], qi[2], 0.25f, qx, qy, qz, qw, qo[0], qo[1], qo[2], -0.5f});
       rot.keys.push_back({.frame = double(tk) * fps, .value = Quatd::from_wxyz(qw, qx, qy, qz),
-                          .interpolation = QuatInterpolation::gltf_cubic,
-                          .in_tangent = Quatd::from_wxyz(0.25, qi[0], qi[1], qi[2]) / fps,
-                          .out_tangent = Quatd::from_wxyz(-0.5, qo[0], qo[1], qo[2]) / fps});
+                          .interpolation = QuatInterpolation::gltf_cubic});
+      rot.tangents.push_back({.in = Quatd::from_wxyz(0.25, qi[0], qi[1], qi[2]) / fps,
+                              .out = Quatd::from_wxyz(-0.5, qo[0], qo[1], qo[2]) / fps});
     }
     o.translation = tr;
     o.rotation = rot;
