@@ -496,9 +496,7 @@ Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPo
   }
 }
 
-std::string_view avoidance_name(Avoidance a) noexcept {
-  return a == Avoidance::Timing ? "timing" : a == Avoidance::Steering ? "steering" : "none";
-}
+std::string_view avoidance_name(Avoidance a) noexcept { return enum_name(a); }
 
 Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRomSpline<Vec3d>>& path,
                                const PathTimingOptions& options) {

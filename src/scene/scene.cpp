@@ -559,11 +559,6 @@ Vec3d get_point(const double* in) noexcept { return {in[0], in[1], in[2]}; }
 
 }  // namespace
 
-template <>
-std::optional<Space> enum_from_string<Space>(std::string_view name) noexcept {
-  return find_enum_name<Space>(enum_names<Space>(), name);
-}
-
 void Scene::sample(double frame, std::span<double> out) const noexcept {
   INBETWEEN_ASSERT(out.size() == columns_.size());
   sample_into(frame, out, out.data());

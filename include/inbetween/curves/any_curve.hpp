@@ -4,6 +4,8 @@
 /// SegmentedCurve and ControlledCurve and generic code (arc length, frames, path motion) takes it.
 /// Curve files (inbetween/io/curve_file.hpp) read and write it; the scene puts objects on it.
 
+#include <span>
+#include <array>
 #include <string_view>
 #include <variant>
 
@@ -16,6 +18,7 @@
 #include "inbetween/curves/kochanek_bartels.hpp"
 #include "inbetween/curves/lagrange.hpp"
 #include "inbetween/curves/parabolic_blend.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -31,6 +34,14 @@ enum class CurveKind {
   BSpline,          ///< "bspline": degree, knots (default clamped uniform), periodic
   Lagrange,         ///< "lagrange": params (default 0, 1, …)
 };
+
+/// File names of the CurveKind enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 9> curve_kind_names = {"bezier", "bezier-path", "hermite", "catmull-rom", "natural", "kochanek-bartels", "parabolic", "bspline", "lagrange"};
+/// The name table of CurveKind (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<CurveKind>() noexcept {
+  return curve_kind_names;
+}
 
 /// The JSON "type" string of a kind.
 std::string_view curve_kind_name(CurveKind kind) noexcept;

@@ -28,6 +28,8 @@
 ///   fewer and smaller turns; lattice_length stays the path's length.  Shortcuts keep both
 ///   turns they change checked; the next leg starts with the direction the last one arrived in.
 
+#include <string_view>
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
@@ -39,6 +41,7 @@
 #include "inbetween/math/quat.hpp"
 #include "inbetween/paths/environment.hpp"
 #include "inbetween/timing/distance_time.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -116,6 +119,14 @@ enum class Avoidance {
   Timing,    ///< the speed along the path: constant, with waits where a moving sphere crosses
   Steering,  ///< detours in front of or behind movers (find_path), then the timing as above
 };
+
+/// File names of the Avoidance enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 3> avoidance_names = {"none", "timing", "steering"};
+/// The name table of Avoidance (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<Avoidance>() noexcept {
+  return avoidance_names;
+}
 
 /// The JSON name of an Avoidance ("none", "timing", "steering").
 std::string_view avoidance_name(Avoidance a) noexcept;

@@ -4,6 +4,8 @@
 /// or from a user velocity-time curve (both ways the texts describe); a check that reports where
 /// the object would back up (negative velocity), and a monotone repair (Fritsch–Carlson).
 
+#include <string_view>
+#include <array>
 #include <optional>
 #include <span>
 #include <vector>
@@ -12,6 +14,7 @@
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/scalar.hpp"
 #include "inbetween/timing/ease.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -44,6 +47,16 @@ enum class PositionInterpolation {
   MonotoneCubic,  ///< C¹ cubic with Fritsch–Carlson velocities: never backs up if the s_i do not
 };
 
+/// File names of the PositionInterpolation enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 3> position_interpolation_names = {"linear", "catmull_rom", "monotone_cubic"};
+/// The name table of PositionInterpolation (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<PositionInterpolation>() noexcept {
+  return position_interpolation_names;
+}
+/// The file name of an enumerator (its enum_names<PositionInterpolation>() entry); enum_from_string<PositionInterpolation> parses it back.
+[[nodiscard]] inline std::string_view to_string(PositionInterpolation v) noexcept { return enum_name(v); }
+
 /// How a user velocity-time curve is made to cover the total distance (texts 004 §3.2.4).
 enum class VelocityFit {
   FloatToKeepAverage,  ///< shift the whole curve up or down by a constant (keys' velocities change)
@@ -54,6 +67,16 @@ enum class VelocityFit {
   /// c·6τ(1 − τ), e.g. Eq. 3.20 from two keys at rest), and there the speed leaves the keys' range.
   FixKeysAdjustInterior,
 };
+
+/// File names of the VelocityFit enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 2> velocity_fit_names = {"float_to_keep_average", "fix_keys_adjust_interior"};
+/// The name table of VelocityFit (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<VelocityFit>() noexcept {
+  return velocity_fit_names;
+}
+/// The file name of an enumerator (its enum_names<VelocityFit>() entry); enum_from_string<VelocityFit> parses it back.
+[[nodiscard]] inline std::string_view to_string(VelocityFit v) noexcept { return enum_name(v); }
 
 /// Where a distance-time function runs backwards: the first interval of negative velocity.
 template <Real T>

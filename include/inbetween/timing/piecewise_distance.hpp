@@ -17,6 +17,7 @@
 /// quadratics or cubics).  Because integration loses the total distance (the texts' remark under
 /// Figure 3.18), an optional end distance scales every acceleration by one factor to reach it.
 
+#include <string_view>
 #include <array>
 #include <limits>
 #include <optional>
@@ -27,6 +28,7 @@
 #include "inbetween/math/scalar.hpp"
 #include "inbetween/timing/distance_time.hpp"
 #include "inbetween/timing/ease.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -52,6 +54,16 @@ enum class AccelerationShape {
   Constant,  ///< a = a_i on [t_i, t_{i+1}) (Figure 3.16); the last key's value is not used
   Linear,    ///< a goes linearly from a_i to a_{i+1}
 };
+
+/// File names of the AccelerationShape enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 2> acceleration_shape_names = {"constant", "linear"};
+/// The name table of AccelerationShape (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<AccelerationShape>() noexcept {
+  return acceleration_shape_names;
+}
+/// The file name of an enumerator (its enum_names<AccelerationShape>() entry); enum_from_string<AccelerationShape> parses it back.
+[[nodiscard]] inline std::string_view to_string(AccelerationShape v) noexcept { return enum_name(v); }
 
 /// Options of PiecewiseDistanceCurve::from_acceleration_curve.
 template <Real T>

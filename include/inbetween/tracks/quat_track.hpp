@@ -27,7 +27,7 @@
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/orientation_interp.hpp"
 #include "inbetween/math/quat.hpp"
-#include "inbetween/tracks/enum_names.hpp"
+#include "inbetween/math/enum_names.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace inbetween {
@@ -43,7 +43,7 @@ enum class QuatInterpolation : std::uint8_t {
 
 /// File and command-line names of the QuatInterpolation enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 5> quat_interpolation_names = {"step", "slerp", "bezier", "squad", "gltf_cubic"};
-/// The name table of QuatInterpolation (see enum_names.hpp).
+/// The name table of QuatInterpolation (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<QuatInterpolation>() noexcept {
   return quat_interpolation_names;
