@@ -77,7 +77,7 @@ namespace quat_track_detail {
 /// by the math module's slerp (constant speed, accurate for tiny angles, never NaN).
 template <Real T>
 Quat<T> slerp_unit(const Quat<T>& a, const Quat<T>& b, T u) noexcept {
-  return slerp(a, b, u, SlerpOptions{.path = RotationPath::AsGiven});
+  return slerp(a, b, u, SlerpOptions{.path = RotationPath::as_given});
 }
 
 /// (a + b)/|a + b|: slerp at ½ without trigonometry (the text's bisect); a or b if they cancel.
