@@ -82,7 +82,7 @@ std::string curve_through(const std::vector<Vec3d>& points) {
   if (kept.size() < 2) throw CommandError{"--curve: the path is a single point; there is no curve through it"};
   auto spline = build_catmull_rom(kept, CatmullRomOptions<double>{.alpha = 0.5});
   if (!spline) throw CommandError{"--curve: " + spline.error().describe()};
-  return write_curve_json(AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{std::move(*spline)}});
+  return write_curve_json(AnyCurve{CurveKind::catmull_rom, 3, AnyCurveVariant{std::move(*spline)}});
 }
 
 // Writes the CSV and, with --curve, the curve file (both checked before either is written).

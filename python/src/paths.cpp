@@ -87,7 +87,7 @@ void bind_paths(py::module_& m) {
     info["square"] = fit.square;
     info["knots"] = fit.curve.knots;
     py::object curve_type = py::module_::import("inbetween._inbetween").attr("Curve");
-    py::object c = curve_type(write_curve_json(AnyCurve{CurveKind::BSpline, dim, AnyCurveVariant{std::move(curve)}}));
+    py::object c = curve_type(write_curve_json(AnyCurve{CurveKind::bspline, dim, AnyCurveVariant{std::move(curve)}}));
     return py::make_tuple(c, info);
   }, py::arg("t"), py::arg("points"), py::arg("degree") = 3, py::arg("control_points") = 0,
      "Least-squares B-spline of `degree` with `control_points` control points (0: as many as data, interpolation) "
@@ -159,7 +159,7 @@ void bind_paths(py::module_& m) {
     const auto found = find_path(*env, parsed.ends, {.planner = parsed.planner, .timing = parsed.timing, .steering = steering});
     if (!found) throw BindingError(locate_environment_error(found.error(), name));
     py::object curve_type = py::module_::import("inbetween._inbetween").attr("Curve");
-    py::object c = curve_type(write_curve_json(AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{found->smooth.curve}}));
+    py::object c = curve_type(write_curve_json(AnyCurve{CurveKind::catmull_rom, 3, AnyCurveVariant{found->smooth.curve}}));
     std::vector<std::array<double, 2>> keys;
     for (const auto& k : found->timing.keys) keys.push_back({k.t, k.s});
     py::dict timing;

@@ -156,7 +156,7 @@ Expected<AnyCurve> read_surface_curve(const json& sj, const Loc& loc, const Cont
   else if (kept.back() != points->back()) kept.push_back(points->back());
   auto spline = build_catmull_rom(kept, CatmullRomOptions<double>{.alpha = 0.5});
   if (!spline) return error_at(spline.error().code, spline.error().describe(), loc);
-  return AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{std::move(*spline)}};
+  return AnyCurve{CurveKind::catmull_rom, 3, AnyCurveVariant{std::move(*spline)}};
 }
 
 // A curve given as "curve" (a path name or an inline curve object), "file" (a curve file) or

@@ -59,7 +59,7 @@ TEST(SceneRigClip, ObjectsLocalTransformsAgreeWithTheScene) {
 TEST(SceneRigClip, RefusesAnObjectOnAPathWithThePlace) {
   RawScene raw;
   raw.range = {0, 10};
-  raw.paths.push_back({"p", AnyCurve{CurveKind::CatmullRom, 3,
+  raw.paths.push_back({"p", AnyCurve{CurveKind::catmull_rom, 3,
                                      AnyCurveVariant{build_catmull_rom(std::vector<Vec3d>{{0, 0, 0}, {1, 2, 0}, {3, 0, 1}}).value()}}});
   RawObject still;
   still.name = "still";
