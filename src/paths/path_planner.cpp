@@ -512,7 +512,7 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
     double wait = 0, clearance_slack = 0;
   } out;
   auto finish = [&]() -> Expected<PathTiming> {
-    auto curve = DistanceTimeCurve<double>::from_positions(out.keys, PositionInterpolation::Linear);
+    auto curve = DistanceTimeCurve<double>::from_positions(out.keys, PositionInterpolation::linear);
     if (!curve) return curve.error();
     const double duration = out.keys.back().t;
     return PathTiming{std::move(*curve), std::move(out.keys), out.avoidance, duration, out.wait, out.clearance_slack};
@@ -784,7 +784,7 @@ Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, cons
     }
     keys.back().s = arc->length();
     if (keys.size() == 1) keys.push_back({1 / options.timing.fps, keys[0].s});
-    auto curve = DistanceTimeCurve<double>::from_positions(keys, PositionInterpolation::Linear);
+    auto curve = DistanceTimeCurve<double>::from_positions(keys, PositionInterpolation::linear);
     if (!curve) return curve.error();
     const double duration = keys.back().t;
     PathTiming timing{std::move(*curve), std::move(keys), Avoidance::None, duration, wait, 0};

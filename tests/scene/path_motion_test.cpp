@@ -490,7 +490,7 @@ TEST(PathMotion, DistanceKeysLinearAndWithSpeedsFollowTheirClosedForms) {
   RawPathMotion raw{.path = path};
   raw.speed = RawSpeed{.kind = SpeedKind::distance_keys,
                        .keys = {{10, 0}, {20, 3}, {40, 7}},
-                       .interpolation = PositionInterpolation::Linear};
+                       .interpolation = PositionInterpolation::linear};
   const PathMotion m = build(raw);
   // Linear: 0.3 per frame on [10, 20], 0.2 per frame on [20, 40].
   EXPECT_NEAR(m.sample(15).distance, 1.5, 1e-15 * 7);
@@ -517,7 +517,7 @@ TEST(PathMotion, VelocityKeysCoverTheDistance) {
   RawPathMotion raw{.path = path};
   // A constant velocity curve over [0, 50] covering [1, 6]: s = 1 + 5·f/50, 0.1 per frame.
   raw.speed = RawSpeed{.kind = SpeedKind::velocity_keys, .from = 1.0, .to = 6.0,
-                       .velocities = {{0, 0.1 * kFps}, {50, 0.1 * kFps}}, .fit = VelocityFit::FloatToKeepAverage};
+                       .velocities = {{0, 0.1 * kFps}, {50, 0.1 * kFps}}, .fit = VelocityFit::float_to_keep_average};
   const PathMotion m = build(raw);
   for (int f = 0; f <= 50; f += 5) {
     EXPECT_NEAR(m.sample(f).distance, 1 + 0.1 * f, 1e-12);
@@ -612,7 +612,7 @@ TEST(PathMotion, AccelerationKeysIntegrateInClosedForm) {
   // unscaled s = t + t³/6 = 1 + 8/6 at t = 2 s; the acceleration part (8/6) scales by
   // k = (4 − 2)/(8/6) = 1.5, so s = t + 1.5·t³/6.
   raw.speed = RawSpeed{.kind = SpeedKind::acceleration_keys, .to = 4.0, .accelerations = {{0, 0.0}, {48, 2.0}},
-                       .shape = AccelerationShape::Linear, .start_speed = 1.0};
+                       .shape = AccelerationShape::linear, .start_speed = 1.0};
   const PathMotion l = build(raw);
   for (int f = 0; f <= 48; f += 4) {
     const double t = f / kFps;
@@ -826,7 +826,7 @@ TEST(PathMotion, BadSpecsAreErrorsThatSayWhere) {
   EXPECT_EQ(json_pointer(e.location), "/speed/keys/1/distance");
   // Distances that run backwards name the frames; repair is explicit.
   RawSpeed back{.kind = SpeedKind::distance_keys, .keys = {{0, 0}, {10, 4}, {20, 2}, {30, 6}},
-                .interpolation = PositionInterpolation::CatmullRom};
+                .interpolation = PositionInterpolation::catmull_rom};
   e = err(back);
   EXPECT_EQ(e.code, ErrorCode::NotMonotone);
   EXPECT_EQ(json_pointer(e.location), "/speed/keys");

@@ -57,7 +57,7 @@ template <>
 constexpr std::span<const std::string_view> enum_names<RmfClosing>() noexcept {
   return rmf_closing_names;
 }
-/// The file name of an enumerator (its enum_names<RmfClosing>() entry); enum_from_string<RmfClosing> parses it back.
+/// The file name of v, from the table above (enum_from_string<RmfClosing> parses it back).
 [[nodiscard]] inline std::string_view to_string(RmfClosing v) noexcept { return enum_name(v); }
 
 /// The relative tolerance for "closed": |P(end) − P(start)| ≤ tol·max(1, extent of the curve) and

@@ -59,7 +59,7 @@ template <>
 constexpr std::span<const std::string_view> enum_names<EaseKind>() noexcept {
   return ease_kind_names;
 }
-/// The file name of an enumerator (its enum_names<EaseKind>() entry); enum_from_string<EaseKind> parses it back.
+/// The file name of v, from the table above (enum_from_string<EaseKind> parses it back).
 [[nodiscard]] inline std::string_view to_string(EaseKind v) noexcept { return enum_name(v); }
 
 /// A normalised ease S(t): [0, 1] → [0, 1] (scene file: speed.ease).  Only the members of `kind`
@@ -119,7 +119,7 @@ template <>
 constexpr std::span<const std::string_view> enum_names<SpeedKind>() noexcept {
   return speed_kind_names;
 }
-/// The file name of an enumerator (its enum_names<SpeedKind>() entry); enum_from_string<SpeedKind> parses it back.
+/// The file name of v, from the table above (enum_from_string<SpeedKind> parses it back).
 [[nodiscard]] inline std::string_view to_string(SpeedKind v) noexcept { return enum_name(v); }
 
 /// A distance–time key (scene file: speed.keys[i]).
@@ -163,16 +163,16 @@ struct RawSpeed {
   std::vector<RawDistanceKey> keys;   ///< distance_keys: ≥ 2 keys, frames strictly increasing
   /// distance_keys without speeds: how the keys are joined (MonotoneCubic never backs up when the
   /// key distances do not decrease).
-  PositionInterpolation interpolation = PositionInterpolation::MonotoneCubic;
+  PositionInterpolation interpolation = PositionInterpolation::monotone_cubic;
   std::vector<RawVelocityKey> velocities;  ///< velocity_keys: ≥ 2 keys, frames strictly increasing
   /// velocity_keys: how the curve is adjusted so that it covers exactly [from, to].
-  VelocityFit fit = VelocityFit::FixKeysAdjustInterior;
+  VelocityFit fit = VelocityFit::fix_keys_adjust_interior;
   std::optional<FCurve> track;  ///< track: the distance as a scalar F-curve (the scene resolves names)
   /// acceleration_keys: ≥ 2 keys, frames strictly increasing.  The start distance is `from`
   /// (default 0); with `to` every acceleration is scaled by one factor so the motion ends there.
   std::vector<RawAccelerationKey> accelerations;
   /// acceleration_keys: constant on [frame_i, frame_{i+1}) (Figure 3.16) or linear between keys.
-  AccelerationShape shape = AccelerationShape::Constant;
+  AccelerationShape shape = AccelerationShape::constant;
   /// acceleration_keys: the speed at the first key, length units (or fractions) per second, ≥ 0.
   double start_speed = 0;
   /// distance_keys and velocity_keys: when the distance would run backwards, replace the curve by
@@ -196,7 +196,7 @@ template <>
 constexpr std::span<const std::string_view> enum_names<OrientationMode>() noexcept {
   return orientation_mode_names;
 }
-/// The file name of an enumerator (its enum_names<OrientationMode>() entry); enum_from_string<OrientationMode> parses it back.
+/// The file name of v, from the table above (enum_from_string<OrientationMode> parses it back).
 [[nodiscard]] inline std::string_view to_string(OrientationMode v) noexcept { return enum_name(v); }
 
 /// Banking into turns (scene file: orientation.banking; paths/banking.hpp): a roll about the front

@@ -45,7 +45,7 @@ template <>
 constexpr std::span<const std::string_view> enum_names<EasingCurve>() noexcept {
   return easing_curve_names;
 }
-/// The file name of an enumerator (its enum_names<EasingCurve>() entry); enum_from_string<EasingCurve> parses it back.
+/// The file name of v, from the table above (enum_from_string<EasingCurve> parses it back).
 [[nodiscard]] inline std::string_view to_string(EasingCurve v) noexcept { return enum_name(v); }
 
 /// Which end of the segment the easing acts on.
@@ -62,7 +62,7 @@ template <>
 constexpr std::span<const std::string_view> enum_names<EasingDirection>() noexcept {
   return easing_direction_names;
 }
-/// The file name of an enumerator (its enum_names<EasingDirection>() entry); enum_from_string<EasingDirection> parses it back.
+/// The file name of v, from the table above (enum_from_string<EasingDirection> parses it back).
 [[nodiscard]] inline std::string_view to_string(EasingDirection v) noexcept { return enum_name(v); }
 
 /// Blender's "auto" easing: ease out for back, bounce and elastic, ease in for the others.
