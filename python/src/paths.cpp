@@ -106,9 +106,9 @@ void bind_paths(py::module_& m) {
       out = take(smooth_cubic(pts, {.iterations = iterations, .smooth_ends = smooth_ends}), "smooth");
     } else if (method == "convolution") {
       ConvolutionOptions<double> o;
-      if (kernel == "box") o.kernel = SmoothingKernel::Box;
-      else if (kernel == "tent") o.kernel = SmoothingKernel::Tent;
-      else if (kernel == "gaussian") o.kernel = SmoothingKernel::Gaussian;
+      if (kernel == "box") o.kernel = SmoothingKernel::box;
+      else if (kernel == "tent") o.kernel = SmoothingKernel::tent;
+      else if (kernel == "gaussian") o.kernel = SmoothingKernel::gaussian;
       else throw py::value_error("smooth: kernel \"" + kernel + "\" is not one of box, tent, gaussian");
       o.radius = radius;
       o.fix_ends = fix_ends;
