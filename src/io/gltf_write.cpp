@@ -278,7 +278,7 @@ bool translation_sampled(const Scene& scene, std::size_t i) { return !scene.path
 // A camera viewing along its own rotation (a glTF camera node read back) without tilt keeps that
 // rotation: its keys are written as any object's, not resampled from the view.
 bool keeps_own_rotation(const CameraView<double>& view) {
-  return view.coi_mode() == CoiMode::OwnRotation && view.tilt_rad() == 0 && view.tilt_track_name().empty();
+  return view.coi_mode() == CoiMode::own_rotation && view.tilt_rad() == 0 && view.tilt_track_name().empty();
 }
 bool rotation_sampled(const Scene& scene, std::size_t i) {
   const CameraView<double>* view = scene.camera(i);

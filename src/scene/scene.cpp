@@ -412,8 +412,8 @@ Expected<Scene> build_scene(const RawScene& raw) {
         auto view = build_camera_view(rc);
         if (!view) return prepended(view.error(), {"objects", i, "camera"});
         if (view->needs_camera_path() && o.path.empty()) {
-          const char* member = view->coi_mode() == CoiMode::Ahead ? "ahead"
-                               : view->coi_mode() == CoiMode::Path ? "coi_path"
+          const char* member = view->coi_mode() == CoiMode::ahead ? "ahead"
+                               : view->coi_mode() == CoiMode::path ? "coi_path"
                                                                     : "up_path";
           return error_at(ErrorCode::InvalidArgument,
                           std::string("\"") + member + "\" needs the camera on a path (give the camera a \"path\")",

@@ -703,7 +703,7 @@ TEST(GltfWrite, Frame22CamerasReadBackAsSceneCameras) {
     }
     ++cameras;
     ASSERT_NE(back->camera(i), nullptr) << nodes[i].name;
-    EXPECT_EQ(back->camera(i)->coi_mode(), CoiMode::OwnRotation);
+    EXPECT_EQ(back->camera(i)->coi_mode(), CoiMode::own_rotation);
     EXPECT_NEAR(back->camera(i)->yfov_rad(), scene.camera(i)->yfov_rad(), test::few_ulp<double>) << nodes[i].name;
     double bound = 0;  // as in Frame22PathsAndCamerasPlayAsBake
     for (std::optional<std::size_t> k = i; k; k = nodes[*k].parent) {
