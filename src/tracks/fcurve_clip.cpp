@@ -259,7 +259,7 @@ bool cycles_frames(const FCurve& curve) {
 
 constexpr std::size_t W = rig_detail::stdx::native_simd<float>::size();  // channels per SIMD group
 static_assert(W <= 255, "a run's size and lane are bytes");
-constexpr std::uint32_t kNoRun = FCurveClip::Context::no_run;
+constexpr std::uint32_t kNoRun = FCurveClipCursor::no_run;
 
 // Turns a stream sorted by rig_detail::finish_stream (B floats per piece, owners final) into
 // bounds and runs: the pieces from p on with p's lo whose owners are p's owner + 1, + 2, … within
@@ -339,7 +339,7 @@ inline bool replays_from_start(const float* bounds, std::size_t n, std::size_t c
 
 // Group g reads the cache from now on: a run it read in place (main stream data) is copied there
 // first (the same layout: one contiguous copy), so that a lane can be replaced.
-inline void unshare(FCurveClip::Context& ctx, const float* data, std::size_t g) noexcept {
+inline void unshare(FCurveClipCursor& ctx, const float* data, std::size_t g) noexcept {
   std::uint32_t& d = ctx.direct[g];
   if (d == kNoRun) return;
   std::memcpy(ctx.cache.data() + g * CB * W, data + std::size_t(d) * CB, CB * W * sizeof(float));
@@ -356,7 +356,7 @@ inline void copy_lanes(const float* src, float* dst) noexcept {
 // Main: the clip's main stream, where a run that fills its group is read in place instead);
 // returns its size.
 template <bool Main, class Channels>
-std::size_t take_run(const Channels& ch, std::size_t p, FCurveClip::Context& ctx) noexcept {
+std::size_t take_run(const Channels& ch, std::size_t p, FCurveClipCursor& ctx) noexcept {
   const std::size_t b = ch.run[p];
   const std::size_t c = ch.owner[p];
   for (std::size_t i = 0; i < b; ++i) ctx.segment[c + i] = ch.local[p + i];
@@ -387,7 +387,7 @@ std::size_t take_run(const Channels& ch, std::size_t p, FCurveClip::Context& ctx
 
 }  // namespace
 
-// The cycle fold (see fcurve_clip.hpp): private parts of FCurveClip and its Context.
+// The cycle fold (see fcurve_clip.hpp): private parts of FCurveClip and its FCurveClipCursor.
 struct FCurveClipAccess {
   // Fold fields: lo, hi (the window), end, n·period as hi + lo floats, sign, base, wrap, offset.
   static constexpr std::size_t kFold = 9;
@@ -593,7 +593,7 @@ struct FCurveClipAccess {
   // Brings cycle class q to frame f: its fold (and its members' SIMD fold fields and value offsets
   // when the fold changes), its local frame, and its members' cached pieces, consumed from the
   // class's stream in local-frame order as the main stream is (rig_detail::advance).
-  static void advance_class(const FCurveClip& clip, FCurveClip::Context& ctx, std::size_t q, float f) noexcept {
+  static void advance_class(const FCurveClip& clip, FCurveClipCursor& ctx, std::size_t q, float f) noexcept {
     const CycleClass& cy = clip.classes_[q];
     float* S = ctx.class_fold.data() + q * kClass;
     const std::size_t s = ctx.stride;
@@ -684,8 +684,8 @@ Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClip
   return clip;
 }
 
-FCurveClip::Context make_fcurve_context(const FCurveClip& clip) {
-  FCurveClip::Context ctx;
+FCurveClipCursor make_fcurve_clip_cursor(const FCurveClip& clip) {
+  FCurveClipCursor ctx;
   ctx.stride = (clip.channels() + 15) / 16 * 16;
   ctx.segment.assign(clip.channels(), 0);
   ctx.cache.assign(CB * ctx.stride, 0.0f);
@@ -714,12 +714,12 @@ namespace {
 
 // Brings the cache of the channels in the main stream to `frame`: rig_detail::advance, with the
 // stream's lo and hi in `bounds` and its cached fields in runs: forward playback consumes the
-// stream's next runs (a run that fills a SIMD group is read in place, Context::direct; others
+// stream's next runs (a run that fills a SIMD group is read in place, FCurveClipCursor::direct; others
 // are copied into the cache); a seek back, or a forward jump past more than 16 pieces per channel,
 // finds each stale channel's piece from its cursor (the current piece's [lo, hi) read from
 // `bounds` through the cursor), copies it into the cache, and repositions the stream.
 template <class Channels>
-void advance_main(const Channels& ch, std::size_t C, float frame, FCurveClip::Context& context) noexcept {
+void advance_main(const Channels& ch, std::size_t C, float frame, FCurveClipCursor& context) noexcept {
   const float* bounds = ch.bounds.data();
   const std::size_t n = ch.owner.size();
   std::uint32_t* segment = context.segment.data();
@@ -748,9 +748,9 @@ void advance_main(const Channels& ch, std::size_t C, float frame, FCurveClip::Co
 // evaluate_channels' SIMD loop over groups of native_simd<float>::size() channels from the cache;
 // Folding: some channel cycles (apply each group's cycle fold where one of its channels does).
 constexpr std::size_t kPrefetchGroups = 8;
-// `data`: the main stream's runs (a group whose Context::direct names one reads it in place).
+// `data`: the main stream's runs (a group whose FCurveClipCursor::direct names one reads it in place).
 template <bool Folding>
-void evaluate_groups(FCurveClip::Context& context, const float* data, std::size_t C, float frame) noexcept {
+void evaluate_groups(FCurveClipCursor& context, const float* data, std::size_t C, float frame) noexcept {
   namespace stdx = rig_detail::stdx;
   using V = stdx::native_simd<float>;
   static_assert(V::size() == W);
@@ -795,7 +795,7 @@ void evaluate_groups(FCurveClip::Context& context, const float* data, std::size_
 
 }  // namespace
 
-void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context& context) noexcept {
+void evaluate_channels(const FCurveClip& clip, float frame, FCurveClipCursor& context) noexcept {
   const std::size_t C = clip.channels_;
   INBETWEEN_ASSERT(context.segment.size() == C && context.cache.size() == CB * context.stride &&
                    context.fold.size() == FCurveClipAccess::kFold * context.stride &&
@@ -847,13 +847,13 @@ void evaluate_channels(const FCurveClip& clip, float frame, FCurveClip::Context&
   }
 }
 
-void sample_fcurves(const FCurveClip& clip, float frame, FCurveClip::Context& context, std::span<float> out) noexcept {
+void sample_fcurves(const FCurveClip& clip, float frame, FCurveClipCursor& context, std::span<float> out) noexcept {
   INBETWEEN_ASSERT(out.size() == clip.channels_);
   evaluate_channels(clip, frame, context);
   std::copy_n(context.values.begin(), clip.channels_, out.begin());
 }
 
-void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context& context,
+void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClipCursor& context,
                        std::span<JointPose<float>> out) noexcept {
   const std::size_t J = clip.joints_;
   INBETWEEN_ASSERT(out.size() == J);

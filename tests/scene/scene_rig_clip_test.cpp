@@ -41,7 +41,7 @@ TEST(SceneRigClip, ObjectsLocalTransformsAgreeWithTheScene) {
   const auto clip = build_scene_rig_clip(*scene);
   ASSERT_TRUE(clip) << clip.error().describe();
   ASSERT_EQ(clip->joints(), 2u);
-  RigContext ctx = make_rig_context(*clip);
+  RigClipCursor ctx = make_rig_clip_cursor(*clip);
   std::vector<JointPose<double>> pose(2);
   for (double f = -3; f < 16; f += 0.37) {
     sample_rig(*clip, f, ctx, std::span<JointPose<double>>(pose));
