@@ -211,6 +211,38 @@ TEST(GltfWrite, BadOptionsAndEmptyScenesGetErrors) {
   EXPECT_EQ(c.error().code, ErrorCode::Unsupported);
 }
 
+// export_gltf reads authored keys from the raw scene and the rest from the built one: a raw scene
+// that is not the one the scene was built from is refused at the first difference (it used to be
+// assumed: an object count that differed was an assertion, a missing keyed channel undefined).
+TEST(GltfWrite, ARawSceneThatIsNotTheSourceOfTheSceneIsRefused) {
+  const Loaded s = load(kSource / "tests/data/scenes/gltf_export_zoo.json");
+  ASSERT_TRUE(export_gltf(s.raw, s.scene));
+  RawScene fewer = s.raw;
+  fewer.objects.pop_back();
+  auto a = export_gltf(fewer, s.scene);
+  ASSERT_FALSE(a);
+  EXPECT_EQ(a.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(json_pointer(a.error().location), "/objects");
+  RawScene renamed = s.raw;
+  renamed.objects[0].name += "_other";
+  auto b = export_gltf(renamed, s.scene);
+  ASSERT_FALSE(b);
+  EXPECT_EQ(json_pointer(b.error().location), "/objects/0/name");
+  std::size_t keyed = s.raw.objects.size();
+  for (std::size_t i = 0; i < s.raw.objects.size() && keyed == s.raw.objects.size(); ++i) {
+    const auto& t = s.raw.objects[i].translation;
+    const auto* c = t ? std::get_if<RawVec3Channel>(&*t) : nullptr;
+    if (c && c->keys.size() >= 2 && s.scene.path_legs(i).empty()) keyed = i;
+  }
+  ASSERT_LT(keyed, s.raw.objects.size()) << "the zoo has an object with translation keys";
+  RawScene other_keys = s.raw;
+  std::get<RawVec3Channel>(*other_keys.objects[keyed].translation).keys.pop_back();
+  auto c = export_gltf(other_keys, s.scene);
+  ASSERT_FALSE(c);
+  EXPECT_EQ(json_pointer(c.error().location), "/objects/" + std::to_string(keyed) + "/translation");
+  EXPECT_NE(c.error().message.find("not the one the scene was built from"), std::string::npos) << c.error().message;
+}
+
 bool have_node_package(const fs::path& dir, const char* package) {
   return std::system("node --version > /dev/null 2>&1") == 0 && fs::exists(dir / "node_modules" / package / "package.json");
 }
