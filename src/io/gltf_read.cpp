@@ -70,7 +70,7 @@ bool skip_image(tg::Image*, const int, std::string*, std::string*, int, int, con
 
 using io_detail::whole_frame_within_key_precision;  // key_time.hpp
 
-Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& options) {
+Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& options, std::vector<std::string>& notes) {
   if (!(options.fps > 0) || !std::isfinite(options.fps)) {
     return Error{ErrorCode::InvalidArgument, "fps " + shortest_text(options.fps) + " is not finite and positive", ""};
   }
@@ -160,7 +160,7 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
     if (auto it = channels.find({i, "translation"}); it != channels.end()) object.translation = vec3_channel(it->second, fps);
     if (auto it = channels.find({i, "scale"}); it != channels.end()) object.scale = vec3_channel(it->second, fps);
     if (auto it = channels.find({i, "rotation"}); it != channels.end()) object.rotation = rotation_channel(it->second, fps);
-    auto camera = node_camera(model, i, names[i], options.notes);
+    auto camera = node_camera(model, i, names[i], &notes);
     if (!camera) return camera.error();
     object.camera = std::move(*camera);
     scene.objects.push_back(std::move(object));
@@ -212,8 +212,8 @@ bool is_glb(std::span<const std::byte> bytes) noexcept {
   return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
 }
 
-Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
-                             const GltfReadOptions& options) {
+Expected<GltfImport> import_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
+                                 const GltfReadOptions& options) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
     return Error{ErrorCode::Unsupported, "files of 4 GiB and more are not read", ""};
   }
@@ -246,15 +246,40 @@ Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesy
     return Error{missing_file ? ErrorCode::Io : ErrorCode::Parse,
                  "not a readable glTF 2.0 file: " + (err.empty() ? std::string("tinygltf gave no reason") : err), ""};
   }
-  return to_raw_scene(model, options);
+  GltfImport out;
+  auto scene = to_raw_scene(model, options, out.notes);
+  if (!scene) return scene.error();
+  out.scene = std::move(*scene);
+  return out;
 }
 
-Expected<RawScene> read_gltf_file(const std::filesystem::path& file, const GltfReadOptions& options) {
+Expected<GltfImport> import_gltf_file(const std::filesystem::path& file, const GltfReadOptions& options) {
   auto text = read_file_bytes(file);
   if (!text) return text.error();
   std::filesystem::path dir = file.parent_path();
   if (dir.empty()) dir = ".";
-  return read_gltf(std::as_bytes(std::span<const char>(*text)), dir, options);
+  return import_gltf(std::as_bytes(std::span<const char>(*text)), dir, options);
+}
+
+namespace {
+// The scene of an import; its notes also go to the deprecated GltfReadOptions::notes when set.
+Expected<RawScene> scene_of(Expected<GltfImport> imported, const GltfReadOptions& options) {
+  if (!imported) return imported.error();
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+  if (options.notes) options.notes->insert(options.notes->end(), imported->notes.begin(), imported->notes.end());
+#pragma GCC diagnostic pop
+  return std::move(imported->scene);
+}
+}  // namespace
+
+Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
+                             const GltfReadOptions& options) {
+  return scene_of(import_gltf(bytes, base_dir, options), options);
+}
+
+Expected<RawScene> read_gltf_file(const std::filesystem::path& file, const GltfReadOptions& options) {
+  return scene_of(import_gltf_file(file, options), options);
 }
 
 }  // namespace inbetween

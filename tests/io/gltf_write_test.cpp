@@ -698,10 +698,11 @@ TEST(GltfWrite, Frame22CamerasReadBackAsSceneCameras) {
   ASSERT_TRUE(out) << out.error().describe();
   std::map<std::string, GltfChannelReport> rep;
   for (const auto& c : out->channels) rep[c.object + "." + c.path] = c;
-  std::vector<std::string> notes;
-  auto raw = read_gltf(std::as_bytes(std::span<const char>(out->bytes.data(), out->bytes.size())), "",
-                       {.fps = scene.fps(), .notes = &notes});
-  ASSERT_TRUE(raw) << raw.error().describe();
+  auto imported = import_gltf(std::as_bytes(std::span<const char>(out->bytes.data(), out->bytes.size())), "",
+                              {.fps = scene.fps()});
+  ASSERT_TRUE(imported) << imported.error().describe();
+  const std::vector<std::string>& notes = imported->notes;
+  const RawScene* raw = &imported->scene;
   EXPECT_TRUE(notes.empty()) << notes.front();  // the exporter's znear/zfar: nothing dropped
   auto back = build_scene(*raw);
   ASSERT_TRUE(back) << back.error().describe();
