@@ -89,41 +89,17 @@ void Plotter::plot_path_views(std::size_t i) {
   }
   const double axis_len = 0.06 * extent;
 
-  struct View {
-    const char* title;
-    int h, v;
-    bool flip_x, flip_y;
-    const char* x_label;
-    const char* y_label;
-  };
-  const View views[] = {
-      {"top view (looking down −y; z grows downwards)", 0, 2, false, true, "x (scene units)", "z (scene units)"},
-      {"front view (looking along −z)", 0, 1, false, false, "x (scene units)", "y (scene units)"},
-      {"side view (from +x, looking along −x; z grows leftwards)", 2, 1, true, false, "z (scene units)", "y (scene units)"},
-  };
-  const double size = 330, gap = 130;
   const double dot_frames = double(every) * grid_.step;
   const std::string every_text = dot_frames == 1 ? std::string("every frame") : "every " + short_text(dot_frames) + " frames";
   const std::string title = "path of " + name + ": top, front and side views, positions " + every_text;
-  SvgDocument doc(kLeft + 2 * (size + gap) + 40, kTop + 2 * (size + gap), title);
+  SvgDocument doc(kLeft + 2 * (kThreeViewSize + kThreeViewGap) + 40, kTop + 2 * (kThreeViewSize + kThreeViewGap), title);
   doc.text("text", {{"class", "title"}, {"x", "16"}, {"y", "28"}, {"font-size", "17"}, {"font-weight", "bold"}}, title);
   doc.text("text", {{"x", "16"}, {"y", "48"}, {"fill", "#555555"}},
            options_.title + " · positions at equal time steps: their spacing shows the speed (ease in and out close together)");
   const std::string axis_name[3] = {"x", "y", "z"};
   for (int vi = 0; vi < 3; ++vi) {
-    const View& view = views[vi];
-    // Third-angle layout: top view above the front view, side view to its right.
-    const double left = vi == 2 ? kLeft + size + gap : kLeft;
-    const double top = vi == 0 ? kTop : kTop + size + gap;
-    std::vector<double> hs, vs;
-    for (const auto& p : everything) {
-      hs.push_back(p[view.h]);
-      vs.push_back(p[view.v]);
-    }
-    const auto [h0, h1] = padded_range(hs, 0.08);
-    const auto [v0, v1] = padded_range(vs, 0.08);
-    Panel panel(left, top, size, size, h0, h1, v0, v1, view.flip_x, view.flip_y);
-    panel.equal_aspect();
+    const ThreeView& view = kThreeViews[vi];
+    const Panel panel = three_view_panel(vi, everything, kLeft, kTop);
     panel.begin(doc, view.title, view.x_label, view.y_label);
     panel.begin_data(doc);
     for (std::size_t l = 0; l < curves.size(); ++l) {
