@@ -265,10 +265,7 @@ namespace {
 // The scene of an import; its notes also go to the deprecated GltfReadOptions::notes when set.
 Expected<RawScene> scene_of(Expected<GltfImport> imported, const GltfReadOptions& options) {
   if (!imported) return imported.error();
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
   if (options.notes) options.notes->insert(options.notes->end(), imported->notes.begin(), imported->notes.end());
-#pragma GCC diagnostic pop
   return std::move(imported->scene);
 }
 }  // namespace

@@ -40,8 +40,9 @@ struct GltfReadOptions {
   /// Frames per second: glTF keys are in seconds, the scene in frames (frame = time · fps); finite, > 0.
   double fps = 24;
   /// Deprecated, kept for one release: import_gltf() / import_gltf_file() return the notes (as
-  /// export_gltf() does); read_gltf() still appends them here when it is set.
-  [[deprecated("use import_gltf, which returns the notes")]] std::vector<std::string>* notes = nullptr;
+  /// export_gltf() does); read_gltf() and read_gltf_file() still append them here when it is set.
+  /// (Not marked [[deprecated]]: GCC would then warn wherever the options are default-constructed.)
+  std::vector<std::string>* notes = nullptr;
 };
 
 /// What import_gltf() made: the scene and the notes on what it imported approximately or not at
