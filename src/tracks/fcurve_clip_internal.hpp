@@ -1,8 +1,8 @@
 #pragma once
 // Internals shared by the FCurveClip sources (not installed): the piece layout's constants, the
-// runs of a stream and their hand-over to a cursor, the fitting of one curve
-// into pieces (fcurve_clip_fit.cpp), and FCurveClipAccess, the cycle fold
-// (fcurve_clip_cycles.cpp).  fcurve_clip.cpp builds clips and samples them.
+// runs of a stream and their hand-over to a cursor, the fitting of one curve into pieces
+// (fcurve_clip_fit.cpp), and FCurveClipAccess, the cycle fold (fcurve_clip_cycles.cpp).
+// fcurve_clip.cpp builds clips and samples them.
 #include "inbetween/tracks/runtime/fcurve_clip.hpp"
 
 #include <cstddef>
