@@ -414,8 +414,8 @@ Expected<Scene> build_scene(const RawScene& raw) {
         auto view = build_camera_view(rc);
         if (!view) return prepended(view.error(), {"objects", i, "camera"});
         if (view->needs_camera_path() && o.path.empty()) {
-          const char* member = view->coi_mode() == CoiMode::Ahead ? "ahead"
-                               : view->coi_mode() == CoiMode::Path ? "coi_path"
+          const char* member = view->coi_mode() == CoiMode::ahead ? "ahead"
+                               : view->coi_mode() == CoiMode::path ? "coi_path"
                                                                     : "up_path";
           return error_at(ErrorCode::InvalidArgument,
                           std::string("\"") + member + "\" needs the camera on a path (give the camera a \"path\")",
@@ -560,11 +560,6 @@ Vec3d to_parent_space(const Transform<double>& world_T_parent, const Vec3d& p) n
 Vec3d get_point(const double* in) noexcept { return {in[0], in[1], in[2]}; }
 
 }  // namespace
-
-template <>
-std::optional<Space> enum_from_string<Space>(std::string_view name) noexcept {
-  return find_enum_name<Space>(enum_names<Space>(), name);
-}
 
 void Scene::sample(double frame, std::span<double> out) const noexcept {
   INBETWEEN_ASSERT(out.size() == columns_.size());

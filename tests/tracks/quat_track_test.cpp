@@ -227,7 +227,7 @@ TEST(QuatTrack, ControlPointsOnlyWhereUsedChangeNoSample) {
       const double u = j / 16.0;
       const double f = frames[seg] + u * (frames[seg + 1] - frames[seg]);
       const double uu = std::clamp((f - frames[seg]) / (frames[seg + 1] - frames[seg]), 0.0, 1.0);  // as sample() computes it
-      const Q want_slerp = slerp(keys[seg], keys[seg + 1], uu, SlerpOptions{.path = RotationPath::AsGiven});
+      const Q want_slerp = slerp(keys[seg], keys[seg + 1], uu, SlerpOptions{.path = RotationPath::as_given});
       EXPECT_TRUE(same_bits(slerp_only->sample(f), want_slerp)) << "slerp segment " << seg << " u " << u;
       const QuatInterpolation m = mixed_mode(int(seg));
       const Q want = m == QuatInterpolation::bezier  ? all_bezier->sample(f)
@@ -270,7 +270,7 @@ TEST(QuatTrack, SegmentLookupMatchesLinearSearch) {
       std::size_t i = 0;
       while (!(f[i] <= x && x < f[i + 1])) ++i;
       const double u = std::clamp((x - f[i]) / (f[i + 1] - f[i]), 0.0, 1.0);
-      return slerp(q[i], q[i + 1], u, SlerpOptions{.path = RotationPath::AsGiven});
+      return slerp(q[i], q[i + 1], u, SlerpOptions{.path = RotationPath::as_given});
     };
     std::vector<double> probes(f.begin(), f.end());
     for (std::size_t i = 0; i + 1 < f.size(); ++i) {

@@ -27,7 +27,7 @@
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/orientation_interp.hpp"
 #include "inbetween/math/quat.hpp"
-#include "inbetween/tracks/enum_names.hpp"
+#include "inbetween/math/enum_names.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace inbetween {
@@ -43,7 +43,7 @@ enum class QuatInterpolation : std::uint8_t {
 
 /// File and command-line names of the QuatInterpolation enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 5> quat_interpolation_names = {"step", "slerp", "bezier", "squad", "gltf_cubic"};
-/// The name table of QuatInterpolation (see enum_names.hpp).
+/// The name table of QuatInterpolation (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<QuatInterpolation>() noexcept {
   return quat_interpolation_names;
@@ -86,7 +86,7 @@ namespace quat_track_detail {
 /// by the math module's slerp (constant speed, accurate for tiny angles, never NaN).
 template <Real T>
 Quat<T> slerp_unit(const Quat<T>& a, const Quat<T>& b, T u) noexcept {
-  return slerp(a, b, u, SlerpOptions{.path = RotationPath::AsGiven});
+  return slerp(a, b, u, SlerpOptions{.path = RotationPath::as_given});
 }
 
 /// (a + b)/|a + b|: slerp at ½ without trigonometry (the text's bisect); a or b if they cancel.
