@@ -55,7 +55,7 @@ std::vector<P> smooth_points(const std::vector<P>& pts, const CsvTable& t, const
       if (!r) break;
       cur = *r;
     }
-    if (a.iterations < 0) r = Error{ErrorCode::InvalidArgument, "iterations must be >= 0", "iterations"};
+    if (a.iterations < 0) r = Error{ErrorCode::invalid_argument, "iterations must be >= 0", "iterations"};
     if (a.iterations == 0) r = cur;
   }
   if (!r) fail(r.error(), t, a);

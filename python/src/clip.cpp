@@ -65,7 +65,7 @@ Clip load_clip(const py::object& path_like, const std::string& space_name, const
   const Scene& scene = *built;
   const auto objects = scene.objects();
   if (objects.empty()) {
-    throw BindingError(Error{ErrorCode::Unsupported, "no objects (joints) in the file, only tracks: use inbetween.bake", ""}, path);
+    throw BindingError(Error{ErrorCode::unsupported, "no objects (joints) in the file, only tracks: use inbetween.bake", ""}, path);
   }
 
   std::vector<double> frames;
@@ -124,7 +124,7 @@ Clip load_clip(const py::object& path_like, const std::string& space_name, const
       }
     }
   }
-  if (!failure.empty()) throw BindingError(Error{ErrorCode::NotFinite, failure, ""}, path);
+  if (!failure.empty()) throw BindingError(Error{ErrorCode::not_finite, failure, ""}, path);
   return clip;
 }
 

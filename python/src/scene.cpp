@@ -152,7 +152,7 @@ py::tuple bake(const PyScene& s, const std::optional<Array>& frames_in, double s
       }
     }
   }
-  if (!failure.empty()) throw BindingError(Error{ErrorCode::NotFinite, failure, ""}, s.source);
+  if (!failure.empty()) throw BindingError(Error{ErrorCode::not_finite, failure, ""}, s.source);
   std::vector<std::string> names{"frame", "time"};
   for (const auto& c : columns) names.push_back(c.name);
   return py::make_tuple(out, names);
@@ -186,7 +186,7 @@ void bind_scene(py::module_& m) {
                       double tolerance, double reduce, int substeps, bool cubic) {
     // reduce: 0 keeps exact keys, > 0 is a tolerance; NaN or < 0 is refused as the CLI's --reduce is.
     if (!(reduce >= 0) || !std::isfinite(reduce)) {
-      throw BindingError(Error{ErrorCode::InvalidArgument, "reduce must be 0 (keep exact keys) or finite and > 0, got " +
+      throw BindingError(Error{ErrorCode::invalid_argument, "reduce must be 0 (keep exact keys) or finite and > 0, got " +
                                                                shortest_text(reduce), "", {"reduce"}});
     }
     const PyScene s = load(input, animation, fps);
@@ -225,7 +225,7 @@ void bind_scene(py::module_& m) {
     }
     std::ofstream file(output, std::ios::binary);
     if (!file || !file.write(bytes.data(), std::streamsize(bytes.size()))) {
-      throw BindingError(Error{ErrorCode::Io, "cannot write " + output, ""});
+      throw BindingError(Error{ErrorCode::io, "cannot write " + output, ""});
     }
     return report;
   }, py::arg("input"), py::arg("output"), py::arg("animation") = "", py::arg("fps") = 24.0, py::arg("tolerance") = 1e-5,

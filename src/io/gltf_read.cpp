@@ -154,20 +154,20 @@ Expected<const unsigned char*> view_bytes(const tg::Model& model, int view_index
                                           std::size_t length, std::size_t accessor, const std::string& what,
                                           std::initializer_list<LocationStep> where) {
   if (view_index < 0 || std::size_t(view_index) >= model.bufferViews.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "accessor " + std::to_string(accessor) + ": " + what + " bufferView " + std::to_string(view_index) +
                         " does not exist (the file has " + std::to_string(model.bufferViews.size()) + ")",
                     where);
   }
   const tg::BufferView& view = model.bufferViews[std::size_t(view_index)];
   if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "bufferView " + std::to_string(view_index) + ": buffer " + std::to_string(view.buffer) + " does not exist",
                     {"bufferViews", std::size_t(view_index), "buffer"});
   }
   const std::size_t buffer_size = model.buffers[std::size_t(view.buffer)].data.size();
   if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "bufferView " + std::to_string(view_index) + " (bytes " + std::to_string(view.byteOffset) + " + " +
                         std::to_string(view.byteLength) + ") extends past the end of buffer " +
                         std::to_string(view.buffer) + " (" + std::to_string(buffer_size) + " bytes), used by accessor " +
@@ -175,7 +175,7 @@ Expected<const unsigned char*> view_bytes(const tg::Model& model, int view_index
                     {"bufferViews", std::size_t(view_index)});
   }
   if (offset > view.byteLength || length > view.byteLength - offset) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "accessor " + std::to_string(accessor) + ": " + what + " needs bytes " + std::to_string(offset) +
                         " + " + std::to_string(length) + " of bufferView " + std::to_string(view_index) + ", which has " +
                         std::to_string(view.byteLength) + " (the buffer is shorter than the accessor)",
@@ -189,7 +189,7 @@ Expected<const unsigned char*> view_bytes(const tg::Model& model, int view_index
 // Every byte read is checked to lie inside its bufferView and buffer.
 Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int index, int components, bool allow_normalized) {
   if (index < 0 || std::size_t(index) >= model.accessors.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "accessor " + std::to_string(index) + " does not exist (the file has " +
                         std::to_string(model.accessors.size()) + ")",
                     {});
@@ -199,7 +199,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
   const std::string name = "accessor " + std::to_string(ai);
   const int type_components = tg::GetNumComponentsInType(std::uint32_t(acc.type));
   if (type_components != components) {
-    return error_at(ErrorCode::WrongArity,
+    return error_at(ErrorCode::wrong_arity,
                     name + " must be " + type_name(components) + ", not a " +
                         (type_components > 4 ? std::string("matrix") : type_name(type_components)),
                     {"accessors", ai, "type"});
@@ -208,12 +208,12 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
   const int csize = component_size(ctype);
   const bool is_float = ctype == TINYGLTF_COMPONENT_TYPE_FLOAT;
   if (csize == 0 || ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-    return error_at(ErrorCode::Unsupported,
+    return error_at(ErrorCode::unsupported,
                     name + ": component type " + std::to_string(ctype) + " cannot hold animation data",
                     {"accessors", ai, "componentType"});
   }
   if (!is_float && !(allow_normalized && acc.normalized)) {
-    return error_at(ErrorCode::Unsupported,
+    return error_at(ErrorCode::unsupported,
                     name + ": " +
                         (allow_normalized ? "integer components must be normalized (\"normalized\": true)"
                                           : "must have float components (5126)"),
@@ -224,7 +224,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
   std::vector<double> out;
   if (acc.bufferView < 0) {
     if (count > kMaxUnbackedElements) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       name + ": " + std::to_string(count) + " elements without a bufferView (at most " +
                           std::to_string(kMaxUnbackedElements) + ")",
                       {"accessors", ai, "count"});
@@ -232,7 +232,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
     out.assign(count * std::size_t(components), 0.0);
   } else {
     if (std::size_t(acc.bufferView) >= model.bufferViews.size()) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       name + ": bufferView " + std::to_string(acc.bufferView) + " does not exist (the file has " +
                           std::to_string(model.bufferViews.size()) + ")",
                       {"accessors", ai, "bufferView"});
@@ -241,7 +241,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
     std::size_t stride = elem;
     if (view.byteStride != 0) {
       if (view.byteStride < elem || view.byteStride % std::size_t(csize) != 0) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         name + ": byteStride " + std::to_string(view.byteStride) + " of bufferView " +
                             std::to_string(acc.bufferView) + " is smaller than an element (" + std::to_string(elem) +
                             " bytes) or not a multiple of the component size",
@@ -252,7 +252,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
     std::size_t length = 0;
     if (count > 0) {
       if (count - 1 > (std::numeric_limits<std::size_t>::max() - elem) / stride) {
-        return error_at(ErrorCode::InvalidArgument, name + ": count " + std::to_string(count) + " is too large",
+        return error_at(ErrorCode::invalid_argument, name + ": count " + std::to_string(count) + " is too large",
                         {"accessors", ai, "count"});
       }
       length = (count - 1) * stride + elem;
@@ -268,7 +268,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
   if (acc.sparse.isSparse) {
     const auto& sp = acc.sparse;
     if (sp.count < 1 || std::size_t(sp.count) > count) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       name + ": sparse count " + std::to_string(sp.count) + " is not in [1, " + std::to_string(count) + "]",
                       {"accessors", ai, "sparse", "count"});
     }
@@ -276,12 +276,12 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
     const int itype = sp.indices.componentType;
     if (itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       name + ": sparse indices component type " + std::to_string(itype) + " is not an unsigned integer",
                       {"accessors", ai, "sparse", "indices", "componentType"});
     }
     if (sp.indices.byteOffset < 0 || sp.values.byteOffset < 0) {
-      return error_at(ErrorCode::InvalidArgument, name + ": negative sparse byteOffset", {"accessors", ai, "sparse"});
+      return error_at(ErrorCode::invalid_argument, name + ": negative sparse byteOffset", {"accessors", ai, "sparse"});
     }
     const std::size_t isize = std::size_t(component_size(itype));
     auto ibytes = view_bytes(model, sp.indices.bufferView, std::size_t(sp.indices.byteOffset), n * isize, ai,
@@ -294,7 +294,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
     for (std::size_t k = 0; k < n; ++k) {
       const std::uint32_t target = decode_index(*ibytes + k * isize, itype);
       if (std::int64_t(target) <= previous || target >= count) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         name + ": sparse index " + std::to_string(k) + " (" + std::to_string(target) +
                             ") is not after the previous one or not below count " + std::to_string(count),
                         {"accessors", ai, "sparse", "indices"});
@@ -352,10 +352,10 @@ Expected<Transformd> rest_pose(const tg::Node& node, std::size_t index) {
     rest.rotation = Quatd::from_wxyz(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
   if (node.scale.size() == 3) rest.scale = Vec3d{node.scale[0], node.scale[1], node.scale[2]};
   if (!is_finite(rest.translation) || !is_finite(rest.scale) || !is_finite(rest.rotation)) {
-    return error_at(ErrorCode::NotFinite, "node " + std::to_string(index) + ": TRS is not finite", {"nodes", index});
+    return error_at(ErrorCode::not_finite, "node " + std::to_string(index) + ": TRS is not finite", {"nodes", index});
   }
   if (!(norm(rest.rotation) > 0)) {
-    return error_at(ErrorCode::InvalidArgument, "node " + std::to_string(index) + ": rotation is a zero quaternion",
+    return error_at(ErrorCode::invalid_argument, "node " + std::to_string(index) + ": rotation is a zero quaternion",
                     {"nodes", index, "rotation"});
   }
   return rest;
@@ -392,7 +392,7 @@ Expected<std::size_t> select_animation(const tg::Model& model, const std::string
   std::string list;
   for (std::size_t i = 0; i < model.animations.size(); ++i)
     list += (i ? ", " : "") + std::to_string(i) + quoted(model.animations[i].name);
-  return Error{ErrorCode::InvalidArgument,
+  return Error{ErrorCode::invalid_argument,
                "no animation is named or numbered " + quote_excerpt(wanted) + " (the file has " +
                    std::to_string(model.animations.size()) + (list.empty() ? "" : ": " + list) + ")",
                ""};
@@ -404,7 +404,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
   const tg::AnimationChannel& ch = anim.channels[c];
   const std::string head = "animation " + std::to_string(a) + quoted(anim.name) + ", channel " + std::to_string(c);
   if (ch.target_node < 0 || std::size_t(ch.target_node) >= model.nodes.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     head + ": target node " + std::to_string(ch.target_node) + " does not exist (the file has " +
                         std::to_string(model.nodes.size()) + " nodes)",
                     {"animations", a, "channels", c, "target", "node"});
@@ -428,17 +428,17 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
     components = 1;
     normalized_ok = true;
     if (width == 0) {
-      return error_at(ErrorCode::InvalidArgument, target + ": the node has no mesh with morph targets",
+      return error_at(ErrorCode::invalid_argument, target + ": the node has no mesh with morph targets",
                       {"animations", a, "channels", c, "target", "path"});
     }
   } else {
-    return error_at(ErrorCode::Unsupported,
+    return error_at(ErrorCode::unsupported,
                     target + ": path \"" + out.path + "\" is not translation, rotation, scale or weights",
                     {"animations", a, "channels", c, "target", "path"});
   }
   out.width = width;
   if (ch.sampler < 0 || std::size_t(ch.sampler) >= anim.samplers.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     target + ": sampler " + std::to_string(ch.sampler) + " does not exist (the animation has " +
                         std::to_string(anim.samplers.size()) + ")",
                     {"animations", a, "channels", c, "sampler"});
@@ -453,7 +453,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
   } else if (sampler.interpolation == "CUBICSPLINE") {
     out.sampling = Sampling::cubic;
   } else {
-    return error_at(ErrorCode::Unsupported,
+    return error_at(ErrorCode::unsupported,
                     where + ": interpolation \"" + sampler.interpolation + "\" is not STEP, LINEAR or CUBICSPLINE",
                     {"animations", a, "samplers", s, "interpolation"});
   }
@@ -466,18 +466,18 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
   const std::size_t n = times->size();
   const std::size_t in_acc = std::size_t(sampler.input);
   if (n == 0) {
-    return error_at(ErrorCode::TooFewPoints, where + ": input accessor " + std::to_string(in_acc) + " has no key times",
+    return error_at(ErrorCode::too_few_points, where + ": input accessor " + std::to_string(in_acc) + " has no key times",
                     {"accessors", in_acc, "count"});
   }
   for (std::size_t k = 0; k < n; ++k) {
     const double t = (*times)[k];
     if (!std::isfinite(t)) {
-      return error_at(ErrorCode::NotFinite,
+      return error_at(ErrorCode::not_finite,
                       where + ": input accessor " + std::to_string(in_acc) + ", key " + std::to_string(k) + ": time is not finite",
                       {"accessors", in_acc});
     }
     if (k > 0 && !(t > (*times)[k - 1])) {
-      return error_at(ErrorCode::KeysNotIncreasing,
+      return error_at(ErrorCode::keys_not_increasing,
                       where + ": input accessor " + std::to_string(in_acc) + ", key " + std::to_string(k) + ": time " +
                           shortest_text(t) + " is not after the previous key's " + shortest_text((*times)[k - 1]) +
                           " (times must increase strictly)",
@@ -485,7 +485,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
     }
     const double frame = t * fps;
     if (!std::isfinite(frame) || (k > 0 && !(frame > out.frames.back()))) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       where + ": input accessor " + std::to_string(in_acc) + ", key " + std::to_string(k) + ": time " +
                           shortest_text(t) + " × fps " + shortest_text(fps) + " is not a finite, increasing frame",
                       {"accessors", in_acc});
@@ -503,7 +503,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
   const std::size_t elements = values->size() / std::size_t(components);
   const std::size_t needed = n * per_key / std::size_t(components);
   if (elements != needed) {
-    return error_at(ErrorCode::WrongArity,
+    return error_at(ErrorCode::wrong_arity,
                     where + ": output accessor " + std::to_string(out_acc) + " has " + std::to_string(elements) +
                         " elements; " + sampler.interpolation + " with " + std::to_string(n) + " key times (input accessor " +
                         std::to_string(in_acc) + ")" + (out.path == "weights" ? " and " + std::to_string(width) + " morph targets" : "") +
@@ -512,7 +512,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
   }
   for (std::size_t i = 0; i < values->size(); ++i) {
     if (!std::isfinite((*values)[i])) {
-      return error_at(ErrorCode::NotFinite,
+      return error_at(ErrorCode::not_finite,
                       where + ": output accessor " + std::to_string(out_acc) + ", element " +
                           std::to_string(i / std::size_t(components)) + " is not finite",
                       {"accessors", out_acc});
@@ -524,7 +524,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
     for (std::size_t k = 0; k < n; ++k) {
       const double* q = values->data() + k * stride + offset;
       if (!(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] > 0)) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         where + ": output accessor " + std::to_string(out_acc) + ", key " + std::to_string(k) +
                             ": zero quaternion is not a rotation",
                         {"accessors", out_acc});
@@ -623,7 +623,7 @@ Expected<std::optional<RawCameraViewd>> node_camera(const tg::Model& model, std:
   if (node.camera < 0) return std::optional<RawCameraViewd>{};
   const std::size_t c = std::size_t(node.camera);
   if (c >= model.cameras.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "node " + std::to_string(i) + ": camera " + std::to_string(c) + " does not exist (" +
                         std::to_string(model.cameras.size()) + " cameras)",
                     {"nodes", i, "camera"});
@@ -642,7 +642,7 @@ Expected<std::optional<RawCameraViewd>> node_camera(const tg::Model& model, std:
   // Checked in degrees, as the scene camera holds it: a yfov a hair below π can round to 180°.
   const double yfov_deg = p.yfov * (180 / kPi);
   if (!std::isfinite(p.yfov) || !(yfov_deg > 0) || !(yfov_deg < 180)) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     which + ": yfov " + shortest_text(p.yfov) + " is not an angle in (0, pi) radians",
                     {"cameras", c, "perspective", "yfov"});
   }
@@ -668,7 +668,7 @@ using io_detail::whole_frame_within_key_precision;  // key_time.hpp
 
 Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& options) {
   if (!(options.fps > 0) || !std::isfinite(options.fps)) {
-    return Error{ErrorCode::InvalidArgument, "fps " + shortest_text(options.fps) + " is not finite and positive", ""};
+    return Error{ErrorCode::invalid_argument, "fps " + shortest_text(options.fps) + " is not finite and positive", ""};
   }
   const double fps = options.fps;
   const std::vector<std::string> names = object_names(model);
@@ -682,12 +682,12 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
     for (std::size_t j = 0; j < model.nodes[i].children.size(); ++j) {
       const int child = model.nodes[i].children[j];
       if (child < 0 || std::size_t(child) >= model.nodes.size() || std::size_t(child) == i) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "node " + std::to_string(i) + ": child " + std::to_string(child) + " is not another node",
                         {"nodes", i, "children", j});
       }
       if (parent[std::size_t(child)]) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "node " + std::to_string(child) + " is a child of both node " +
                             std::to_string(*parent[std::size_t(child)]) + " and node " + std::to_string(i),
                         {"nodes", i, "children", j});
@@ -699,7 +699,7 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
     std::size_t steps = 0;
     for (auto p = parent[i]; p; p = parent[*p]) {
       if (++steps > model.nodes.size()) {
-        return error_at(ErrorCode::InvalidArgument, "node " + std::to_string(i) + " is its own ancestor (a cycle of children)",
+        return error_at(ErrorCode::invalid_argument, "node " + std::to_string(i) + " is its own ancestor (a cycle of children)",
                         {"nodes", i, "children"});
       }
     }
@@ -720,7 +720,7 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
       end = std::max(end, ch->frames.back());
       const auto key = std::make_pair(ch->node, ch->path);
       if (channels.count(key)) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "animation " + std::to_string(a) + quoted(anim.name) + ", channel " + std::to_string(c) +
                             ": a second channel for node " + std::to_string(ch->node) + " " + ch->path,
                         {"animations", a, "channels", c, "target"});
@@ -737,7 +737,7 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
   for (std::size_t i = 0; i < model.nodes.size(); ++i) {
     weight_columns += morph_targets(model, model.nodes[i]);
     if (weight_columns > kMaxWeightColumns) {
-      return error_at(ErrorCode::Unsupported,
+      return error_at(ErrorCode::unsupported,
                       "node " + std::to_string(i) + ": more than " + std::to_string(kMaxWeightColumns) +
                           " morph weight columns in the file (nodes × morph targets)",
                       {"nodes", i, "mesh"});
@@ -791,7 +791,7 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
     for (std::size_t j = 0; j < skin.joints.size(); ++j) {
       const int joint = skin.joints[j];
       if (joint < 0 || std::size_t(joint) >= model.nodes.size()) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "skin " + std::to_string(k) + quoted(skin.name) + ": joint " + std::to_string(joint) + " is not a node",
                         {"skins", k, "joints", j});
       }
@@ -856,7 +856,7 @@ std::optional<Error> missing_required(const nlohmann::json& root) {
   using Steps = std::vector<LocationStep>;
   std::optional<Error> found;
   auto fail = [&](Steps at, std::string message) {
-    if (!found) found = Error{ErrorCode::Parse, std::move(message), "", std::move(at)};
+    if (!found) found = Error{ErrorCode::parse, std::move(message), "", std::move(at)};
   };
   // Members `names` of the object at `at`, each of type `w`.
   auto require = [&](const nlohmann::json& obj, const Steps& at, std::initializer_list<std::pair<const char*, Want>> names) {
@@ -945,7 +945,7 @@ bool is_glb(std::span<const std::byte> bytes) noexcept {
 Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
                              const GltfReadOptions& options) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
-    return Error{ErrorCode::Unsupported, "files of 4 GiB and more are not read", ""};
+    return Error{ErrorCode::unsupported, "files of 4 GiB and more are not read", ""};
   }
   tg::TinyGLTF loader;
   loader.SetFsCallbacks(tg::FsCallbacks{fs_exists, fs_expand, fs_read, fs_write, nullptr});
@@ -973,7 +973,7 @@ Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesy
     err = one_line_excerpt(err);
     const bool missing_file = err.find("File not found") != std::string::npos || err.find("cannot open") != std::string::npos ||
                               err.find("Failed to load external") != std::string::npos;
-    return Error{missing_file ? ErrorCode::Io : ErrorCode::Parse,
+    return Error{missing_file ? ErrorCode::io : ErrorCode::parse,
                  "not a readable glTF 2.0 file: " + (err.empty() ? std::string("tinygltf gave no reason") : err), ""};
   }
   return to_raw_scene(model, options);

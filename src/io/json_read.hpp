@@ -25,7 +25,7 @@ inline std::string located(const std::string& source, const std::string& pointer
 // Makes errors located in one source.
 struct Reader {
   std::string source;
-  Error fail(std::string pointer, std::string message, ErrorCode code = ErrorCode::Parse) const {
+  Error fail(std::string pointer, std::string message, ErrorCode code = ErrorCode::parse) const {
     return Error{code, std::move(message), located(source, pointer)};
   }
 };
@@ -47,7 +47,7 @@ inline std::string ptr(std::string_view field, std::size_t i) {
 inline Expected<double> read_number(const Reader& r, const json& v, const std::string& pointer) {
   if (!v.is_number()) return r.fail(pointer, "expected a number, got " + std::string(v.type_name()));
   const double d = v.get<double>();
-  if (!std::isfinite(d)) return r.fail(pointer, "number is not finite", ErrorCode::NotFinite);
+  if (!std::isfinite(d)) return r.fail(pointer, "number is not finite", ErrorCode::not_finite);
   return d;
 }
 
@@ -73,7 +73,7 @@ inline Loc join(Loc base, std::size_t i) {
 }
 
 // An error at `loc`.
-inline Error fail(Loc loc, std::string message, ErrorCode code = ErrorCode::Parse) {
+inline Error fail(Loc loc, std::string message, ErrorCode code = ErrorCode::parse) {
   return Error{code, std::move(message), "", std::move(loc)};
 }
 
@@ -88,7 +88,7 @@ inline Expected<void> only_fields(const json& obj, const Loc& at, std::initializ
 inline Expected<double> read_number(const json& v, const Loc& at) {
   if (!v.is_number()) return fail(at, "expected a number, got " + std::string(v.type_name()));
   const double d = v.get<double>();
-  if (!std::isfinite(d)) return fail(at, "number is not finite", ErrorCode::NotFinite);
+  if (!std::isfinite(d)) return fail(at, "number is not finite", ErrorCode::not_finite);
   return d;
 }
 

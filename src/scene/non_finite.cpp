@@ -48,7 +48,7 @@ double largest(const Vec3d& v) { return std::max({std::abs(v.x), std::abs(v.y), 
 
 Error non_finite_value_error(const Scene& scene, double frame, std::size_t column, double value) {
   const std::string& name = scene.columns()[column].name;
-  Error e{ErrorCode::NotFinite,
+  Error e{ErrorCode::not_finite,
           "frame " + shortest_text(frame) + ": " + name +
               (std::isnan(value) ? " is not a number"
                                  : " overflows (" + shortest_text(value) +

@@ -267,7 +267,7 @@ TEST(BvhRead, AMillionJointsAreRefusedQuickly) {
     auto r = read_bvh(text);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ASSERT_FALSE(r.has_value());
-    EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
+    EXPECT_EQ(r.error().code, ErrorCode::unsupported);
     const std::size_t line = 6 + (kMaxBvhJoints - 1) * (nested ? 4 : 5);  // the (limit + 1)-th joint's JOINT line
     EXPECT_EQ(r.error().where, "line " + std::to_string(line)) << r.error().message;
     EXPECT_LT(seconds, 1.0);  // the limit is checked as joints come, not after reading 40 MB
@@ -282,7 +282,7 @@ TEST(BvhRead, FilesAboveTheSizeLimitAreNotRead) {
   auto r = read_bvh_file(path);
   std::filesystem::remove(path);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(r.error().code, ErrorCode::unsupported);
   EXPECT_EQ(r.error().where, path.string());
   EXPECT_FALSE(read_bvh_file(path).has_value());  // gone: cannot open
 }

@@ -196,7 +196,7 @@ TEST(EnvironmentFile, ExtremeNumbersGiveErrorsOrFiniteResultsSeededLoop) {
 }
 
 TEST(EnvironmentFile, LibraryErrorsGetTheFileName) {
-  const Error e{ErrorCode::InvalidArgument, "obstacle 2: radius must be finite and > 0", "",
+  const Error e{ErrorCode::invalid_argument, "obstacle 2: radius must be finite and > 0", "",
                 {std::string("obstacles"), std::size_t{2}, std::string("sphere"), std::string("radius")}};
   EXPECT_EQ(locate_environment_error(e, "env.json").describe(),
             "env.json:/obstacles/2/sphere/radius: obstacle 2: radius must be finite and > 0");

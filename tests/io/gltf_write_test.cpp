@@ -208,7 +208,7 @@ TEST(GltfWrite, BadOptionsAndEmptyScenesGetErrors) {
   ASSERT_TRUE(built);
   auto c = export_gltf(empty, *built);
   ASSERT_FALSE(c);
-  EXPECT_EQ(c.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(c.error().code, ErrorCode::unsupported);
 }
 
 bool have_node_package(const fs::path& dir, const char* package) {

@@ -181,7 +181,7 @@ TEST(SceneV2, CurveFileRelativeToTheScene) {
   auto lost = parse(test::slurp(scene_path));
   ASSERT_FALSE(lost.has_value());
   EXPECT_EQ(lost.error().where, "/paths/0/file");
-  EXPECT_EQ(lost.error().code, ErrorCode::Io);
+  EXPECT_EQ(lost.error().code, ErrorCode::io);
   // An error inside the included file keeps its own place after the file's name.
   test::write_test_file("bad.json", R"({"type": "bezier", "points": [[0, 0, 0], [2, "x", 0]]})");
   const fs::path bad = test::write_test_file("b.json", R"({"inbetween": 2, "paths": [{"name": "l", "file": "bad.json"}]})");
@@ -199,7 +199,7 @@ TEST(SceneV2, CurveFileOrMeshThatIsADeviceIsRefusedAtOnce) {
         std::string(R"({"inbetween": 2, "paths": [{"name": "s", "surface": {"mesh": "/dev/zero", "from": 0, "to": 1}}]})")}) {
     auto r = read_scene_json(text);
     ASSERT_FALSE(r.has_value()) << text;
-    EXPECT_EQ(r.error().code, ErrorCode::Io) << r.error().describe();
+    EXPECT_EQ(r.error().code, ErrorCode::io) << r.error().describe();
     EXPECT_NE(r.error().message.find("not a regular file"), std::string::npos) << r.error().describe();
     EXPECT_EQ(r.error().describe().rfind("/paths/0/", 0), 0u) << r.error().describe();
   }

@@ -251,7 +251,7 @@ TEST(RmfClosed, OpenCurvesAreLeftAloneAndDistributeNeedsAClosedCurve) {
   for (double u : {0.0, 1.0, 7.0, 4 * pi_v<double>}) EXPECT_EQ(automatic->frame_at(u).normal, none->frame_at(u).normal);
   auto forced = build_rotation_minimizing_frames(h, {.closing = RmfClosing::distribute});
   ASSERT_FALSE(forced);
-  EXPECT_EQ(forced.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(forced.error().code, ErrorCode::invalid_argument);
   EXPECT_EQ(forced.error().where, "closing");
 }
 

@@ -214,12 +214,12 @@ TEST(ErrorLocation, RendersOneJsonPointerWithEscapes) {
   const std::vector<LocationStep> steps = {std::string("tracks"), std::size_t{2}, std::string("a/b~c"), std::size_t{0}};
   EXPECT_EQ(json_pointer(steps), "/tracks/2/a~1b~0c/0");  // RFC 6901 §3: '~' → ~0, '/' → ~1
   EXPECT_EQ(json_pointer(std::vector<LocationStep>{}), "");
-  Error e{ErrorCode::InvalidArgument, "bad", "", {std::string("frame")}};
+  Error e{ErrorCode::invalid_argument, "bad", "", {std::string("frame")}};
   e.prepend({std::string("keys"), std::size_t{3}}).prepend({std::string("tracks"), std::size_t{1}});
   EXPECT_EQ(json_pointer(e.location), "/tracks/1/keys/3/frame");
   EXPECT_EQ(e.describe(), "/tracks/1/keys/3/frame: bad");
   EXPECT_EQ(prepended(e, {std::string("x")}).describe(), "/x/tracks/1/keys/3/frame: bad");
-  const Error text{ErrorCode::Parse, "not valid JSON", "line 3, column 5"};
+  const Error text{ErrorCode::parse, "not valid JSON", "line 3, column 5"};
   EXPECT_EQ(text.describe(), "line 3, column 5: not valid JSON");
 }
 

@@ -52,10 +52,10 @@ TEST(DistanceTime, ValidationNamesTheKey) {
   const std::vector<TimeDistanceKey<double>> back = {{0, 0}, {1, 1}, {1, 2}};
   auto c = Curve::from_positions(back);
   ASSERT_FALSE(c);
-  EXPECT_EQ(c.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(c.error().code, ErrorCode::keys_not_increasing);
   EXPECT_EQ(json_pointer(c.error().location), "/2");
   const std::vector<TimeDistanceKey<double>> one = {{0, 0}};
-  EXPECT_EQ(Curve::from_positions(one).error().code, ErrorCode::TooFewPoints);
+  EXPECT_EQ(Curve::from_positions(one).error().code, ErrorCode::too_few_points);
   const std::vector<TimeDistanceVelocityKey<double>> nan = {{0, 0, 0}, {1, 1, std::nan("")}};
   EXPECT_EQ(json_pointer(Curve::from_constraints(nan).error().location), "/1");
 }
@@ -76,7 +76,7 @@ TEST(DistanceTime, BackingUpIsReportedWithWhere) {
   EXPECT_NEAR(c->sample(b->t_min_velocity).velocity, b->min_velocity, 1e-12);
   const auto check = c->check_monotone();
   ASSERT_FALSE(check);
-  EXPECT_EQ(check.error().code, ErrorCode::NotMonotone);
+  EXPECT_EQ(check.error().code, ErrorCode::not_monotone);
   EXPECT_EQ(check.error().where, "segment 0");
 }
 
@@ -265,7 +265,7 @@ TYPED_TEST(VelocityKeysTyped, Museum) {
   {  // a single key: too few, named
     auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{3, 1}}, VelocityFit::FixKeysAdjustInterior);
     ASSERT_FALSE(c);
-    EXPECT_EQ(c.error().code, ErrorCode::TooFewPoints);
+    EXPECT_EQ(c.error().code, ErrorCode::too_few_points);
   }
   {  // zero speeds and no distance: the object rests, speed exactly 0
     auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {5, 0}, {9, 0}}, VelocityFit::FixKeysAdjustInterior, T(0));
@@ -295,13 +295,13 @@ TYPED_TEST(VelocityKeysTyped, Museum) {
     const T big = std::numeric_limits<T>::max() / T(4);
     auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, big}, {100, big}}, VelocityFit::FixKeysAdjustInterior);
     ASSERT_FALSE(c);
-    EXPECT_EQ(c.error().code, ErrorCode::NotFinite);
+    EXPECT_EQ(c.error().code, ErrorCode::not_finite);
   }
   {  // a NaN or infinite key: named
     auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {1, std::numeric_limits<T>::infinity()}},
                                                        VelocityFit::FixKeysAdjustInterior);
     ASSERT_FALSE(c);
-    EXPECT_EQ(c.error().code, ErrorCode::NotFinite);
+    EXPECT_EQ(c.error().code, ErrorCode::not_finite);
     EXPECT_EQ(json_pointer(c.error().location), "/1");
   }
 }

@@ -95,11 +95,11 @@ Expected<ArcLengthTable<typename C::scalar_type>> forward_difference_table(
     const C& curve, ForwardDifferenceOptions opt = {}) {
   using T = typename C::scalar_type;
   if (opt.entries < 2) {
-    return Error{ErrorCode::InvalidArgument, "entries is " + std::to_string(opt.entries) + ", needs at least 2",
+    return Error{ErrorCode::invalid_argument, "entries is " + std::to_string(opt.entries) + ", needs at least 2",
                  "entries"};
   }
   if (opt.supersample < 1) {
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "supersample is " + std::to_string(opt.supersample) + ", needs at least 1", "supersample"};
   }
   const auto dom = curve.domain();
@@ -149,7 +149,7 @@ Expected<ArcLengthTable<typename C::scalar_type>> adaptive_forward_difference_ta
   using T = typename C::scalar_type;
   using P = typename C::point_type;
   if (!(opt.tolerance > T(0)) || opt.min_depth < 0 || opt.max_depth < opt.min_depth) {
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "needs tolerance > 0 and 0 <= min_depth <= max_depth", "options"};
   }
   const auto dom = curve.domain();
@@ -214,7 +214,7 @@ Expected<ArcLengthTable<typename C::scalar_type>> adaptive_gauss_table(
   using T = typename C::scalar_type;
   if (!(opt.tolerance > T(0)) || opt.min_depth < 0 || opt.max_depth < opt.min_depth || opt.order < 1 ||
       opt.order > kMaxGaussLegendreOrder) {
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "needs tolerance > 0, 0 <= min_depth <= max_depth and 1 <= order <= " +
                      std::to_string(kMaxGaussLegendreOrder),
                  "options"};

@@ -171,7 +171,7 @@ template <Point P>
 Expected<PiecewiseCubic<P>> to_piecewise_cubic(const BezierCurve<P>& bezier) {
   using T = scalar_of<P>;
   if (bezier.degree() > 3)
-    return Error{ErrorCode::Unsupported,
+    return Error{ErrorCode::unsupported,
                  "only Bezier curves of degree <= 3 are cubics, got degree " + std::to_string(bezier.degree()), "", {"degree"}};
   const auto e = bezier.degree() == 3 ? bezier : bezier.degree() == 2 ? bezier.elevate_degree()
                                                                       : bezier.elevate_degree().elevate_degree();

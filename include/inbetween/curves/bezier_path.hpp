@@ -26,7 +26,7 @@ class BezierPath : public PiecewiseCubic<P> {
   static Expected<BezierPath> build(std::span<const P> points) {
     if (auto ok = detail::check_points(points, 4, "bezier-path"); !ok) return ok.error();
     if (points.size() % 3 != 1) {
-      return Error{ErrorCode::WrongArity,
+      return Error{ErrorCode::wrong_arity,
                    "bezier-path needs 3k + 1 points (P0, C, C, P1, C, C, P2, ...), got " +
                        std::to_string(points.size()),
                    "", {"points"}};

@@ -38,7 +38,7 @@ class BSpline {
   /// (points + degree + 1 non-decreasing finite values; empty = clamped uniform on [0, 1]).
   static Expected<BSpline> build(std::span<const P> points, int degree, std::span<const T> knots = {}) {
     if (degree < 1 || degree > max_degree)
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "degree must be between 1 and " + std::to_string(max_degree) + ", got " + std::to_string(degree),
                    "", {"degree"}};
     if (auto ok = detail::check_points(points, degree + 1, "bspline"); !ok) return ok.error();
@@ -53,7 +53,7 @@ class BSpline {
   /// everywhere including the seam.  Domain [degree, degree + points.size()].
   static Expected<BSpline> build_periodic(std::span<const P> points, int degree) {
     if (degree < 1 || degree > max_degree)
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "degree must be between 1 and " + std::to_string(max_degree) + ", got " + std::to_string(degree),
                    "", {"degree"}};
     if (auto ok = detail::check_points(points, 2, "periodic bspline"); !ok) return ok.error();
@@ -223,7 +223,7 @@ template <Point P>
 Expected<PiecewiseCubic<P>> to_piecewise_cubic(const BSpline<P>& spline) {
   using T = scalar_of<P>;
   if (spline.degree() > 3)
-    return Error{ErrorCode::Unsupported,
+    return Error{ErrorCode::unsupported,
                  "only B-splines of degree <= 3 are piecewise cubics, got degree " + std::to_string(spline.degree()),
                  "", {"degree"}};
   std::vector<T> breaks;

@@ -51,7 +51,7 @@ class CatmullRomSpline : public PiecewiseCubic<P> {
   static Expected<CatmullRomSpline> build(std::span<const P> points, const CatmullRomOptions<T>& options = {}) {
     if (auto ok = detail::check_points(points, 2, "catmull-rom"); !ok) return ok.error();
     if (!(options.alpha >= T(0) && options.alpha <= T(1)))
-      return Error{ErrorCode::InvalidArgument, "alpha must lie in [0, 1], got " + shortest_text<double>(double(options.alpha)),
+      return Error{ErrorCode::invalid_argument, "alpha must lie in [0, 1], got " + shortest_text<double>(double(options.alpha)),
                    "", {"alpha"}};
     if (auto ok = detail::check_finite(options.tension, "tension"); !ok) return ok.error();
     const int n = int(points.size());

@@ -53,8 +53,8 @@ class CubicSpline : public PiecewiseCubic<P> {
     if (!tp) return tp.error();
     const std::vector<T>& t = *tp;
     if (end == CubicSplineEnd::Clamped) {
-      if (!is_finite(start_tangent)) return Error{ErrorCode::NotFinite, "start tangent is not finite", "", {"start_tangent"}};
-      if (!is_finite(end_tangent)) return Error{ErrorCode::NotFinite, "end tangent is not finite", "", {"end_tangent"}};
+      if (!is_finite(start_tangent)) return Error{ErrorCode::not_finite, "start tangent is not finite", "", {"start_tangent"}};
+      if (!is_finite(end_tangent)) return Error{ErrorCode::not_finite, "end tangent is not finite", "", {"end_tangent"}};
     }
     const int n = int(points.size());
     // Tridiagonal system sub[i] D_{i−1} + diag[i] D_i + sup[i] D_{i+1} = rhs[i], solved by the

@@ -30,7 +30,7 @@ class HermiteSpline : public PiecewiseCubic<P> {
                                        std::span<const T> params = {}) {
     if (auto ok = detail::check_points(points, 2, "hermite"); !ok) return ok.error();
     if (tangents.size() != points.size()) {
-      return Error{ErrorCode::WrongArity,
+      return Error{ErrorCode::wrong_arity,
                    "hermite needs one tangent per point: " + std::to_string(points.size()) +
                        " points but " + std::to_string(tangents.size()) + " tangents",
                    "", {"tangents"}};

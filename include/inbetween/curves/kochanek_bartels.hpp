@@ -51,14 +51,14 @@ class KochanekBartelsSpline : public PiecewiseCubic<P> {
     const std::vector<T>& t = *tp;
     auto h = [&](int i) { return t[std::clamp(i, 0, n - 2) + 1] - t[std::clamp(i, 0, n - 2)]; };
     if (keys.size() != 1 && int(keys.size()) != n) {
-      return Error{ErrorCode::WrongArity,
+      return Error{ErrorCode::wrong_arity,
                    "kochanek-bartels needs one tension/continuity/bias per point or a single shared one: " +
                        std::to_string(n) + " points but " + std::to_string(keys.size()) + " keys",
                    "", {"keys"}};
     }
     for (std::size_t i = 0; i < keys.size(); ++i) {
       if (!std::isfinite(keys[i].tension) || !std::isfinite(keys[i].continuity) || !std::isfinite(keys[i].bias))
-        return Error{ErrorCode::NotFinite, "key " + std::to_string(i) + " has a non-finite parameter",
+        return Error{ErrorCode::not_finite, "key " + std::to_string(i) + " has a non-finite parameter",
                      "", {"keys", std::size_t(i)}};
     }
     auto key = [&](int i) -> const TcbParams<T>& { return keys.size() == 1 ? keys[0] : keys[i]; };

@@ -40,15 +40,15 @@ class LagrangeCurve {
       for (int i = 0; i < n; ++i) c.params_[i] = T(i);
     } else {
       if (int(params.size()) != n)
-        return Error{ErrorCode::WrongArity,
+        return Error{ErrorCode::wrong_arity,
                      "lagrange needs one param per point: " + std::to_string(n) + " points but " +
                          std::to_string(params.size()) + " params",
                      "", {"params"}};
       for (int i = 0; i < n; ++i) {
         if (!std::isfinite(params[i]))
-          return Error{ErrorCode::NotFinite, "param " + std::to_string(i) + " is not finite", "", {"params", std::size_t(i)}};
+          return Error{ErrorCode::not_finite, "param " + std::to_string(i) + " is not finite", "", {"params", std::size_t(i)}};
         if (i > 0 && !(params[i] > params[i - 1]))
-          return Error{ErrorCode::KeysNotIncreasing,
+          return Error{ErrorCode::keys_not_increasing,
                        "param " + std::to_string(i) + " (" + shortest_text<double>(double(params[i])) +
                            ") is not greater than param " + std::to_string(i - 1) + " (" +
                            shortest_text<double>(double(params[i - 1])) + ")",
@@ -65,7 +65,7 @@ class LagrangeCurve {
     // scalar type, or huge coordinates): an error, never a curve that evaluates to inf or NaN.
     for (int i = 0; i < n; ++i) {
       if (!is_finite(c.coeffs_[i]))
-        return Error{ErrorCode::NotFinite,
+        return Error{ErrorCode::not_finite,
                      "divided difference " + std::to_string(i) +
                          " overflows: the params are too close together (or the points too large) for this "
                          "scalar type",

@@ -73,7 +73,7 @@ struct BvhReadOptions {
 /// is not finite; options that are out of range (`where` = "--scale", "--axes", "--fps").
 [[nodiscard]] Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options = {});
 
-/// read_bvh() of a file's content; ErrorCode::Io (where = the path) when it cannot be read,
+/// read_bvh() of a file's content; ErrorCode::io (where = the path) when it cannot be read,
 /// Unsupported when it is larger than kMaxBvhFileBytes.
 [[nodiscard]] Expected<RawScene> read_bvh_file(const std::filesystem::path& file, const BvhReadOptions& options = {});
 

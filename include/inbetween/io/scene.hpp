@@ -18,12 +18,12 @@ inline constexpr int scene_format_version_min = 1;
 /// The newest scene format version this reader accepts.
 inline constexpr int scene_format_version_max = 2;
 
-/// Reads scene JSON text into a RawScene.  Errors: ErrorCode::Parse with `where` = "line L, column
+/// Reads scene JSON text into a RawScene.  Errors: ErrorCode::parse with `where` = "line L, column
 /// C" for text that is not JSON (also a number beyond double's range, and nesting deeper than
 /// 512 levels); otherwise a structured `location` (the JSON pointer as steps, empty for the
 /// document root) with `where` empty.  `source_path` is the scene file's path: curve files named by
 /// "file" members are read relative to its folder (empty or "-", for text from standard input:
-/// relative to the current directory).  A curve file that cannot be read is ErrorCode::Io at its
+/// relative to the current directory).  A curve file that cannot be read is ErrorCode::io at its
 /// "file" member, naming the resolved path and the system's reason; an error inside it keeps its
 /// own place after the file's name ("/paths/0/file: climb.json:/points/3: …").
 [[nodiscard]] Expected<RawScene> read_scene_json(std::string_view json_text, std::string_view source_path = {});

@@ -13,19 +13,32 @@
 
 namespace inbetween {
 
-/// Machine-readable category of a user-data error.
+/// Machine-readable category of a user-data error.  The PascalCase spellings (`InvalidArgument`, …)
+/// are deprecated aliases kept for one release (docs/conventions.md, "Deprecation").
 enum class ErrorCode {
-  InvalidArgument,    ///< a value outside its legal domain (negative count, zero-norm quaternion, …)
-  NotFinite,          ///< NaN or infinity where a finite number is required
-  KeysNotIncreasing,  ///< frames or parameters that must strictly increase do not
-  WrongArity,         ///< the wrong number of components or elements
-  TooFewPoints,       ///< fewer control points or keys than the construction needs
-  NotARotation,       ///< a matrix that is not orthonormal with determinant +1
-  Parse,              ///< text or JSON that cannot be read
-  Io,                 ///< a file that cannot be opened or written
-  Unsupported,        ///< a request outside what the library implements (named in the message)
-  NotMonotone,        ///< a timing curve that would run backwards
-  BudgetExceeded,     ///< an adaptive computation ran out of its work budget before its tolerance
+  invalid_argument,     ///< a value outside its legal domain (negative count, zero-norm quaternion, …)
+  not_finite,           ///< NaN or infinity where a finite number is required
+  keys_not_increasing,  ///< frames or parameters that must strictly increase do not
+  wrong_arity,          ///< the wrong number of components or elements
+  too_few_points,       ///< fewer control points or keys than the construction needs
+  not_a_rotation,       ///< a matrix that is not orthonormal with determinant +1
+  parse,                ///< text or JSON that cannot be read
+  io,                   ///< a file that cannot be opened or written
+  unsupported,          ///< a request outside what the library implements (named in the message)
+  not_monotone,         ///< a timing curve that would run backwards
+  budget_exceeded,      ///< an adaptive computation ran out of its work budget before its tolerance
+
+  InvalidArgument [[deprecated("use ErrorCode::invalid_argument")]] = invalid_argument,
+  NotFinite [[deprecated("use ErrorCode::not_finite")]] = not_finite,
+  KeysNotIncreasing [[deprecated("use ErrorCode::keys_not_increasing")]] = keys_not_increasing,
+  WrongArity [[deprecated("use ErrorCode::wrong_arity")]] = wrong_arity,
+  TooFewPoints [[deprecated("use ErrorCode::too_few_points")]] = too_few_points,
+  NotARotation [[deprecated("use ErrorCode::not_a_rotation")]] = not_a_rotation,
+  Parse [[deprecated("use ErrorCode::parse")]] = parse,
+  Io [[deprecated("use ErrorCode::io")]] = io,
+  Unsupported [[deprecated("use ErrorCode::unsupported")]] = unsupported,
+  NotMonotone [[deprecated("use ErrorCode::not_monotone")]] = not_monotone,
+  BudgetExceeded [[deprecated("use ErrorCode::budget_exceeded")]] = budget_exceeded,
 };
 
 /// One step of a structured error location: a member name (std::string) or an array index
@@ -59,7 +72,7 @@ using LocationStep = std::variant<std::string, std::size_t>;
 /// that are not paths into the data ("line 3, column 5" of a syntax error, "--degree"), the free
 /// text `where`.
 struct Error {
-  ErrorCode code = ErrorCode::InvalidArgument;  ///< category
+  ErrorCode code = ErrorCode::invalid_argument;  ///< category
   std::string message;                          ///< what is wrong, in words, including values
   std::string where;                            ///< free-text location ("line 3, column 5"); may be empty
   std::vector<LocationStep> location{};         ///< structured location, outermost first; may be empty

@@ -76,11 +76,11 @@ class FrenetFrames {
   /// (InvalidArgument naming the option).
   static Expected<FrenetFrames> build(C curve, const FrenetOptions<T>& options = {}) {
     if (options.samples_per_segment < 1)
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "samples_per_segment must be at least 1, got " + std::to_string(options.samples_per_segment),
                    "samples_per_segment"};
     if (!(options.tolerance >= T(0)) || !std::isfinite(options.tolerance))
-      return Error{ErrorCode::InvalidArgument, "tolerance must be finite and >= 0", "tolerance"};
+      return Error{ErrorCode::invalid_argument, "tolerance must be finite and >= 0", "tolerance"};
     FrenetFrames f;
     f.curve_ = std::move(curve);
     f.tol_ = options.tolerance;

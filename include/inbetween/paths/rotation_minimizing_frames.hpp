@@ -92,11 +92,11 @@ class RotationMinimizingFrames {
   /// initial_normal (NotFinite).
   static Expected<RotationMinimizingFrames> build(C curve, const RmfOptions<T>& options = {}) {
     if (options.samples_per_segment < 1)
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "samples_per_segment must be at least 1, got " + std::to_string(options.samples_per_segment),
                    "samples_per_segment"};
     if (!is_finite(options.initial_normal))
-      return Error{ErrorCode::NotFinite, "initial_normal is not finite", "initial_normal"};
+      return Error{ErrorCode::not_finite, "initial_normal is not finite", "initial_normal"};
     RotationMinimizingFrames f;
     f.curve_ = std::move(curve);
     f.u_ = detail::path_sample_parameters(f.curve_, options.samples_per_segment);
@@ -123,7 +123,7 @@ class RotationMinimizingFrames {
     const bool closed = n > 1 && norm(f.x_[n - 1] - f.x_[0]) <= tol * std::max(T(1), extent) &&
                         norm(f.t_[n - 1] - f.t_[0]) <= tol;
     if (options.closing == RmfClosing::distribute && !closed)
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "closing = distribute needs a closed curve: the end is " + std::to_string(double(norm(f.x_[n - 1] - f.x_[0]))) +
                        " from the start and the end tangent differs by " + std::to_string(double(norm(f.t_[n - 1] - f.t_[0]))),
                    "closing"};

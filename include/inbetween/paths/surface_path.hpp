@@ -142,25 +142,25 @@ Expected<std::vector<Vec3<typename S::scalar_type>>> walk_on_surface(
     const SurfaceWalkOptions<typename S::scalar_type>& options = {}) {
   using T = typename S::scalar_type;
   using V = Vec3<T>;
-  if (!is_finite(start)) return Error{ErrorCode::NotFinite, "start point is not finite", "start"};
+  if (!is_finite(start)) return Error{ErrorCode::not_finite, "start point is not finite", "start"};
   if (!(options.step > T(0)) || !std::isfinite(options.step))
-    return Error{ErrorCode::InvalidArgument, "step must be finite and > 0", "step"};
+    return Error{ErrorCode::invalid_argument, "step must be finite and > 0", "step"};
   if (options.max_steps < 0)
-    return Error{ErrorCode::InvalidArgument, "max_steps must be >= 0, got " + std::to_string(options.max_steps),
+    return Error{ErrorCode::invalid_argument, "max_steps must be >= 0, got " + std::to_string(options.max_steps),
                  "max_steps"};
   const V up = normalized(options.up, V{});
   if (options.mode == SurfaceWalk::Downhill && squared_norm(up) == T(0))
-    return Error{ErrorCode::InvalidArgument, "up must be a non-zero finite vector", "up"};
+    return Error{ErrorCode::invalid_argument, "up must be a non-zero finite vector", "up"};
   std::vector<V> path{project_to_surface(surface, start, options.projection)};
   const V g0 = surface.gradient(path[0]);
   if (!(squared_norm(g0) > T(0)) || !is_finite(g0))
-    return Error{ErrorCode::InvalidArgument, "the surface gradient is zero or not finite at the start", "start"};
+    return Error{ErrorCode::invalid_argument, "the surface gradient is zero or not finite at the start", "start"};
   V dir{};
   if (options.mode == SurfaceWalk::Heading) {
     const V n = normalized(g0, V{});
     const V h = options.heading - n * dot(options.heading, n);
     if (!is_finite(options.heading) || !(norm(h) > T(1e-9) * norm(options.heading)))
-      return Error{ErrorCode::InvalidArgument, "heading is zero or parallel to the surface normal at the start",
+      return Error{ErrorCode::invalid_argument, "heading is zero or parallel to the surface normal at the start",
                    "heading"};
     dir = normalized(h, V{});
   }
