@@ -18,13 +18,13 @@ Expected<ArcLengthTable<T>> ArcLengthTable<T>::from_entries(std::span<const T> u
                                                             std::int64_t build_evaluations) {
   if (u.size() != s.size()) {
     return Error{ErrorCode::wrong_arity,
-                 "u has " + std::to_string(u.size()) + " entries but s has " + std::to_string(s.size()), ""};
+                 "u has " + std::to_string(u.size()) + " entries but s has " + std::to_string(s.size())};
   }
   if (u.size() < 2) {
-    return Error{ErrorCode::too_few_points, "a table needs at least 2 entries, got " + std::to_string(u.size()), ""};
+    return Error{ErrorCode::too_few_points, "a table needs at least 2 entries, got " + std::to_string(u.size())};
   }
   for (std::size_t i = 0; i < u.size(); ++i) {
-    const std::string where = "row " + std::to_string(i);
+    const std::vector<LocationStep> where{Element{"row", i}};
     if (!std::isfinite(u[i]) || !std::isfinite(s[i])) {
       return Error{ErrorCode::not_finite, "u or s is not finite", where};
     }
@@ -130,8 +130,7 @@ Error budget_error(std::int64_t evaluations, std::int64_t per_segment, const cha
                std::string(method) + " did not reach its tolerance within its work budget (" +
                    std::to_string(evaluations) + " curve evaluations, " + std::to_string(per_segment) +
                    " per segment): the curve's speed varies too wildly, or is noisier than the tolerance; "
-                   "raise the tolerance or max_evaluations_per_segment",
-               ""};
+                   "raise the tolerance or max_evaluations_per_segment"};
 }
 
 template class ArcLengthTable<float>;

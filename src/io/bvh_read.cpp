@@ -36,7 +36,7 @@ std::string quoted(std::string_view token) {
 }
 
 Error line_error(std::size_t line, ErrorCode code, std::string message) {
-  return Error{code, std::move(message), "line " + std::to_string(line)};
+  return Error{code, std::move(message), {Element{"line", std::size_t(line)}}};
 }
 
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
@@ -445,9 +445,9 @@ Quatd times_axis_rotation(const Quatd& q, Channel ch, double deg) {
 
 Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options) {
   if (!std::isfinite(options.scale) || !(options.scale > 0)) {
-    return Error{ErrorCode::invalid_argument, shortest_text(options.scale) + " is not finite and positive", "--scale"};
+    return Error{ErrorCode::invalid_argument, shortest_text(options.scale) + " is not finite and positive", {Parameter{"--scale"}}};
   }
-  if (!std::isfinite(options.fps)) return Error{ErrorCode::invalid_argument, "not finite", "--fps"};
+  if (!std::isfinite(options.fps)) return Error{ErrorCode::invalid_argument, "not finite", {Parameter{"--fps"}}};
   auto axes = parse_axes(options.axes);
   if (!axes) return axes.error();
   Conversion conv;
@@ -509,7 +509,7 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
   const bool own_fps = !(options.fps > 0);
   const auto frame_of = [&](std::size_t i) { return own_fps ? double(i) : double(i) * *frame_time * options.fps; };
   if (frame_count > 0 && !std::isfinite(frame_of(frame_count - 1))) {
-    return Error{ErrorCode::invalid_argument, "the last frame at this fps is not finite", "--fps"};
+    return Error{ErrorCode::invalid_argument, "the last frame at this fps is not finite", {Parameter{"--fps"}}};
   }
 
   RawScene scene;

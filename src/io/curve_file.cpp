@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "curve_value.hpp"
+#include "json_read.hpp"
 #include "json_text.hpp"
 
 #include <algorithm>
@@ -16,18 +17,13 @@ namespace {
 
 using json = nlohmann::json;
 
-// "file:/points/3", or just "file" for the document root (whose JSON pointer is empty).
-std::string located(const std::string& source, const std::string& pointer) {
-  return pointer.empty() ? source : source + ":" + pointer;
-}
-
 using Loc = std::vector<LocationStep>;
 
 struct Reader {
   // The error at `loc`, structured (relative to the curve object); parse_curve_json() renders it
   // once with json_pointer(), a scene file prepends the curve's own place.
   Error fail(const Loc& loc, std::string message, ErrorCode code = ErrorCode::parse) const {
-    return Error{code, std::move(message), "", loc};
+    return Error{code, std::move(message), loc};
   }
 };
 
@@ -148,25 +144,20 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
     case io_detail::JsonFailure::none:
       break;
     case io_detail::JsonFailure::syntax:
-      return Error{ErrorCode::parse, "invalid JSON: " + parsed.detail, source};
+      return Error{ErrorCode::parse, "invalid JSON: " + parsed.detail, {Source{source}}};
     case io_detail::JsonFailure::number_out_of_range:
       return Error{ErrorCode::parse,
                    "invalid JSON: the number " + parsed.detail + " at line " + std::to_string(parsed.line) + ", column " +
-                       std::to_string(parsed.column) + " is beyond double precision's range",
-                   source};
+                       std::to_string(parsed.column) + " is beyond double precision's range", {Source{source}}};
     case io_detail::JsonFailure::too_deep:
       return Error{ErrorCode::parse,
                    "invalid JSON: " + parsed.detail + " at line " + std::to_string(parsed.line) + ", column " +
-                       std::to_string(parsed.column),
-                   source};
+                       std::to_string(parsed.column), {Source{source}}};
   }
   auto curve = io_detail::read_curve_value(parsed.value);
   if (curve) return curve;
   // The structured place rendered once: "path.json:/points/3".
-  Error e = curve.error();
-  e.where = located(source, json_pointer(e.location));
-  e.location.clear();
-  return e;
+  return io_detail::located(curve.error(), source);
 }
 
 Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {

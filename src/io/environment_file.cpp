@@ -227,11 +227,9 @@ Expected<EnvironmentFile> parse_environment_json(std::string_view text, std::str
 }
 
 Error locate_environment_error(const Error& error, std::string_view source_name) {
-  Error e = error;
-  // The structured place rendered once ("env.json:/obstacles/2/box/min/1"); a library error without
-  // a place in the file (an option of the call) is placed at the file.
-  e.where = located(std::string(source_name), json_pointer(error.location));
-  return e;
+  // "env.json:/obstacles/2/box/min/1"; a library error without a place in the file (an option of
+  // the call) is placed at the file.
+  return located(error, std::string(source_name));
 }
 
 }  // namespace inbetween

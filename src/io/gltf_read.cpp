@@ -45,7 +45,7 @@ constexpr std::size_t kMaxUnbackedElements = std::size_t(1) << 24;
 constexpr std::size_t kMaxWeightColumns = std::size_t(1) << 14;
 
 Error error_at(ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
-  Error e{code, std::move(message), ""};
+  Error e{code, std::move(message)};
   e.prepend(steps);
   return e;
 }
@@ -394,8 +394,7 @@ Expected<std::size_t> select_animation(const tg::Model& model, const std::string
     list += (i ? ", " : "") + std::to_string(i) + quoted(model.animations[i].name);
   return Error{ErrorCode::invalid_argument,
                "no animation is named or numbered " + quote_excerpt(wanted) + " (the file has " +
-                   std::to_string(model.animations.size()) + (list.empty() ? "" : ": " + list) + ")",
-               ""};
+                   std::to_string(model.animations.size()) + (list.empty() ? "" : ": " + list) + ")"};
 }
 
 Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_t c, double fps,
@@ -668,7 +667,7 @@ using io_detail::whole_frame_within_key_precision;  // key_time.hpp
 
 Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& options) {
   if (!(options.fps > 0) || !std::isfinite(options.fps)) {
-    return Error{ErrorCode::invalid_argument, "fps " + shortest_text(options.fps) + " is not finite and positive", ""};
+    return Error{ErrorCode::invalid_argument, "fps " + shortest_text(options.fps) + " is not finite and positive"};
   }
   const double fps = options.fps;
   const std::vector<std::string> names = object_names(model);
@@ -856,7 +855,7 @@ std::optional<Error> missing_required(const nlohmann::json& root) {
   using Steps = std::vector<LocationStep>;
   std::optional<Error> found;
   auto fail = [&](Steps at, std::string message) {
-    if (!found) found = Error{ErrorCode::parse, std::move(message), "", std::move(at)};
+    if (!found) found = Error{ErrorCode::parse, std::move(message), std::move(at)};
   };
   // Members `names` of the object at `at`, each of type `w`.
   auto require = [&](const nlohmann::json& obj, const Steps& at, std::initializer_list<std::pair<const char*, Want>> names) {
@@ -945,7 +944,7 @@ bool is_glb(std::span<const std::byte> bytes) noexcept {
 Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
                              const GltfReadOptions& options) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
-    return Error{ErrorCode::unsupported, "files of 4 GiB and more are not read", ""};
+    return Error{ErrorCode::unsupported, "files of 4 GiB and more are not read"};
   }
   tg::TinyGLTF loader;
   loader.SetFsCallbacks(tg::FsCallbacks{fs_exists, fs_expand, fs_read, fs_write, nullptr});
@@ -974,7 +973,7 @@ Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesy
     const bool missing_file = err.find("File not found") != std::string::npos || err.find("cannot open") != std::string::npos ||
                               err.find("Failed to load external") != std::string::npos;
     return Error{missing_file ? ErrorCode::io : ErrorCode::parse,
-                 "not a readable glTF 2.0 file: " + (err.empty() ? std::string("tinygltf gave no reason") : err), ""};
+                 "not a readable glTF 2.0 file: " + (err.empty() ? std::string("tinygltf gave no reason") : err)};
   }
   return to_raw_scene(model, options);
 }

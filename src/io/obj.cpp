@@ -26,7 +26,10 @@ struct LineIndex {
   std::vector<int> face_sizes;
 };
 
-std::string at_line(std::string_view source, int line) { return std::string(source) + ": line " + std::to_string(line); }
+// The place "mesh.obj: line 12".
+std::vector<LocationStep> at_line(std::string_view source, int line) {
+  return {Source{std::string(source)}, TextLine{std::size_t(line)}};
+}
 
 // The whitespace-separated tokens of a line after its keyword (tinyobjloader splits on spaces/tabs).
 std::vector<std::string> tokens_of(std::string_view line) {
@@ -113,7 +116,7 @@ Error from_tinyobj(const std::string& message, std::string_view source) {
   std::string text = one_line_excerpt(message);
   while (!text.empty() && text.back() == '.') text.pop_back();
   if (std::regex_search(text, m, line_re)) return Error{ErrorCode::parse, text, at_line(source, std::stoi(m[1].str()))};
-  return Error{ErrorCode::parse, text, std::string(source)};
+  return Error{ErrorCode::parse, text, {Source{std::string(source)}}};
 }
 
 using V = Vec3d;
@@ -162,8 +165,7 @@ Expected<ObjRawMesh> parse_obj_raw(std::string_view text, std::string_view sourc
   if (nv != index->vertex_lines.size())
     return Error{ErrorCode::parse,
                  "read " + std::to_string(nv) + " vertices but the file has " + std::to_string(index->vertex_lines.size()) +
-                     " 'v' lines",
-                 std::string(source_name)};
+                     " 'v' lines", {Source{std::string(source_name)}}};
   out.vertex_lines = index->vertex_lines;
   out.mesh.vertices.resize(nv);
   for (std::size_t i = 0; i < nv; ++i)
@@ -175,7 +177,7 @@ Expected<ObjRawMesh> parse_obj_raw(std::string_view text, std::string_view sourc
     std::size_t corner = 0;
     for (unsigned char count : shape.mesh.num_face_vertices) {
       if (face >= index->face_lines.size() || int(count) != index->face_sizes[face])
-        return Error{ErrorCode::parse, "the faces read do not match the file's 'f' lines", std::string(source_name)};
+        return Error{ErrorCode::parse, "the faces read do not match the file's 'f' lines", {Source{std::string(source_name)}}};
       const int line = index->face_lines[face];
       std::vector<int> poly;
       for (std::size_t k = 0; k < count; ++k, ++corner) {
@@ -212,7 +214,7 @@ Expected<ObjRawMesh> parse_obj_raw(std::string_view text, std::string_view sourc
     }
   }
   if (face != index->face_lines.size())
-    return Error{ErrorCode::parse, "the faces read do not match the file's 'f' lines", std::string(source_name)};
+    return Error{ErrorCode::parse, "the faces read do not match the file's 'f' lines", {Source{std::string(source_name)}}};
   if (nv > 0 && std::all_of(has_normal.begin(), has_normal.end(), [](char c) { return c != 0; }))
     out.mesh.normals = std::move(normal_sum);
   return out;
@@ -224,9 +226,10 @@ Expected<TriangleMesh<double>> parse_obj(std::string_view text, std::string_view
   // The builder names its places through this: a vertex or a normal by its `v` line, a triangle by
   // the line of the face it was split from, a whole member by the file.
   const MeshPlaceNamer place = [&](std::string_view member, std::size_t index) {
-    if (index == kWholeMeshMember) return std::string(source_name);
+    const std::vector<LocationStep> file{Source{std::string(source_name)}};
+    if (index == kWholeMeshMember) return file;
     const std::vector<int>& lines = member == "triangles" ? raw->triangle_lines : raw->vertex_lines;
-    return index < lines.size() ? at_line(source_name, lines[index]) : std::string(source_name);
+    return index < lines.size() ? at_line(source_name, lines[index]) : file;
   };
   return build_triangle_mesh(raw->mesh, place);
 }

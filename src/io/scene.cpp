@@ -440,7 +440,7 @@ Expected<RawQuatKeys> io_detail::read_quat_keys(const json& j, const Loc& loc) {
 
 Expected<RawScene> read_scene_json(std::string_view json_text, std::string_view source_path) {
   io_detail::JsonText parsed = io_detail::parse_json_text(json_text);
-  const std::string place = "line " + std::to_string(parsed.line) + ", column " + std::to_string(parsed.column);
+  const std::vector<LocationStep> place{TextLine{std::size_t(parsed.line), std::size_t(parsed.column)}};
   switch (parsed.failure) {
     case io_detail::JsonFailure::none:
       return read_scene(parsed.value, Context{1, source_path.empty() || source_path == "-"
@@ -460,9 +460,7 @@ Expected<Scene> parse_scene(std::string_view json_text, std::string_view source_
   auto raw = read_scene_json(json_text, source_path);
   Expected<Scene> scene = raw ? build_scene(*raw) : Expected<Scene>(raw.error());
   if (scene) return scene;
-  Error e = scene.error();
-  if (e.where.empty()) e.where = e.location.empty() ? std::string("/") : json_pointer(e.location);
-  return e;
+  return scene.error();  // an empty location is the whole document
 }
 
 }  // namespace inbetween

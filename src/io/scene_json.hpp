@@ -39,7 +39,7 @@ inline Loc at(const Loc& loc, LocationStep step) {
 
 inline std::string type_name(const json& j) { return j.type_name(); }
 
-inline Error error_at(ErrorCode code, std::string message, Loc loc) { return Error{code, std::move(message), "", std::move(loc)}; }
+inline Error error_at(ErrorCode code, std::string message, Loc loc) { return Error{code, std::move(message), std::move(loc)}; }
 
 inline std::string name_list(std::span<const std::string_view> names) {
   std::string list;

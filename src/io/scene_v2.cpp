@@ -141,8 +141,11 @@ Expected<AnyCurve> read_surface_curve(const json& sj, const Loc& loc, const Cont
                 : method == "greedy" ? greedy_mesh_path(*mesh, ends[0], ends[1])
                                      : edge_mesh_path(*mesh, ends[0], ends[1]);
   if (!points) {
-    const std::string& w = points.error().where;
-    const Loc place = w == "from" || w == "to" ? at(loc, w) : at(loc, "method");
+    // A bad end names its argument (Parameter{"from"} or {"to"}), which is the member of the same
+    // name here; any other failure belongs to the method.
+    const std::vector<LocationStep>& where = points.error().location;
+    const auto* arg = where.size() == 1 ? std::get_if<Parameter>(&where.front()) : nullptr;
+    const Loc place = arg != nullptr && (arg->name == "from" || arg->name == "to") ? at(loc, arg->name) : at(loc, "method");
     return error_at(points.error().code,
                     "the " + method + " path from vertex " + std::to_string(ends[0]) + " to " + std::to_string(ends[1]) +
                         " cannot be found: " + points.error().describe(),

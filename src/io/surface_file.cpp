@@ -171,9 +171,7 @@ Expected<SurfaceShape> parse_surface_json(std::string_view text, std::string_vie
   if (auto bad = io_detail::json_text_error(parsed, source)) return *bad;
   auto surface = read_surface(parsed.value);
   if (surface) return surface;
-  Error e = surface.error();
-  e.where = io_detail::located(source, json_pointer(e.location));
-  return e;
+  return io_detail::located(surface.error(), source);
 }
 
 }  // namespace inbetween

@@ -11,7 +11,7 @@ namespace {
 using Loc = std::vector<LocationStep>;
 
 Error bad(Loc loc, std::string message, ErrorCode code = ErrorCode::invalid_argument) {
-  return Error{code, std::move(message), "", std::move(loc)};
+  return Error{code, std::move(message), std::move(loc)};
 }
 
 // Within kSurfaceMaxMagnitude: finite, and squares and sums of squares stay finite.

@@ -17,7 +17,7 @@ namespace {
 using Loc = std::vector<LocationStep>;
 
 Error error_at(ErrorCode code, std::string message, Loc location) {
-  return Error{code, std::move(message), "", std::move(location)};
+  return Error{code, std::move(message), std::move(location)};
 }
 
 // `parent` one member or index further in.

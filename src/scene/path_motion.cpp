@@ -23,7 +23,7 @@ std::string num(double v) { return shortest_text<double>(v); }
 using Loc = std::vector<LocationStep>;
 
 Error fail(ErrorCode code, Loc location, std::string message) {
-  return Error{code, std::move(message), "", std::move(location)};
+  return Error{code, std::move(message), std::move(location)};
 }
 
 // `loc` one member or index further in.
@@ -33,12 +33,12 @@ Loc sub(Loc loc, LocationStep step) {
 }
 
 // An error of a nested builder (its location names its own inputs: {3} for the fourth key, {"k1"})
-// placed under `prefix` ({"speed", "keys"}).  A free-text `where` of a builder ("segment 1") is not
-// a member of the data; it is kept in the message.
+// placed under `prefix` ({"speed", "keys"}).  A builder's place that is not a member of the data
+// (Element{"segment", 1}) is kept in the message ("segment 1: …").
 Error place(Error e, const Loc& prefix) {
-  if (!e.where.empty()) {
-    e.message = e.where + ": " + e.message;
-    e.where.clear();
+  if (std::any_of(e.location.begin(), e.location.end(), [](const LocationStep& s) { return !is_data_step(s); })) {
+    e.message = e.place() + ": " + e.message;
+    e.location.clear();
   }
   e.location.insert(e.location.begin(), prefix.begin(), prefix.end());
   return e;
@@ -456,11 +456,11 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
                                                                                        .closing = raw.orientation.closing});
     if (!rmf && raw.orientation.closing == RmfClosing::distribute)
       return fail(rmf.error().code, {"orientation", "closing"}, rmf.error().message);
-    if (!rmf) return place(Error{rmf.error().code, rmf.error().message, ""}, {"orientation", "up"});
+    if (!rmf) return place(Error{rmf.error().code, rmf.error().message}, {"orientation", "up"});
     motion.rmf_.emplace(std::move(*rmf));
   } else if (o.mode == OrientationMode::frenet) {
     auto frenet = FrenetFrames<AnyCurve>::build(raw.path);
-    if (!frenet) return place(Error{frenet.error().code, frenet.error().message, ""}, {"orientation"});
+    if (!frenet) return place(Error{frenet.error().code, frenet.error().message}, {"orientation"});
     motion.frenet_.emplace(std::move(*frenet));
   }
   return motion;

@@ -39,7 +39,7 @@ template <class... F>
 Overloaded(F...) -> Overloaded<F...>;
 
 Error error_at(ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
-  Error e{code, std::move(message), ""};
+  Error e{code, std::move(message)};
   e.prepend(steps);
   return e;
 }
@@ -297,10 +297,10 @@ Expected<Scene> build_scene(const RawScene& raw) {
                            std::vector<LocationStep> member) -> Expected<std::size_t> {
       const auto it = object_index.find(name);
       if (it == object_index.end()) {
-        return Error{ErrorCode::invalid_argument, "no object named \"" + name + "\"", "", std::move(member)};
+        return Error{ErrorCode::invalid_argument, "no object named \"" + name + "\"", std::move(member)};
       }
       if (it->second == self) {
-        return Error{ErrorCode::invalid_argument, "\"" + name + "\" cannot look at itself", "", std::move(member)};
+        return Error{ErrorCode::invalid_argument, "\"" + name + "\" cannot look at itself", std::move(member)};
       }
       reads[self].emplace_back(it->second, std::move(member));
       return it->second;
@@ -340,19 +340,19 @@ Expected<Scene> build_scene(const RawScene& raw) {
         if (const auto* name = std::get_if<std::string>(&leg.curve)) {
           const auto it = path_index.find(*name);
           if (it == path_index.end()) {
-            return Error{ErrorCode::invalid_argument, "no path named \"" + *name + "\" in \"paths\"", "", at_member({"curve"})};
+            return Error{ErrorCode::invalid_argument, "no path named \"" + *name + "\" in \"paths\"", at_member({"curve"})};
           }
           curve = &raw.paths[it->second].curve;
         }
         RawPathMotion motion{.path = *curve, .speed = leg.speed, .orientation = leg.orientation};
         if (leg.speed.kind == SpeedKind::track) {
           if (o.path.size() > 1) {
-            return Error{ErrorCode::invalid_argument, "a track speed drives a single-leg path only", "",
+            return Error{ErrorCode::invalid_argument, "a track speed drives a single-leg path only",
                          at_member({"speed", "kind"})};
           }
           const auto it = scalar_tracks.find(leg.speed_track);
           if (it == scalar_tracks.end()) {
-            return Error{ErrorCode::invalid_argument, "no scalar track named \"" + leg.speed_track + "\"", "",
+            return Error{ErrorCode::invalid_argument, "no scalar track named \"" + leg.speed_track + "\"",
                          at_member({"speed", "track"})};
           }
           motion.speed.track = std::get<SceneScalarTrack>(tracks[it->second.first]).curve;
@@ -371,7 +371,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
         std::optional<std::size_t> look_at_object;
         if (!leg.look_at_object.empty()) {
           if (leg.orientation.mode != OrientationMode::look_at) {
-            return Error{ErrorCode::invalid_argument, "an object to look at needs orientation.mode \"look_at\"", "",
+            return Error{ErrorCode::invalid_argument, "an object to look at needs orientation.mode \"look_at\"",
                          at_member({"orientation", "look_at"})};
           }
           auto target = find_object(leg.look_at_object, i, at_member({"orientation", "look_at"}));
@@ -399,8 +399,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
             return Error{ErrorCode::keys_not_increasing,
                          "this leg starts at frame " + shortest_text(built->frame_range().lo) +
                              ", before the previous leg ends (frame " + shortest_text(previous_end) +
-                             "): legs follow each other in time",
-                         "", at_member({"speed"})};
+                             "): legs follow each other in time", at_member({"speed"})};
           }
         }
         const double length = built->length();
@@ -475,8 +474,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
           if (state[v] == 1) {
             return Error{ErrorCode::invalid_argument,
                          "\"" + raw.objects[u].name + "\" depends on \"" + raw.objects[v].name +
-                             "\", which depends on it (a cycle of parents, look-at and camera targets)",
-                         "", member};
+                             "\", which depends on it (a cycle of parents, look-at and camera targets)", member};
           }
           if (state[v] == 0) {
             state[v] = 1;

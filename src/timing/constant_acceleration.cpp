@@ -16,7 +16,7 @@ std::string num(double v) { return shortest_text<double>(v); }
 
 template <Real T>
 Error bad(ErrorCode code, const char* member, std::string message) {
-  return Error{code, std::move(message), "", {std::string(member)}};
+  return Error{code, std::move(message), {std::string(member)}};
 }
 
 // Relative slack for a value at the edge of its admissible range: the closed forms round by a few
@@ -72,9 +72,7 @@ Expected<ConstantAccelerationEase<T>> solve_constant_acceleration(const Constant
   if (given < 2)
     return Error{ErrorCode::invalid_argument,
                  std::string("under-determined: constant acceleration needs two of t1, t2, v0, acceleration, deceleration; got ") +
-                     (given == 0 ? "none" : std::string("only ") + names[0]),
-                 "",
-                 {}};
+                     (given == 0 ? "none" : std::string("only ") + names[0])};
   // Ranges of the single values.
   if (p.t1 && !(*p.t1 >= T(0) && *p.t1 <= T(1)))
     return bad<T>(ErrorCode::invalid_argument, "t1", "t1 = " + num(double(*p.t1)) + " is outside [0, 1]");
@@ -170,9 +168,7 @@ Expected<ConstantAccelerationGraph<T>> solve_equal_areas(const EqualAreasParams<
                   "over-determined: acceleration, deceleration and t1 already fix t2 (a·t1 = d·(1 − t2)); leave one out");
   if (given < 3)
     return Error{ErrorCode::invalid_argument,
-                 "under-determined: the acceleration graph needs three of acceleration, deceleration, t1, t2; got " + std::to_string(given),
-                 "",
-                 {}};
+                 "under-determined: the acceleration graph needs three of acceleration, deceleration, t1, t2; got " + std::to_string(given)};
   if (p.acceleration && !(*p.acceleration > T(0)))
     return bad<T>(ErrorCode::invalid_argument, "acceleration", "acceleration = " + num(double(*p.acceleration)) + " must be > 0");
   if (p.deceleration && !(*p.deceleration > T(0)))

@@ -111,8 +111,7 @@ Expected<void> check_finite_segments(const std::vector<Coeffs<T>>& seg, const ch
     if (!finite) {
       return Error{ErrorCode::not_finite,
                    std::string(what) + " " + std::to_string(i) + " → " + std::to_string(i + 1) +
-                       ": the distance curve between them overflows (speeds or accelerations too large for the interval)",
-                   "", {i}};
+                       ": the distance curve between them overflows (speeds or accelerations too large for the interval)", {i}};
     }
   }
   return {};
@@ -125,8 +124,7 @@ Expected<void> check_times(std::size_t n, auto&& time_of) {
     if (i > 0 && !(time_of(i - 1) < t)) {
       return Error{ErrorCode::keys_not_increasing,
                    "time " + num(t) + " of tuple " + std::to_string(i) + " is not after time " + num(time_of(i - 1)) +
-                       (time_of(i - 1) == t ? " (two tuples at the same time)" : ""),
-                   "", {i}};
+                       (time_of(i - 1) == t ? " (two tuples at the same time)" : ""), {i}};
     }
   }
   return {};
@@ -138,20 +136,18 @@ template <Real T>
 Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_constraints(
     std::span<const MotionConstraint<T>> k) {
   const std::size_t n = k.size();
-  if (n == 0) return Error{ErrorCode::too_few_points, "needs at least 1 constraint tuple, got none", ""};
+  if (n == 0) return Error{ErrorCode::too_few_points, "needs at least 1 constraint tuple, got none"};
   for (std::size_t i = 0; i < n; ++i) {
     const bool finite = std::isfinite(k[i].t) && std::isfinite(k[i].s) && (!k[i].v || std::isfinite(*k[i].v)) &&
                         (!k[i].a || std::isfinite(*k[i].a));
-    if (!finite) return Error{ErrorCode::not_finite, "tuple " + std::to_string(i) + " has a value that is not finite", "", {i}};
+    if (!finite) return Error{ErrorCode::not_finite, "tuple " + std::to_string(i) + " has a value that is not finite", {i}};
     if (k[i].v && *k[i].v < T(0))
       return Error{ErrorCode::invalid_argument,
-                   "tuple " + std::to_string(i) + ": speed " + num(*k[i].v) + " is negative (the object would move backwards)",
-                   "", {i}};
+                   "tuple " + std::to_string(i) + ": speed " + num(*k[i].v) + " is negative (the object would move backwards)", {i}};
     if (i > 0 && k[i].s < k[i - 1].s)
       return Error{ErrorCode::not_monotone,
                    "tuple " + std::to_string(i) + ": distance " + num(k[i].s) + " is below the previous tuple's " +
-                       num(k[i - 1].s) + " (the object would move backwards)",
-                   "", {i}};
+                       num(k[i - 1].s) + " (the object would move backwards)", {i}};
   }
   if (auto ok = check_times<T>(n, [&](std::size_t i) { return k[i].t; }); !ok) return ok.error();
 
@@ -160,7 +156,7 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_constraints(
   if (n == 1) {
     if ((k[0].v && *k[0].v != T(0)) || (k[0].a && *k[0].a != T(0)))
       return Error{ErrorCode::invalid_argument,
-                   "a single constraint tuple describes an object at rest: its speed and acceleration must be 0", "", {std::size_t{0}}};
+                   "a single constraint tuple describes an object at rest: its speed and acceleration must be 0", {std::size_t{0}}};
     c.t_.push_back(k[0].t);
     c.v_ = {T(0), T(0)};
     c.seg_.push_back(Coefficients{k[0].s, 0, 0, 0, 0, 0});  // a zero-length interval, never divided by
@@ -201,8 +197,7 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_constraints(
     return Error{ErrorCode::not_monotone,
                  "tuples " + std::to_string(i) + " → " + std::to_string(i + 1) + ": the object would move backwards between t = " +
                      num(back->t_begin) + " and " + num(back->t_end) + " (speed down to " + num(back->min_velocity) +
-                     " at t = " + num(back->t_min_velocity) + "); give smaller accelerations or speeds there",
-                 "", {i}};
+                     " at t = " + num(back->t_min_velocity) + "); give smaller accelerations or speeds there", {i}};
   }
   return c;
 }
@@ -211,18 +206,18 @@ template <Real T>
 Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_acceleration_curve(
     std::span<const TimeAccelerationKey<T>> keys, const AccelerationIntegration<T>& opt) {
   const std::size_t n = keys.size();
-  if (n < 2) return Error{ErrorCode::too_few_points, "needs at least 2 acceleration keys, got " + std::to_string(n), ""};
+  if (n < 2) return Error{ErrorCode::too_few_points, "needs at least 2 acceleration keys, got " + std::to_string(n)};
   for (std::size_t i = 0; i < n; ++i)
     if (!std::isfinite(keys[i].t) || !std::isfinite(keys[i].a))
-      return Error{ErrorCode::not_finite, "key " + std::to_string(i) + " has a value that is not finite", "", {i}};
+      return Error{ErrorCode::not_finite, "key " + std::to_string(i) + " has a value that is not finite", {i}};
   if (auto ok = check_times<T>(n, [&](std::size_t i) { return keys[i].t; }); !ok) return ok.error();
   if (!std::isfinite(opt.start_speed) || opt.start_speed < T(0))
-    return Error{ErrorCode::invalid_argument, "start speed " + num(opt.start_speed) + " must be finite and ≥ 0", "",
+    return Error{ErrorCode::invalid_argument, "start speed " + num(opt.start_speed) + " must be finite and ≥ 0",
                  {std::string("start_speed")}};
   if (!std::isfinite(opt.start_distance))
-    return Error{ErrorCode::not_finite, "start distance is not finite", "", {std::string("start_distance")}};
+    return Error{ErrorCode::not_finite, "start distance is not finite", {std::string("start_distance")}};
   if (opt.end_distance && !std::isfinite(*opt.end_distance))
-    return Error{ErrorCode::not_finite, "end distance is not finite", "", {std::string("end_distance")}};
+    return Error{ErrorCode::not_finite, "end distance is not finite", {std::string("end_distance")}};
 
   const bool linear = opt.shape == AccelerationShape::Linear;
   // Integrates with accelerations scaled by `scale`; returns the curve (no monotone check).
@@ -255,8 +250,7 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_acceleration
       if (std::abs(need) > backwards_tolerance<T>() * scale_ref)
         return Error{ErrorCode::invalid_argument,
                      "the accelerations add no distance, so the end distance " + num(*opt.end_distance) +
-                         " cannot be reached (coasting gives " + num(s_coast) + ")",
-                     "", {std::string("end_distance")}};
+                         " cannot be reached (coasting gives " + num(s_coast) + ")", {std::string("end_distance")}};
     } else {
       scale = need / from_acc;
     }
@@ -268,8 +262,7 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_acceleration
     return Error{ErrorCode::not_monotone,
                  "keys " + std::to_string(i) + " → " + std::to_string(i + 1) + ": the speed turns negative between t = " +
                      num(back->t_begin) + " and " + num(back->t_end) + " (down to " + num(back->min_velocity) + " at t = " +
-                     num(back->t_min_velocity) + "): the object would move backwards",
-                 "", {i}};
+                     num(back->t_min_velocity) + "): the object would move backwards", {i}};
   }
   return c;
 }

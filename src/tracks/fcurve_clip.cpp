@@ -670,8 +670,7 @@ Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClip
   if (curves.size() % 10 != 0) {
     return Error{ErrorCode::invalid_argument,
                  "a rig needs 10 F-curves per joint (location xyz, rotation_quaternion wxyz, scale xyz); got " +
-                     std::to_string(curves.size()),
-                 ""};
+                     std::to_string(curves.size())};
   }
   FCurveClip clip;
   clip.channels_ = curves.size();

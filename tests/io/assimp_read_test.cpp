@@ -369,7 +369,7 @@ TEST(AssimpRead, UnreadableFilesAreRefused) {
     EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2)) << file;
     ASSERT_FALSE(raw) << file;
     EXPECT_EQ(raw.error().code, ErrorCode::parse) << file;
-    EXPECT_EQ(raw.error().where, file.string());
+    EXPECT_EQ(raw.error().place(), file.string());
     EXPECT_EQ(raw.error().message.find('\n'), std::string::npos) << raw.error().message;
     EXPECT_LT(raw.error().message.size(), 300u) << raw.error().message;
   }

@@ -183,7 +183,7 @@ TEST_P(BvhReference, BlenderAndThreeJsPositionsAgree) {
 TEST_P(BvhReference, InbetweenAgreesWithBlenderAndThreeJs) {
   Expected<RawScene> raw = read_input_file(clip_);
   if (!raw && raw.error().code == ErrorCode::unsupported) GTEST_SKIP() << "no BVH reader yet: " << raw.error().message;
-  ASSERT_TRUE(raw) << raw.error().message << " at " << raw.error().where;
+  ASSERT_TRUE(raw) << raw.error().message << " at " << raw.error().place();
   Expected<Scene> scene = build_scene(*raw);
   ASSERT_TRUE(scene) << scene.error().message;
 

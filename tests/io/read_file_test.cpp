@@ -37,7 +37,7 @@ TEST(ReadFile, RefusesDevicesFifosAndDirectoriesAtOnce) {
     auto r = read_file_bytes(device);
     ASSERT_FALSE(r) << device;
     EXPECT_EQ(r.error().code, ErrorCode::io);
-    EXPECT_EQ(r.error().where, device);
+    EXPECT_EQ(r.error().place(), device);
     EXPECT_NE(r.error().message.find("not a regular file"), std::string::npos) << r.error().message;
   }
   // A FIFO with no writer: opening it would block; it is refused from its type.

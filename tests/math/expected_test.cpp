@@ -3,6 +3,8 @@
 
 #include "inbetween/math/expected.hpp"
 
+#include <vector>
+
 namespace inbetween {
 namespace {
 
@@ -29,6 +31,40 @@ TEST(ErrorCodeTest, ValuesAreTheOnesThePythonModuleNames) {
   EXPECT_EQ(int(ErrorCode::invalid_argument), 0);
   EXPECT_EQ(int(ErrorCode::io), 7);
   EXPECT_EQ(int(ErrorCode::budget_exceeded), 10);
+}
+
+// One field for the place: every kind of step, rendered once (render_location, Error::place).
+TEST(ErrorPlace, EachKindOfStepRendersOnce) {
+  using L = std::vector<LocationStep>;
+  EXPECT_EQ(render_location(L{}), "");
+  EXPECT_EQ(render_location(L{"tracks", std::size_t{2}, "a/b"}), "/tracks/2/a~1b");  // a JSON pointer
+  EXPECT_EQ(render_location(L{Parameter{"--scale"}}), "--scale");
+  EXPECT_EQ(render_location(L{Source{"scene.json"}}), "scene.json");
+  EXPECT_EQ(render_location(L{Source{"scene.json"}, "points", std::size_t{3}}), "scene.json:/points/3");
+  EXPECT_EQ(render_location(L{Source{"mesh.obj"}, TextLine{12}}), "mesh.obj: line 12");
+  EXPECT_EQ(render_location(L{TextLine{3, 5}}), "line 3, column 5");
+  EXPECT_EQ(render_location(L{Element{"row", 1}, Element{"column", 4}}), "row 1, column 4");
+  EXPECT_EQ(render_location(L{Element{"edge", 3, 7}}), "edge 3-7");
+  // json_pointer() keeps only the member names and indices.
+  EXPECT_EQ(json_pointer(L{Source{"a.json"}, "keys", std::size_t{1}}), "/keys/1");
+  const Error e{ErrorCode::parse, "bad", {Source{"mesh.obj"}, TextLine{2}}};
+  EXPECT_EQ(e.place(), "mesh.obj: line 2");
+  EXPECT_EQ(e.describe(), "mesh.obj: line 2: bad");
+  EXPECT_EQ((Error{ErrorCode::parse, "bad"}.describe()), "bad");
+}
+
+// describe_in(): the tool's and the Python module's line; the file a caller names is not repeated.
+TEST(ErrorPlace, DescribeInAFileNamesTheFileOnce) {
+  const Error in_file{ErrorCode::io, "cannot open the file", {Source{"a.glb"}}};
+  EXPECT_EQ(describe_in(in_file, "a.glb"), "a.glb: cannot open the file");
+  EXPECT_TRUE(location_within(in_file, "a.glb").empty());
+  const Error pointer{ErrorCode::parse, "bad", {Source{"a.glb"}, "accessors", std::size_t{5}}};
+  EXPECT_EQ(describe_in(pointer, "a.glb"), "a.glb: /accessors/5: bad");
+  EXPECT_EQ(describe_in(pointer, "other.glb"), "other.glb: a.glb:/accessors/5: bad");  // another file stays
+  const Error root{ErrorCode::invalid_argument, "no objects"};
+  EXPECT_EQ(describe_in(root, "scene.json", "/"), "scene.json: /: no objects");
+  EXPECT_EQ(describe_in(root, "scene.json"), "scene.json: no objects");
+  EXPECT_EQ(describe_in(root, ""), "no objects");
 }
 
 }  // namespace

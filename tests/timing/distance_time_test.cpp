@@ -77,7 +77,7 @@ TEST(DistanceTime, BackingUpIsReportedWithWhere) {
   const auto check = c->check_monotone();
   ASSERT_FALSE(check);
   EXPECT_EQ(check.error().code, ErrorCode::not_monotone);
-  EXPECT_EQ(check.error().where, "segment 0");
+  EXPECT_EQ(check.error().place(), "segment 0");
 }
 
 TEST(DistanceTime, MonotoneRepairKeepsTheKeysAndNeverBacksUp) {
@@ -99,7 +99,7 @@ TEST(DistanceTime, MonotoneRepairKeepsTheKeysAndNeverBacksUp) {
   const std::vector<TimeDistanceKey<double>> down = {{0, 0}, {0.5, 0.7}, {0.7, 0.6}, {1, 1}};
   auto lin = Curve::from_positions(down);
   ASSERT_TRUE(lin);
-  EXPECT_EQ(lin->check_monotone().error().where, "segment 1");
+  EXPECT_EQ(lin->check_monotone().error().place(), "segment 1");
   EXPECT_EQ(json_pointer(lin->monotone_repair().error().location), "/2");
 }
 

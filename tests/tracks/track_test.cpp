@@ -274,7 +274,7 @@ TEST(TrackBuild, RejectsBadKeysNamingTheKey) {
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::invalid_argument);
   EXPECT_EQ(json_pointer(r.error().location), "/keys/1/bias");
-  EXPECT_TRUE(r.error().where.empty());  // a structured place only
+  EXPECT_TRUE(std::all_of(r.error().location.begin(), r.error().location.end(), is_data_step));  // a document path only
   EXPECT_EQ(json_pointer(build_track(std::vector<TrackKey<double>>{}).error().location), "/keys");
   EXPECT_FALSE(build_track(std::vector<TrackKey<double>>{}).has_value());
   // Finite values whose chord slope overflows: (−1e308 − 1e308) / 1 = −inf at key 0.

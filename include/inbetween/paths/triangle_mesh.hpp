@@ -3,7 +3,7 @@
 /// gives) → build_triangle_mesh → TriangleMesh, an immutable mesh with unit vertex normals and the
 /// adjacency the surface walks need (faces around a vertex, the face across each edge).
 ///
-/// What the builder accepts (everything else is an Error whose `where` names the item, in the
+/// What the builder accepts (everything else is an Error whose location names the item, in the
 /// builder's words below or through a MeshPlaceNamer):
 ///   - at least one vertex ("vertices") and one triangle ("triangles");
 ///   - finite vertex coordinates of magnitude at most kMeshMaxCoordinate ("vertex i"), so that
@@ -66,15 +66,17 @@ class TriangleMesh;
 inline constexpr std::size_t kWholeMeshMember = static_cast<std::size_t>(-1);
 
 /// Names the place of a builder error from the RawMesh member ("vertices", "triangles" or
-/// "normals") and the index in it (or kWholeMeshMember), so that a reader can say "line 12" of its
-/// file without parsing a place back out of text.  Empty: default_mesh_place.
-using MeshPlaceNamer = std::function<std::string(std::string_view member, std::size_t index)>;
+/// "normals") and the index in it (or kWholeMeshMember) as an Error location, so that a reader can
+/// say "line 12" of its file ({Source{"mesh.obj"}, TextLine{12}}) without parsing a place back out
+/// of text.  Empty: default_mesh_place.
+using MeshPlaceNamer = std::function<std::vector<LocationStep>(std::string_view member, std::size_t index)>;
 
-/// The builder's own names: "vertex i", "face f", "normal i", or the member's name for the whole.
-inline std::string default_mesh_place(std::string_view member, std::size_t index) {
-  if (index == kWholeMeshMember) return std::string(member);
-  const char* item = member == "vertices" ? "vertex " : (member == "triangles" ? "face " : "normal ");
-  return item + std::to_string(index);
+/// The builder's own names: {Element{"vertex", i}} ("vertex i"), "face f", "normal i", or the
+/// member's name for the whole ({Parameter{"vertices"}}).
+inline std::vector<LocationStep> default_mesh_place(std::string_view member, std::size_t index) {
+  if (index == kWholeMeshMember) return {Parameter{std::string(member)}};
+  const char* item = member == "vertices" ? "vertex" : (member == "triangles" ? "face" : "normal");
+  return {Element{item, index}};
 }
 
 /// Checks `raw` (file comment) and builds the mesh with its adjacency; errors name their place

@@ -201,13 +201,13 @@ template <Real T>
 template <Real T>
 Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const QuatSplineOptions<T>& options) {
   using namespace quat_track_detail;
-  if (keys.empty()) return Error{ErrorCode::too_few_points, "a track needs at least one key", "", {"keys"}};
+  if (keys.empty()) return Error{ErrorCode::too_few_points, "a track needs at least one key", {"keys"}};
   if (!(options.distance_factor > T(0) && options.distance_factor <= T(1))) {
-    return Error{ErrorCode::invalid_argument, "must be in (0, 1]", "", {"distance_factor"}};
+    return Error{ErrorCode::invalid_argument, "must be in (0, 1]", {"distance_factor"}};
   }
   const std::size_t n = keys.size();
   auto fail = [](ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
-    Error e{code, std::move(message), ""};
+    Error e{code, std::move(message)};
     e.prepend(steps);
     return e;
   };

@@ -225,10 +225,10 @@ template <class V>
 Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend before, TrackExtend after) {
   using T = scalar_of<V>;
   using PT = PointTraits<V>;
-  if (keys.empty()) return Error{ErrorCode::too_few_points, "a track needs at least one key", "", {"keys"}};
+  if (keys.empty()) return Error{ErrorCode::too_few_points, "a track needs at least one key", {"keys"}};
   const std::size_t n = keys.size();
   auto fail = [](ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
-    Error e{code, std::move(message), ""};
+    Error e{code, std::move(message)};
     e.prepend(steps);
     return e;
   };
