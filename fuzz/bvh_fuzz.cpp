@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<std::string> notes;
   const auto raw = read_bvh(text, {.notes = &notes});
   if (!raw) {
-    if (raw.error().where.empty() || raw.error().message.empty()) fuzz::fail("a BVH error without a place or message");
+    if (raw.error().location.empty() || raw.error().message.empty()) fuzz::fail("a BVH error without a place or message");
     return 0;
   }
   const Scene scene = fuzz::require_builds_and_samples(*raw, "the BVH reader returned a scene that build_scene() refuses",

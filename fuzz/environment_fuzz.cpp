@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto file = parse_environment_json(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.json");
   if (!file) {
     if (file.error().message.empty()) fuzz::fail("an error without a message");
-    if (file.error().where.rfind("fuzz.json", 0) != 0) fuzz::fail("a reader error not placed in the file");
+    if (file.error().location.empty() || file.error().location.front() != LocationStep{Source{"fuzz.json"}}) fuzz::fail("a reader error not placed in the file");
     return 0;
   }
   const auto env = Environment::build(file->environment);

@@ -19,7 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto surface = parse_surface_json(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.json");
   if (!surface) {
     if (surface.error().message.empty()) fuzz::fail("an error without a message");
-    if (surface.error().where.rfind("fuzz.json", 0) != 0) fuzz::fail("a reader error not placed in the file");
+    if (surface.error().location.empty() || surface.error().location.front() != LocationStep{Source{"fuzz.json"}}) fuzz::fail("a reader error not placed in the file");
     return 0;
   }
   for (double u : {-1.0, 0.0, 0.25, 0.5, 1.0, 3.0}) {

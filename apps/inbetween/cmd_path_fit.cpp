@@ -29,8 +29,8 @@ std::string fit_to_curve_file(const CsvTable& csv, const std::string& path, int 
   auto fit = fit_bspline<P>(data, {.degree = degree, .control_points = control_points});
   if (!fit) {
     Error e = fit.error();
-    e.where = csv_place(e, csv, path);
-    if (e.where.empty()) e.where = path;  // too few data: the file is the place
+    e.location = csv_place(e, csv, path);
+    if (e.location.empty()) e.location = {Source{path}};  // too few data: the file is the place
     throw CommandError{e.describe()};
   }
   // Curve files hold Vec3d points padded with zeros; the dimension says how many are written.

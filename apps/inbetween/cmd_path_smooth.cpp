@@ -31,7 +31,7 @@ struct Args {
 
 // A library error's place in the file (its line) or on the command line (--radius).
 [[noreturn]] void fail(Error e, const CsvTable& t, const Args& a) {
-  e.where = csv_place(e, t, a.input);
+  e.location = csv_place(e, t, a.input);
   throw CommandError{e.describe()};
 }
 
@@ -55,7 +55,7 @@ std::vector<P> smooth_points(const std::vector<P>& pts, const CsvTable& t, const
       if (!r) break;
       cur = *r;
     }
-    if (a.iterations < 0) r = Error{ErrorCode::InvalidArgument, "iterations must be >= 0", "iterations"};
+    if (a.iterations < 0) r = Error{ErrorCode::invalid_argument, "iterations must be >= 0", {Parameter{"iterations"}}};
     if (a.iterations == 0) r = cur;
   }
   if (!r) fail(r.error(), t, a);

@@ -54,16 +54,20 @@ int vertex_of(const std::string& name, const std::vector<double>& v) {
   return int(v[0]);
 }
 
-// A path error naming an argument becomes the option's spelling; a place on the mesh stays.
-[[noreturn]] void fail(Error e, const Args& a) {
-  if (e.where == "from") e.where = spelled("--from", a.from);
-  else if (e.where == "to") e.where = spelled("--to", a.to);
-  else if (e.where == "start") e.where = spelled("--downhill", a.downhill);
-  else if (e.where == "up") e.where = "--up";
-  else if (e.where == "step") e.where = "--step";
-  else if (e.where == "max_steps") e.where = "--max-steps";
-  else e.where = a.input + ": " + e.where;
-  throw CommandError{e.describe()};
+// A path error naming a parameter of the library call (Parameter{"to"}) is placed at the option
+// that gave it, as the user spelled it; a place on the mesh or surface stays, after the file.
+[[noreturn]] void fail(const Error& e, const Args& a) {
+  const auto* arg = e.location.size() == 1 ? std::get_if<Parameter>(&e.location.front()) : nullptr;
+  const std::string name = arg != nullptr ? arg->name : std::string();
+  std::string option;
+  if (name == "from") option = spelled("--from", a.from);
+  else if (name == "to") option = spelled("--to", a.to);
+  else if (name == "start") option = spelled("--downhill", a.downhill);
+  else if (name == "up") option = "--up";
+  else if (name == "step") option = "--step";
+  else if (name == "max_steps") option = "--max-steps";
+  if (!option.empty()) throw CommandError{option + ": " + e.message};
+  throw CommandError{describe_in(e, a.input)};
 }
 
 std::string xyz_rows(const std::vector<Vec3d>& points) {

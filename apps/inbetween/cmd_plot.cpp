@@ -53,7 +53,7 @@ void run_plot(const PlotCommandOptions& opt) {
   if (!report) {
     const Error& e = report.error();
     // A scene without content is the input's fault: name the input.
-    const std::string where = e.where.empty() ? opt.input.path : e.where;
+    const std::string where = e.location.empty() ? opt.input.path : e.place();
     throw CommandError{where + ": " + e.message};
   }
   std::cout << "wrote " << report->files.size() << " plots and index.html to " << report->dir.string() << " ("

@@ -93,21 +93,21 @@ CsvTable read_csv_table(const std::string& text, const std::string& path, int mi
   return t;
 }
 
-std::string csv_place(const Error& e, const CsvTable& table, const std::string& path) {
+std::vector<LocationStep> csv_place(const Error& e, const CsvTable& table, const std::string& path) {
   const auto& loc = e.location;
   const auto* member = loc.empty() ? nullptr : std::get_if<std::string>(&loc[0]);
   if (member && *member == "points") {
-    if (loc.size() == 1) return path;  // too few rows: the file is the place
+    if (loc.size() == 1) return {Source{path}};  // too few rows: the file is the place
     const auto* row = std::get_if<std::size_t>(&loc[1]);
-    if (row && *row < table.lines.size()) return path + ": line " + std::to_string(table.lines[*row]);
-    return path;
+    if (row && *row < table.lines.size()) return {Source{path}, TextLine{std::size_t(table.lines[*row])}};
+    return {Source{path}};
   }
   if (member && loc.size() == 1) {
     std::string option = "--" + *member;
     for (char& ch : option) ch = ch == '_' ? '-' : ch;
-    return option;
+    return {Parameter{option}};
   }
-  return e.where;
+  return loc;
 }
 
 }  // namespace inbetween::cli

@@ -26,9 +26,10 @@ CsvTable read_csv_table(const std::string& text, const std::string& path, int mi
                         const std::string& columns_hint);
 
 /// The place of a library error about the rows of `table` (read from `path`), from its structured
-/// location: {"points", i} → "<path>: line L" (row i's line), {"points"} → `path`, an option such
-/// as {"control_points"} → "--control-points"; `e.where` unchanged otherwise.
-std::string csv_place(const Error& e, const CsvTable& table, const std::string& path);
+/// location: {"points", i} → {Source{path}, TextLine{L}} ("<path>: line L", row i's line),
+/// {"points"} → {Source{path}}, an option such as {"control_points"} → {Parameter{"--control-points"}};
+/// the location unchanged otherwise.
+std::vector<LocationStep> csv_place(const Error& e, const CsvTable& table, const std::string& path);
 
 /// Appends the shortest round-trip text of v (in its own precision; "-0" as "0") to `line`: the
 /// text `bake` writes in its CSV (and format_number's), without a string per cell.

@@ -51,7 +51,7 @@ std::vector<std::string> write_character_demo(const std::filesystem::path& out, 
     auto report = write_plots(*scene, raw, out / plots, options);
     if (!report) {
       const Error& e = report.error();
-      throw CommandError{(e.where.empty() ? (out / plots).string() : e.where) + ": " + e.message};
+      throw CommandError{(e.location.empty() ? (out / plots).string() : e.place()) + ": " + e.message};
     }
     std::size_t trajectories = 0;
     for (const auto& f : report->files) trajectories += f.group == "trajectories";

@@ -121,7 +121,7 @@ std::string write_demo_files(const std::string& dir) {
     auto report = write_plots(scene, *raw, out / "plots", options);
     if (!report) {
       const Error& e = report.error();
-      throw CommandError{(e.where.empty() ? (out / "plots").string() : e.where) + ": " + e.message};
+      throw CommandError{(e.location.empty() ? (out / "plots").string() : e.place()) + ": " + e.message};
     }
     written.push_back("plots/         " + std::to_string(report->files.size()) +
                       " SVG plots (graph editor, path views, speed curves) and index.html");

@@ -10,12 +10,8 @@
 namespace inbetween::cli {
 namespace {
 
-// A scene file's error as parse_scene() renders it: its place as a JSON pointer, "/" for the
-// document root.
-std::string scene_file_error(const std::string& path, Error e) {
-  if (e.where.empty()) e.where = e.location.empty() ? std::string("/") : json_pointer(e.location);
-  return path + ": " + e.describe();
-}
+// A scene file's error: its place as a JSON pointer, "/" for the document root.
+std::string scene_file_error(const std::string& path, const Error& e) { return describe_in(e, path, "/"); }
 
 }  // namespace
 
@@ -59,9 +55,7 @@ RawScene load_raw(const InputArgs& args) {
   auto raw = read_input_file(args.path, options);
   for (const std::string& note : notes) std::cerr << "note: " << args.path << ": " << note << '\n';
   if (!raw) {
-    Error e = raw.error();
-    if (!e.location.empty()) e.where = json_pointer(e.location);
-    throw CommandError{args.path + ": " + (e.where.empty() || e.where == args.path ? e.message : e.where + ": " + e.message)};
+    throw CommandError{describe_in(raw.error(), args.path)};
   }
   return std::move(*raw);
 }

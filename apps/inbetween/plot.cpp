@@ -46,7 +46,7 @@ namespace {
 using namespace plot_detail;
 
 Error io_error(const fs::path& where, const std::string& what, int err = 0) {
-  return Error{ErrorCode::Io, what + (err ? std::string(": ") + std::strerror(err) : std::string()), where.string(), {}};
+  return Error{ErrorCode::io, what + (err ? std::string(": ") + std::strerror(err) : std::string()), {Source{where.string()}}};
 }
 
 std::string index_html(const PlotOptions& options, const std::vector<PlotFile>& files, const Grid& grid, double fps,
@@ -110,7 +110,7 @@ bool replaceable(const fs::path& dir) {
 
 Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const fs::path& dir, const PlotOptions& options) {
   if (scene.tracks().empty() && scene.objects().empty()) {
-    return Error{ErrorCode::InvalidArgument, "the scene has no tracks and no objects: nothing to plot", "", {}};
+    return Error{ErrorCode::invalid_argument, "the scene has no tracks and no objects: nothing to plot"};
   }
   // The frame axis: the scene's range and every key and path leg, padded.
   double f0 = scene.range_start(), f1 = scene.range_end();
@@ -150,8 +150,8 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
   const double pad = std::max(1.0, kPadFraction * (f1 - f0));
   double a = options.frame_start.value_or(f0 - pad), b = options.frame_end.value_or(f1 + pad);
   if (!std::isfinite(a) || !std::isfinite(b) || !(b > a)) {
-    return Error{ErrorCode::InvalidArgument,
-                 "the frame axis [" + shortest_text(a) + ", " + shortest_text(b) + "] is empty or not finite", "--frames", {}};
+    return Error{ErrorCode::invalid_argument,
+                 "the frame axis [" + shortest_text(a) + ", " + shortest_text(b) + "] is empty or not finite", {Parameter{"--frames"}}};
   }
   Grid grid;
   if (options.frame_step > 0) {
@@ -162,12 +162,12 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
     // A round first frame: k·step, written with 12 significant digits (−5.6, not −5.6000000000000005).
     grid.start = options.frame_start ? a : std::strtod(short_text(std::floor(a / grid.step) * grid.step).c_str(), nullptr);
   } else {
-    return Error{ErrorCode::InvalidArgument, "the frame step must be positive", "--frames", {}};
+    return Error{ErrorCode::invalid_argument, "the frame step must be positive", {Parameter{"--frames"}}};
   }
   const double count = std::floor((b - grid.start) / grid.step * (1 + 1e-12) + 1e-9) + 1;
   if (!(count <= double(kMaxSamples))) {
-    return Error{ErrorCode::InvalidArgument,
-                 shortest_text(count) + " samples; at most " + std::to_string(kMaxSamples) + " (raise the step)", "--frames", {}};
+    return Error{ErrorCode::invalid_argument,
+                 shortest_text(count) + " samples; at most " + std::to_string(kMaxSamples) + " (raise the step)", {Parameter{"--frames"}}};
   }
   grid.count = std::max<std::uint64_t>(2, std::uint64_t(count));
   // The table of samples: an automatic grid gets coarser until it fits, an explicit one is refused.
@@ -175,10 +175,9 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
   if (grid.count * ncols > kMaxTableValues) {
     const std::uint64_t fit = kMaxTableValues / ncols;
     if (options.frame_step > 0 || fit < 3) {
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    std::to_string(grid.count) + " samples of " + std::to_string(ncols) + " columns; plot samples at most " +
-                       std::to_string(kMaxTableValues) + " values" + (fit >= 3 ? " (raise the step)" : " (the scene has too many columns)"),
-                   "--frames", {}};
+                       std::to_string(kMaxTableValues) + " values" + (fit >= 3 ? " (raise the step)" : " (the scene has too many columns)"), {Parameter{"--frames"}}};
     }
     grid.step = nice_step_at_least((b - a) / double(fit - 2));
     grid.start = options.frame_start ? a : std::strtod(short_text(std::floor(a / grid.step) * grid.step).c_str(), nullptr);
@@ -219,7 +218,7 @@ Expected<PlotReport> write_plots(const Scene& scene, const RawScene& raw, const 
   plotter.sample_grid();
   if (auto bad = plotter.non_finite()) {
     // The member's pointer in front, as bake puts it ("/objects/0/scale: frame 0: …").
-    return fail(Error{ErrorCode::NotFinite, (bad->location.empty() ? "" : json_pointer(bad->location) + ": ") + bad->message, "", {}});
+    return fail(Error{ErrorCode::not_finite, (bad->location.empty() ? "" : json_pointer(bad->location) + ": ") + bad->message});
   }
   plotter.plot_all(tmp);
   if (plotter.write_error) return fail(*plotter.write_error);

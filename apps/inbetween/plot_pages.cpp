@@ -222,7 +222,7 @@ void Plotter::add_file(const std::string& group, const std::string& name, const 
   used_.insert(candidate);
   if (write_error) return;
   if (!write_text(dir_ / candidate, doc.str())) {
-    write_error = Error{ErrorCode::Io, std::string("cannot write file: ") + std::strerror(errno), (dir_ / candidate).string(), {}};
+    write_error = Error{ErrorCode::io, std::string("cannot write file: ") + std::strerror(errno), {Source{(dir_ / candidate).string()}}};
     return;
   }
   files.push_back(PlotFile{candidate, title, group});

@@ -286,7 +286,7 @@ Expected<TrajectoryReport> write_trajectory_plots(const Scene& scene, const std:
         std::string some;
         for (std::size_t i = 0; i < objects.size() && i < 8; ++i) some += (i ? ", " : "") + objects[i].name;
         if (objects.size() > 8) some += ", … (" + std::to_string(objects.size()) + " objects)";
-        return Error{ErrorCode::InvalidArgument, "no object named '" + name + "' (objects: " + some + ")", "--object", {}};
+        return Error{ErrorCode::invalid_argument, "no object named '" + name + "' (objects: " + some + ")", {Parameter{"--object"}}};
       }
       if (std::find(plotted.begin(), plotted.end(), *found) == plotted.end()) plotted.push_back(*found);
     }
@@ -300,7 +300,7 @@ Expected<TrajectoryReport> write_trajectory_plots(const Scene& scene, const std:
   if (plotted.empty()) return report;
   std::error_code ec;
   fs::create_directories(dir / "trajectories", ec);
-  if (ec) return Error{ErrorCode::Io, "cannot create folder: " + ec.message(), (dir / "trajectories").string(), {}};
+  if (ec) return Error{ErrorCode::io, "cannot create folder: " + ec.message(), {Source{(dir / "trajectories").string()}}};
   plotter.sample(plotted);
   std::set<std::string> used;
   for (std::size_t k = 0; k < plotted.size(); ++k) {
@@ -311,7 +311,7 @@ Expected<TrajectoryReport> write_trajectory_plots(const Scene& scene, const std:
     for (int n = 2; used.count(file); ++n) file = base + "-" + std::to_string(n) + ".svg";
     used.insert(file);
     if (!write_text(dir / file, svg)) {
-      return Error{ErrorCode::Io, std::string("cannot write file: ") + std::strerror(errno), (dir / file).string(), {}};
+      return Error{ErrorCode::io, std::string("cannot write file: ") + std::strerror(errno), {Source{(dir / file).string()}}};
     }
     report.files.push_back(PlotFile{file, title, "trajectories"});
   }

@@ -51,21 +51,16 @@ Clip load_clip(const py::object& path_like, const std::string& space_name, const
   }
   auto raw = read_input_file(path, options);
   if (!raw) {
-    Error e = raw.error();
-    if (!e.location.empty()) e.where = json_pointer(e.location);
-    if (e.where == path) e.where.clear();
-    throw BindingError(e, path);
+    throw BindingError(raw.error(), path);
   }
   auto built = build_scene(*raw);
   if (!built) {
-    Error e = built.error();
-    if (e.where.empty()) e.where = e.location.empty() ? std::string("/") : json_pointer(e.location);
-    throw BindingError(e, path);
+    throw BindingError(built.error(), path, "/");
   }
   const Scene& scene = *built;
   const auto objects = scene.objects();
   if (objects.empty()) {
-    throw BindingError(Error{ErrorCode::Unsupported, "no objects (joints) in the file, only tracks: use inbetween.bake", ""}, path);
+    throw BindingError(Error{ErrorCode::unsupported, "no objects (joints) in the file, only tracks: use inbetween.bake"}, path);
   }
 
   std::vector<double> frames;
@@ -124,7 +119,7 @@ Clip load_clip(const py::object& path_like, const std::string& space_name, const
       }
     }
   }
-  if (!failure.empty()) throw BindingError(Error{ErrorCode::NotFinite, failure, ""}, path);
+  if (!failure.empty()) throw BindingError(Error{ErrorCode::not_finite, failure}, path);
   return clip;
 }
 

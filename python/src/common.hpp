@@ -16,17 +16,26 @@ namespace inbetween::python {
 namespace py = pybind11;
 
 /// A C++ exception carrying an inbetween::Error to the translator in module.cpp, which raises it
-/// as inbetween.Error (a ValueError) with .message, .where (JSON pointer or free text) and .code.
+/// as inbetween.Error (a ValueError) with .message, .where (the place rendered once: a JSON pointer,
+/// "line 2, column 14", "curve:/points/3") and .code.
 struct BindingError : std::runtime_error {
-  /// `source` ("scene.json", "<dict>") is put in front of the description as the CLI does.
-  BindingError(const Error& e, const std::string& source = {})
-      : std::runtime_error(source.empty() ? e.describe() : source + ": " + e.describe()),
+  /// `source` ("scene.json", "<dict>") is put in front of the description as the CLI does
+  /// (describe_in(): a leading Source{source} step is not repeated); `empty_place` stands for an
+  /// empty location ("/" for a scene document's root).
+  BindingError(const Error& e, const std::string& source = {}, std::string_view empty_place = {})
+      : std::runtime_error(describe_in(e, source, empty_place)),
         message(e.message),
-        where(!e.where.empty() ? e.where : json_pointer(e.location)),
+        where(place_of(e, source, empty_place)),
         code(int(e.code)) {}
   std::string message;  ///< the library's message
-  std::string where;    ///< the place: JSON pointer ("/tracks/0/keys/3") or free text
+  std::string where;    ///< the place as text (empty when there is none)
   int code = 0;         ///< inbetween::ErrorCode as an int
+
+ private:
+  static std::string place_of(const Error& e, const std::string& source, std::string_view empty_place) {
+    std::string place = render_location(location_within(e, source));
+    return place.empty() ? std::string(empty_place) : place;
+  }
 };
 
 /// The value of `e`, or a BindingError.

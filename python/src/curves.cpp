@@ -4,6 +4,7 @@
 // "speed") and tracks (F-curves and the other track kinds, from scene-file track dictionaries).
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 
@@ -85,17 +86,18 @@ std::string number(double v) {
 }
 
 /// Builds a generated scene; an error inside the user's part keeps its place relative to that part
-/// (`prefix`, e.g. "/objects/0/path/0/speed", is cut from the front of the JSON pointer).
-std::shared_ptr<const Scene> generated_scene(const std::string& json, const std::string& prefix, const std::string& source) {
+/// (the steps of `prefix`, e.g. {"objects", 0, "path", 0, "speed"}, are taken off the front of the
+/// location; the part itself is "/").
+std::shared_ptr<const Scene> generated_scene(const std::string& json, const std::vector<LocationStep>& prefix,
+                                             const std::string& source) {
   auto raw = read_scene_json(json);
   Expected<Scene> scene = raw ? build_scene(*raw) : Expected<Scene>(raw.error());
   if (!scene) {
     Error e = scene.error();
-    std::string where = !e.where.empty() ? e.where : json_pointer(e.location);
-    if (where.rfind(prefix, 0) == 0) where = where.substr(prefix.size());
-    e.where = where.empty() ? "/" : where;
-    e.location.clear();
-    throw BindingError(e, source);
+    if (e.location.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), e.location.begin())) {
+      e.location.erase(e.location.begin(), e.location.begin() + std::ptrdiff_t(prefix.size()));
+    }
+    throw BindingError(e, source, "/");
   }
   return std::make_shared<const Scene>(std::move(*scene));
 }
@@ -214,7 +216,7 @@ void bind_curves(py::module_& m) {
                                       ", \"paths\": [{\"name\": \"p\", \"curve\": {\"type\": \"bezier\", \"points\": [[0, 0, 0], [" +
                                       number(length) + ", 0, 0]]}}], \"objects\": [{\"name\": \"o\", \"path\": [{\"curve\": \"p\", "
                                       "\"speed\": " + json_text(spec) + "}]}]}";
-             return SpeedHolder{{generated_scene(json, "/objects/0/path/0/speed", "speed")}};
+             return SpeedHolder{{generated_scene(json, {"objects", std::size_t(0), "path", std::size_t(0), "speed"}, "speed")}};
            }),
            py::arg("spec"), py::arg("length") = 1.0, py::arg("fps") = 24.0,
            "Builds the speed for a path of `length` (distances in length units, or fractions with \"fraction\": true) at "
@@ -249,7 +251,7 @@ void bind_curves(py::module_& m) {
                s = copy;
              }
              const std::string json = "{\"inbetween\": 1, \"fps\": " + number(fps) + ", \"tracks\": [" + json_text(s) + "]}";
-             return TrackHolder{{generated_scene(json, "/tracks/0", "track")}};
+             return TrackHolder{{generated_scene(json, {"tracks", std::size_t(0)}, "track")}};
            }),
            py::arg("spec"), py::arg("fps") = 24.0,
            "Builds the track; inbetween.Error with the place inside spec (\"/keys/3/frame\").")

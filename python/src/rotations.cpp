@@ -40,8 +40,7 @@ void require_finite(const Array& a, std::size_t item_size, const char* what) {
   const std::size_t n = std::size_t(a.size());
   for (std::size_t k = 0; k < n; ++k) {
     if (!std::isfinite(p[k])) {
-      throw BindingError(Error{ErrorCode::NotFinite, std::string(what) + " has a value that is not finite (" + shortest_text(p[k]) + ")",
-                               "", {item_size ? k / item_size : k}},
+      throw BindingError(Error{ErrorCode::not_finite, std::string(what) + " has a value that is not finite (" + shortest_text(p[k]) + ")", {item_size ? k / item_size : k}},
                          what);
     }
   }
@@ -96,7 +95,7 @@ void bind_rotations(py::module_& m) {
 
   m.def("quat_from_matrix", [](const Array& r, bool check, double tolerance) {
     if (!(tolerance >= 0) || !std::isfinite(tolerance)) {
-      throw BindingError(Error{ErrorCode::InvalidArgument, "tolerance must be finite and >= 0, got " + shortest_text(tolerance), "",
+      throw BindingError(Error{ErrorCode::invalid_argument, "tolerance must be finite and >= 0, got " + shortest_text(tolerance),
                                {"tolerance"}});
     }
     return map_items(r, {3, 3}, {4}, "matrix", [&](const double* a, double* b, std::size_t i) {

@@ -66,10 +66,7 @@ PyScene load(const py::object& source, const std::string& animation, double fps)
     options.fps = fps;
     auto r = read_gltf_file(path, options);
     if (!r) {
-      Error e = r.error();
-      if (!e.location.empty()) e.where = json_pointer(e.location);
-      if (e.where == path) e.where.clear();
-      throw BindingError(e, path);
+      throw BindingError(r.error(), path);
     }
     raw = std::move(*r);
     out.source = path;
@@ -79,9 +76,7 @@ PyScene load(const py::object& source, const std::string& animation, double fps)
     out.source = text ? "scene" : path;
     auto r = read_scene_json(json, path);  // curve files relative to the scene's folder
     if (!r) {
-      Error e = r.error();
-      if (e.where.empty()) e.where = e.location.empty() ? std::string("/") : json_pointer(e.location);
-      throw BindingError(e, out.source);
+      throw BindingError(r.error(), out.source, "/");
     }
     raw = std::move(*r);
   }
@@ -152,7 +147,7 @@ py::tuple bake(const PyScene& s, const std::optional<Array>& frames_in, double s
       }
     }
   }
-  if (!failure.empty()) throw BindingError(Error{ErrorCode::NotFinite, failure, ""}, s.source);
+  if (!failure.empty()) throw BindingError(Error{ErrorCode::not_finite, failure}, s.source);
   std::vector<std::string> names{"frame", "time"};
   for (const auto& c : columns) names.push_back(c.name);
   return py::make_tuple(out, names);
@@ -186,8 +181,8 @@ void bind_scene(py::module_& m) {
                       double tolerance, double reduce, int substeps, bool cubic) {
     // reduce: 0 keeps exact keys, > 0 is a tolerance; NaN or < 0 is refused as the CLI's --reduce is.
     if (!(reduce >= 0) || !std::isfinite(reduce)) {
-      throw BindingError(Error{ErrorCode::InvalidArgument, "reduce must be 0 (keep exact keys) or finite and > 0, got " +
-                                                               shortest_text(reduce), "", {"reduce"}});
+      throw BindingError(Error{ErrorCode::invalid_argument, "reduce must be 0 (keep exact keys) or finite and > 0, got " +
+                                                               shortest_text(reduce), {"reduce"}});
     }
     const PyScene s = load(input, animation, fps);
     const auto ends = [&](const char* ext) {
@@ -225,7 +220,7 @@ void bind_scene(py::module_& m) {
     }
     std::ofstream file(output, std::ios::binary);
     if (!file || !file.write(bytes.data(), std::streamsize(bytes.size()))) {
-      throw BindingError(Error{ErrorCode::Io, "cannot write " + output, ""});
+      throw BindingError(Error{ErrorCode::io, "cannot write " + output});
     }
     return report;
   }, py::arg("input"), py::arg("output"), py::arg("animation") = "", py::arg("fps") = 24.0, py::arg("tolerance") = 1e-5,

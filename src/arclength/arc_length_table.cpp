@@ -17,26 +17,26 @@ template <Real T>
 Expected<ArcLengthTable<T>> ArcLengthTable<T>::from_entries(std::span<const T> u, std::span<const T> s,
                                                             std::int64_t build_evaluations) {
   if (u.size() != s.size()) {
-    return Error{ErrorCode::WrongArity,
-                 "u has " + std::to_string(u.size()) + " entries but s has " + std::to_string(s.size()), ""};
+    return Error{ErrorCode::wrong_arity,
+                 "u has " + std::to_string(u.size()) + " entries but s has " + std::to_string(s.size())};
   }
   if (u.size() < 2) {
-    return Error{ErrorCode::TooFewPoints, "a table needs at least 2 entries, got " + std::to_string(u.size()), ""};
+    return Error{ErrorCode::too_few_points, "a table needs at least 2 entries, got " + std::to_string(u.size())};
   }
   for (std::size_t i = 0; i < u.size(); ++i) {
-    const std::string where = "row " + std::to_string(i);
+    const std::vector<LocationStep> where{Element{"row", i}};
     if (!std::isfinite(u[i]) || !std::isfinite(s[i])) {
-      return Error{ErrorCode::NotFinite, "u or s is not finite", where};
+      return Error{ErrorCode::not_finite, "u or s is not finite", where};
     }
     if (i == 0 && s[0] != T(0)) {
-      return Error{ErrorCode::InvalidArgument, "the first arc length must be 0, got " + shortest_text(s[0]), where};
+      return Error{ErrorCode::invalid_argument, "the first arc length must be 0, got " + shortest_text(s[0]), where};
     }
     if (i > 0 && !(u[i - 1] < u[i])) {
-      return Error{ErrorCode::KeysNotIncreasing,
+      return Error{ErrorCode::keys_not_increasing,
                    "u = " + shortest_text(u[i]) + " is not after u = " + shortest_text(u[i - 1]), where};
     }
     if (i > 0 && s[i] < s[i - 1]) {
-      return Error{ErrorCode::NotMonotone, "s = " + shortest_text(s[i]) + " is less than s = " + shortest_text(s[i - 1]), where};
+      return Error{ErrorCode::not_monotone, "s = " + shortest_text(s[i]) + " is less than s = " + shortest_text(s[i - 1]), where};
     }
   }
   ArcLengthTable t;
@@ -126,12 +126,11 @@ T ArcLengthTable<T>::u_at(T s) const noexcept {
 }
 
 Error budget_error(std::int64_t evaluations, std::int64_t per_segment, const char* method) {
-  return Error{ErrorCode::BudgetExceeded,
+  return Error{ErrorCode::budget_exceeded,
                std::string(method) + " did not reach its tolerance within its work budget (" +
                    std::to_string(evaluations) + " curve evaluations, " + std::to_string(per_segment) +
                    " per segment): the curve's speed varies too wildly, or is noisier than the tolerance; "
-                   "raise the tolerance or max_evaluations_per_segment",
-               ""};
+                   "raise the tolerance or max_evaluations_per_segment"};
 }
 
 template class ArcLengthTable<float>;

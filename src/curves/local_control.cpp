@@ -89,10 +89,9 @@ std::vector<int> segments_in(const AnyCurve& c, const std::vector<Interval<doubl
 Expected<AnyCurve> with_control_point(const AnyCurve& c, int i, const Vec3d& p) {
   const int n = authored_point_count(c);
   if (i < 0 || i >= n) {
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "control point " + std::to_string(i) + " does not exist: the curve has " + std::to_string(n) +
-                     " (0 to " + std::to_string(n - 1) + ")",
-                 "", {"points", std::size_t(std::max(i, 0))}};
+                     " (0 to " + std::to_string(n - 1) + ")", {"points", std::size_t(std::max(i, 0))}};
   }
   return std::visit(
       [&](const auto& curve) -> Expected<AnyCurve> {

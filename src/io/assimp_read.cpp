@@ -332,12 +332,12 @@ Expected<std::vector<Node>> collect_nodes(const aiNode* root) {
     auto [node, parent] = stack.back();
     stack.pop_back();
     if (!seen.insert(node).second) {
-      return Error{ErrorCode::InvalidArgument, "node \"" + std::string(node->mName.C_Str()) + "\" appears twice in the hierarchy", ""};
+      return Error{ErrorCode::invalid_argument, "node \"" + std::string(node->mName.C_Str()) + "\" appears twice in the hierarchy"};
     }
     const std::size_t index = nodes.size();
     nodes.push_back({node, parent});
     if (nodes.size() > kMaxNodes) {
-      return Error{ErrorCode::Unsupported, "more than " + std::to_string(kMaxNodes) + " nodes", ""};
+      return Error{ErrorCode::unsupported, "more than " + std::to_string(kMaxNodes) + " nodes"};
     }
     if (node->mNumChildren > 0 && !node->mChildren) continue;
     for (unsigned c = node->mNumChildren; c-- > 0;)
@@ -368,8 +368,8 @@ Expected<Transformd> rest_pose(const aiMatrix4x4& t, const std::string& name, co
   Transformd rest;
   if (trs) {
     rest = *trs;
-  } else if (trs.error().code == ErrorCode::NotFinite) {
-    return Error{ErrorCode::NotFinite, "node " + in_quotes(name) + ": rest matrix is not finite", ""};
+  } else if (trs.error().code == ErrorCode::not_finite) {
+    return Error{ErrorCode::not_finite, "node " + in_quotes(name) + ": rest matrix is not finite"};
   } else {
     // Shear, a zero scale or a projective last row: no exact TRS.  assimp's own Decompose() (what
     // its players use), with the identity rotation where it has none (a zero scale).
@@ -381,7 +381,7 @@ Expected<Transformd> rest_pose(const aiMatrix4x4& t, const std::string& name, co
     const Quatd r = Quatd::from_wxyz(double(q.w), double(q.x), double(q.y), double(q.z));
     rest.rotation = is_finite(r) && norm(r) > 0.5 ? normalized(r) : Quatd{};
     if (!is_finite(rest.translation) || !is_finite(rest.scale)) {
-      return Error{ErrorCode::InvalidArgument, "node " + in_quotes(name) + ": rest matrix cannot be decomposed", ""};
+      return Error{ErrorCode::invalid_argument, "node " + in_quotes(name) + ": rest matrix cannot be decomposed"};
     }
     if (notes) {
       notes->push_back("node " + in_quotes(name) + ": rest matrix is not a TRS (" + trs.error().message +
@@ -411,10 +411,9 @@ Expected<std::size_t> select_animation(const aiScene& scene, const std::string& 
     if (scene.mAnimations[i] && scene.mAnimations[i]->mName.length > 0) list += " " + in_quotes(scene.mAnimations[i]->mName.C_Str());
   }
   if (scene.mNumAnimations > 20) list += ", …";
-  return Error{ErrorCode::InvalidArgument,
+  return Error{ErrorCode::invalid_argument,
                "no animation is named or numbered \"" + wanted + "\" (the file has " + std::to_string(scene.mNumAnimations) +
-                   (list.empty() ? "" : ": " + list) + ")",
-               "--animation"};
+                   (list.empty() ? "" : ": " + list) + ")", {Parameter{"--animation"}}};
 }
 
 const char* state_name(aiAnimBehaviour b) {
@@ -446,24 +445,22 @@ struct Timing {
 Expected<double> key_frame(double ticks, std::size_t k, std::optional<double> previous_ticks,
                            double previous_frame, const Timing& timing, const std::string& where) {
   if (!std::isfinite(ticks)) {
-    return Error{ErrorCode::NotFinite, where + ", key " + std::to_string(k) + ": time is not finite", ""};
+    return Error{ErrorCode::not_finite, where + ", key " + std::to_string(k) + ": time is not finite"};
   }
   if (previous_ticks && !(ticks > *previous_ticks)) {
-    return Error{ErrorCode::KeysNotIncreasing,
+    return Error{ErrorCode::keys_not_increasing,
                  where + ", key " + std::to_string(k) + ": time " + shortest_text(ticks) + " is not after the previous key's " +
-                     shortest_text(*previous_ticks) + " (times must increase strictly)",
-                 ""};
+                     shortest_text(*previous_ticks) + " (times must increase strictly)"};
   }
   const double frame = ticks / timing.ticks_per_second * timing.fps;
   if (!std::isfinite(frame)) {
-    return Error{ErrorCode::InvalidArgument,
-                 where + ", key " + std::to_string(k) + ": time " + shortest_text(ticks) + " is not a finite frame", ""};
+    return Error{ErrorCode::invalid_argument,
+                 where + ", key " + std::to_string(k) + ": time " + shortest_text(ticks) + " is not a finite frame"};
   }
   if (!(frame > previous_frame)) {
-    return Error{ErrorCode::KeysNotIncreasing,
+    return Error{ErrorCode::keys_not_increasing,
                  where + ", key " + std::to_string(k) + ": time " + shortest_text(ticks) +
-                     " is not a frame after the previous key's",
-                 ""};
+                     " is not a frame after the previous key's"};
   }
   return frame;
 }
@@ -480,14 +477,14 @@ Expected<RawVec3Channel> vec3_keys(const aiVectorKey* keys, unsigned count, bool
     previous = keys[k].mTime;
     const aiVector3D& v = keys[k].mValue;
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
-      return Error{ErrorCode::NotFinite, where + ", key " + std::to_string(k) + ": value is not finite", ""};
+      return Error{ErrorCode::not_finite, where + ", key " + std::to_string(k) + ": value is not finite"};
     }
     TrackKey<Vec3d> key;
     key.frame = *frame;
     key.value = lengths ? convert.position(v) : convert.scaling(v);
     key.tangent = TangentKind::linear;
     if (!is_finite(key.value)) {
-      return Error{ErrorCode::NotFinite, where + ", key " + std::to_string(k) + ": value × scale is not finite", ""};
+      return Error{ErrorCode::not_finite, where + ", key " + std::to_string(k) + ": value × scale is not finite"};
     }
     out.keys.push_back(key);
   }
@@ -506,9 +503,9 @@ Expected<RawQuatKeys> quat_keys(const aiQuatKey* keys, unsigned count, const Con
     previous = keys[k].mTime;
     const aiQuaternion& v = keys[k].mValue;
     const Quatd q = Quatd::from_wxyz(double(v.w), double(v.x), double(v.y), double(v.z));
-    if (!is_finite(q)) return Error{ErrorCode::NotFinite, where + ", key " + std::to_string(k) + ": value is not finite", ""};
+    if (!is_finite(q)) return Error{ErrorCode::not_finite, where + ", key " + std::to_string(k) + ": value is not finite"};
     if (!(norm(q) > 0)) {
-      return Error{ErrorCode::InvalidArgument, where + ", key " + std::to_string(k) + ": zero quaternion is not a rotation", ""};
+      return Error{ErrorCode::invalid_argument, where + ", key " + std::to_string(k) + ": zero quaternion is not a rotation"};
     }
     QuatKey<double> key;
     key.frame = *frame;
@@ -524,10 +521,10 @@ Expected<RawQuatKeys> quat_keys(const aiQuatKey* keys, unsigned count, const Con
 // ------------------------------------------------------------------------------ scene
 Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpReadOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale)) {
-    return Error{ErrorCode::InvalidArgument, "scale " + shortest_text(options.scale) + " is not finite and positive", "--scale"};
+    return Error{ErrorCode::invalid_argument, "scale " + shortest_text(options.scale) + " is not finite and positive", {Parameter{"--scale"}}};
   }
   if (!std::isfinite(options.fps)) {
-    return Error{ErrorCode::InvalidArgument, "fps " + shortest_text(options.fps) + " is not finite", "--fps"};
+    return Error{ErrorCode::invalid_argument, "fps " + shortest_text(options.fps) + " is not finite", {Parameter{"--fps"}}};
   }
   auto axes = axes_from_name(options.axes);
   if (!axes) return axes.error();
@@ -536,23 +533,23 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
 
   auto nodes = collect_nodes(ai.mRootNode);
   if (!nodes) return nodes.error();
-  if (nodes->empty()) return Error{ErrorCode::Parse, "the file has no node hierarchy", ""};
+  if (nodes->empty()) return Error{ErrorCode::parse, "the file has no node hierarchy"};
   const std::vector<std::string> names = object_names(*nodes);
 
   // The selected animation and its timing.
   const aiAnimation* anim = nullptr;
   Timing timing;
   if (ai.mNumAnimations > 0 || !options.animation.empty()) {
-    if (ai.mNumAnimations > 0 && !ai.mAnimations) return Error{ErrorCode::Parse, "the file's animation list is missing", ""};
+    if (ai.mNumAnimations > 0 && !ai.mAnimations) return Error{ErrorCode::parse, "the file's animation list is missing"};
     auto selected = select_animation(ai, options.animation);
     if (!selected) return selected.error();
     anim = ai.mAnimations[*selected];
-    if (!anim) return Error{ErrorCode::Parse, "animation " + std::to_string(*selected) + " is missing", ""};
+    if (!anim) return Error{ErrorCode::parse, "animation " + std::to_string(*selected) + " is missing"};
     timing.head = "animation " + std::to_string(*selected);
     if (anim->mName.length > 0) timing.head += " " + in_quotes(anim->mName.C_Str());
     const double tps = anim->mTicksPerSecond;
     if (!std::isfinite(tps) || tps < 0) {
-      return Error{ErrorCode::InvalidArgument, timing.head + ": ticks per second " + shortest_text(tps) + " is not finite and ≥ 0", ""};
+      return Error{ErrorCode::invalid_argument, timing.head + ": ticks per second " + shortest_text(tps) + " is not finite and ≥ 0"};
     }
     timing.ticks_per_second = tps > 0 ? tps : kDefaultTicksPerSecond;
     timing.fps = timing.ticks_per_second >= kMinFrameRate && timing.ticks_per_second <= kMaxFrameRate ? timing.ticks_per_second
@@ -577,7 +574,7 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
   std::string first_held, first_rotation_state;
   double start = std::numeric_limits<double>::infinity(), end = -start;
   if (anim && anim->mNumChannels > 0) {
-    if (!anim->mChannels) return Error{ErrorCode::Parse, timing.head + ": the channel list is missing", ""};
+    if (!anim->mChannels) return Error{ErrorCode::parse, timing.head + ": the channel list is missing"};
     std::size_t unbound = 0;
     for (unsigned c = 0; c < anim->mNumChannels; ++c) {
       const aiNodeAnim* ch = anim->mChannels[c];
@@ -589,13 +586,13 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
         continue;
       }
       if (channel_of[it->second]) {
-        return Error{ErrorCode::InvalidArgument,
-                     timing.head + ", channel " + std::to_string(c) + ": a second channel for node " + in_quotes(names[it->second]), ""};
+        return Error{ErrorCode::invalid_argument,
+                     timing.head + ", channel " + std::to_string(c) + ": a second channel for node " + in_quotes(names[it->second])};
       }
       channel_of[it->second] = ch;
       total_keys += std::size_t(ch->mNumPositionKeys) + ch->mNumRotationKeys + ch->mNumScalingKeys;
       if (total_keys > kMaxKeys) {
-        return Error{ErrorCode::Unsupported, timing.head + ": more than " + std::to_string(kMaxKeys) + " keys", ""};
+        return Error{ErrorCode::unsupported, timing.head + ": more than " + std::to_string(kMaxKeys) + " keys"};
       }
     }
     if (notes && unbound > 1) notes->push_back(timing.head + ": " + std::to_string(unbound) + " channels name no node and are skipped");
@@ -628,7 +625,7 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
         end = std::max(end, keys.back().frame);
       };
       if (ch->mNumPositionKeys > 0) {
-        if (!ch->mPositionKeys) return Error{ErrorCode::Parse, where + ": position keys are missing", ""};
+        if (!ch->mPositionKeys) return Error{ErrorCode::parse, where + ": position keys are missing"};
         auto keys = vec3_keys(ch->mPositionKeys, ch->mNumPositionKeys, true, convert, timing, where + ", position");
         if (!keys) return keys.error();
         keys->before = before;
@@ -638,7 +635,7 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
         object.translation = std::move(*keys);
       }
       if (ch->mNumRotationKeys > 0) {
-        if (!ch->mRotationKeys) return Error{ErrorCode::Parse, where + ": rotation keys are missing", ""};
+        if (!ch->mRotationKeys) return Error{ErrorCode::parse, where + ": rotation keys are missing"};
         auto keys = quat_keys(ch->mRotationKeys, ch->mNumRotationKeys, convert, timing, where + ", rotation");
         if (!keys) return keys.error();
         if (ch->mNumRotationKeys > 1 && (ch->mPreState == aiAnimBehaviour_LINEAR || ch->mPreState == aiAnimBehaviour_REPEAT ||
@@ -650,7 +647,7 @@ Expected<RawScene> detail::assimp_to_raw_scene(const aiScene& ai, const AssimpRe
         object.rotation = std::move(*keys);
       }
       if (ch->mNumScalingKeys > 0) {
-        if (!ch->mScalingKeys) return Error{ErrorCode::Parse, where + ": scaling keys are missing", ""};
+        if (!ch->mScalingKeys) return Error{ErrorCode::parse, where + ": scaling keys are missing"};
         auto keys = vec3_keys(ch->mScalingKeys, ch->mNumScalingKeys, false, convert, timing, where + ", scaling");
         if (!keys) return keys.error();
         keys->before = before;
@@ -688,7 +685,7 @@ Expected<RawScene> finish(Assimp::Importer& importer, const aiScene* ai, const A
   if (!ai) {
     std::string why = shortened(one_line(importer.GetErrorString()));
     if (why.empty()) why = "assimp gave no reason";
-    return Error{ErrorCode::Parse, "assimp cannot read it: " + why, ""};
+    return Error{ErrorCode::parse, "assimp cannot read it: " + why};
   }
   return detail::assimp_to_raw_scene(*ai, options);
 }
@@ -699,13 +696,12 @@ std::span<const std::string_view> assimp_extensions() noexcept { return kExtensi
 
 Expected<RawScene> read_assimp(std::span<const std::byte> bytes, std::string_view hint, const AssimpReadOptions& options) {
   if (bytes.size() > options.max_file_bytes) {
-    return Error{ErrorCode::Unsupported,
+    return Error{ErrorCode::unsupported,
                  "the input is " + std::to_string(bytes.size()) + " bytes, more than the limit of " +
-                     std::to_string(options.max_file_bytes),
-                 ""};
+                     std::to_string(options.max_file_bytes)};
   }
-  if (bytes.empty()) return Error{ErrorCode::Parse, "assimp cannot read it: the input is empty", ""};
-  if (is_binary_x(bytes)) return Error{ErrorCode::Unsupported, kBinaryXMessage, ""};
+  if (bytes.empty()) return Error{ErrorCode::parse, "assimp cannot read it: the input is empty"};
+  if (is_binary_x(bytes)) return Error{ErrorCode::unsupported, kBinaryXMessage};
   std::string hint_text = lower(std::string(hint));
   if (hint_text.size() > 16 || hint_text.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789") != std::string::npos) hint_text.clear();
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
@@ -713,7 +709,7 @@ Expected<RawScene> read_assimp(std::span<const std::byte> bytes, std::string_vie
   if (looks_like_collada(text)) stripped = without_mesh_libraries(text);
   if (is_text_x(text)) {
     auto kept = without_x_meshes(text);
-    if (!kept) return Error{ErrorCode::Parse, "assimp cannot read it: a Mesh object has no closing brace", ""};
+    if (!kept) return Error{ErrorCode::parse, "assimp cannot read it: a Mesh object has no closing brace"};
     stripped = std::move(*kept);
   }
   try {
@@ -724,30 +720,29 @@ Expected<RawScene> read_assimp(std::span<const std::byte> bytes, std::string_vie
                                          : importer.ReadFileFromMemory(stripped.data(), stripped.size(), kPostProcessing, hint_text.c_str());
     return finish(importer, ai, options);
   } catch (const std::exception& e) {
-    return Error{ErrorCode::Parse, "assimp cannot read it: " + shortened(one_line(e.what())), ""};
+    return Error{ErrorCode::parse, "assimp cannot read it: " + shortened(one_line(e.what()))};
   }
 }
 
 Expected<RawScene> read_assimp_file(const std::filesystem::path& file, const AssimpReadOptions& options) {
   std::error_code ec;
   const auto status = std::filesystem::status(file, ec);
-  if (ec || !std::filesystem::exists(status)) return Error{ErrorCode::Io, "cannot open the file: it does not exist", file.string()};
-  if (!std::filesystem::is_regular_file(status)) return Error{ErrorCode::Io, "not a regular file", file.string()};
+  if (ec || !std::filesystem::exists(status)) return Error{ErrorCode::io, "cannot open the file: it does not exist", {Source{file.string()}}};
+  if (!std::filesystem::is_regular_file(status)) return Error{ErrorCode::io, "not a regular file", {Source{file.string()}}};
   const std::uintmax_t size = std::filesystem::file_size(file, ec);
-  if (ec) return Error{ErrorCode::Io, "cannot read the file's size", file.string()};
+  if (ec) return Error{ErrorCode::io, "cannot read the file's size", {Source{file.string()}}};
   if (size > options.max_file_bytes) {
-    return Error{ErrorCode::Unsupported,
-                 "the file is " + std::to_string(size) + " bytes, more than the limit of " + std::to_string(options.max_file_bytes),
-                 file.string()};
+    return Error{ErrorCode::unsupported,
+                 "the file is " + std::to_string(size) + " bytes, more than the limit of " + std::to_string(options.max_file_bytes), {Source{file.string()}}};
   }
-  if (size == 0) return Error{ErrorCode::Parse, "assimp cannot read it: the file is empty", file.string()};
+  if (size == 0) return Error{ErrorCode::parse, "assimp cannot read it: the file is empty", {Source{file.string()}}};
   {
     std::ifstream probe(file, std::ios::binary);
-    if (!probe) return Error{ErrorCode::Io, "cannot open the file", file.string()};
+    if (!probe) return Error{ErrorCode::io, "cannot open the file", {Source{file.string()}}};
     std::array<char, 12> head{};
     probe.read(head.data(), std::streamsize(head.size()));
     if (is_binary_x(std::as_bytes(std::span<const char>(head.data(), std::size_t(probe.gcount()))))) {
-      return Error{ErrorCode::Unsupported, kBinaryXMessage, file.string()};
+      return Error{ErrorCode::unsupported, kBinaryXMessage, {Source{file.string()}}};
     }
   }
   std::string ext = lower(file.extension().string());
@@ -755,11 +750,11 @@ Expected<RawScene> read_assimp_file(const std::filesystem::path& file, const Ass
     // Collada and .x need no file beside them for node animation: read, drop the meshes, parse in memory.
     std::ifstream in(file, std::ios::binary);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) return Error{ErrorCode::Io, "cannot read the file", file.string()};
+    if (in.bad()) return Error{ErrorCode::io, "cannot read the file", {Source{file.string()}}};
     auto raw = read_assimp(std::as_bytes(std::span<const char>(text.data(), text.size())), ext.substr(1), options);
     if (!raw) {
       Error e = raw.error();
-      if (e.where.empty() && e.location.empty()) e.where = file.string();
+      if (e.location.empty()) e.location = {Source{file.string()}};
       return e;
     }
     return raw;
@@ -771,12 +766,12 @@ Expected<RawScene> read_assimp_file(const std::filesystem::path& file, const Ass
     auto raw = finish(importer, ai, options);
     if (!raw) {
       Error e = raw.error();
-      if (e.where.empty() && e.location.empty()) e.where = file.string();
+      if (e.location.empty()) e.location = {Source{file.string()}};
       return e;
     }
     return raw;
   } catch (const std::exception& e) {
-    return Error{ErrorCode::Parse, "assimp cannot read it: " + shortened(one_line(e.what())), file.string()};
+    return Error{ErrorCode::parse, "assimp cannot read it: " + shortened(one_line(e.what())), {Source{file.string()}}};
   }
 }
 

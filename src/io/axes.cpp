@@ -13,11 +13,11 @@ Expected<AxesMatrix> parse_axes(std::string_view name) {
   for (char& c : excerpt) {
     if (static_cast<unsigned char>(c) < 0x20) c = '?';
   }
-  const Error bad{ErrorCode::Parse,
+  const Error bad{ErrorCode::parse,
                   "\"" + excerpt + (name.size() > 40 ? "…" : "") +
                       "\" is not an axes name: \"z-up\" (a Y-up file made Z-up), \"y-up\" (a Z-up file made Y-up), "
                       "or three signed axes such as \"x,-z,y\"",
-                  "--axes"};
+                  {Parameter{"--axes"}}};
   AxesMatrix m{};
   std::size_t i = 0;
   bool used[3] = {false, false, false};

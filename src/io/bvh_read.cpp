@@ -37,7 +37,7 @@ std::string quoted(std::string_view token) {
 }
 
 Error line_error(std::size_t line, ErrorCode code, std::string message) {
-  return Error{code, std::move(message), "line " + std::to_string(line)};
+  return Error{code, std::move(message), {Element{"line", std::size_t(line)}}};
 }
 
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f'; }
@@ -172,8 +172,8 @@ std::optional<double> parse_number(std::string_view token, bool& finite) {
 Expected<double> number_at(std::string_view token, std::size_t line, const std::string& what) {
   bool finite = true;
   const auto v = parse_number(token, finite);
-  if (!v) return line_error(line, ErrorCode::Parse, what + ": " + quoted(token) + " is not a number");
-  if (!finite) return line_error(line, ErrorCode::NotFinite, what + ": " + quoted(token) + " is not a finite number");
+  if (!v) return line_error(line, ErrorCode::parse, what + ": " + quoted(token) + " is not a number");
+  if (!finite) return line_error(line, ErrorCode::not_finite, what + ": " + quoted(token) + " is not a finite number");
   return *v;
 }
 
@@ -241,9 +241,9 @@ std::string joint_name(const std::vector<std::string_view>& tokens) {
 
 // Parses the HIERARCHY (everything up to and including the MOTION line).
 Expected<std::vector<Joint>> read_hierarchy(Lines& lines, std::vector<std::string_view>& tokens, const Conversion& conv) {
-  if (!lines.next(tokens)) return line_error(std::max<std::size_t>(lines.number(), 1), ErrorCode::Parse, "empty file: no HIERARCHY");
+  if (!lines.next(tokens)) return line_error(std::max<std::size_t>(lines.number(), 1), ErrorCode::parse, "empty file: no HIERARCHY");
   if (!iequals(tokens[0], "HIERARCHY") || tokens.size() != 1) {
-    return line_error(lines.number(), ErrorCode::Parse, "a BVH file starts with HIERARCHY, not " + quoted(tokens[0]));
+    return line_error(lines.number(), ErrorCode::parse, "a BVH file starts with HIERARCHY, not " + quoted(tokens[0]));
   }
   std::vector<Joint> joints;
   std::unordered_map<std::string, std::size_t> names;  // name → joint index
@@ -257,27 +257,27 @@ Expected<std::vector<Joint>> read_hierarchy(Lines& lines, std::vector<std::strin
         continue;
       }
       const std::string what = stack.back().joint ? "joint '" + joints[*stack.back().joint].name + "'" : std::string("End Site");
-      return line_error(line, ErrorCode::Parse,
+      return line_error(line, ErrorCode::parse,
                         "expected '{' after the " + what + " of line " + std::to_string(stack.back().line) + ", not " +
                             quoted(kw));
     }
     if (iequals(kw, "ROOT") || iequals(kw, "JOINT")) {
       const bool root = iequals(kw, "ROOT");
       if (root && !stack.empty()) {
-        return line_error(line, ErrorCode::Parse, "ROOT inside a joint: missing '}' of the block opened at line " +
+        return line_error(line, ErrorCode::parse, "ROOT inside a joint: missing '}' of the block opened at line " +
                                                       std::to_string(stack.back().line));
       }
-      if (!root && stack.empty()) return line_error(line, ErrorCode::Parse, "JOINT outside a ROOT");
-      if (!root && !stack.back().joint) return line_error(line, ErrorCode::Parse, "JOINT inside an End Site");
+      if (!root && stack.empty()) return line_error(line, ErrorCode::parse, "JOINT outside a ROOT");
+      if (!root && !stack.back().joint) return line_error(line, ErrorCode::parse, "JOINT inside an End Site");
       Joint j;
       j.name = joint_name(tokens);
-      if (j.name.empty()) return line_error(line, ErrorCode::Parse, std::string(root ? "ROOT" : "JOINT") + " without a name");
+      if (j.name.empty()) return line_error(line, ErrorCode::parse, std::string(root ? "ROOT" : "JOINT") + " without a name");
       if (joints.size() >= kMaxBvhJoints) {
-        return line_error(line, ErrorCode::Unsupported,
+        return line_error(line, ErrorCode::unsupported,
                           "more than " + std::to_string(kMaxBvhJoints) + " joints (the reader's limit)");
       }
       if (auto [it, inserted] = names.emplace(j.name, joints.size()); !inserted) {
-        return line_error(line, ErrorCode::InvalidArgument,
+        return line_error(line, ErrorCode::invalid_argument,
                           "joint name '" + j.name + "' is already used by the joint of line " +
                               std::to_string(joints[it->second].line));
       }
@@ -291,16 +291,16 @@ Expected<std::vector<Joint>> read_hierarchy(Lines& lines, std::vector<std::strin
       continue;
     }
     if (iequals(kw, "End")) {
-      if (tokens.size() < 2 || !iequals(tokens[1], "Site")) return line_error(line, ErrorCode::Parse, "'End' must be followed by 'Site'");
-      if (stack.empty() || !stack.back().joint) return line_error(line, ErrorCode::Parse, "End Site outside a joint");
+      if (tokens.size() < 2 || !iequals(tokens[1], "Site")) return line_error(line, ErrorCode::parse, "'End' must be followed by 'Site'");
+      if (stack.empty() || !stack.back().joint) return line_error(line, ErrorCode::parse, "End Site outside a joint");
       joints[*stack.back().joint].has_children = true;
       stack.push_back(Block{std::nullopt, line, tokens.back() == "{" && tokens.size() > 2, false});
       continue;
     }
     if (iequals(kw, "OFFSET")) {
-      if (stack.empty()) return line_error(line, ErrorCode::Parse, "OFFSET outside a joint");
+      if (stack.empty()) return line_error(line, ErrorCode::parse, "OFFSET outside a joint");
       if (tokens.size() != 4) {
-        return line_error(line, ErrorCode::WrongArity,
+        return line_error(line, ErrorCode::wrong_arity,
                           "OFFSET needs 3 numbers, the line has " + std::to_string(tokens.size() - 1));
       }
       Vec3d v;
@@ -313,50 +313,50 @@ Expected<std::vector<Joint>> read_hierarchy(Lines& lines, std::vector<std::strin
       Block& b = stack.back();
       if (b.joint) {
         Joint& j = joints[*b.joint];
-        if (j.offset) return line_error(line, ErrorCode::Parse, "a second OFFSET for joint '" + j.name + "'");
+        if (j.offset) return line_error(line, ErrorCode::parse, "a second OFFSET for joint '" + j.name + "'");
         if (j.has_channels_line || j.has_children) {
-          return line_error(line, ErrorCode::Parse, "the OFFSET of joint '" + j.name + "' must come before its CHANNELS and children");
+          return line_error(line, ErrorCode::parse, "the OFFSET of joint '" + j.name + "' must come before its CHANNELS and children");
         }
         const Vec3d p = conv.point(v);
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-          return line_error(line, ErrorCode::NotFinite, "OFFSET times --scale is not finite");
+          return line_error(line, ErrorCode::not_finite, "OFFSET times --scale is not finite");
         }
         j.offset = p;
       } else {
-        if (b.has_offset) return line_error(line, ErrorCode::Parse, "a second OFFSET in an End Site");
+        if (b.has_offset) return line_error(line, ErrorCode::parse, "a second OFFSET in an End Site");
         b.has_offset = true;  // End Sites are not joints: the offset is not kept
       }
       continue;
     }
     if (iequals(kw, "CHANNELS")) {
-      if (stack.empty() || !stack.back().joint) return line_error(line, ErrorCode::Parse, "CHANNELS outside a joint");
+      if (stack.empty() || !stack.back().joint) return line_error(line, ErrorCode::parse, "CHANNELS outside a joint");
       Joint& j = joints[*stack.back().joint];
-      if (j.has_channels_line) return line_error(line, ErrorCode::Parse, "a second CHANNELS line for joint '" + j.name + "'");
+      if (j.has_channels_line) return line_error(line, ErrorCode::parse, "a second CHANNELS line for joint '" + j.name + "'");
       if (j.has_children) {
-        return line_error(line, ErrorCode::Parse, "the CHANNELS of joint '" + j.name + "' must come before its children");
+        return line_error(line, ErrorCode::parse, "the CHANNELS of joint '" + j.name + "' must come before its children");
       }
       j.has_channels_line = true;
-      if (tokens.size() < 2) return line_error(line, ErrorCode::Parse, "CHANNELS without a count");
+      if (tokens.size() < 2) return line_error(line, ErrorCode::parse, "CHANNELS without a count");
       const std::string_view count = tokens[1];
       std::size_t n = 0;
       const auto [ptr, ec] = std::from_chars(count.data(), count.data() + count.size(), n);
       if (ec != std::errc() || ptr != count.data() + count.size()) {
-        return line_error(line, ErrorCode::Parse, "CHANNELS count " + quoted(count) + " is not a whole number");
+        return line_error(line, ErrorCode::parse, "CHANNELS count " + quoted(count) + " is not a whole number");
       }
       if (tokens.size() - 2 != n) {
-        return line_error(line, ErrorCode::WrongArity,
+        return line_error(line, ErrorCode::wrong_arity,
                           "CHANNELS " + std::string(count) + " but the line names " + std::to_string(tokens.size() - 2) +
                               " channels");
       }
       for (std::size_t k = 2; k < tokens.size(); ++k) {
         const auto ch = channel_of(tokens[k]);
         if (!ch) {
-          return line_error(line, ErrorCode::Parse,
+          return line_error(line, ErrorCode::parse,
                             "unknown channel " + quoted(tokens[k]) +
                                 " (Xposition, Yposition, Zposition, Xrotation, Yrotation, Zrotation)");
         }
         if (std::find(j.channels.begin(), j.channels.end(), *ch) != j.channels.end()) {
-          return line_error(line, ErrorCode::Parse, "channel " + quoted(tokens[k]) + " listed twice");
+          return line_error(line, ErrorCode::parse, "channel " + quoted(tokens[k]) + " listed twice");
         }
         j.channels.push_back(*ch);
         (int(*ch) < 3 ? j.has_position : j.has_rotation) = true;
@@ -364,15 +364,15 @@ Expected<std::vector<Joint>> read_hierarchy(Lines& lines, std::vector<std::strin
       continue;
     }
     if (kw == "}") {
-      if (tokens.size() != 1) return line_error(line, ErrorCode::Parse, "'}' must stand on its own line");
-      if (stack.empty()) return line_error(line, ErrorCode::Parse, "'}' without an open joint");
+      if (tokens.size() != 1) return line_error(line, ErrorCode::parse, "'}' must stand on its own line");
+      if (stack.empty()) return line_error(line, ErrorCode::parse, "'}' without an open joint");
       const Block b = stack.back();
       stack.pop_back();
       if (b.joint && !joints[*b.joint].offset) {
-        return line_error(line, ErrorCode::Parse, "joint '" + joints[*b.joint].name + "' (line " + std::to_string(b.line) + ") has no OFFSET");
+        return line_error(line, ErrorCode::parse, "joint '" + joints[*b.joint].name + "' (line " + std::to_string(b.line) + ") has no OFFSET");
       }
       if (!b.joint && !b.has_offset) {
-        return line_error(line, ErrorCode::Parse, "the End Site of line " + std::to_string(b.line) + " has no OFFSET");
+        return line_error(line, ErrorCode::parse, "the End Site of line " + std::to_string(b.line) + " has no OFFSET");
       }
       continue;
     }
@@ -380,24 +380,24 @@ Expected<std::vector<Joint>> read_hierarchy(Lines& lines, std::vector<std::strin
       if (!stack.empty()) {
         const Block& b = stack.back();
         const std::string what = b.joint ? "joint '" + joints[*b.joint].name + "'" : std::string("End Site");
-        return line_error(line, ErrorCode::Parse,
+        return line_error(line, ErrorCode::parse,
                           "MOTION before the '}' of the " + what + " opened at line " + std::to_string(b.line));
       }
-      if (joints.empty()) return line_error(line, ErrorCode::Parse, "no ROOT before MOTION");
-      if (tokens.size() != 1) return line_error(line, ErrorCode::Parse, "MOTION must stand on its own line");
+      if (joints.empty()) return line_error(line, ErrorCode::parse, "no ROOT before MOTION");
+      if (tokens.size() != 1) return line_error(line, ErrorCode::parse, "MOTION must stand on its own line");
       return joints;
     }
-    if (kw == "{") return line_error(line, ErrorCode::Parse, "'{' without a ROOT, JOINT or End Site before it");
-    return line_error(line, ErrorCode::Parse, "unknown statement " + quoted(kw) + " in the HIERARCHY");
+    if (kw == "{") return line_error(line, ErrorCode::parse, "'{' without a ROOT, JOINT or End Site before it");
+    return line_error(line, ErrorCode::parse, "unknown statement " + quoted(kw) + " in the HIERARCHY");
   }
   const std::size_t last = std::max<std::size_t>(lines.number(), 1);
   if (!stack.empty()) {
     const Block& b = stack.back();
     const std::string what = b.joint ? "joint '" + joints[*b.joint].name + "'" : std::string("End Site");
-    return line_error(last, ErrorCode::Parse,
+    return line_error(last, ErrorCode::parse,
                       "the file ends inside the " + what + " opened at line " + std::to_string(b.line) + ": missing '}'");
   }
-  return line_error(last, ErrorCode::Parse, "the file ends before MOTION");
+  return line_error(last, ErrorCode::parse, "the file ends before MOTION");
 }
 
 // sin and cos of `deg`/2 degrees: the half angle reduced exactly in degrees (h − 90k is exact for
@@ -498,9 +498,9 @@ Quatd times_axis_rotation(const Quatd& q, Channel ch, double s, double c) {
 
 Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options) {
   if (!std::isfinite(options.scale) || !(options.scale > 0)) {
-    return Error{ErrorCode::InvalidArgument, shortest_text(options.scale) + " is not finite and positive", "--scale"};
+    return Error{ErrorCode::invalid_argument, shortest_text(options.scale) + " is not finite and positive", {Parameter{"--scale"}}};
   }
-  if (!std::isfinite(options.fps)) return Error{ErrorCode::InvalidArgument, "not finite", "--fps"};
+  if (!std::isfinite(options.fps)) return Error{ErrorCode::invalid_argument, "not finite", {Parameter{"--fps"}}};
   auto axes = parse_axes(options.axes);
   if (!axes) return axes.error();
   Conversion conv;
@@ -527,42 +527,42 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
 
   // Frames: N
   const std::size_t motion_line = lines.number();
-  if (!lines.next(tokens)) return line_error(motion_line, ErrorCode::Parse, "the file ends after MOTION: no 'Frames:' line");
+  if (!lines.next(tokens)) return line_error(motion_line, ErrorCode::parse, "the file ends after MOTION: no 'Frames:' line");
   const std::size_t frames_line = lines.number();
   if (tokens.size() != 2 || !iequals(tokens[0], "Frames:")) {
-    return line_error(frames_line, ErrorCode::Parse, "expected 'Frames: N' after MOTION");
+    return line_error(frames_line, ErrorCode::parse, "expected 'Frames: N' after MOTION");
   }
   std::size_t frame_count = 0;
   {
     const std::string_view t = tokens[1];
     const auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), frame_count);
     if (ec != std::errc() || ptr != t.data() + t.size()) {
-      return line_error(frames_line, ErrorCode::Parse, "Frames: " + quoted(t) + " is not a whole number ≥ 0");
+      return line_error(frames_line, ErrorCode::parse, "Frames: " + quoted(t) + " is not a whole number ≥ 0");
     }
   }
   if (animated > 0 && frame_count > kMaxBvhKeys / animated) {
-    return line_error(frames_line, ErrorCode::Unsupported,
+    return line_error(frames_line, ErrorCode::unsupported,
                       "Frames: " + std::to_string(frame_count) + " × " + std::to_string(animated) +
                           " animated channels of joints is more than the reader's limit of " +
                           std::to_string(kMaxBvhKeys) + " keys");
   }
   // Frame Time: t
-  if (!lines.next(tokens)) return line_error(frames_line, ErrorCode::Parse, "the file ends before 'Frame Time:'");
+  if (!lines.next(tokens)) return line_error(frames_line, ErrorCode::parse, "the file ends before 'Frame Time:'");
   const std::size_t time_line = lines.number();
   if (tokens.size() != 3 || !iequals(tokens[0], "Frame") || !iequals(tokens[1], "Time:")) {
-    return line_error(time_line, ErrorCode::Parse, "expected 'Frame Time: SECONDS' after 'Frames:'");
+    return line_error(time_line, ErrorCode::parse, "expected 'Frame Time: SECONDS' after 'Frames:'");
   }
   auto frame_time = number_at(tokens[2], time_line, "Frame Time");
   if (!frame_time) return frame_time.error();
   const double file_fps = 1 / *frame_time;
   if (!(*frame_time > 0) || !std::isfinite(file_fps)) {
-    return line_error(time_line, ErrorCode::InvalidArgument,
+    return line_error(time_line, ErrorCode::invalid_argument,
                       "Frame Time " + shortest_text(*frame_time) + " is not a positive number of seconds");
   }
   const bool own_fps = !(options.fps > 0);
   const auto frame_of = [&](std::size_t i) { return own_fps ? double(i) : double(i) * *frame_time * options.fps; };
   if (frame_count > 0 && !std::isfinite(frame_of(frame_count - 1))) {
-    return Error{ErrorCode::InvalidArgument, "the last frame at this fps is not finite", "--fps"};
+    return Error{ErrorCode::invalid_argument, "the last frame at this fps is not finite", {Parameter{"--fps"}}};
   }
 
   RawScene scene;
@@ -580,13 +580,13 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
     // anything else takes the tokens and the checks with their messages.
     if (!lines.next_numbers(values.data(), value_count)) {
       if (!lines.next(tokens)) {
-        return line_error(frames_line, ErrorCode::TooFewPoints,
+        return line_error(frames_line, ErrorCode::too_few_points,
                           "Frames: " + std::to_string(frame_count) + ", but the MOTION section ends after " +
                               std::to_string(i) + " frame lines (line " + std::to_string(lines.number()) + ")");
       }
       const std::size_t line = lines.number();
       if (tokens.size() != value_count) {
-        return line_error(line, ErrorCode::WrongArity,
+        return line_error(line, ErrorCode::wrong_arity,
                           "frame " + std::to_string(i) + " has " + std::to_string(tokens.size()) + " numbers, the CHANNELS lines declare " +
                               std::to_string(value_count));
       }
@@ -594,7 +594,7 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
         bool finite = true;
         const auto n = parse_number(tokens[v], finite);
         if (!n || !finite) {
-          return line_error(line, n ? ErrorCode::NotFinite : ErrorCode::Parse,
+          return line_error(line, n ? ErrorCode::not_finite : ErrorCode::parse,
                             "frame " + std::to_string(i) + ", value " + std::to_string(v + 1) + ": " + quoted(tokens[v]) +
                                 (n ? " is not a finite number" : " is not a number"));
         }
@@ -628,7 +628,7 @@ Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options
         key.frame = frame;
         key.value = conv.point(p);
         if (!std::isfinite(key.value.x) || !std::isfinite(key.value.y) || !std::isfinite(key.value.z)) {
-          return line_error(line, ErrorCode::NotFinite,
+          return line_error(line, ErrorCode::not_finite,
                             "frame " + std::to_string(i) + ": the position of joint '" + j.name + "' times --scale is not finite");
         }
         key.tangent = TangentKind::linear;

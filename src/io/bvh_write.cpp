@@ -28,29 +28,26 @@ bool bvh_blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' 
 
 Expected<BvhExport> write_bvh(const Scene& scene, const BvhWriteOptions& options) {
   const auto nodes = scene.objects();
-  if (nodes.empty()) return Error{ErrorCode::Unsupported, "the scene has no objects: BVH holds joints only", ""};
+  if (nodes.empty()) return Error{ErrorCode::unsupported, "the scene has no objects: BVH holds joints only"};
   if (nodes.size() > kMaxBvhJoints) {
-    return Error{ErrorCode::Unsupported,
+    return Error{ErrorCode::unsupported,
                  std::to_string(nodes.size()) + " objects: more than the " + std::to_string(kMaxBvhJoints) +
-                     " joints the BVH reader accepts",
-                 ""};
+                     " joints the BVH reader accepts"};
   }
   BvhExport out;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if (!scene.path_legs(i).empty() || scene.camera(i)) {
-      return Error{ErrorCode::Unsupported,
+      return Error{ErrorCode::unsupported,
                    "object '" + nodes[i].name + "' is " + (scene.camera(i) ? "a camera" : "on a path") +
-                       ": BVH export writes keyed objects only (convert to glTF, or bake)",
-                   ""};
+                       ": BVH export writes keyed objects only (convert to glTF, or bake)"};
     }
   }
   const double first = std::isnan(options.first) ? scene.range_start() : options.first;
   const double last = std::isnan(options.last) ? scene.range_end() : options.last;
   if (!std::isfinite(first) || !std::isfinite(last) || !(first <= last) || last - first >= kMaxFrames) {
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "frame range " + shortest_text(first) + " … " + shortest_text(last) +
-                     " is not finite and increasing, or longer than " + shortest_text(kMaxFrames) + " frames",
-                 ""};
+                     " is not finite and increasing, or longer than " + shortest_text(kMaxFrames) + " frames"};
   }
   const std::size_t frame_count = std::size_t(std::floor(last - first)) + 1;
   // What the reader will count: every joint's rotation, and the positions of roots and of joints
@@ -58,11 +55,10 @@ Expected<BvhExport> write_bvh(const Scene& scene, const BvhWriteOptions& options
   std::size_t animated = nodes.size();
   for (const auto& node : nodes) animated += !node.parent || node.local.translation ? 1 : 0;
   if (frame_count > kMaxBvhKeys / animated) {
-    return Error{ErrorCode::Unsupported,
+    return Error{ErrorCode::unsupported,
                  std::to_string(frame_count) + " frames × " + std::to_string(animated) +
                      " animated channels of joints is more than the " + std::to_string(kMaxBvhKeys) +
-                     " keys the BVH reader accepts",
-                 ""};
+                     " keys the BVH reader accepts"};
   }
 
   // Names: BVH ends a name at the line's end and splits it at blanks.
@@ -79,7 +75,7 @@ Expected<BvhExport> write_bvh(const Scene& scene, const BvhWriteOptions& options
     }
     if (changed) out.notes.push_back("object '" + nodes[i].name + "' written as joint '" + name + "'");
     if (!taken.insert(name).second) {
-      return Error{ErrorCode::Unsupported, "two objects are written as joint '" + name + "' (blanks become '_')", ""};
+      return Error{ErrorCode::unsupported, "two objects are written as joint '" + name + "' (blanks become '_')"};
     }
     names[i] = std::move(name);
   }
@@ -142,10 +138,9 @@ Expected<BvhExport> write_bvh(const Scene& scene, const BvhWriteOptions& options
       const Transform<double> local = nodes[i].local.sample(frame);
       const Vec3d& s = local.scale;
       if (!(std::abs(s.x - 1) <= kUnitScaleTol && std::abs(s.y - 1) <= kUnitScaleTol && std::abs(s.z - 1) <= kUnitScaleTol)) {
-        return Error{ErrorCode::Unsupported,
+        return Error{ErrorCode::unsupported,
                      "object '" + nodes[i].name + "' has scale (" + shortest_text(s.x) + ", " + shortest_text(s.y) + ", " +
-                         shortest_text(s.z) + ") at frame " + shortest_text(frame) + ": BVH holds no scale",
-                     ""};
+                         shortest_text(s.z) + ") at frame " + shortest_text(frame) + ": BVH holds no scale"};
       }
       if (position_channels(i)) {
         const Vec3d& t = local.translation;

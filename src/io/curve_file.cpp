@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "curve_value.hpp"
+#include "json_read.hpp"
 #include "json_text.hpp"
 
 #include <algorithm>
@@ -16,18 +17,13 @@ namespace {
 
 using json = nlohmann::json;
 
-// "file:/points/3", or just "file" for the document root (whose JSON pointer is empty).
-std::string located(const std::string& source, const std::string& pointer) {
-  return pointer.empty() ? source : source + ":" + pointer;
-}
-
 using Loc = std::vector<LocationStep>;
 
 struct Reader {
   // The error at `loc`, structured (relative to the curve object); parse_curve_json() renders it
   // once with json_pointer(), a scene file prepends the curve's own place.
-  Error fail(const Loc& loc, std::string message, ErrorCode code = ErrorCode::Parse) const {
-    return Error{code, std::move(message), "", loc};
+  Error fail(const Loc& loc, std::string message, ErrorCode code = ErrorCode::parse) const {
+    return Error{code, std::move(message), loc};
   }
 };
 
@@ -42,7 +38,7 @@ Loc at(Loc loc, std::size_t i) {
 Expected<double> read_number(const Reader& r, const json& v, const Loc& pointer) {
   if (!v.is_number()) return r.fail(pointer, "expected a number, got " + std::string(v.type_name()));
   const double d = v.get<double>();
-  if (!std::isfinite(d)) return r.fail(pointer, "number is not finite", ErrorCode::NotFinite);
+  if (!std::isfinite(d)) return r.fail(pointer, "number is not finite", ErrorCode::not_finite);
   return d;
 }
 
@@ -63,12 +59,12 @@ Expected<Vec3d> read_point(const Reader& r, const json& p, const Loc& where, int
     return r.fail(where, "expected a point: a number or an array of 1 to 3 numbers");
   }
   if (comps.empty() || comps.size() > 3)
-    return r.fail(where, "expected 1 to 3 numbers, got " + std::to_string(comps.size()), ErrorCode::WrongArity);
+    return r.fail(where, "expected 1 to 3 numbers, got " + std::to_string(comps.size()), ErrorCode::wrong_arity);
   if (dim == 0) dim = int(comps.size());
   if (int(comps.size()) != dim)
     return r.fail(where, "expected " + std::to_string(dim) + " number" + (dim == 1 ? "" : "s") +
                              " (the dimension of the first point), got " + std::to_string(comps.size()),
-                  ErrorCode::WrongArity);
+                  ErrorCode::wrong_arity);
   Vec3d v{};
   for (int c = 0; c < dim; ++c) v[c] = comps[c];
   return v;
@@ -79,7 +75,7 @@ Expected<std::vector<Vec3d>> read_points(const Reader& r, const json& doc, std::
                                          bool required = true) {
   std::vector<Vec3d> out;
   if (!doc.contains(field)) {
-    if (required) return r.fail(ptr(field), "missing required field", ErrorCode::Parse);
+    if (required) return r.fail(ptr(field), "missing required field", ErrorCode::parse);
     return out;
   }
   const json& arr = doc.at(std::string(field));
@@ -135,7 +131,7 @@ Expected<std::vector<double>> read_tcb(const Reader& r, const json& doc, std::st
   if (arr->size() != n)
     return r.fail(ptr(field), "expected a number or an array of " + std::to_string(n) + " numbers (one per point), got " +
                                   std::to_string(arr->size()),
-                  ErrorCode::WrongArity);
+                  ErrorCode::wrong_arity);
   return arr;
 }
 
@@ -148,25 +144,20 @@ Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view sour
     case io_detail::JsonFailure::none:
       break;
     case io_detail::JsonFailure::syntax:
-      return Error{ErrorCode::Parse, "invalid JSON: " + parsed.detail, source};
+      return Error{ErrorCode::parse, "invalid JSON: " + parsed.detail, {Source{source}}};
     case io_detail::JsonFailure::number_out_of_range:
-      return Error{ErrorCode::Parse,
+      return Error{ErrorCode::parse,
                    "invalid JSON: the number " + parsed.detail + " at line " + std::to_string(parsed.line) + ", column " +
-                       std::to_string(parsed.column) + " is beyond double precision's range",
-                   source};
+                       std::to_string(parsed.column) + " is beyond double precision's range", {Source{source}}};
     case io_detail::JsonFailure::too_deep:
-      return Error{ErrorCode::Parse,
+      return Error{ErrorCode::parse,
                    "invalid JSON: " + parsed.detail + " at line " + std::to_string(parsed.line) + ", column " +
-                       std::to_string(parsed.column),
-                   source};
+                       std::to_string(parsed.column), {Source{source}}};
   }
   auto curve = io_detail::read_curve_value(parsed.value);
   if (curve) return curve;
   // The structured place rendered once: "path.json:/points/3".
-  Error e = curve.error();
-  e.where = located(source, json_pointer(e.location));
-  e.location.clear();
-  return e;
+  return io_detail::located(curve.error(), source);
 }
 
 Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
@@ -177,7 +168,7 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
     const json& v = doc["version"];
     if (!v.is_number_integer() || v.get<long long>() != curve_format_version)
       return r.fail(ptr("version"), "unsupported version " + io_detail::short_dump(v) + "; this reader knows version " +
-                                    std::to_string(curve_format_version), ErrorCode::Unsupported);
+                                    std::to_string(curve_format_version), ErrorCode::unsupported);
   }
   if (!doc.contains("type") || !doc["type"].is_string()) return r.fail(ptr("type"), "missing or not a string");
   const std::string type = doc["type"].get<std::string>();
@@ -200,14 +191,14 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
       const std::string& key = item.key();
       if (key == "version" || key == "type" || key == "points") continue;
       if (std::find(extra.begin(), extra.end(), key) == extra.end())
-        return r.fail(ptr(io_detail::truncated(key)), "unknown field for type \"" + type + "\"", ErrorCode::Parse);
+        return r.fail(ptr(io_detail::truncated(key)), "unknown field for type \"" + type + "\"", ErrorCode::parse);
     }
   }
 
   int dim = 0;
   auto points = read_points(r, doc, "points", dim);
   if (!points) return points.error();
-  if (points->empty()) return r.fail(ptr("points"), "expected at least one point", ErrorCode::TooFewPoints);
+  if (points->empty()) return r.fail(ptr("points"), "expected at least one point", ErrorCode::too_few_points);
   const std::vector<Vec3d>& pts = *points;
 
   // The optional "params" member (parameters t_i of the points) of the interpolating splines.
@@ -216,7 +207,7 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
     auto k = read_numbers(r, doc, "params");
     if (!k) return k.error();
     params = *k;
-    if (params.empty()) return r.fail(ptr("params"), "expected params, got an empty array", ErrorCode::WrongArity);
+    if (params.empty()) return r.fail(ptr("params"), "expected params, got an empty array", ErrorCode::wrong_arity);
   }
 
   if (kind == CurveKind::bezier) return wrap(r, CurveKind::bezier, dim, build_bezier(pts));
@@ -283,7 +274,7 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
     const long long degree = doc["degree"].get<long long>();
     if (degree < 1 || degree > BSpline<Vec3d>::max_degree)
       return r.fail(ptr("degree"), "degree must be between 1 and " + std::to_string(BSpline<Vec3d>::max_degree) +
-                                   ", got " + std::to_string(degree), ErrorCode::InvalidArgument);
+                                   ", got " + std::to_string(degree), ErrorCode::invalid_argument);
     bool periodic = false;
     if (doc.contains("periodic")) {
       if (!doc["periodic"].is_boolean()) return r.fail(ptr("periodic"), "expected true or false");
@@ -298,7 +289,7 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
       auto k = read_numbers(r, doc, "knots");
       if (!k) return k.error();
       knots = *k;
-      if (knots.empty()) return r.fail(ptr("knots"), "expected knots, got an empty array", ErrorCode::WrongArity);
+      if (knots.empty()) return r.fail(ptr("knots"), "expected knots, got an empty array", ErrorCode::wrong_arity);
     }
     return wrap(r, CurveKind::bspline, dim, build_bspline(pts, int(degree), knots));
   }
@@ -315,7 +306,7 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
   std::string expected;
   for (const std::string_view name : enum_names<CurveKind>()) (expected += expected.empty() ? "" : ", ") += name;
   return r.fail(ptr("type"), "unknown curve type \"" + io_detail::truncated(type) + "\"; expected one of " + expected,
-                ErrorCode::Unsupported);
+                ErrorCode::unsupported);
 }
 
 namespace {

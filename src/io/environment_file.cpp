@@ -33,7 +33,7 @@ Expected<const json*> field(const json& obj, const Loc& at, std::string_view nam
 
 Expected<Vec3d> read_vec3(const json& v, const Loc& at) {
   if (!v.is_array()) return fail(at, "expected an array of 3 numbers, got " + std::string(v.type_name()));
-  if (v.size() != 3) return fail(at, "expected 3 numbers, got " + std::to_string(v.size()), ErrorCode::WrongArity);
+  if (v.size() != 3) return fail(at, "expected 3 numbers, got " + std::to_string(v.size()), ErrorCode::wrong_arity);
   Vec3d out{};
   for (std::size_t c = 0; c < 3; ++c) {
     auto d = read_number(v[c], join(at, c));
@@ -89,7 +89,7 @@ Expected<RawObstacle> read_obstacle(const json& o, const Loc& pointer) {
       const json& qa = v["rotation"];
       const Loc qp = join(at, "rotation");
       if (!qa.is_array() || qa.size() != 4)
-        return fail(qp, "expected 4 numbers [w, x, y, z]", qa.is_array() ? ErrorCode::WrongArity : ErrorCode::Parse);
+        return fail(qp, "expected 4 numbers [w, x, y, z]", qa.is_array() ? ErrorCode::wrong_arity : ErrorCode::parse);
       double wxyz[4];
       for (std::size_t k = 0; k < 4; ++k) {
         auto d = read_number(qa[k], join(qp, k));
@@ -117,7 +117,7 @@ Expected<RawObstacle> read_obstacle(const json& o, const Loc& pointer) {
     return RawObstacle{MovingSphereObstacle{*c, *vel, *rad, t0}};
   }
   return fail(at, "unknown obstacle kind; expected sphere, box, obb or moving_sphere",
-                ErrorCode::Unsupported);
+                ErrorCode::unsupported);
 }
 
 // The document → EnvironmentFile; errors with structured locations (not yet rendered).
@@ -132,7 +132,7 @@ Expected<EnvironmentFile> read_environment(const json& doc) {
       return fail(join(root, "inbetween_env"),
                   "unsupported version " + (v.is_number() ? io_detail::short_dump(v) : std::string(v.type_name())) +
                       "; this reader knows version " + std::to_string(environment_format_version),
-                  ErrorCode::Unsupported);
+                  ErrorCode::unsupported);
   }
   if (auto ok = only_fields(doc, root, {"inbetween_env", "radius", "start", "goal", "via", "bounds", "obstacles", "speed",
                                         "fps", "cell_size", "margin", "mover"});
@@ -176,7 +176,7 @@ Expected<EnvironmentFile> read_environment(const json& doc) {
       }
       out.environment.capsule = c;
     } else {
-      return fail(at, "unknown mover; expected sphere or capsule", ErrorCode::Unsupported);
+      return fail(at, "unknown mover; expected sphere or capsule", ErrorCode::unsupported);
     }
   }
   auto start = read_vec3_field(doc, root, "start");
@@ -227,11 +227,9 @@ Expected<EnvironmentFile> parse_environment_json(std::string_view text, std::str
 }
 
 Error locate_environment_error(const Error& error, std::string_view source_name) {
-  Error e = error;
-  // The structured place rendered once ("env.json:/obstacles/2/box/min/1"); a library error without
-  // a place in the file (an option of the call) is placed at the file.
-  e.where = located(std::string(source_name), json_pointer(error.location));
-  return e;
+  // "env.json:/obstacles/2/box/min/1"; a library error without a place in the file (an option of
+  // the call) is placed at the file.
+  return located(error, std::string(source_name));
 }
 
 }  // namespace inbetween

@@ -100,20 +100,20 @@ Expected<const unsigned char*> view_bytes(const tg::Model& model, int view_index
                                           std::size_t length, std::size_t accessor, const std::string& what,
                                           std::initializer_list<LocationStep> where) {
   if (view_index < 0 || std::size_t(view_index) >= model.bufferViews.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "accessor " + std::to_string(accessor) + ": " + what + " bufferView " + std::to_string(view_index) +
                         " does not exist (the file has " + std::to_string(model.bufferViews.size()) + ")",
                     where);
   }
   const tg::BufferView& view = model.bufferViews[std::size_t(view_index)];
   if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "bufferView " + std::to_string(view_index) + ": buffer " + std::to_string(view.buffer) + " does not exist",
                     {"bufferViews", std::size_t(view_index), "buffer"});
   }
   const std::size_t buffer_size = model.buffers[std::size_t(view.buffer)].data.size();
   if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "bufferView " + std::to_string(view_index) + " (bytes " + std::to_string(view.byteOffset) + " + " +
                         std::to_string(view.byteLength) + ") extends past the end of buffer " +
                         std::to_string(view.buffer) + " (" + std::to_string(buffer_size) + " bytes), used by accessor " +
@@ -121,7 +121,7 @@ Expected<const unsigned char*> view_bytes(const tg::Model& model, int view_index
                     {"bufferViews", std::size_t(view_index)});
   }
   if (offset > view.byteLength || length > view.byteLength - offset) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "accessor " + std::to_string(accessor) + ": " + what + " needs bytes " + std::to_string(offset) +
                         " + " + std::to_string(length) + " of bufferView " + std::to_string(view_index) + ", which has " +
                         std::to_string(view.byteLength) + " (the buffer is shorter than the accessor)",
@@ -135,7 +135,7 @@ Expected<const unsigned char*> view_bytes(const tg::Model& model, int view_index
 // Every byte read is checked to lie inside its bufferView and buffer.
 Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int index, int components, bool allow_normalized) {
   if (index < 0 || std::size_t(index) >= model.accessors.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "accessor " + std::to_string(index) + " does not exist (the file has " +
                         std::to_string(model.accessors.size()) + ")",
                     {});
@@ -145,7 +145,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
   const std::string name = "accessor " + std::to_string(ai);
   const int type_components = tg::GetNumComponentsInType(std::uint32_t(acc.type));
   if (type_components != components) {
-    return error_at(ErrorCode::WrongArity,
+    return error_at(ErrorCode::wrong_arity,
                     name + " must be " + type_name(components) + ", not a " +
                         (type_components > 4 ? std::string("matrix") : type_name(type_components)),
                     {"accessors", ai, "type"});
@@ -154,12 +154,12 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
   const int csize = component_size(ctype);
   const bool is_float = ctype == TINYGLTF_COMPONENT_TYPE_FLOAT;
   if (csize == 0 || ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-    return error_at(ErrorCode::Unsupported,
+    return error_at(ErrorCode::unsupported,
                     name + ": component type " + std::to_string(ctype) + " cannot hold animation data",
                     {"accessors", ai, "componentType"});
   }
   if (!is_float && !(allow_normalized && acc.normalized)) {
-    return error_at(ErrorCode::Unsupported,
+    return error_at(ErrorCode::unsupported,
                     name + ": " +
                         (allow_normalized ? "integer components must be normalized (\"normalized\": true)"
                                           : "must have float components (5126)"),
@@ -170,7 +170,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
   std::vector<double> out;
   if (acc.bufferView < 0) {
     if (count > kMaxUnbackedElements) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       name + ": " + std::to_string(count) + " elements without a bufferView (at most " +
                           std::to_string(kMaxUnbackedElements) + ")",
                       {"accessors", ai, "count"});
@@ -178,7 +178,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
     out.assign(count * std::size_t(components), 0.0);
   } else {
     if (std::size_t(acc.bufferView) >= model.bufferViews.size()) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       name + ": bufferView " + std::to_string(acc.bufferView) + " does not exist (the file has " +
                           std::to_string(model.bufferViews.size()) + ")",
                       {"accessors", ai, "bufferView"});
@@ -187,7 +187,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
     std::size_t stride = elem;
     if (view.byteStride != 0) {
       if (view.byteStride < elem || view.byteStride % std::size_t(csize) != 0) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         name + ": byteStride " + std::to_string(view.byteStride) + " of bufferView " +
                             std::to_string(acc.bufferView) + " is smaller than an element (" + std::to_string(elem) +
                             " bytes) or not a multiple of the component size",
@@ -198,7 +198,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
     std::size_t length = 0;
     if (count > 0) {
       if (count - 1 > (std::numeric_limits<std::size_t>::max() - elem) / stride) {
-        return error_at(ErrorCode::InvalidArgument, name + ": count " + std::to_string(count) + " is too large",
+        return error_at(ErrorCode::invalid_argument, name + ": count " + std::to_string(count) + " is too large",
                         {"accessors", ai, "count"});
       }
       length = (count - 1) * stride + elem;
@@ -214,7 +214,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
   if (acc.sparse.isSparse) {
     const auto& sp = acc.sparse;
     if (sp.count < 1 || std::size_t(sp.count) > count) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       name + ": sparse count " + std::to_string(sp.count) + " is not in [1, " + std::to_string(count) + "]",
                       {"accessors", ai, "sparse", "count"});
     }
@@ -222,12 +222,12 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
     const int itype = sp.indices.componentType;
     if (itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       name + ": sparse indices component type " + std::to_string(itype) + " is not an unsigned integer",
                       {"accessors", ai, "sparse", "indices", "componentType"});
     }
     if (sp.indices.byteOffset < 0 || sp.values.byteOffset < 0) {
-      return error_at(ErrorCode::InvalidArgument, name + ": negative sparse byteOffset", {"accessors", ai, "sparse"});
+      return error_at(ErrorCode::invalid_argument, name + ": negative sparse byteOffset", {"accessors", ai, "sparse"});
     }
     const std::size_t isize = std::size_t(component_size(itype));
     auto ibytes = view_bytes(model, sp.indices.bufferView, std::size_t(sp.indices.byteOffset), n * isize, ai,
@@ -240,7 +240,7 @@ Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int ind
     for (std::size_t k = 0; k < n; ++k) {
       const std::uint32_t target = decode_index(*ibytes + k * isize, itype);
       if (std::int64_t(target) <= previous || target >= count) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         name + ": sparse index " + std::to_string(k) + " (" + std::to_string(target) +
                             ") is not after the previous one or not below count " + std::to_string(count),
                         {"accessors", ai, "sparse", "indices"});

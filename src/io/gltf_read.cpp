@@ -72,7 +72,7 @@ using io_detail::whole_frame_within_key_precision;  // key_time.hpp
 
 Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& options, std::vector<std::string>& notes) {
   if (!(options.fps > 0) || !std::isfinite(options.fps)) {
-    return Error{ErrorCode::InvalidArgument, "fps " + shortest_text(options.fps) + " is not finite and positive", ""};
+    return Error{ErrorCode::invalid_argument, "fps " + shortest_text(options.fps) + " is not finite and positive"};
   }
   const double fps = options.fps;
   const std::vector<std::string> names = object_names(model);
@@ -86,12 +86,12 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
     for (std::size_t j = 0; j < model.nodes[i].children.size(); ++j) {
       const int child = model.nodes[i].children[j];
       if (child < 0 || std::size_t(child) >= model.nodes.size() || std::size_t(child) == i) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "node " + std::to_string(i) + ": child " + std::to_string(child) + " is not another node",
                         {"nodes", i, "children", j});
       }
       if (parent[std::size_t(child)]) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "node " + std::to_string(child) + " is a child of both node " +
                             std::to_string(*parent[std::size_t(child)]) + " and node " + std::to_string(i),
                         {"nodes", i, "children", j});
@@ -103,7 +103,7 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
     std::size_t steps = 0;
     for (auto p = parent[i]; p; p = parent[*p]) {
       if (++steps > model.nodes.size()) {
-        return error_at(ErrorCode::InvalidArgument, "node " + std::to_string(i) + " is its own ancestor (a cycle of children)",
+        return error_at(ErrorCode::invalid_argument, "node " + std::to_string(i) + " is its own ancestor (a cycle of children)",
                         {"nodes", i, "children"});
       }
     }
@@ -124,7 +124,7 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
       end = std::max(end, ch->frames.back());
       const auto key = std::make_pair(ch->node, ch->path);
       if (channels.count(key)) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "animation " + std::to_string(a) + quoted(anim.name) + ", channel " + std::to_string(c) +
                             ": a second channel for node " + std::to_string(ch->node) + " " + ch->path,
                         {"animations", a, "channels", c, "target"});
@@ -141,7 +141,7 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
   for (std::size_t i = 0; i < model.nodes.size(); ++i) {
     weight_columns += morph_targets(model, model.nodes[i]);
     if (weight_columns > kMaxWeightColumns) {
-      return error_at(ErrorCode::Unsupported,
+      return error_at(ErrorCode::unsupported,
                       "node " + std::to_string(i) + ": more than " + std::to_string(kMaxWeightColumns) +
                           " morph weight columns in the file (nodes × morph targets)",
                       {"nodes", i, "mesh"});
@@ -195,7 +195,7 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
     for (std::size_t j = 0; j < skin.joints.size(); ++j) {
       const int joint = skin.joints[j];
       if (joint < 0 || std::size_t(joint) >= model.nodes.size()) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "skin " + std::to_string(k) + quoted(skin.name) + ": joint " + std::to_string(joint) + " is not a node",
                         {"skins", k, "joints", j});
       }
@@ -215,7 +215,7 @@ bool is_glb(std::span<const std::byte> bytes) noexcept {
 Expected<GltfImport> import_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
                                  const GltfReadOptions& options) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
-    return Error{ErrorCode::Unsupported, "files of 4 GiB and more are not read", ""};
+    return Error{ErrorCode::unsupported, "files of 4 GiB and more are not read"};
   }
   tg::TinyGLTF loader;
   loader.SetFsCallbacks(tg::FsCallbacks{fs_exists, fs_expand, fs_read, fs_write, nullptr});
@@ -243,8 +243,8 @@ Expected<GltfImport> import_gltf(std::span<const std::byte> bytes, const std::fi
     err = one_line_excerpt(err);
     const bool missing_file = err.find("File not found") != std::string::npos || err.find("cannot open") != std::string::npos ||
                               err.find("Failed to load external") != std::string::npos;
-    return Error{missing_file ? ErrorCode::Io : ErrorCode::Parse,
-                 "not a readable glTF 2.0 file: " + (err.empty() ? std::string("tinygltf gave no reason") : err), ""};
+    return Error{missing_file ? ErrorCode::io : ErrorCode::parse,
+                 "not a readable glTF 2.0 file: " + (err.empty() ? std::string("tinygltf gave no reason") : err)};
   }
   GltfImport out;
   auto scene = to_raw_scene(model, options, out.notes);

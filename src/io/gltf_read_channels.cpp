@@ -55,10 +55,10 @@ Expected<Transformd> rest_pose(const tg::Node& node, std::size_t index) {
     rest.rotation = Quatd::from_wxyz(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
   if (node.scale.size() == 3) rest.scale = Vec3d{node.scale[0], node.scale[1], node.scale[2]};
   if (!is_finite(rest.translation) || !is_finite(rest.scale) || !is_finite(rest.rotation)) {
-    return error_at(ErrorCode::NotFinite, "node " + std::to_string(index) + ": TRS is not finite", {"nodes", index});
+    return error_at(ErrorCode::not_finite, "node " + std::to_string(index) + ": TRS is not finite", {"nodes", index});
   }
   if (!(norm(rest.rotation) > 0)) {
-    return error_at(ErrorCode::InvalidArgument, "node " + std::to_string(index) + ": rotation is a zero quaternion",
+    return error_at(ErrorCode::invalid_argument, "node " + std::to_string(index) + ": rotation is a zero quaternion",
                     {"nodes", index, "rotation"});
   }
   return rest;
@@ -85,10 +85,9 @@ Expected<std::size_t> select_animation(const tg::Model& model, const std::string
   std::string list;
   for (std::size_t i = 0; i < model.animations.size(); ++i)
     list += (i ? ", " : "") + std::to_string(i) + quoted(model.animations[i].name);
-  return Error{ErrorCode::InvalidArgument,
+  return Error{ErrorCode::invalid_argument,
                "no animation is named or numbered " + quote_excerpt(wanted) + " (the file has " +
-                   std::to_string(model.animations.size()) + (list.empty() ? "" : ": " + list) + ")",
-               ""};
+                   std::to_string(model.animations.size()) + (list.empty() ? "" : ": " + list) + ")"};
 }
 
 Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_t c, double fps,
@@ -97,7 +96,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
   const tg::AnimationChannel& ch = anim.channels[c];
   const std::string head = "animation " + std::to_string(a) + quoted(anim.name) + ", channel " + std::to_string(c);
   if (ch.target_node < 0 || std::size_t(ch.target_node) >= model.nodes.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     head + ": target node " + std::to_string(ch.target_node) + " does not exist (the file has " +
                         std::to_string(model.nodes.size()) + " nodes)",
                     {"animations", a, "channels", c, "target", "node"});
@@ -121,17 +120,17 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
     components = 1;
     normalized_ok = true;
     if (width == 0) {
-      return error_at(ErrorCode::InvalidArgument, target + ": the node has no mesh with morph targets",
+      return error_at(ErrorCode::invalid_argument, target + ": the node has no mesh with morph targets",
                       {"animations", a, "channels", c, "target", "path"});
     }
   } else {
-    return error_at(ErrorCode::Unsupported,
+    return error_at(ErrorCode::unsupported,
                     target + ": path \"" + out.path + "\" is not translation, rotation, scale or weights",
                     {"animations", a, "channels", c, "target", "path"});
   }
   out.width = width;
   if (ch.sampler < 0 || std::size_t(ch.sampler) >= anim.samplers.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     target + ": sampler " + std::to_string(ch.sampler) + " does not exist (the animation has " +
                         std::to_string(anim.samplers.size()) + ")",
                     {"animations", a, "channels", c, "sampler"});
@@ -146,7 +145,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
   } else if (sampler.interpolation == "CUBICSPLINE") {
     out.sampling = Sampling::cubic;
   } else {
-    return error_at(ErrorCode::Unsupported,
+    return error_at(ErrorCode::unsupported,
                     where + ": interpolation \"" + sampler.interpolation + "\" is not STEP, LINEAR or CUBICSPLINE",
                     {"animations", a, "samplers", s, "interpolation"});
   }
@@ -159,18 +158,18 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
   const std::size_t n = times->size();
   const std::size_t in_acc = std::size_t(sampler.input);
   if (n == 0) {
-    return error_at(ErrorCode::TooFewPoints, where + ": input accessor " + std::to_string(in_acc) + " has no key times",
+    return error_at(ErrorCode::too_few_points, where + ": input accessor " + std::to_string(in_acc) + " has no key times",
                     {"accessors", in_acc, "count"});
   }
   for (std::size_t k = 0; k < n; ++k) {
     const double t = (*times)[k];
     if (!std::isfinite(t)) {
-      return error_at(ErrorCode::NotFinite,
+      return error_at(ErrorCode::not_finite,
                       where + ": input accessor " + std::to_string(in_acc) + ", key " + std::to_string(k) + ": time is not finite",
                       {"accessors", in_acc});
     }
     if (k > 0 && !(t > (*times)[k - 1])) {
-      return error_at(ErrorCode::KeysNotIncreasing,
+      return error_at(ErrorCode::keys_not_increasing,
                       where + ": input accessor " + std::to_string(in_acc) + ", key " + std::to_string(k) + ": time " +
                           shortest_text(t) + " is not after the previous key's " + shortest_text((*times)[k - 1]) +
                           " (times must increase strictly)",
@@ -178,7 +177,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
     }
     const double frame = t * fps;
     if (!std::isfinite(frame) || (k > 0 && !(frame > out.frames.back()))) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       where + ": input accessor " + std::to_string(in_acc) + ", key " + std::to_string(k) + ": time " +
                           shortest_text(t) + " × fps " + shortest_text(fps) + " is not a finite, increasing frame",
                       {"accessors", in_acc});
@@ -196,7 +195,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
   const std::size_t elements = values->size() / std::size_t(components);
   const std::size_t needed = n * per_key / std::size_t(components);
   if (elements != needed) {
-    return error_at(ErrorCode::WrongArity,
+    return error_at(ErrorCode::wrong_arity,
                     where + ": output accessor " + std::to_string(out_acc) + " has " + std::to_string(elements) +
                         " elements; " + sampler.interpolation + " with " + std::to_string(n) + " key times (input accessor " +
                         std::to_string(in_acc) + ")" + (out.path == "weights" ? " and " + std::to_string(width) + " morph targets" : "") +
@@ -205,7 +204,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
   }
   for (std::size_t i = 0; i < values->size(); ++i) {
     if (!std::isfinite((*values)[i])) {
-      return error_at(ErrorCode::NotFinite,
+      return error_at(ErrorCode::not_finite,
                       where + ": output accessor " + std::to_string(out_acc) + ", element " +
                           std::to_string(i / std::size_t(components)) + " is not finite",
                       {"accessors", out_acc});
@@ -217,7 +216,7 @@ Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_
     for (std::size_t k = 0; k < n; ++k) {
       const double* q = values->data() + k * stride + offset;
       if (!(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] > 0)) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         where + ": output accessor " + std::to_string(out_acc) + ", key " + std::to_string(k) +
                             ": zero quaternion is not a rotation",
                         {"accessors", out_acc});
@@ -315,7 +314,7 @@ Expected<std::optional<RawCameraViewd>> node_camera(const tg::Model& model, std:
   if (node.camera < 0) return std::optional<RawCameraViewd>{};
   const std::size_t c = std::size_t(node.camera);
   if (c >= model.cameras.size()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "node " + std::to_string(i) + ": camera " + std::to_string(c) + " does not exist (" +
                         std::to_string(model.cameras.size()) + " cameras)",
                     {"nodes", i, "camera"});
@@ -334,7 +333,7 @@ Expected<std::optional<RawCameraViewd>> node_camera(const tg::Model& model, std:
   // Checked in degrees, as the scene camera holds it: a yfov a hair below π can round to 180°.
   const double yfov_deg = p.yfov * (180 / kPi);
   if (!std::isfinite(p.yfov) || !(yfov_deg > 0) || !(yfov_deg < 180)) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     which + ": yfov " + shortest_text(p.yfov) + " is not an angle in (0, pi) radians",
                     {"cameras", c, "perspective", "yfov"});
   }

@@ -73,7 +73,7 @@ std::optional<Error> missing_required(const nlohmann::json& root) {
   using Steps = std::vector<LocationStep>;
   std::optional<Error> found;
   auto fail = [&](Steps at, std::string message) {
-    if (!found) found = Error{ErrorCode::Parse, std::move(message), "", std::move(at)};
+    if (!found) found = Error{ErrorCode::parse, std::move(message), std::move(at)};
   };
   // Members `names` of the object at `at`, each of type `w`.
   auto require = [&](const nlohmann::json& obj, const Steps& at, std::initializer_list<std::pair<const char*, Want>> names) {

@@ -23,7 +23,7 @@ namespace inbetween::gltf_read_detail {
 namespace tg = tinygltf;
 
 inline Error error_at(ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
-  Error e{code, std::move(message), ""};
+  Error e{code, std::move(message)};
   e.prepend(steps);
   return e;
 }

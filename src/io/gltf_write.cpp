@@ -171,7 +171,7 @@ constexpr double kFloatMax = double(std::numeric_limits<float>::max());
 Expected<void> check_written(const RefitKeys& w, const std::vector<double>& frames, bool authored, std::size_t object,
                              const std::string& path) {
   auto fail = [&](std::size_t k, std::string what) -> Error {
-    Error e{ErrorCode::InvalidArgument, "", ""};
+    Error e{ErrorCode::invalid_argument, ""};
     const std::string key = (authored ? "key " + std::to_string(k) : "refitted key " + std::to_string(k)) + " (frame " +
                             shortest_text(frames[k]) + ")";
     e.message = key + ": " + what;
@@ -347,7 +347,7 @@ std::vector<std::vector<Transform<double>>> sample_locals(const Scene& scene, co
 Expected<void> check_built_from(const RawScene& raw, const Scene& scene) {
   const auto nodes = scene.objects();
   const auto differ = [](const std::string& what, std::initializer_list<LocationStep> at) {
-    Error e{ErrorCode::InvalidArgument, "the raw scene is not the one the scene was built from: " + what, ""};
+    Error e{ErrorCode::invalid_argument, "the raw scene is not the one the scene was built from: " + what};
     e.prepend(at);
     return e;
   };
@@ -400,41 +400,39 @@ Expected<void> check_built_from(const RawScene& raw, const Scene& scene) {
 
 Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const GltfExportOptions& options) {
   if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) {
-    return Error{ErrorCode::InvalidArgument, "tolerance must be finite and > 0", "", {"tolerance"}};
+    return Error{ErrorCode::invalid_argument, "tolerance must be finite and > 0", {"tolerance"}};
   }
   if (options.substeps < 1 || options.substeps > 64) {
-    return Error{ErrorCode::InvalidArgument, "substeps must be in 1..64", "", {"substeps"}};
+    return Error{ErrorCode::invalid_argument, "substeps must be in 1..64", {"substeps"}};
   }
   if (!(options.camera_znear > 0) || !std::isfinite(options.camera_znear)) {
-    return Error{ErrorCode::InvalidArgument, "camera_znear must be finite and > 0", "", {"camera_znear"}};
+    return Error{ErrorCode::invalid_argument, "camera_znear must be finite and > 0", {"camera_znear"}};
   }
   if (!(options.camera_zfar > options.camera_znear) || !std::isfinite(options.camera_zfar)) {
-    return Error{ErrorCode::InvalidArgument, "camera_zfar must be finite and > camera_znear", "", {"camera_zfar"}};
+    return Error{ErrorCode::invalid_argument, "camera_zfar must be finite and > camera_znear", {"camera_zfar"}};
   }
   if (!(options.camera_aspect >= 0) || !std::isfinite(options.camera_aspect)) {
-    return Error{ErrorCode::InvalidArgument, "camera_aspect must be finite and ≥ 0 (0: the viewport's)", "", {"camera_aspect"}};
+    return Error{ErrorCode::invalid_argument, "camera_aspect must be finite and ≥ 0 (0: the viewport's)", {"camera_aspect"}};
   }
   const auto nodes = scene.objects();
-  if (nodes.empty()) return Error{ErrorCode::Unsupported, "the scene has no objects to export as glTF nodes", "", {"objects"}};
+  if (nodes.empty()) return Error{ErrorCode::unsupported, "the scene has no objects to export as glTF nodes", {"objects"}};
   if (auto ok = check_built_from(raw, scene); !ok) return ok.error();
   const double first = scene.range_start(), last = scene.range_end(), fps = scene.fps();
   // Key times are float seconds from the range's start: the range must last a float's worth of
   // seconds, and its grid (substeps per frame) must fit the exporter's bound.
   const double duration_s = (last - first) / fps;
   if (!std::isfinite(last - first) || !(duration_s <= kFloatMax)) {
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "the range [" + shortest_text(first) + ", " + shortest_text(last) + "] at " + shortest_text(fps) +
-                     " fps lasts longer than glTF's float key times can hold (3.4e38 s)",
-                 "", {"range"}};
+                     " fps lasts longer than glTF's float key times can hold (3.4e38 s)", {"range"}};
   }
   if (const double points = std::floor((last - first) * options.substeps) + 2; !(points <= double(kMaxGltfExportGridPoints))) {
     char n[32];
     std::snprintf(n, sizeof n, "%.3g", points);
-    return Error{ErrorCode::Unsupported,
+    return Error{ErrorCode::unsupported,
                  "the range [" + shortest_text(first) + ", " + shortest_text(last) + "] sampled " + std::to_string(options.substeps) +
                      " times per frame needs " + n + " grid points, more than the " + std::to_string(kMaxGltfExportGridPoints) +
-                     " the exporter samples: shorten the range, lower the substeps or the fps",
-                 "", {"range"}};
+                     " the exporter samples: shorten the range, lower the substeps or the fps", {"range"}};
   }
   const Grid reduced = make_grid(scene, first, last, options.substeps);
   const std::vector<double>& grid = reduced.frames;
@@ -737,10 +735,9 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
           }
         }
         if (!finite) {
-          return Error{ErrorCode::Unsupported,
+          return Error{ErrorCode::unsupported,
                        "joint \"" + nodes[skin.joints[j]].name + "\" has no inverse bind matrix: its world transform at frame " +
-                           shortest_text(first) + " (the bind pose) is singular or beyond float's range",
-                       "", {"skins", k, "joints", j}};
+                           shortest_text(first) + " (the bind pose) is singular or beyond float's range", {"skins", k, "joints", j}};
         }
       }
       tinygltf::Skin gs;
@@ -762,7 +759,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
   tinygltf::TinyGLTF writer;
   std::ostringstream os;
   if (!writer.WriteGltfSceneToStream(&b.model, os, !options.binary, options.binary)) {
-    return Error{ErrorCode::Io, "tinygltf could not serialise the document", ""};
+    return Error{ErrorCode::io, "tinygltf could not serialise the document"};
   }
   result.bytes = os.str();
   return result;

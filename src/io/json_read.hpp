@@ -1,6 +1,7 @@
 #pragma once
 // Private helpers of the io readers (curve, environment and surface files): errors located by
-// "<source>:<JSON pointer>" and numbers read with their pointer.  Not installed.
+// {Source{file}, members and indices…} ("<source>:<JSON pointer>") and numbers read with their
+// place.  Not installed.
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -17,38 +18,13 @@ namespace inbetween::io_detail {
 
 using json = nlohmann::json;
 
-// "file:/points/3", or just "file" for the document root (whose JSON pointer is empty).
-inline std::string located(const std::string& source, const std::string& pointer) {
-  return pointer.empty() ? source : source + ":" + pointer;
-}
-
-// Makes errors located in one source.
-struct Reader {
-  std::string source;
-  Error fail(std::string pointer, std::string message, ErrorCode code = ErrorCode::Parse) const {
-    return Error{code, std::move(message), located(source, pointer)};
-  }
-};
-
-// JSON pointers are built with append() rather than "/" + … : GCC 12 warns (-Wrestrict, a known
-// false positive) on operator+ with a literal on the left.
-inline std::string ptr(std::string_view field) {
-  std::string s("/");
-  s.append(field);
-  return s;
-}
-inline std::string ptr(std::string_view field, std::size_t i) {
-  std::string s = ptr(field);
-  s.append("/").append(std::to_string(i));
-  return s;
-}
-
-// Reads a number; an error names the pointer.
-inline Expected<double> read_number(const Reader& r, const json& v, const std::string& pointer) {
-  if (!v.is_number()) return r.fail(pointer, "expected a number, got " + std::string(v.type_name()));
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) return r.fail(pointer, "number is not finite", ErrorCode::NotFinite);
-  return d;
+// `e` placed in the file `source`: its member names and indices after Source{source}, rendered
+// "file:/points/3", or just "file" for the document root.  A place that is not in the file (a
+// library call's parameter) is dropped: the file is the place.
+inline Error located(Error e, const std::string& source) {
+  std::erase_if(e.location, [](const LocationStep& s) { return !is_data_step(s); });
+  e.location.insert(e.location.begin(), Source{source});
+  return e;
 }
 
 // ---- Readers that build Error::location (environment and surface files): the same helpers.
@@ -73,8 +49,8 @@ inline Loc join(Loc base, std::size_t i) {
 }
 
 // An error at `loc`.
-inline Error fail(Loc loc, std::string message, ErrorCode code = ErrorCode::Parse) {
-  return Error{code, std::move(message), "", std::move(loc)};
+inline Error fail(Loc loc, std::string message, ErrorCode code = ErrorCode::parse) {
+  return Error{code, std::move(message), std::move(loc)};
 }
 
 // Rejects fields other than `known` (so a misspelt "raduis" is not silently ignored).
@@ -88,7 +64,7 @@ inline Expected<void> only_fields(const json& obj, const Loc& at, std::initializ
 inline Expected<double> read_number(const json& v, const Loc& at) {
   if (!v.is_number()) return fail(at, "expected a number, got " + std::string(v.type_name()));
   const double d = v.get<double>();
-  if (!std::isfinite(d)) return fail(at, "number is not finite", ErrorCode::NotFinite);
+  if (!std::isfinite(d)) return fail(at, "number is not finite", ErrorCode::not_finite);
   return d;
 }
 

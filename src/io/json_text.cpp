@@ -134,12 +134,11 @@ std::optional<Error> json_text_error(const JsonText& parsed, const std::string& 
     case JsonFailure::none:
       return std::nullopt;
     case JsonFailure::syntax:
-      return Error{ErrorCode::Parse, "invalid JSON" + at_text + ": " + parsed.detail, source};
+      return Error{ErrorCode::parse, "invalid JSON" + at_text + ": " + parsed.detail, {Source{source}}};
     case JsonFailure::number_out_of_range:
-      return Error{ErrorCode::Parse, "invalid JSON: the number " + parsed.detail + at_text + " is beyond double precision's range",
-                   source};
+      return Error{ErrorCode::parse, "invalid JSON: the number " + parsed.detail + at_text + " is beyond double precision's range", {Source{source}}};
     case JsonFailure::too_deep:
-      return Error{ErrorCode::Parse, "invalid JSON: " + parsed.detail + at_text, source};
+      return Error{ErrorCode::parse, "invalid JSON: " + parsed.detail + at_text, {Source{source}}};
   }
   return std::nullopt;
 }

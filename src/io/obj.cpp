@@ -26,7 +26,10 @@ struct LineIndex {
   std::vector<int> face_sizes;
 };
 
-std::string at_line(std::string_view source, int line) { return std::string(source) + ": line " + std::to_string(line); }
+// The place "mesh.obj: line 12".
+std::vector<LocationStep> at_line(std::string_view source, int line) {
+  return {Source{std::string(source)}, TextLine{std::size_t(line)}};
+}
 
 // The whitespace-separated tokens of a line after its keyword (tinyobjloader splits on spaces/tabs).
 std::vector<std::string> tokens_of(std::string_view line) {
@@ -59,24 +62,24 @@ Expected<LineIndex> scan_lines(std::string_view text, std::string_view source) {
     const std::string& key = tok[0];
     if (key == "v" || key == "vn") {
       if (tok.size() < 4)
-        return Error{ErrorCode::WrongArity,
+        return Error{ErrorCode::wrong_arity,
                      "'" + key + "' needs 3 coordinates, got " + std::to_string(tok.size() - 1), at_line(source, line_no)};
       for (std::size_t k = 1; k < 4; ++k) {
         char* stop = nullptr;
         errno = 0;
         const double x = std::strtod(tok[k].c_str(), &stop);
         if (stop == tok[k].c_str() || *stop != '\0')
-          return Error{ErrorCode::Parse, "'" + key + "' coordinate " + quote_excerpt(tok[k], 40) + " is not a number",
+          return Error{ErrorCode::parse, "'" + key + "' coordinate " + quote_excerpt(tok[k], 40) + " is not a number",
                        at_line(source, line_no)};
         if (!std::isfinite(x))
-          return Error{ErrorCode::NotFinite, "'" + key + "' coordinate " + quote_excerpt(tok[k], 40) + " is not finite",
+          return Error{ErrorCode::not_finite, "'" + key + "' coordinate " + quote_excerpt(tok[k], 40) + " is not finite",
                        at_line(source, line_no)};
       }
       if (key == "v") index.vertex_lines.push_back(line_no);
     } else if (key == "f") {
       const std::size_t corners = tok.size() - 1;
       if (corners < 3 || corners > 255)
-        return Error{ErrorCode::WrongArity,
+        return Error{ErrorCode::wrong_arity,
                      "a face needs 3 to 255 corners, got " + std::to_string(corners), at_line(source, line_no)};
       for (std::size_t k = 1; k < tok.size(); ++k) {
         // Each corner is v, v/vt, v//vn or v/vt/vn; every index present must be a non-zero integer.
@@ -89,10 +92,10 @@ Expected<LineIndex> scan_lines(std::string_view text, std::string_view source) {
             char* stop = nullptr;
             const long idx = std::strtol(num.c_str(), &stop, 10);
             if (num.empty() || *stop != '\0' || part > 2)
-              return Error{ErrorCode::Parse, "face corner " + quote_excerpt(tok[k], 40) + " is not of the form v, v/vt, v//vn or v/vt/vn",
+              return Error{ErrorCode::parse, "face corner " + quote_excerpt(tok[k], 40) + " is not of the form v, v/vt, v//vn or v/vt/vn",
                            at_line(source, line_no)};
             if (idx == 0)
-              return Error{ErrorCode::InvalidArgument,
+              return Error{ErrorCode::invalid_argument,
                            "face corner '" + tok[k] + "' has index 0 (OBJ indices count from 1)", at_line(source, line_no)};
           }
           start = slash + 1;
@@ -112,8 +115,8 @@ Error from_tinyobj(const std::string& message, std::string_view source) {
   std::smatch m;
   std::string text = one_line_excerpt(message);
   while (!text.empty() && text.back() == '.') text.pop_back();
-  if (std::regex_search(text, m, line_re)) return Error{ErrorCode::Parse, text, at_line(source, std::stoi(m[1].str()))};
-  return Error{ErrorCode::Parse, text, std::string(source)};
+  if (std::regex_search(text, m, line_re)) return Error{ErrorCode::parse, text, at_line(source, std::stoi(m[1].str()))};
+  return Error{ErrorCode::parse, text, {Source{std::string(source)}}};
 }
 
 using V = Vec3d;
@@ -160,10 +163,9 @@ Expected<ObjRawMesh> parse_obj_raw(std::string_view text, std::string_view sourc
   ObjRawMesh out;
   const std::size_t nv = attrib.vertices.size() / 3;
   if (nv != index->vertex_lines.size())
-    return Error{ErrorCode::Parse,
+    return Error{ErrorCode::parse,
                  "read " + std::to_string(nv) + " vertices but the file has " + std::to_string(index->vertex_lines.size()) +
-                     " 'v' lines",
-                 std::string(source_name)};
+                     " 'v' lines", {Source{std::string(source_name)}}};
   out.vertex_lines = index->vertex_lines;
   out.mesh.vertices.resize(nv);
   for (std::size_t i = 0; i < nv; ++i)
@@ -175,7 +177,7 @@ Expected<ObjRawMesh> parse_obj_raw(std::string_view text, std::string_view sourc
     std::size_t corner = 0;
     for (unsigned char count : shape.mesh.num_face_vertices) {
       if (face >= index->face_lines.size() || int(count) != index->face_sizes[face])
-        return Error{ErrorCode::Parse, "the faces read do not match the file's 'f' lines", std::string(source_name)};
+        return Error{ErrorCode::parse, "the faces read do not match the file's 'f' lines", {Source{std::string(source_name)}}};
       const int line = index->face_lines[face];
       std::vector<int> poly;
       for (std::size_t k = 0; k < count; ++k, ++corner) {
@@ -183,16 +185,16 @@ Expected<ObjRawMesh> parse_obj_raw(std::string_view text, std::string_view sourc
         // OBJ's indices (from 1, or negative: relative to the last vertex so far) are the reader's to
         // translate, so the reader says what is wrong with them in the file's own terms.
         if (ix.vertex_index < 0)
-          return Error{ErrorCode::InvalidArgument, "face names a relative vertex index before the file's first vertex",
+          return Error{ErrorCode::invalid_argument, "face names a relative vertex index before the file's first vertex",
                        at_line(source_name, line)};
         if (std::size_t(ix.vertex_index) >= nv)
-          return Error{ErrorCode::InvalidArgument,
+          return Error{ErrorCode::invalid_argument,
                        "face names vertex " + std::to_string(ix.vertex_index + 1) + " (counting from 1), but the file has " +
                            std::to_string(nv) + " vertices",
                        at_line(source_name, line)};
         if (ix.normal_index >= 0) {
           if (std::size_t(ix.normal_index) * 3 + 2 >= attrib.normals.size())
-            return Error{ErrorCode::InvalidArgument,
+            return Error{ErrorCode::invalid_argument,
                          "face names normal " + std::to_string(ix.normal_index + 1) + " (counting from 1), but the file has " +
                              std::to_string(attrib.normals.size() / 3) + " normals",
                          at_line(source_name, line)};
@@ -203,7 +205,7 @@ Expected<ObjRawMesh> parse_obj_raw(std::string_view text, std::string_view sourc
         poly.push_back(ix.vertex_index);
       }
       if (!triangulate(poly, out.mesh.vertices, out.mesh.triangles))
-        return Error{ErrorCode::InvalidArgument,
+        return Error{ErrorCode::invalid_argument,
                      "the polygon cannot be split into triangles from any of its corners (it is not star-shaped, or "
                      "its corners are collinear)",
                      at_line(source_name, line)};
@@ -212,7 +214,7 @@ Expected<ObjRawMesh> parse_obj_raw(std::string_view text, std::string_view sourc
     }
   }
   if (face != index->face_lines.size())
-    return Error{ErrorCode::Parse, "the faces read do not match the file's 'f' lines", std::string(source_name)};
+    return Error{ErrorCode::parse, "the faces read do not match the file's 'f' lines", {Source{std::string(source_name)}}};
   if (nv > 0 && std::all_of(has_normal.begin(), has_normal.end(), [](char c) { return c != 0; }))
     out.mesh.normals = std::move(normal_sum);
   return out;
@@ -224,9 +226,10 @@ Expected<TriangleMesh<double>> parse_obj(std::string_view text, std::string_view
   // The builder names its places through this: a vertex or a normal by its `v` line, a triangle by
   // the line of the face it was split from, a whole member by the file.
   const MeshPlaceNamer place = [&](std::string_view member, std::size_t index) {
-    if (index == kWholeMeshMember) return std::string(source_name);
+    const std::vector<LocationStep> file{Source{std::string(source_name)}};
+    if (index == kWholeMeshMember) return file;
     const std::vector<int>& lines = member == "triangles" ? raw->triangle_lines : raw->vertex_lines;
-    return index < lines.size() ? at_line(source_name, lines[index]) : std::string(source_name);
+    return index < lines.size() ? at_line(source_name, lines[index]) : file;
   };
   return build_triangle_mesh(raw->mesh, place);
 }

@@ -79,7 +79,7 @@ Expected<int> count_member(const json& obj, const Loc& loc, std::string_view nam
   auto v = number_member(obj, loc, name, 0.0);
   if (!v) return v.error();
   if (std::floor(*v) != *v || std::abs(*v) > double(std::numeric_limits<int>::max())) {
-    return error_at(ErrorCode::InvalidArgument, "expected a whole number in 0..32767 (0 = forever)", at(loc, std::string(name)));
+    return error_at(ErrorCode::invalid_argument, "expected a whole number in 0..32767 (0 = forever)", at(loc, std::string(name)));
   }
   return int(*v);
 }
@@ -100,7 +100,7 @@ Expected<RawScalarTrack> read_scalar_track(const json& j, const Loc& loc) {
   track.curve.auto_smoothing = *smooth;
   if (auto c = j.find("cycles"); c != j.end()) {
     const Loc cp = at(loc, "cycles");
-    if (!c->is_object()) return error_at(ErrorCode::InvalidArgument, "\"cycles\" must be an object", cp);
+    if (!c->is_object()) return error_at(ErrorCode::invalid_argument, "\"cycles\" must be an object", cp);
     if (auto ok = only_members(*c, cp, {"before", "after", "count_before", "count_after"}); !ok) return ok.error();
     FCurveCycles cyc;
     auto before = enum_member(*c, cp, "before", CycleMode::repeat, kCycle);
@@ -266,12 +266,12 @@ Expected<RawEulerTrack> read_euler_track(const json& j, const Loc& loc) {
   track.name = *name;
   auto conv = j.find("convention");
   if (conv == j.end() || !conv->is_string()) {
-    return error_at(ErrorCode::InvalidArgument, "an Euler track needs a \"convention\" such as \"XYZ\" or \"zxz\"",
+    return error_at(ErrorCode::invalid_argument, "an Euler track needs a \"convention\" such as \"XYZ\" or \"zxz\"",
                     at(loc, "convention"));
   }
   track.convention = conv->get<std::string>();
   auto units = name_member(j, loc, "units", AngleUnits::rad, kUnits);
-  if (!units) return error_at(ErrorCode::InvalidArgument, "\"units\" must be \"rad\" or \"deg\"", at(loc, "units"));
+  if (!units) return error_at(ErrorCode::invalid_argument, "\"units\" must be \"rad\" or \"deg\"", at(loc, "units"));
   track.units = *units;
   auto mode = name_member(j, loc, "mode", EulerTrackMode::angles, kEulerModes);
   if (!mode) return mode.error();
@@ -303,10 +303,10 @@ Expected<RawEulerTrack> read_euler_track(const json& j, const Loc& loc) {
 }
 
 Expected<RawTrack> read_track(const json& tj, const Loc& loc) {
-  if (!tj.is_object()) return error_at(ErrorCode::InvalidArgument, "a track must be an object", loc);
+  if (!tj.is_object()) return error_at(ErrorCode::invalid_argument, "a track must be an object", loc);
   std::string kind = "scalar";
   if (auto k = tj.find("kind"); k != tj.end()) {
-    if (!k->is_string()) return error_at(ErrorCode::InvalidArgument, "\"kind\" must be a string", at(loc, "kind"));
+    if (!k->is_string()) return error_at(ErrorCode::invalid_argument, "\"kind\" must be a string", at(loc, "kind"));
     kind = k->get<std::string>();
   }
   auto wrap = [](auto&& t) -> Expected<RawTrack> {
@@ -321,7 +321,7 @@ Expected<RawTrack> read_track(const json& tj, const Loc& loc) {
   if (kind == "color") return wrap(read_vector_track(tj, loc, VectorKind::color));
   if (kind == "quaternion") return wrap(read_quat_track(tj, loc));
   if (kind == "euler") return wrap(read_euler_track(tj, loc));
-  return error_at(ErrorCode::InvalidArgument,
+  return error_at(ErrorCode::invalid_argument,
                   "unknown track kind \"" + io_detail::truncated(kind) +
                       "\" (expected one of: scalar, vec1, vec2, vec3, vec4, color, quaternion, euler)",
                   at(loc, "kind"));
@@ -340,7 +340,7 @@ Expected<void> read_vec3_channel(const json& obj, const Loc& loc, std::string_vi
     channel = xyz(*v);
     return {};
   }
-  if (!it->is_object()) return error_at(ErrorCode::InvalidArgument, "expected [x, y, z] or a track object", p);
+  if (!it->is_object()) return error_at(ErrorCode::invalid_argument, "expected [x, y, z] or a track object", p);
   if (auto ok = only_members(*it, p, {"keys", "before", "after"}); !ok) return ok.error();
   RawVec3Channel keyed;
   if (auto ok = read_vector_keys<Vec3d>(*it, p, 3, keyed.keys, keyed.before, keyed.after); !ok) return ok.error();
@@ -349,7 +349,7 @@ Expected<void> read_vec3_channel(const json& obj, const Loc& loc, std::string_vi
 }
 
 Expected<RawObject> read_object(const json& oj, const Loc& p, const Context& cx) {
-  if (!oj.is_object()) return error_at(ErrorCode::InvalidArgument, "an object must be a JSON object", p);
+  if (!oj.is_object()) return error_at(ErrorCode::invalid_argument, "an object must be a JSON object", p);
   if (auto ok = only_members(oj, p, {"name", "parent", "translation", "rotation", "scale", "path", "camera"}); !ok) {
     return ok.error();
   }
@@ -358,7 +358,7 @@ Expected<RawObject> read_object(const json& oj, const Loc& p, const Context& cx)
   if (!name) return name.error();
   object.name = *name;
   if (auto pj = oj.find("parent"); pj != oj.end() && !pj->is_null()) {
-    if (!pj->is_string()) return error_at(ErrorCode::InvalidArgument, "\"parent\" must be an object name", at(p, "parent"));
+    if (!pj->is_string()) return error_at(ErrorCode::invalid_argument, "\"parent\" must be an object name", at(p, "parent"));
     object.parent = pj->get<std::string>();
   }
   if (oj.contains("translation")) {
@@ -379,7 +379,7 @@ Expected<RawObject> read_object(const json& oj, const Loc& p, const Context& cx)
       if (!q) return q.error();
       object.rotation = std::move(*q);
     } else {
-      return error_at(ErrorCode::InvalidArgument, "expected [w, x, y, z] or a track object", rp);
+      return error_at(ErrorCode::invalid_argument, "expected [w, x, y, z] or a track object", rp);
     }
   }
   if (auto ok = read_path_and_camera(oj, p, cx, object); !ok) return ok.error();
@@ -389,16 +389,16 @@ Expected<RawObject> read_object(const json& oj, const Loc& p, const Context& cx)
 // ------------------------------------------------------------------ the document
 Expected<RawScene> read_scene(const json& root, Context cx) {
   const Loc doc;
-  if (!root.is_object()) return error_at(ErrorCode::InvalidArgument, "a scene must be a JSON object", doc);
+  if (!root.is_object()) return error_at(ErrorCode::invalid_argument, "a scene must be a JSON object", doc);
   if (auto ok = only_members(root, doc, {"inbetween", "fps", "range", "tracks", "paths", "objects", "skins"}); !ok) return ok.error();
   RawScene scene;
   auto version = root.find("inbetween");
   if (version == root.end()) {
-    return error_at(ErrorCode::InvalidArgument, "missing \"inbetween\": 1 (the format version)", {"inbetween"});
+    return error_at(ErrorCode::invalid_argument, "missing \"inbetween\": 1 (the format version)", {"inbetween"});
   }
   if (!version->is_number_integer() || version->get<long long>() < scene_format_version_min ||
       version->get<long long>() > scene_format_version_max) {
-    return error_at(ErrorCode::Unsupported,
+    return error_at(ErrorCode::unsupported,
                     "unsupported format version " + io_detail::short_dump(*version) + " (this reader knows 1 and 2)",
                     {"inbetween"});
   }
@@ -411,7 +411,7 @@ Expected<RawScene> read_scene(const json& root, Context cx) {
   scene.fps = *fps;
   if (auto r = root.find("range"); r != root.end()) {
     if (!r->is_array() || r->size() != 2) {
-      return error_at(ErrorCode::WrongArity, "\"range\" must be [first_frame, last_frame]", {"range"});
+      return error_at(ErrorCode::wrong_arity, "\"range\" must be [first_frame, last_frame]", {"range"});
     }
     for (std::size_t i = 0; i < 2; ++i) {
       auto v = get_number((*r)[i], {"range", i});
@@ -420,7 +420,7 @@ Expected<RawScene> read_scene(const json& root, Context cx) {
     }
   }
   if (auto t = root.find("tracks"); t != root.end()) {
-    if (!t->is_array()) return error_at(ErrorCode::InvalidArgument, "\"tracks\" must be an array", {"tracks"});
+    if (!t->is_array()) return error_at(ErrorCode::invalid_argument, "\"tracks\" must be an array", {"tracks"});
     for (std::size_t i = 0; i < t->size(); ++i) {
       auto track = read_track((*t)[i], {"tracks", i});
       if (!track) return track.error();
@@ -429,7 +429,7 @@ Expected<RawScene> read_scene(const json& root, Context cx) {
   }
   if (auto ok = read_paths(root, cx, scene); !ok) return ok.error();
   if (auto o = root.find("objects"); o != root.end()) {
-    if (!o->is_array()) return error_at(ErrorCode::InvalidArgument, "\"objects\" must be an array", {"objects"});
+    if (!o->is_array()) return error_at(ErrorCode::invalid_argument, "\"objects\" must be an array", {"objects"});
     for (std::size_t i = 0; i < o->size(); ++i) {
       auto object = read_object((*o)[i], {"objects", i}, cx);
       if (!object) return object.error();
@@ -446,29 +446,27 @@ Expected<RawQuatKeys> io_detail::read_quat_keys(const json& j, const Loc& loc) {
 
 Expected<RawScene> read_scene_json(std::string_view json_text, std::string_view source_path) {
   io_detail::JsonText parsed = io_detail::parse_json_text(json_text);
-  const std::string place = "line " + std::to_string(parsed.line) + ", column " + std::to_string(parsed.column);
+  const std::vector<LocationStep> place{TextLine{std::size_t(parsed.line), std::size_t(parsed.column)}};
   switch (parsed.failure) {
     case io_detail::JsonFailure::none:
       return read_scene(parsed.value, Context{1, source_path.empty() || source_path == "-"
                                                     ? std::filesystem::path()
                                                     : std::filesystem::path(source_path).parent_path()});
     case io_detail::JsonFailure::syntax:
-      return Error{ErrorCode::Parse, "not valid JSON", place};
+      return Error{ErrorCode::parse, "not valid JSON", place};
     case io_detail::JsonFailure::number_out_of_range:
-      return Error{ErrorCode::Parse, "the number " + parsed.detail + " is beyond double precision's range", place};
+      return Error{ErrorCode::parse, "the number " + parsed.detail + " is beyond double precision's range", place};
     case io_detail::JsonFailure::too_deep:
-      return Error{ErrorCode::Parse, "JSON " + parsed.detail + " (not accepted)", place};
+      return Error{ErrorCode::parse, "JSON " + parsed.detail + " (not accepted)", place};
   }
-  return Error{ErrorCode::Parse, "not valid JSON", place};
+  return Error{ErrorCode::parse, "not valid JSON", place};
 }
 
 Expected<Scene> parse_scene(std::string_view json_text, std::string_view source_path) {
   auto raw = read_scene_json(json_text, source_path);
   Expected<Scene> scene = raw ? build_scene(*raw) : Expected<Scene>(raw.error());
   if (scene) return scene;
-  Error e = scene.error();
-  if (e.where.empty()) e.where = e.location.empty() ? std::string("/") : json_pointer(e.location);
-  return e;
+  return scene.error();  // an empty location is the whole document
 }
 
 }  // namespace inbetween

@@ -39,7 +39,7 @@ inline Loc at(const Loc& loc, LocationStep step) {
 
 inline std::string type_name(const json& j) { return j.type_name(); }
 
-inline Error error_at(ErrorCode code, std::string message, Loc loc) { return Error{code, std::move(message), "", std::move(loc)}; }
+inline Error error_at(ErrorCode code, std::string message, Loc loc) { return Error{code, std::move(message), std::move(loc)}; }
 
 inline std::string name_list(std::span<const std::string_view> names) {
   std::string list;
@@ -56,7 +56,7 @@ inline Expected<void> only_members(const json& obj, const Loc& loc, std::initial
     bool known = false;
     for (std::string_view a : allowed) known = known || (it.key() == a);
     if (!known) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       "unknown member \"" + io_detail::truncated(it.key()) + "\" (expected one of: " + name_list(allowed) + ")",
                       at(loc, it.key()));
     }
@@ -67,7 +67,7 @@ inline Expected<void> only_members(const json& obj, const Loc& loc, std::initial
 // A number (finite: the bounded JSON reader refuses numbers beyond double's range; whether a value
 // must be finite is build_scene()'s check).
 inline Expected<double> get_number(const json& j, const Loc& loc) {
-  if (!j.is_number()) return error_at(ErrorCode::InvalidArgument, "expected a number, found " + type_name(j), loc);
+  if (!j.is_number()) return error_at(ErrorCode::invalid_argument, "expected a number, found " + type_name(j), loc);
   return j.get<double>();
 }
 
@@ -75,7 +75,7 @@ inline Expected<double> get_number(const json& j, const Loc& loc) {
 inline Expected<bool> bool_member(const json& obj, const Loc& loc, std::string_view name, bool fallback) {
   auto it = obj.find(std::string(name));
   if (it == obj.end()) return fallback;
-  if (!it->is_boolean()) return error_at(ErrorCode::InvalidArgument, "expected true or false", at(loc, std::string(name)));
+  if (!it->is_boolean()) return error_at(ErrorCode::invalid_argument, "expected true or false", at(loc, std::string(name)));
   return it->get<bool>();
 }
 
@@ -86,12 +86,12 @@ inline Expected<double> number_member(const json& obj, const Loc& loc, std::stri
   auto it = obj.find(std::string(name));
   if (it == obj.end()) {
     if (fallback) return *fallback;
-    return error_at(ErrorCode::InvalidArgument, "missing required member \"" + std::string(name) + "\"", p);
+    return error_at(ErrorCode::invalid_argument, "missing required member \"" + std::string(name) + "\"", p);
   }
   if (it->is_string()) {
     const std::string& s = it->get_ref<const std::string&>();
     if (s == "nan" || s == "NaN" || s == "inf" || s == "-inf" || s == "Infinity" || s == "-Infinity") {
-      return error_at(ErrorCode::NotFinite, "number is not finite (\"" + s + "\")", p);
+      return error_at(ErrorCode::not_finite, "number is not finite (\"" + s + "\")", p);
     }
   }
   return get_number(*it, p);
@@ -104,10 +104,10 @@ Expected<Enum> enum_member(const json& obj, const Loc& loc, std::string_view nam
   const Loc p = at(loc, std::string(name));
   auto it = obj.find(std::string(name));
   if (it == obj.end()) return fallback;
-  if (!it->is_string()) return error_at(ErrorCode::InvalidArgument, "expected a string, found " + type_name(*it), p);
+  if (!it->is_string()) return error_at(ErrorCode::invalid_argument, "expected a string, found " + type_name(*it), p);
   const std::string& s = it->get_ref<const std::string&>();
   if (auto v = enum_from_string<Enum>(s)) return *v;
-  return error_at(ErrorCode::InvalidArgument,
+  return error_at(ErrorCode::invalid_argument,
                   "unknown " + std::string(name) + " \"" + io_detail::truncated(s) + "\" (expected one of: " + name_list(names) + ")", p);
 }
 
@@ -118,14 +118,14 @@ Expected<Enum> name_member(const json& obj, const Loc& loc, std::string_view nam
   const Loc p = at(loc, std::string(name));
   auto it = obj.find(std::string(name));
   if (it == obj.end()) return fallback;
-  if (!it->is_string()) return error_at(ErrorCode::InvalidArgument, "expected a string, found " + type_name(*it), p);
+  if (!it->is_string()) return error_at(ErrorCode::invalid_argument, "expected a string, found " + type_name(*it), p);
   const std::string& s = it->get_ref<const std::string&>();
   std::size_t i = 0;
   for (std::string_view n : names) {
     if (n == s) return static_cast<Enum>(i);
     ++i;
   }
-  return error_at(ErrorCode::InvalidArgument,
+  return error_at(ErrorCode::invalid_argument,
                   "unknown " + std::string(name) + " \"" + io_detail::truncated(s) + "\" (expected one of: " + name_list(names) + ")", p);
 }
 
@@ -135,12 +135,12 @@ inline Expected<std::optional<Vec2d>> point_member(const json& obj, const Loc& l
   auto it = obj.find(std::string(name));
   if (it == obj.end()) {
     if (!required) return std::optional<Vec2d>{};
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "missing \"" + std::string(name) + "\" (required for free and aligned handles)", p);
   }
-  if (!it->is_array()) return error_at(ErrorCode::WrongArity, "expected [frame, value], found " + type_name(*it), p);
+  if (!it->is_array()) return error_at(ErrorCode::wrong_arity, "expected [frame, value], found " + type_name(*it), p);
   if (it->size() != 2) {
-    return error_at(ErrorCode::WrongArity, "expected 2 numbers [frame, value], found " + std::to_string(it->size()), p);
+    return error_at(ErrorCode::wrong_arity, "expected 2 numbers [frame, value], found " + std::to_string(it->size()), p);
   }
   auto x = get_number((*it)[0], at(p, std::size_t{0}));
   if (!x) return x.error();
@@ -155,10 +155,10 @@ inline Expected<Vec4d> vector_member(const json& obj, const Loc& loc, std::strin
   auto it = obj.find(std::string(name));
   if (it == obj.end()) {
     if (!required) return Vec4d{};
-    return error_at(ErrorCode::InvalidArgument, "missing required member \"" + std::string(name) + "\"", p);
+    return error_at(ErrorCode::invalid_argument, "missing required member \"" + std::string(name) + "\"", p);
   }
   if (!it->is_array() || int(it->size()) != dim) {
-    return error_at(ErrorCode::WrongArity,
+    return error_at(ErrorCode::wrong_arity,
                     "expected an array of " + std::to_string(dim) + " numbers, found " +
                         (it->is_array() ? std::to_string(it->size()) + " elements" : type_name(*it)),
                     p);
@@ -179,7 +179,7 @@ inline Quatd quat_from(const Vec4d& v) { return Quatd::from_wxyz(v.x, v.y, v.z, 
 inline Expected<std::string> name_of(const json& j, const Loc& loc) {
   auto it = j.find("name");
   if (it == j.end() || !it->is_string()) {
-    return error_at(ErrorCode::InvalidArgument, "a track needs a non-empty string \"name\"", at(loc, "name"));
+    return error_at(ErrorCode::invalid_argument, "a track needs a non-empty string \"name\"", at(loc, "name"));
   }
   return it->get<std::string>();
 }
@@ -188,12 +188,12 @@ inline Expected<std::string> name_of(const json& j, const Loc& loc) {
 inline Expected<const json*> key_array(const json& j, const Loc& loc, std::initializer_list<std::string_view> allowed) {
   const Loc kp = at(loc, "keys");
   auto keys = j.find("keys");
-  if (keys == j.end()) return error_at(ErrorCode::InvalidArgument, "missing required member \"keys\"", kp);
-  if (!keys->is_array()) return error_at(ErrorCode::InvalidArgument, "\"keys\" must be an array", kp);
+  if (keys == j.end()) return error_at(ErrorCode::invalid_argument, "missing required member \"keys\"", kp);
+  if (!keys->is_array()) return error_at(ErrorCode::invalid_argument, "\"keys\" must be an array", kp);
   for (std::size_t i = 0; i < keys->size(); ++i) {
     const json& kj = (*keys)[i];
     const Loc p = at(kp, i);
-    if (!kj.is_object()) return error_at(ErrorCode::InvalidArgument, "a key must be an object, found " + type_name(kj), p);
+    if (!kj.is_object()) return error_at(ErrorCode::invalid_argument, "a key must be an object, found " + type_name(kj), p);
     if (auto ok = only_members(kj, p, allowed); !ok) return ok.error();
   }
   return &*keys;

@@ -46,7 +46,7 @@ Expected<const json*> object_member(const json& obj, const Loc& loc, std::string
   auto it = obj.find(std::string(name));
   if (it == obj.end()) return static_cast<const json*>(nullptr);
   const Loc p = at(loc, std::string(name));
-  if (!it->is_object()) return error_at(ErrorCode::InvalidArgument, "expected an object, found " + type_name(*it), p);
+  if (!it->is_object()) return error_at(ErrorCode::invalid_argument, "expected an object, found " + type_name(*it), p);
   if (auto ok = only_members(*it, p, allowed); !ok) return ok.error();
   return &*it;
 }
@@ -56,7 +56,7 @@ Expected<std::string> string_member(const json& obj, const Loc& loc, std::string
   auto it = obj.find(std::string(name));
   if (it == obj.end()) return std::string();
   if (!it->is_string()) {
-    return error_at(ErrorCode::InvalidArgument, "expected a string, found " + type_name(*it), at(loc, std::string(name)));
+    return error_at(ErrorCode::invalid_argument, "expected a string, found " + type_name(*it), at(loc, std::string(name)));
   }
   return it->get<std::string>();
 }
@@ -74,11 +74,11 @@ Expected<const json*> object_array(const json& obj, const Loc& loc, std::string_
                                    std::initializer_list<std::string_view> allowed) {
   auto it = obj.find(std::string(name));
   const Loc p = at(loc, std::string(name));
-  if (it == obj.end()) return error_at(ErrorCode::InvalidArgument, "missing required member \"" + std::string(name) + "\"", p);
-  if (!it->is_array()) return error_at(ErrorCode::InvalidArgument, "\"" + std::string(name) + "\" must be an array", p);
+  if (it == obj.end()) return error_at(ErrorCode::invalid_argument, "missing required member \"" + std::string(name) + "\"", p);
+  if (!it->is_array()) return error_at(ErrorCode::invalid_argument, "\"" + std::string(name) + "\" must be an array", p);
   for (std::size_t i = 0; i < it->size(); ++i) {
     const json& e = (*it)[i];
-    if (!e.is_object()) return error_at(ErrorCode::InvalidArgument, "expected an object, found " + type_name(e), at(p, i));
+    if (!e.is_object()) return error_at(ErrorCode::invalid_argument, "expected an object, found " + type_name(e), at(p, i));
     if (auto ok = only_members(e, at(p, i), allowed); !ok) return ok.error();
   }
   return &*it;
@@ -89,7 +89,7 @@ Expected<const json*> object_array(const json& obj, const Loc& loc, std::string_
 Expected<AnyCurve> read_curve_file(const std::string& file, const Loc& loc, const Context& cx) {
   const std::filesystem::path resolved = cx.base_dir / std::filesystem::path(file);
   auto text = read_file_bytes(resolved);
-  if (!text) return error_at(ErrorCode::Io, "curve file \"" + resolved.string() + "\" " + text.error().message, loc);
+  if (!text) return error_at(ErrorCode::io, "curve file \"" + resolved.string() + "\" " + text.error().message, loc);
   auto curve = parse_curve_json(*text, file);
   if (!curve) return error_at(curve.error().code, curve.error().describe(), loc);
   return curve;
@@ -105,16 +105,16 @@ constexpr double kSurfacePointMerge = 1e-9;
 // with a centripetal Catmull-Rom spline (α = ½: no cusps or self-intersections within a segment)
 // through every point; it is then arc-length parameterised by the scene like any path.
 Expected<AnyCurve> read_surface_curve(const json& sj, const Loc& loc, const Context& cx) {
-  if (!sj.is_object()) return error_at(ErrorCode::InvalidArgument, "expected an object with mesh, from, to", loc);
+  if (!sj.is_object()) return error_at(ErrorCode::invalid_argument, "expected an object with mesh, from, to", loc);
   if (auto ok = only_members(sj, loc, {"mesh", "from", "to", "method"}); !ok) return ok.error();
   const auto m = sj.find("mesh");
   const Loc mesh_at = at(loc, "mesh");
-  if (m == sj.end()) return error_at(ErrorCode::InvalidArgument, "missing required member \"mesh\" (an OBJ file)", mesh_at);
-  if (!m->is_string()) return error_at(ErrorCode::InvalidArgument, "expected an OBJ file name", mesh_at);
+  if (m == sj.end()) return error_at(ErrorCode::invalid_argument, "missing required member \"mesh\" (an OBJ file)", mesh_at);
+  if (!m->is_string()) return error_at(ErrorCode::invalid_argument, "expected an OBJ file name", mesh_at);
   const std::string file = m->get<std::string>();
   const std::filesystem::path resolved = cx.base_dir / std::filesystem::path(file);
   auto text = read_file_bytes(resolved);
-  if (!text) return error_at(ErrorCode::Io, "mesh \"" + resolved.string() + "\" " + text.error().message, mesh_at);
+  if (!text) return error_at(ErrorCode::io, "mesh \"" + resolved.string() + "\" " + text.error().message, mesh_at);
   auto mesh = parse_obj(*text, file);
   if (!mesh) return error_at(mesh.error().code, mesh.error().describe(), mesh_at);
   int ends[2] = {0, 0};
@@ -123,26 +123,29 @@ Expected<AnyCurve> read_surface_curve(const json& sj, const Loc& loc, const Cont
     auto v = number_member(sj, loc, name, std::nullopt);
     if (!v) return v.error();
     if (!(*v >= 0) || *v != std::floor(*v) || *v >= double(mesh->vertex_count()))
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       std::string(name) + " = " + shortest_text<double>(*v) + " is not a vertex of " + file + " (0 to " +
                           std::to_string(mesh->vertex_count() - 1) + ", in the order of its v lines)",
                       at(loc, name));
     ends[k] = int(*v);
   }
   if (ends[0] == ends[1])
-    return error_at(ErrorCode::InvalidArgument, "from and to are the same vertex: a path needs two ends", at(loc, "to"));
+    return error_at(ErrorCode::invalid_argument, "from and to are the same vertex: a path needs two ends", at(loc, "to"));
   std::string method = "plane";
   if (const auto me = sj.find("method"); me != sj.end()) {
     if (!me->is_string() || (*me != "plane" && *me != "greedy" && *me != "edges"))
-      return error_at(ErrorCode::InvalidArgument, "expected one of: plane, greedy, edges", at(loc, "method"));
+      return error_at(ErrorCode::invalid_argument, "expected one of: plane, greedy, edges", at(loc, "method"));
     method = me->get<std::string>();
   }
   auto points = method == "plane"    ? plane_mesh_path(*mesh, ends[0], ends[1])
                 : method == "greedy" ? greedy_mesh_path(*mesh, ends[0], ends[1])
                                      : edge_mesh_path(*mesh, ends[0], ends[1]);
   if (!points) {
-    const std::string& w = points.error().where;
-    const Loc place = w == "from" || w == "to" ? at(loc, w) : at(loc, "method");
+    // A bad end names its argument (Parameter{"from"} or {"to"}), which is the member of the same
+    // name here; any other failure belongs to the method.
+    const std::vector<LocationStep>& where = points.error().location;
+    const auto* arg = where.size() == 1 ? std::get_if<Parameter>(&where.front()) : nullptr;
+    const Loc place = arg != nullptr && (arg->name == "from" || arg->name == "to") ? at(loc, arg->name) : at(loc, "method");
     return error_at(points.error().code,
                     "the " + method + " path from vertex " + std::to_string(ends[0]) + " to " + std::to_string(ends[1]) +
                         " cannot be found: " + points.error().describe(),
@@ -169,11 +172,11 @@ Expected<std::variant<std::string, AnyCurve>> read_curve_ref(const json& obj, co
   const auto sf = obj.find("surface");
   const int given = (c != obj.end()) + (f != obj.end()) + (sf != obj.end());
   if (given > 1) {
-    return error_at(ErrorCode::InvalidArgument, "give one of \"curve\", \"file\" and \"surface\", not several",
+    return error_at(ErrorCode::invalid_argument, "give one of \"curve\", \"file\" and \"surface\", not several",
                     at(loc, sf != obj.end() ? "surface" : "file"));
   }
   if (given == 0) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     allow_name ? "missing \"curve\" (a path name or a curve object), \"file\" (a curve file) or \"surface\" (a path on a mesh)"
                                : "missing \"curve\" (a curve object), \"file\" (a curve file) or \"surface\" (a path on a mesh)",
                     loc);
@@ -184,7 +187,7 @@ Expected<std::variant<std::string, AnyCurve>> read_curve_ref(const json& obj, co
     return std::variant<std::string, AnyCurve>{std::move(*curve)};
   }
   if (f != obj.end()) {
-    if (!f->is_string()) return error_at(ErrorCode::InvalidArgument, "expected a file name", at(loc, "file"));
+    if (!f->is_string()) return error_at(ErrorCode::invalid_argument, "expected a file name", at(loc, "file"));
     auto curve = read_curve_file(f->get<std::string>(), at(loc, "file"), cx);
     if (!curve) return curve.error();
     return std::variant<std::string, AnyCurve>{std::move(*curve)};
@@ -192,7 +195,7 @@ Expected<std::variant<std::string, AnyCurve>> read_curve_ref(const json& obj, co
   const Loc cp = at(loc, "curve");
   if (c->is_string() && allow_name) return std::variant<std::string, AnyCurve>{c->get<std::string>()};
   if (!c->is_object()) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     std::string(allow_name ? "expected a path name or a curve object" : "expected a curve object") +
                         ", found " + type_name(*c),
                     cp);
@@ -218,9 +221,9 @@ Expected<Vec3d> vec3_member(const json& obj, const Loc& loc, std::string_view na
 Expected<RawTarget<double>> read_target(const json& obj, const Loc& loc, std::string_view name) {
   auto it = obj.find(std::string(name));
   const Loc p = at(loc, std::string(name));
-  if (it == obj.end()) return error_at(ErrorCode::InvalidArgument, "missing required member \"" + std::string(name) + "\"", p);
+  if (it == obj.end()) return error_at(ErrorCode::invalid_argument, "missing required member \"" + std::string(name) + "\"", p);
   if (it->is_string()) return RawTarget<double>{it->get<std::string>()};
-  if (!it->is_array()) return error_at(ErrorCode::InvalidArgument, "expected [x, y, z] or an object name", p);
+  if (!it->is_array()) return error_at(ErrorCode::invalid_argument, "expected [x, y, z] or an object name", p);
   auto v = vector_member(obj, loc, name, 3, true);
   if (!v) return v.error();
   return RawTarget<double>{xyz(*v)};
@@ -362,7 +365,7 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
   }
   if (sp.kind == SpeedKind::track) {
     if (!sj.contains("track")) {
-      return error_at(ErrorCode::InvalidArgument, "a track speed needs \"track\": the name of a scalar track", at(loc, "track"));
+      return error_at(ErrorCode::invalid_argument, "a track speed needs \"track\": the name of a scalar track", at(loc, "track"));
     }
     auto track = string_member(sj, loc, "track");
     if (!track) return track.error();
@@ -413,14 +416,14 @@ Expected<void> read_orientation(const json& oj, const Loc& loc, RawPathLeg& leg)
       if (!q) return q.error();
       leg.local_rotation_keys = std::move(*q);
     } else {
-      return error_at(ErrorCode::InvalidArgument, "expected [w, x, y, z] or a track object", rp);
+      return error_at(ErrorCode::invalid_argument, "expected [w, x, y, z] or a track object", rp);
     }
   }
   return {};
 }
 
 Expected<RawPathLeg> read_leg(const json& lj, const Loc& loc, const Context& cx) {
-  if (!lj.is_object()) return error_at(ErrorCode::InvalidArgument, "a path leg must be an object, found " + type_name(lj), loc);
+  if (!lj.is_object()) return error_at(ErrorCode::invalid_argument, "a path leg must be an object, found " + type_name(lj), loc);
   if (auto ok = only_members(lj, loc, {"curve", "file", "surface", "speed", "orientation"}); !ok) return ok.error();
   RawPathLeg leg;
   auto curve = read_curve_ref(lj, loc, cx, true);
@@ -430,7 +433,7 @@ Expected<RawPathLeg> read_leg(const json& lj, const Loc& loc, const Context& cx)
                              {"kind", "start_frame", "end_frame", "from", "to", "fraction", "ease", "keys", "interpolation",
                               "velocities", "fit", "track", "repair", "accelerations", "shape", "start_speed"});
   if (!speed) return speed.error();
-  if (!*speed) return error_at(ErrorCode::InvalidArgument, "missing required member \"speed\"", at(loc, "speed"));
+  if (!*speed) return error_at(ErrorCode::invalid_argument, "missing required member \"speed\"", at(loc, "speed"));
   if (auto ok = read_speed(**speed, at(loc, "speed"), leg); !ok) return ok.error();
   auto orientation = object_member(lj, loc, "orientation", {"mode", "up", "look_at", "banking", "local_rotation", "closing"});
   if (!orientation) return orientation.error();
@@ -448,7 +451,7 @@ Expected<RawCameraViewd> read_camera(const json& cj, const Loc& loc) {
   int modes = 0;
   for (const char* m : {"look_at", "ahead", "coi_path", "hold", "own_rotation"}) modes += cj.contains(m) ? 1 : 0;
   if (modes != 1) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                     "a camera needs exactly one of \"look_at\", \"ahead\", \"coi_path\", \"hold\", \"own_rotation\" (got " +
                         std::to_string(modes) + ")",
                     loc);
@@ -467,7 +470,7 @@ Expected<RawCameraViewd> read_camera(const json& cj, const Loc& loc) {
     auto count = number_member(**ahead, ap, "count", 1.0);
     if (!count) return count.error();
     if (std::floor(*count) != *count || std::abs(*count) > 1e6) {
-      return error_at(ErrorCode::InvalidArgument, "expected a whole number of points (1 to 10^6)", at(ap, "count"));
+      return error_at(ErrorCode::invalid_argument, "expected a whole number of points (1 to 10^6)", at(ap, "count"));
     }
     auto spread = number_member(**ahead, ap, "spread", 0.0);
     if (!spread) return spread.error();
@@ -527,23 +530,23 @@ Expected<RawCameraViewd> read_camera(const json& cj, const Loc& loc) {
 
 Expected<void> needs_version_2(const json& obj, const Loc& loc, const Context& cx, std::string_view member) {
   if (cx.version >= 2 || !obj.contains(std::string(member))) return {};
-  return error_at(ErrorCode::Unsupported,
+  return error_at(ErrorCode::unsupported,
                   "\"" + std::string(member) + "\" is a version-2 member: the file needs \"inbetween\": 2",
                   at(loc, std::string(member)));
 }
 
 Expected<void> read_paths(const json& root, const Context& cx, RawScene& scene) {
   if (auto ps = root.find("paths"); ps != root.end()) {
-    if (!ps->is_array()) return error_at(ErrorCode::InvalidArgument, "\"paths\" must be an array", {"paths"});
+    if (!ps->is_array()) return error_at(ErrorCode::invalid_argument, "\"paths\" must be an array", {"paths"});
     for (std::size_t i = 0; i < ps->size(); ++i) {
       const json& pj = (*ps)[i];
       const Loc p{"paths", i};
-      if (!pj.is_object()) return error_at(ErrorCode::InvalidArgument, "a path must be an object, found " + type_name(pj), p);
+      if (!pj.is_object()) return error_at(ErrorCode::invalid_argument, "a path must be an object, found " + type_name(pj), p);
       if (auto ok = only_members(pj, p, {"name", "curve", "file", "surface"}); !ok) return ok.error();
       RawScenePath path;
       auto name = pj.find("name");
       if (name == pj.end() || !name->is_string()) {
-        return error_at(ErrorCode::InvalidArgument, "a path needs a non-empty string \"name\"", at(p, "name"));
+        return error_at(ErrorCode::invalid_argument, "a path needs a non-empty string \"name\"", at(p, "name"));
       }
       path.name = name->get<std::string>();
       auto curve = read_curve_ref(pj, p, cx, false);
@@ -558,25 +561,25 @@ Expected<void> read_paths(const json& root, const Context& cx, RawScene& scene) 
 Expected<void> read_skins(const json& root, RawScene& scene) {
   auto ss = root.find("skins");
   if (ss == root.end()) return {};
-  if (!ss->is_array()) return error_at(ErrorCode::InvalidArgument, "\"skins\" must be an array", {"skins"});
+  if (!ss->is_array()) return error_at(ErrorCode::invalid_argument, "\"skins\" must be an array", {"skins"});
   for (std::size_t i = 0; i < ss->size(); ++i) {
     const json& sj = (*ss)[i];
     const Loc p{"skins", i};
-    if (!sj.is_object()) return error_at(ErrorCode::InvalidArgument, "a skin must be an object, found " + type_name(sj), p);
+    if (!sj.is_object()) return error_at(ErrorCode::invalid_argument, "a skin must be an object, found " + type_name(sj), p);
     if (auto ok = only_members(sj, p, {"name", "joints"}); !ok) return ok.error();
     RawSkin skin;
     if (auto name = sj.find("name"); name != sj.end()) {
-      if (!name->is_string()) return error_at(ErrorCode::InvalidArgument, "\"name\" must be a string", at(p, "name"));
+      if (!name->is_string()) return error_at(ErrorCode::invalid_argument, "\"name\" must be a string", at(p, "name"));
       skin.name = name->get<std::string>();
     }
     auto joints = sj.find("joints");
     if (joints == sj.end() || !joints->is_array()) {
-      return error_at(ErrorCode::InvalidArgument, "a skin needs \"joints\": an array of object names", at(p, "joints"));
+      return error_at(ErrorCode::invalid_argument, "a skin needs \"joints\": an array of object names", at(p, "joints"));
     }
     for (std::size_t j = 0; j < joints->size(); ++j) {
       const json& name = (*joints)[j];
       if (!name.is_string()) {
-        return error_at(ErrorCode::InvalidArgument, "a joint is an object name (a string), found " + type_name(name),
+        return error_at(ErrorCode::invalid_argument, "a joint is an object name (a string), found " + type_name(name),
                         at(at(p, "joints"), j));
       }
       skin.joints.push_back(name.get<std::string>());
@@ -594,7 +597,7 @@ Expected<void> read_path_and_camera(const json& oj, const Loc& p, const Context&
     const Loc pp = at(p, "path");
     if (pj->is_array()) {
       object.path_is_array = true;
-      if (pj->empty()) return error_at(ErrorCode::TooFewPoints, "a path needs at least one leg", pp);
+      if (pj->empty()) return error_at(ErrorCode::too_few_points, "a path needs at least one leg", pp);
       for (std::size_t k = 0; k < pj->size(); ++k) {
         auto leg = read_leg((*pj)[k], at(pp, k), cx);
         if (!leg) return leg.error();
@@ -608,7 +611,7 @@ Expected<void> read_path_and_camera(const json& oj, const Loc& p, const Context&
   }
   if (auto cj = oj.find("camera"); cj != oj.end()) {
     const Loc cp = at(p, "camera");
-    if (!cj->is_object()) return error_at(ErrorCode::InvalidArgument, "expected an object, found " + type_name(*cj), cp);
+    if (!cj->is_object()) return error_at(ErrorCode::invalid_argument, "expected an object, found " + type_name(*cj), cp);
     if (auto ok = only_members(*cj, cp, {"yfov_deg", "look_at", "ahead", "coi_path", "hold", "own_rotation", "up", "up_path",
                                          "tilt_deg", "tilt_track"});
         !ok) {

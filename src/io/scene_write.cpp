@@ -41,7 +41,7 @@ class Writer {
 
   json number(double v, std::vector<LocationStep> loc) {
     if (!std::isfinite(v) && !failure) {
-      Error e{ErrorCode::NotFinite, "number is not finite (JSON cannot hold NaN or infinity)", ""};
+      Error e{ErrorCode::not_finite, "number is not finite (JSON cannot hold NaN or infinity)"};
       e.location = std::move(loc);
       failure = std::move(e);
     }

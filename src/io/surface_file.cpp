@@ -28,7 +28,7 @@ Expected<void> read_numbers(const json& v, const Loc& at, double* out, std::size
   if (!v.is_array())
     return fail(at, "expected an array of " + std::to_string(n) + " numbers, got " + std::string(v.type_name()));
   if (v.size() != n)
-    return fail(at, "expected " + std::to_string(n) + " numbers, got " + std::to_string(v.size()), ErrorCode::WrongArity);
+    return fail(at, "expected " + std::to_string(n) + " numbers, got " + std::to_string(v.size()), ErrorCode::wrong_arity);
   for (std::size_t c = 0; c < n; ++c) {
     auto d = read_number(v[c], join(at, c));
     if (!d) return d.error();
@@ -107,7 +107,7 @@ Expected<RawSurface> read_kind(const std::string& kind, const json& v, const Loc
       if (j == 0) g.columns = int(std::min<std::size_t>(row.size(), 1u << 30));
       if (row.size() != std::size_t(g.columns))
         return fail(rat, "row " + std::to_string(j) + " has " + std::to_string(row.size()) + " heights, row 0 has " +
-                             std::to_string(g.columns), ErrorCode::WrongArity);
+                             std::to_string(g.columns), ErrorCode::wrong_arity);
       for (std::size_t k = 0; k < row.size(); ++k) {
         auto d = read_number(row[k], join(rat, k));
         if (!d) return d.error();
@@ -122,13 +122,13 @@ Expected<RawSurface> read_kind(const std::string& kind, const json& v, const Loc
     const Loc pat = join(at, "points");
     if (it == v.end()) return fail(pat, "missing required field (4 rows of 4 control points)");
     if (!it->is_array() || it->size() != 4)
-      return fail(pat, "expected 4 rows of 4 control points [x, y, z]", it->is_array() ? ErrorCode::WrongArity : ErrorCode::Parse);
+      return fail(pat, "expected 4 rows of 4 control points [x, y, z]", it->is_array() ? ErrorCode::wrong_arity : ErrorCode::parse);
     BezierPatchShape b;
     for (std::size_t k = 0; k < 4; ++k) {
       const json& row = (*it)[k];
       const Loc rat = join(pat, k);
       if (!row.is_array() || row.size() != 4)
-        return fail(rat, "expected a row of 4 control points [x, y, z]", row.is_array() ? ErrorCode::WrongArity : ErrorCode::Parse);
+        return fail(rat, "expected a row of 4 control points [x, y, z]", row.is_array() ? ErrorCode::wrong_arity : ErrorCode::parse);
       for (std::size_t i = 0; i < 4; ++i) {
         double xyz[3];
         if (auto ok = read_numbers(row[i], join(rat, i), xyz, 3); !ok) return ok.error();
@@ -137,7 +137,7 @@ Expected<RawSurface> read_kind(const std::string& kind, const json& v, const Loc
     }
     return RawSurface{b};
   }
-  return fail(at, "unknown surface kind; expected plane, sphere, torus, height_field or bezier_patch", ErrorCode::Unsupported);
+  return fail(at, "unknown surface kind; expected plane, sphere, torus, height_field or bezier_patch", ErrorCode::unsupported);
 }
 
 Expected<SurfaceShape> read_surface(const json& doc) {
@@ -150,7 +150,7 @@ Expected<SurfaceShape> read_surface(const json& doc) {
     return fail(join(root, "inbetween_surface"),
                 "unsupported version " + (version.is_number() ? io_detail::short_dump(version) : std::string(version.type_name())) +
                     "; this reader knows version " + std::to_string(surface_format_version),
-                ErrorCode::Unsupported);
+                ErrorCode::unsupported);
   if (doc.size() != 2)
     return fail(root, "expected exactly one surface beside \"inbetween_surface\": plane, sphere, torus, height_field or "
                       "bezier_patch, got " + std::to_string(doc.size() - 1) + " members");
@@ -171,9 +171,7 @@ Expected<SurfaceShape> parse_surface_json(std::string_view text, std::string_vie
   if (auto bad = io_detail::json_text_error(parsed, source)) return *bad;
   auto surface = read_surface(parsed.value);
   if (surface) return surface;
-  Error e = surface.error();
-  e.where = io_detail::located(source, json_pointer(e.location));
-  return e;
+  return io_detail::located(surface.error(), source);
 }
 
 }  // namespace inbetween

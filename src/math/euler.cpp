@@ -8,8 +8,8 @@ namespace inbetween {
 Expected<EulerSequence> parse_euler_sequence(std::string_view text) {
   const std::string shown(text);
   if (text.size() != 3)
-    return Error{ErrorCode::Parse,
-                 "Euler sequence '" + shown + "' must have three letters from x, y, z (e.g. XYZ or zyx)", ""};
+    return Error{ErrorCode::parse,
+                 "Euler sequence '" + shown + "' must have three letters from x, y, z (e.g. XYZ or zyx)"};
   EulerSequence seq;
   int upper = 0;
   for (int n = 0; n < 3; ++n) {
@@ -20,18 +20,17 @@ Expected<EulerSequence> parse_euler_sequence(std::string_view text) {
     } else if (ch >= 'x' && ch <= 'z') {
       seq.axes[std::size_t(n)] = ch - 'x';
     } else {
-      return Error{ErrorCode::Parse,
-                   "Euler sequence '" + shown + "': '" + std::string(1, ch) + "' is not one of x, y, z", ""};
+      return Error{ErrorCode::parse,
+                   "Euler sequence '" + shown + "': '" + std::string(1, ch) + "' is not one of x, y, z"};
     }
   }
   if (upper != 0 && upper != 3)
-    return Error{ErrorCode::Parse,
+    return Error{ErrorCode::parse,
                  "Euler sequence '" + shown +
-                     "' mixes upper case (intrinsic) and lower case (extrinsic) letters",
-                 ""};
+                     "' mixes upper case (intrinsic) and lower case (extrinsic) letters"};
   seq.intrinsic = upper == 3;
   if (!seq.valid())
-    return Error{ErrorCode::Parse, "Euler sequence '" + shown + "' repeats an axis in a row", ""};
+    return Error{ErrorCode::parse, "Euler sequence '" + shown + "' repeats an axis in a row"};
   return seq;
 }
 

@@ -118,29 +118,28 @@ double segment_distance_to_obstacle(const OrientedBoxObstacle& o, const Vec3d& a
 
 Expected<Environment> Environment::build(const RawEnvironment& raw) {
   if (!std::isfinite(raw.radius) || raw.radius < 0)
-    return Error{ErrorCode::InvalidArgument, "the object's radius must be finite and >= 0", "", {std::string("radius")}};
-  if (!finite(raw.bounds_min)) return Error{ErrorCode::NotFinite, "bounds must be finite", "", {std::string("bounds"), std::string("min")}};
-  if (!finite(raw.bounds_max)) return Error{ErrorCode::NotFinite, "bounds must be finite", "", {std::string("bounds"), std::string("max")}};
+    return Error{ErrorCode::invalid_argument, "the object's radius must be finite and >= 0", {std::string("radius")}};
+  if (!finite(raw.bounds_min)) return Error{ErrorCode::not_finite, "bounds must be finite", {std::string("bounds"), std::string("min")}};
+  if (!finite(raw.bounds_max)) return Error{ErrorCode::not_finite, "bounds must be finite", {std::string("bounds"), std::string("max")}};
   for (int k = 0; k < 3; ++k)
     if (!(raw.bounds_max[k] > raw.bounds_min[k]))
-      return Error{ErrorCode::InvalidArgument, "every component of bounds max must exceed bounds min's", "", {std::string("bounds"), std::string("max")}};
+      return Error{ErrorCode::invalid_argument, "every component of bounds max must exceed bounds min's", {std::string("bounds"), std::string("max")}};
   if (!finite(raw.bounds_max - raw.bounds_min))
-    return Error{ErrorCode::NotFinite, "the size of the bounds (max - min) overflows", "", {std::string("bounds"), std::string("max")}};
+    return Error{ErrorCode::not_finite, "the size of the bounds (max - min) overflows", {std::string("bounds"), std::string("max")}};
   Environment env;
   if (raw.capsule) {
     const auto at = [](const char* field) {
       return std::vector<LocationStep>{std::string("mover"), std::string("capsule"), std::string(field)};
     };
     if (!(raw.capsule->half_length > 0) || !(raw.capsule->half_length <= kCapsuleMaxHalfLength))
-      return Error{ErrorCode::InvalidArgument, "the capsule's half_length must be > 0 and at most 1e150", "", at("half_length")};
+      return Error{ErrorCode::invalid_argument, "the capsule's half_length must be > 0 and at most 1e150", at("half_length")};
     if (!(raw.capsule->turn_rate_deg > 0) || !std::isfinite(raw.capsule->turn_rate_deg))
-      return Error{ErrorCode::InvalidArgument, "the capsule's turn_rate_deg must be finite and > 0", "", at("turn_rate_deg")};
+      return Error{ErrorCode::invalid_argument, "the capsule's turn_rate_deg must be finite and > 0", at("turn_rate_deg")};
     for (std::size_t k = 0; k < raw.obstacles.size(); ++k)
       if (std::holds_alternative<MovingSphereObstacle>(raw.obstacles[k]))
-        return Error{ErrorCode::Unsupported,
+        return Error{ErrorCode::unsupported,
                      "a capsule mover is planned among static obstacles only; obstacle " + std::to_string(k) +
-                         " is a moving sphere (the timing around moving spheres is for a spherical mover)",
-                     "", {std::string("mover"), std::string("capsule")}};
+                         " is a moving sphere (the timing around moving spheres is for a spherical mover)", {std::string("mover"), std::string("capsule")}};
     env.capsule_ = raw.capsule;
   }
   env.radius_ = raw.radius;
@@ -152,29 +151,26 @@ Expected<Environment> Environment::build(const RawEnvironment& raw) {
     Vec3d lo{}, hi{};
     bool moving = false;
     if (auto* s = std::get_if<SphereObstacle>(&o)) {
-      if (!finite(s->center)) return Error{ErrorCode::NotFinite, name + ": centre is not finite", "", obstacle_ptr(k, "sphere", "center")};
+      if (!finite(s->center)) return Error{ErrorCode::not_finite, name + ": centre is not finite", obstacle_ptr(k, "sphere", "center")};
       if (!(s->radius > 0) || !std::isfinite(s->radius))
-        return Error{ErrorCode::InvalidArgument, name + ": radius must be finite and > 0", "", obstacle_ptr(k, "sphere", "radius")};
+        return Error{ErrorCode::invalid_argument, name + ": radius must be finite and > 0", obstacle_ptr(k, "sphere", "radius")};
       lo = s->center - Vec3d{s->radius, s->radius, s->radius};
       hi = s->center + Vec3d{s->radius, s->radius, s->radius};
     } else if (auto* b = std::get_if<BoxObstacle>(&o)) {
-      if (!finite(b->min)) return Error{ErrorCode::NotFinite, name + ": min is not finite", "", obstacle_ptr(k, "box", "min")};
-      if (!finite(b->max)) return Error{ErrorCode::NotFinite, name + ": max is not finite", "", obstacle_ptr(k, "box", "max")};
+      if (!finite(b->min)) return Error{ErrorCode::not_finite, name + ": min is not finite", obstacle_ptr(k, "box", "min")};
+      if (!finite(b->max)) return Error{ErrorCode::not_finite, name + ": max is not finite", obstacle_ptr(k, "box", "max")};
       for (int c = 0; c < 3; ++c)
         if (!(b->max[c] > b->min[c]))
-          return Error{ErrorCode::InvalidArgument, name + ": every component of max must exceed min's",
-                       "", obstacle_ptr(k, "box", "max")};
+          return Error{ErrorCode::invalid_argument, name + ": every component of max must exceed min's", obstacle_ptr(k, "box", "max")};
       lo = b->min;
       hi = b->max;
     } else if (auto* ob = std::get_if<OrientedBoxObstacle>(&o)) {
-      if (!finite(ob->center)) return Error{ErrorCode::NotFinite, name + ": centre is not finite", "", obstacle_ptr(k, "obb", "center")};
+      if (!finite(ob->center)) return Error{ErrorCode::not_finite, name + ": centre is not finite", obstacle_ptr(k, "obb", "center")};
       if (!finite(ob->half_size) || !(ob->half_size.x > 0 && ob->half_size.y > 0 && ob->half_size.z > 0))
-        return Error{ErrorCode::InvalidArgument, name + ": half_size must be finite and > 0",
-                     "", obstacle_ptr(k, "obb", "half_size")};
+        return Error{ErrorCode::invalid_argument, name + ": half_size must be finite and > 0", obstacle_ptr(k, "obb", "half_size")};
       const double n = norm(ob->rotation);
       if (!is_finite(ob->rotation) || !std::isfinite(n) || !(n > 0))
-        return Error{ErrorCode::InvalidArgument, name + ": the rotation must be a finite non-zero quaternion",
-                     "", obstacle_ptr(k, "obb", "rotation")};
+        return Error{ErrorCode::invalid_argument, name + ": the rotation must be a finite non-zero quaternion", obstacle_ptr(k, "obb", "rotation")};
       ob->rotation = normalized(ob->rotation);
       // Bounding box of the rotated box: |R|·h about the centre.
       Vec3d ext{};
@@ -187,13 +183,12 @@ Expected<Environment> Environment::build(const RawEnvironment& raw) {
       hi = ob->center + ext;
     } else {
       auto& m = std::get<MovingSphereObstacle>(o);
-      if (!finite(m.center)) return Error{ErrorCode::NotFinite, name + ": centre is not finite", "", obstacle_ptr(k, "moving_sphere", "center")};
+      if (!finite(m.center)) return Error{ErrorCode::not_finite, name + ": centre is not finite", obstacle_ptr(k, "moving_sphere", "center")};
       if (!finite(m.velocity))
-        return Error{ErrorCode::NotFinite, name + ": velocity is not finite", "", obstacle_ptr(k, "moving_sphere", "velocity")};
+        return Error{ErrorCode::not_finite, name + ": velocity is not finite", obstacle_ptr(k, "moving_sphere", "velocity")};
       if (!(m.radius > 0) || !std::isfinite(m.radius))
-        return Error{ErrorCode::InvalidArgument, name + ": radius must be finite and > 0",
-                     "", obstacle_ptr(k, "moving_sphere", "radius")};
-      if (!std::isfinite(m.t0)) return Error{ErrorCode::NotFinite, name + ": t0 is not finite", "", obstacle_ptr(k, "moving_sphere", "t0")};
+        return Error{ErrorCode::invalid_argument, name + ": radius must be finite and > 0", obstacle_ptr(k, "moving_sphere", "radius")};
+      if (!std::isfinite(m.t0)) return Error{ErrorCode::not_finite, name + ": t0 is not finite", obstacle_ptr(k, "moving_sphere", "t0")};
       moving = true;
     }
     env.obstacles_.push_back(o);

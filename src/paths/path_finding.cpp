@@ -30,13 +30,12 @@ double heuristic(GridCell a, GridCell b, GridMoves moves) {
 
 Expected<OccupancyGrid> OccupancyGrid::build(int width, int height, std::vector<bool> blocked) {
   if (width < 1 || height < 1)
-    return Error{ErrorCode::InvalidArgument,
-                 "grid must be at least 1 x 1, got " + std::to_string(width) + " x " + std::to_string(height), "size"};
+    return Error{ErrorCode::invalid_argument,
+                 "grid must be at least 1 x 1, got " + std::to_string(width) + " x " + std::to_string(height), {Parameter{"size"}}};
   if (blocked.size() != std::size_t(width) * std::size_t(height))
-    return Error{ErrorCode::WrongArity,
+    return Error{ErrorCode::wrong_arity,
                  "expected " + std::to_string(std::size_t(width) * std::size_t(height)) + " cells, got " +
-                     std::to_string(blocked.size()),
-                 "cells"};
+                     std::to_string(blocked.size()), {Parameter{"cells"}}};
   OccupancyGrid g;
   g.width_ = width;
   g.height_ = height;
@@ -45,19 +44,17 @@ Expected<OccupancyGrid> OccupancyGrid::build(int width, int height, std::vector<
 }
 
 Expected<OccupancyGrid> OccupancyGrid::from_rows(std::span<const std::string> rows) {
-  if (rows.empty()) return Error{ErrorCode::TooFewPoints, "the grid has no rows", "rows"};
+  if (rows.empty()) return Error{ErrorCode::too_few_points, "the grid has no rows", {Parameter{"rows"}}};
   const std::size_t w = rows[0].size();
   std::vector<bool> cells;
   for (std::size_t r = 0; r < rows.size(); ++r) {
     if (rows[r].size() != w || w == 0)
-      return Error{ErrorCode::WrongArity,
-                   "row has " + std::to_string(rows[r].size()) + " cells, row 0 has " + std::to_string(w),
-                   "row " + std::to_string(r)};
+      return Error{ErrorCode::wrong_arity,
+                   "row has " + std::to_string(rows[r].size()) + " cells, row 0 has " + std::to_string(w), {Element{"row", std::size_t(r)}}};
     for (std::size_t c = 0; c < w; ++c) {
       const char ch = rows[r][c];
       if (ch != '#' && ch != '.')
-        return Error{ErrorCode::Parse, std::string("expected '#' or '.', got '") + ch + "'",
-                     "row " + std::to_string(r) + ", column " + std::to_string(c)};
+        return Error{ErrorCode::parse, std::string("expected '#' or '.', got '") + ch + "'", {Element{"row", std::size_t(r)}, Element{"column", std::size_t(c)}}};
       cells.push_back(ch == '#');
     }
   }
@@ -86,12 +83,12 @@ Expected<GridPath> find_grid_path(const OccupancyGrid& grid, GridCell start, Gri
                                   const GridPathOptions& options) {
   for (const auto& [cell, name] : {std::pair{start, "start"}, std::pair{goal, "goal"}}) {
     if (!grid.contains(cell))
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    std::string(name) + " cell " + cell_text(cell) + " is outside the " + std::to_string(grid.width()) +
                        " x " + std::to_string(grid.height()) + " grid",
-                   name};
+                   {Parameter{name}}};
     if (grid.blocked(cell))
-      return Error{ErrorCode::InvalidArgument, std::string(name) + " cell " + cell_text(cell) + " is blocked", name};
+      return Error{ErrorCode::invalid_argument, std::string(name) + " cell " + cell_text(cell) + " is blocked", {Parameter{name}}};
   }
   const int w = grid.width();
   const std::size_t n = std::size_t(w) * std::size_t(grid.height());
@@ -138,10 +135,9 @@ Expected<GridPath> find_grid_path(const OccupancyGrid& grid, GridCell start, Gri
     }
   }
   if (!closed[index(goal)])
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "no path from " + cell_text(start) + " to " + cell_text(goal) + ": the goal cannot be reached (" +
-                     std::to_string(out.expanded) + " cells explored)",
-                 "goal"};
+                     std::to_string(out.expanded) + " cells explored)", {Parameter{"goal"}}};
   for (std::int64_t i = std::int64_t(index(goal)); i >= 0; i = parent[std::size_t(i)])
     out.cells.push_back({int(i % w), int(i / w)});
   std::reverse(out.cells.begin(), out.cells.end());

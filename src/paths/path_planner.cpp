@@ -357,20 +357,20 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
   const double longest = std::max({extent.x, extent.y, extent.z});
   double h = options.cell_size;
   if (!std::isfinite(h) || h < 0)
-    return Error{ErrorCode::InvalidArgument, "cell_size must be finite and >= 0 (0: automatic)", "", {std::string("cell_size")}};
+    return Error{ErrorCode::invalid_argument, "cell_size must be finite and >= 0 (0: automatic)", {std::string("cell_size")}};
   if (h == 0) h = longest / kDefaultCellsPerSide;
   double margin = options.margin;
-  if (!std::isfinite(margin)) return Error{ErrorCode::InvalidArgument, "margin must be finite", "", {std::string("margin")}};
+  if (!std::isfinite(margin)) return Error{ErrorCode::invalid_argument, "margin must be finite", {std::string("margin")}};
   if (margin < 0) margin = h / 4;
   Lattice lat{env, h, margin, 0, 0, 0, {}};
   const double nxd = std::floor(extent.x / h) + 1, nyd = std::floor(extent.y / h) + 1, nzd = std::floor(extent.z / h) + 1;
   // A capsule searches 27 states per node (its direction of arrival): the limit counts states.
   const double per_node = env.capsule() ? 27 : 1;
   if (!(nxd * nyd * nzd * per_node <= double(options.max_nodes)) || nxd * nyd * nzd > 1e9)
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "cell_size " + num(h) + " gives " + num(nxd * nyd * nzd) + " lattice nodes" +
                      (env.capsule() ? " (× 27 directions for the capsule)" : "") + ", more than the limit of " +
-                     std::to_string(options.max_nodes), "", {std::string("cell_size")}};
+                     std::to_string(options.max_nodes), {std::string("cell_size")}};
   lat.nx = int(nxd);
   lat.ny = int(nyd);
   lat.nz = int(nzd);
@@ -387,12 +387,11 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
   stops.push_back({ends.goal, {std::string("goal")}, "the goal"});
   for (const Stop& s : stops) {
     if (!(std::isfinite(s.p.x) && std::isfinite(s.p.y) && std::isfinite(s.p.z)))
-      return Error{ErrorCode::NotFinite, s.name + " is not finite", "", s.where};
-    if (!env.in_bounds(s.p)) return Error{ErrorCode::InvalidArgument, s.name + " lies outside the bounds", "", s.where};
+      return Error{ErrorCode::not_finite, s.name + " is not finite", s.where};
+    if (!env.in_bounds(s.p)) return Error{ErrorCode::invalid_argument, s.name + " lies outside the bounds", s.where};
     if (const int k = env.blocking_static(s.p, 0); k >= 0)
-      return Error{ErrorCode::InvalidArgument,
-                   s.name + " lies inside " + obstacle_text(k) + " grown by the object's radius " + num(env.radius()),
-                   "", s.where};
+      return Error{ErrorCode::invalid_argument,
+                   s.name + " lies inside " + obstacle_text(k) + " grown by the object's radius " + num(env.radius()), s.where};
   }
 
   std::optional<Vec3d> d_in;  // a capsule's direction at the start of the next leg
@@ -406,15 +405,14 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
                                  ? capsule_search(lat, stops[leg].p, stops[leg + 1].p, d_in, lattice_length, out.expanded)
                                  : lattice_search(lat, stops[leg].p, stops[leg + 1].p, lattice_length, out.expanded);
     if (pts.empty())
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    stops[leg + 1].name + " cannot be reached from " + stops[leg].name +
                        ": no path on the lattice of spacing " + num(h) + " inside the bounds" +
                        (env.capsule() ? " for the capsule of half length " + num(env.capsule()->half_length) + " and radius " +
                                             num(env.radius()) + " moving along its axis and turning in place"
                                       : std::string()) +
                        " (a gap narrower than about " + num(h + 2 * (env.radius() + margin)) +
-                       " may be missed; try a smaller cell_size)",
-                   "", stops[leg + 1].where};
+                       " may be missed; try a smaller cell_size)", stops[leg + 1].where};
     out.lattice_length += lattice_length;
     if (env.capsule()) {
       pts = capsule_shortcut(env, pts, d_in, h, margin);
@@ -435,17 +433,26 @@ Expected<PlannedPolyline> plan_polyline(const Environment& env, const PathEnds& 
 
 Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPolyline& polyline,
                                          const PathSmoothingOptions& options) {
-  if (polyline.points.empty()) return Error{ErrorCode::TooFewPoints, "the polyline has no points", "", {std::string("points")}};
-  SmoothPath out;
+  if (polyline.points.empty()) return Error{ErrorCode::too_few_points, "the polyline has no points", {std::string("points")}};
+  // Everything but the curve, gathered first: a SmoothPath holds a built curve, so it is made
+  // once that curve exists (a curve cannot be empty).
+  struct {
+    std::vector<Vec3d> control_points;
+    std::vector<int> via_control_index;
+    int refinements = 0;
+    double sample_step = 0;
+  } out;
   out.control_points = polyline.points;
   if (out.control_points.size() == 1) out.control_points.push_back(out.control_points[0]);
   out.via_control_index = polyline.via_index;
+  const auto finish = [&out](CatmullRomSpline<Vec3d> curve, bool fallback) {
+    return SmoothPath{std::move(curve), std::move(out.control_points), std::move(out.via_control_index),
+                      out.refinements, fallback, out.sample_step};
+  };
   if (env.capsule()) {  // the capsule turns in place at the vertices: the polyline is its path
     auto curve = build_catmull_rom(out.control_points, {.alpha = options.alpha, .tension = 0.0});
     if (!curve) return curve.error();
-    out.curve = std::move(*curve);
-    out.polyline_fallback = true;
-    return out;
+    return finish(std::move(*curve), true);
   }
   const double step = options.sample_step > 0 ? options.sample_step
                       : polyline.cell_size > 0 ? polyline.cell_size / 4
@@ -456,9 +463,7 @@ Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPo
     auto curve = build_catmull_rom(out.control_points, {.alpha = options.alpha, .tension = fallback ? 0.0 : 0.5});
     if (!curve) return curve.error();
     if (fallback) {  // tension 0: every span is its polyline segment, checked exactly by the planner
-      out.curve = std::move(*curve);
-      out.polyline_fallback = true;
-      return out;
+      return finish(std::move(*curve), true);
     }
     auto arc = ArcLength<CatmullRomSpline<Vec3d>>::build(*curve);
     if (!arc) return arc.error();
@@ -480,10 +485,7 @@ Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPo
       u_prev = u;
       p_prev = p;
     }
-    if (failing.empty()) {
-      out.curve = std::move(*curve);
-      return out;
-    }
+    if (failing.empty()) return finish(std::move(*curve), false);
     ++out.refinements;
     // Insert at 1/4 and 3/4 of each failing span, back to front so indices stay valid.
     for (auto it = failing.rbegin(); it != failing.rend(); ++it) {
@@ -501,10 +503,10 @@ std::string_view avoidance_name(Avoidance a) noexcept { return enum_name(a); }
 Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRomSpline<Vec3d>>& path,
                                const PathTimingOptions& options) {
   if (!(options.speed > 0) || !std::isfinite(options.speed))
-    return Error{ErrorCode::InvalidArgument, "speed must be finite and > 0", "", {std::string("speed")}};
+    return Error{ErrorCode::invalid_argument, "speed must be finite and > 0", {std::string("speed")}};
   if (!(options.fps > 0) || !std::isfinite(options.fps))
-    return Error{ErrorCode::InvalidArgument, "fps must be finite and > 0", "", {std::string("fps")}};
-  if (options.substeps < 1) return Error{ErrorCode::InvalidArgument, "substeps must be >= 1", "", {std::string("substeps")}};
+    return Error{ErrorCode::invalid_argument, "fps must be finite and > 0", {std::string("fps")}};
+  if (options.substeps < 1) return Error{ErrorCode::invalid_argument, "substeps must be >= 1", {std::string("substeps")}};
   const double L = path.length(), dt = 1 / options.fps;
   struct Draft {
     std::vector<TimeDistanceKey<double>> keys;
@@ -535,9 +537,9 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
   const double step_count = std::max(1.0, std::ceil(L / ds - kStepRounding));
   const double frames = std::ceil(options.max_duration_factor * nominal / dt) + K + 1;
   if (!((step_count + 1) * frames <= kMaxTimingStates))
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "the timing search would need " + num((step_count + 1) * frames) + " (distance step, frame) states, more than " +
-                     num(kMaxTimingStates) + "; lower fps or raise speed", "", {std::string("fps")}};
+                     num(kMaxTimingStates) + "; lower fps or raise speed", {std::string("fps")}};
   const int S = int(step_count), J = int(frames);
   std::vector<Vec3d> pos(std::size_t(S) + 1);
   for (int i = 0; i <= S; ++i) pos[std::size_t(i)] = path.point_at_length(std::min(L, ds * i));
@@ -597,8 +599,8 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
     return false;
   };
   if (!free_at(0, 0))
-    return Error{ErrorCode::InvalidArgument,
-                 "the start lies inside moving " + obstacle_text(blocker) + " (grown by the radius) at t = 0", "", {std::string("start")}};
+    return Error{ErrorCode::invalid_argument,
+                 "the start lies inside moving " + obstacle_text(blocker) + " (grown by the radius) at t = 0", {std::string("start")}};
   // move[j][i]: how many steps were taken into (i, frame j), −1 when (i, j) is unreachable.
   std::vector<std::vector<std::int8_t>> move(1, std::vector<std::int8_t>(std::size_t(S) + 1, -1));
   move[0][0] = 0;
@@ -624,11 +626,10 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
     if (move.back()[std::size_t(S)] >= 0) arrival = j + 1;
   }
   if (arrival < 0)
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "no timing along the path avoids moving " + obstacle_text(blocker) + " within " +
                      num(options.max_duration_factor) + " times the constant-speed duration (" + num(nominal) +
-                     " s): waiting on the static path does not let it pass",
-                 "", {std::string("obstacles"), std::size_t(blocker)}};
+                     " s): waiting on the static path does not let it pass", {std::string("obstacles"), std::size_t(blocker)}};
   // Walk back, then keep the frames where the step count changes.
   std::vector<int> steps(std::size_t(arrival) + 1, 0), index(std::size_t(arrival) + 1, 0);
   index[std::size_t(arrival)] = S;
@@ -698,10 +699,10 @@ Meeting first_meeting(const Environment& env, const ArcLength<CatmullRomSpline<V
 
 Expected<CapsuleMotion> capsule_motion(const Environment& env, std::span<const Vec3d> polyline, double speed) {
   if (!env.capsule())
-    return Error{ErrorCode::InvalidArgument, "the environment's mover is a sphere, not a capsule", "", {std::string("mover")}};
+    return Error{ErrorCode::invalid_argument, "the environment's mover is a sphere, not a capsule", {std::string("mover")}};
   if (!(speed > 0) || !std::isfinite(speed))
-    return Error{ErrorCode::InvalidArgument, "speed must be finite and > 0", "", {std::string("speed")}};
-  if (polyline.empty()) return Error{ErrorCode::TooFewPoints, "the polyline has no points", "", {std::string("points")}};
+    return Error{ErrorCode::invalid_argument, "speed must be finite and > 0", {std::string("speed")}};
+  if (polyline.empty()) return Error{ErrorCode::too_few_points, "the polyline has no points", {std::string("points")}};
   const double rate = env.capsule()->turn_rate_deg * pi_v<double> / 180;
   CapsuleMotion m;
   for (const Vec3d& p : polyline)
@@ -733,8 +734,8 @@ Expected<CapsuleMotion> capsule_motion(const Environment& env, std::span<const V
   }
   m.leave[n - 1] = m.arrive[n - 1];
   if (!std::isfinite(m.arrive.back()))
-    return Error{ErrorCode::InvalidArgument,
-                 "the capsule's motion lasts beyond the range of double (speed or turn_rate_deg too small)", "",
+    return Error{ErrorCode::invalid_argument,
+                 "the capsule's motion lasts beyond the range of double (speed or turn_rate_deg too small)",
                  {std::string("mover"), std::string("capsule"), std::string("turn_rate_deg")}};
   return m;
 }
@@ -768,7 +769,7 @@ Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, cons
     auto motion = capsule_motion(env, poly->points, options.timing.speed);
     if (!motion) return motion.error();
     if (!(options.timing.fps > 0) || !std::isfinite(options.timing.fps))
-      return Error{ErrorCode::InvalidArgument, "fps must be finite and > 0", "", {std::string("fps")}};
+      return Error{ErrorCode::invalid_argument, "fps must be finite and > 0", {std::string("fps")}};
     // s(t): the arc length at each vertex (the curve passes them at its breakpoints), constant
     // while turning.
     std::vector<TimeDistanceKey<double>> keys;

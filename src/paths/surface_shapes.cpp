@@ -10,8 +10,8 @@ namespace {
 
 using Loc = std::vector<LocationStep>;
 
-Error bad(Loc loc, std::string message, ErrorCode code = ErrorCode::InvalidArgument) {
-  return Error{code, std::move(message), "", std::move(loc)};
+Error bad(Loc loc, std::string message, ErrorCode code = ErrorCode::invalid_argument) {
+  return Error{code, std::move(message), std::move(loc)};
 }
 
 // Within kSurfaceMaxMagnitude: finite, and squares and sums of squares stay finite.
@@ -77,25 +77,25 @@ Expected<SurfaceShape> SurfaceShape::build(const RawSurface& raw) {
   auto at = [&](std::string member) { return Loc{kind, std::move(member)}; };
   SurfaceShape out(raw);
   if (const auto* p = std::get_if<PlaneShape>(&raw)) {
-    if (!finite3(p->origin)) return bad(at("origin"), "the plane's origin is not finite or beyond 1e150", ErrorCode::NotFinite);
-    if (!finite3(p->u_axis)) return bad(at("u_axis"), "the plane's u_axis is not finite or beyond 1e150", ErrorCode::NotFinite);
-    if (!finite3(p->v_axis)) return bad(at("v_axis"), "the plane's v_axis is not finite or beyond 1e150", ErrorCode::NotFinite);
+    if (!finite3(p->origin)) return bad(at("origin"), "the plane's origin is not finite or beyond 1e150", ErrorCode::not_finite);
+    if (!finite3(p->u_axis)) return bad(at("u_axis"), "the plane's u_axis is not finite or beyond 1e150", ErrorCode::not_finite);
+    if (!finite3(p->v_axis)) return bad(at("v_axis"), "the plane's v_axis is not finite or beyond 1e150", ErrorCode::not_finite);
     const Vec3d n = cross(p->u_axis, p->v_axis);
     if (!(norm(n) > 1e-12 * norm(p->u_axis) * norm(p->v_axis)) || !std::isfinite(norm(n)))
       return bad(at("v_axis"), "the plane's u_axis and v_axis are zero or parallel");
     out.plane_normal_ = normalized(n, Vec3d{0, 1, 0});
   } else if (const auto* s = std::get_if<SphereShape>(&raw)) {
-    if (!finite3(s->center)) return bad(at("center"), "the sphere's center is not finite or beyond 1e150", ErrorCode::NotFinite);
+    if (!finite3(s->center)) return bad(at("center"), "the sphere's center is not finite or beyond 1e150", ErrorCode::not_finite);
     if (!(s->radius > 0) || !ok1(s->radius)) return bad(at("radius"), "the sphere's radius must be > 0 and at most 1e150");
   } else if (const auto* t = std::get_if<TorusShape>(&raw)) {
-    if (!finite3(t->center)) return bad(at("center"), "the torus's center is not finite or beyond 1e150", ErrorCode::NotFinite);
+    if (!finite3(t->center)) return bad(at("center"), "the torus's center is not finite or beyond 1e150", ErrorCode::not_finite);
     if (!(t->minor_radius > 0) || !ok1(t->minor_radius))
       return bad(at("minor_radius"), "the torus's minor_radius must be > 0 and at most 1e150");
     if (!(t->major_radius > t->minor_radius) || !ok1(t->major_radius))
       return bad(at("major_radius"), "the torus's major_radius must be > minor_radius (a ring torus) and at most 1e150");
   } else if (const auto* g = std::get_if<HeightGridShape>(&raw)) {
     if (!(ok1(g->origin.x) && ok1(g->origin.y)))
-      return bad(at("origin"), "the height field's origin is not finite or beyond 1e150", ErrorCode::NotFinite);
+      return bad(at("origin"), "the height field's origin is not finite or beyond 1e150", ErrorCode::not_finite);
     if (!(g->spacing.x > 0 && g->spacing.y > 0 && ok1(g->spacing.x) && ok1(g->spacing.y)))
       return bad(at("spacing"), "the height field's spacing must be two numbers > 0 and at most 1e150");
     if (g->rows < 2 || g->columns < 2)
@@ -107,12 +107,12 @@ Expected<SurfaceShape> SurfaceShape::build(const RawSurface& raw) {
     for (std::size_t i = 0; i < g->heights.size(); ++i)
       if (!ok1(g->heights[i]))
         return bad(Loc{kind, std::string("heights"), i / std::size_t(g->columns), i % std::size_t(g->columns)},
-                   "height is not finite or beyond 1e150", ErrorCode::NotFinite);
+                   "height is not finite or beyond 1e150", ErrorCode::not_finite);
   } else {
     const auto& b = std::get<BezierPatchShape>(raw);
     for (std::size_t i = 0; i < 16; ++i)
       if (!finite3(b.points[i]))
-        return bad(Loc{kind, std::string("points"), i / 4, i % 4}, "control point is not finite or beyond 1e150", ErrorCode::NotFinite);
+        return bad(Loc{kind, std::string("points"), i / 4, i % 4}, "control point is not finite or beyond 1e150", ErrorCode::not_finite);
   }
   return out;
 }

@@ -17,7 +17,7 @@ namespace {
 using Loc = std::vector<LocationStep>;
 
 Error error_at(ErrorCode code, std::string message, Loc location) {
-  return Error{code, std::move(message), "", std::move(location)};
+  return Error{code, std::move(message), std::move(location)};
 }
 
 // `parent` one member or index further in.
@@ -33,19 +33,19 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
   CameraView<T> view;
 
   if (!std::isfinite(raw.yfov_deg) || !(raw.yfov_deg > T(0)) || !(raw.yfov_deg < T(180))) {
-    return error_at(ErrorCode::InvalidArgument,
+    return error_at(ErrorCode::invalid_argument,
                        "the vertical field of view must lie strictly between 0 and 180 degrees, got " +
                            shortest_text(raw.yfov_deg),
                        Loc{"yfov_deg"});
   }
   view.yfov_rad_ = deg_to_rad(raw.yfov_deg);
   if (!std::isfinite(raw.tilt_deg)) {
-    return error_at(ErrorCode::NotFinite, "the tilt must be a finite angle in degrees", Loc{"tilt_deg"});
+    return error_at(ErrorCode::not_finite, "the tilt must be a finite angle in degrees", Loc{"tilt_deg"});
   }
   view.tilt_rad_ = deg_to_rad(raw.tilt_deg);
-  if (!is_finite(raw.up)) return error_at(ErrorCode::NotFinite, "the up vector must be finite", Loc{"up"});
+  if (!is_finite(raw.up)) return error_at(ErrorCode::not_finite, "the up vector must be finite", Loc{"up"});
   if (!(norm(raw.up) > T(0))) {
-    return error_at(ErrorCode::InvalidArgument, "the up vector must not be zero", Loc{"up"});
+    return error_at(ErrorCode::invalid_argument, "the up vector must not be zero", Loc{"up"});
   }
   view.up_ = raw.up;
   view.up_path_name_ = raw.up_path;
@@ -58,12 +58,12 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
       -> Expected<typename CameraView<T>::Target> {
     typename CameraView<T>::Target t;
     if (const auto* p = std::get_if<Vec3<T>>(&raw_target)) {
-      if (!is_finite(*p)) return error_at(ErrorCode::NotFinite, "the target point must be finite", where);
+      if (!is_finite(*p)) return error_at(ErrorCode::not_finite, "the target point must be finite", where);
       t.point = *p;
       return t;
     }
     const std::string& name = std::get<std::string>(raw_target);
-    if (name.empty()) return error_at(ErrorCode::InvalidArgument, "the target object name is empty", where);
+    if (name.empty()) return error_at(ErrorCode::invalid_argument, "the target object name is empty", where);
     const auto [it, inserted] = slot_of.emplace(name, view.target_names_.size());
     if (inserted) view.target_names_.push_back(name);
     t.slot = std::ptrdiff_t(it->second);
@@ -77,17 +77,17 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
     view.mode_ = t->slot < 0 ? CoiMode::point : CoiMode::object;
   } else if (const auto* ahead = std::get_if<RawLookAhead<T>>(&raw.coi)) {
     if (!std::isfinite(ahead->distance) || ahead->distance < T(0)) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                          "the look-ahead distance must be finite and >= 0, got " + shortest_text(ahead->distance),
                          Loc{"ahead", "distance"});
     }
     if (ahead->count < 1) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                          "the number of points averaged must be >= 1, got " + std::to_string(ahead->count),
                          Loc{"ahead", "count"});
     }
     if (!std::isfinite(ahead->spread) || ahead->spread < T(0)) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                          "the spread must be finite and >= 0, got " + shortest_text(ahead->spread), Loc{"ahead", "spread"});
     }
     view.mode_ = CoiMode::ahead;
@@ -95,22 +95,22 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
     view.ahead_count_ = ahead->count;
     view.ahead_spread_ = ahead->spread;
   } else if (const auto* path = std::get_if<RawCoiPath>(&raw.coi)) {
-    if (path->path.empty()) return error_at(ErrorCode::InvalidArgument, "the COI path name is empty", Loc{"coi_path"});
+    if (path->path.empty()) return error_at(ErrorCode::invalid_argument, "the COI path name is empty", Loc{"coi_path"});
     view.mode_ = CoiMode::path;
     view.coi_path_name_ = path->path;
   } else if (const auto* own = std::get_if<RawOwnRotation<T>>(&raw.coi)) {
     if (!std::isfinite(own->distance) || !(own->distance > T(0))) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       "the distance of the centre of interest must be finite and > 0, got " + shortest_text(own->distance),
                       Loc{"own_rotation", "distance"});
     }
     if (!raw.up_path.empty()) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       "a camera viewing along its own rotation takes its up from that rotation: remove \"up_path\"",
                       Loc{"up_path"});
     }
     if (raw.up != RawCameraView<T>{}.up) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       "a camera viewing along its own rotation takes its up from that rotation: remove \"up\"",
                       Loc{"up"});
     }
@@ -119,7 +119,7 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
   } else {
     const auto& hold = std::get<RawHoldThenMove<T>>(raw.coi);
     if (hold.segments.empty()) {
-      return error_at(ErrorCode::TooFewPoints, "hold-then-move needs at least one segment", Loc{"hold"});
+      return error_at(ErrorCode::too_few_points, "hold-then-move needs at least one segment", Loc{"hold"});
     }
     view.mode_ = CoiMode::hold_then_move;
     view.segments_.reserve(hold.segments.size());
@@ -129,15 +129,15 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
       auto t = make_target(seg.target, member(at, "target"));
       if (!t) return t.error();
       if (!std::isfinite(seg.hold_until)) {
-        return error_at(ErrorCode::NotFinite, "hold_until must be a finite frame", member(at, "hold_until"));
+        return error_at(ErrorCode::not_finite, "hold_until must be a finite frame", member(at, "hold_until"));
       }
       if (!std::isfinite(seg.move_frames) || seg.move_frames < T(0)) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                            "move_frames must be finite and >= 0, got " + shortest_text(seg.move_frames),
                            member(at, "move_frames"));
       }
       if (i + 1 == hold.segments.size() && seg.move_frames != T(0)) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                            "the last segment has no next target to move to: move_frames must be 0, got " +
                                shortest_text(seg.move_frames),
                            member(at, "move_frames"));
@@ -146,7 +146,7 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
         const auto& prev = view.segments_.back();
         const T move_end = prev.hold_until + prev.move_frames;
         if (!(seg.hold_until >= move_end)) {
-          return error_at(ErrorCode::KeysNotIncreasing,
+          return error_at(ErrorCode::keys_not_increasing,
                              "hold_until " + shortest_text(seg.hold_until) +
                                  " comes before the end of the previous move (frame " + shortest_text(move_end) + ")",
                              member(at, "hold_until"));

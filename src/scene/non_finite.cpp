@@ -48,12 +48,11 @@ double largest(const Vec3d& v) { return std::max({std::abs(v.x), std::abs(v.y), 
 
 Error non_finite_value_error(const Scene& scene, double frame, std::size_t column, double value) {
   const std::string& name = scene.columns()[column].name;
-  Error e{ErrorCode::NotFinite,
+  Error e{ErrorCode::not_finite,
           "frame " + shortest_text(frame) + ": " + name +
               (std::isnan(value) ? " is not a number"
                                  : " overflows (" + shortest_text(value) +
-                                       (scene.columns()[column].single_precision ? ", single precision" : "") + ")"),
-          ""};
+                                       (scene.columns()[column].single_precision ? ", single precision" : "") + ")")};
   const std::size_t object = object_of_column(scene, name);
   if (object == std::size_t(-1)) {
     const std::size_t track = track_of_column(scene, name);

@@ -23,7 +23,7 @@ std::string num(double v) { return shortest_text<double>(v); }
 using Loc = std::vector<LocationStep>;
 
 Error fail(ErrorCode code, Loc location, std::string message) {
-  return Error{code, std::move(message), "", std::move(location)};
+  return Error{code, std::move(message), std::move(location)};
 }
 
 // `loc` one member or index further in.
@@ -33,12 +33,12 @@ Loc sub(Loc loc, LocationStep step) {
 }
 
 // An error of a nested builder (its location names its own inputs: {3} for the fourth key, {"k1"})
-// placed under `prefix` ({"speed", "keys"}).  A free-text `where` of a builder ("segment 1") is not
-// a member of the data; it is kept in the message.
+// placed under `prefix` ({"speed", "keys"}).  A builder's place that is not a member of the data
+// (Element{"segment", 1}) is kept in the message ("segment 1: …").
 Error place(Error e, const Loc& prefix) {
-  if (!e.where.empty()) {
-    e.message = e.where + ": " + e.message;
-    e.where.clear();
+  if (std::any_of(e.location.begin(), e.location.end(), [](const LocationStep& s) { return !is_data_step(s); })) {
+    e.message = e.place() + ": " + e.message;
+    e.location.clear();
   }
   e.location.insert(e.location.begin(), prefix.begin(), prefix.end());
   return e;
@@ -70,18 +70,18 @@ struct ConstantAccelerationMade {
 Expected<ConstantAccelerationMade> make_constant_acceleration(const RawEase& e, double span, double seconds, double scale,
                                                               double distance, bool distance_free) {
   const Loc at = {"speed", "ease"};
-  if (e.t1 && e.accel_frames) return fail(ErrorCode::InvalidArgument, sub(at, "accel_frames"), "give t1 or accel_frames, not both");
-  if (e.t2 && e.decel_frames) return fail(ErrorCode::InvalidArgument, sub(at, "decel_frames"), "give t2 or decel_frames, not both");
+  if (e.t1 && e.accel_frames) return fail(ErrorCode::invalid_argument, sub(at, "accel_frames"), "give t1 or accel_frames, not both");
+  if (e.t2 && e.decel_frames) return fail(ErrorCode::invalid_argument, sub(at, "decel_frames"), "give t2 or decel_frames, not both");
   std::optional<double> t1 = e.t1, t2 = e.t2;
   if (e.accel_frames) {
     if (!std::isfinite(*e.accel_frames) || *e.accel_frames < 0 || *e.accel_frames > span)
-      return fail(ErrorCode::InvalidArgument, sub(at, "accel_frames"),
+      return fail(ErrorCode::invalid_argument, sub(at, "accel_frames"),
                   "accel_frames = " + num(*e.accel_frames) + " must lie in [0, " + num(span) + "] (the frame span)");
     t1 = *e.accel_frames / span;
   }
   if (e.decel_frames) {
     if (!std::isfinite(*e.decel_frames) || *e.decel_frames < 0 || *e.decel_frames > span)
-      return fail(ErrorCode::InvalidArgument, sub(at, "decel_frames"),
+      return fail(ErrorCode::invalid_argument, sub(at, "decel_frames"),
                   "decel_frames = " + num(*e.decel_frames) + " must lie in [0, " + num(span) + "] (the frame span)");
     t2 = 1.0 - *e.decel_frames / span;
   }
@@ -95,7 +95,7 @@ Expected<ConstantAccelerationMade> make_constant_acceleration(const RawEase& e, 
   };
   const double time2 = seconds * seconds * scale;  // physical a = normalised a · distance / seconds²
   for (auto [name, v] : {std::pair{"acceleration", &e.acceleration}, std::pair{"deceleration", &e.deceleration}}) {
-    if (*v && !std::isfinite(**v)) return fail(ErrorCode::NotFinite, sub(at, name), std::string(name) + " is not finite");
+    if (*v && !std::isfinite(**v)) return fail(ErrorCode::not_finite, sub(at, name), std::string(name) + " is not finite");
   }
   const int rates_and_times = int(t1.has_value()) + int(t2.has_value()) + int(e.acceleration.has_value()) + int(e.deceleration.has_value());
   if (distance_free && !e.v0 && rates_and_times == 3) {
@@ -114,7 +114,7 @@ Expected<ConstantAccelerationMade> make_constant_acceleration(const RawEase& e, 
   if (e.acceleration || e.deceleration) {
     if (!(d > 0)) {
       const char* name = e.acceleration ? "acceleration" : "deceleration";
-      return fail(ErrorCode::InvalidArgument, sub(at, name),
+      return fail(ErrorCode::invalid_argument, sub(at, name),
                   std::string(name) + " needs a distance to cover, but from = to; give t1, t2 or v0 instead");
     }
     if (e.acceleration) p.acceleration = *e.acceleration * time2 / d;
@@ -141,8 +141,8 @@ Expected<PathMotion::UnitEase> make_unit_ease(const RawEase& e, double span, dou
     case EaseKind::sine: return PathMotion::UnitEase{SineEase<double>{}};
     case EaseKind::cubic: return PathMotion::UnitEase{CubicEase<double>{}};
     case EaseKind::sine_pieces: {
-      if (!e.k1) return fail(ErrorCode::InvalidArgument, sub(at, "k1"), "sine_pieces needs k1 (end of the acceleration)");
-      if (!e.k2) return fail(ErrorCode::InvalidArgument, sub(at, "k2"), "sine_pieces needs k2 (start of the deceleration)");
+      if (!e.k1) return fail(ErrorCode::invalid_argument, sub(at, "k1"), "sine_pieces needs k1 (end of the acceleration)");
+      if (!e.k2) return fail(ErrorCode::invalid_argument, sub(at, "k2"), "sine_pieces needs k2 (start of the deceleration)");
       auto made = SineAccelDecelEase<double>::make(*e.k1, *e.k2);
       if (!made) return place(made.error(), at);
       return PathMotion::UnitEase{*made};
@@ -160,11 +160,11 @@ Expected<PathMotion::UnitEase> make_unit_ease(const RawEase& e, double span, dou
     case EaseKind::penner: {
       const auto& p = e.params;
       if (!std::isfinite(p.back) || !std::isfinite(p.amplitude) || !std::isfinite(p.period) || p.period < 0)
-        return fail(ErrorCode::InvalidArgument, sub(at, "params"), "back, amplitude and period must be finite, period ≥ 0");
+        return fail(ErrorCode::invalid_argument, sub(at, "params"), "back, amplitude and period must be finite, period ≥ 0");
       return PathMotion::UnitEase{PathMotion::PennerUnitEase{e.curve, e.direction, p}};
     }
   }
-  return fail(ErrorCode::Unsupported, sub(at, "kind"), "unknown ease kind");
+  return fail(ErrorCode::unsupported, sub(at, "kind"), "unknown ease kind");
 }
 
 // The first run of normalised times where the ease's velocity is negative, as frames.
@@ -189,10 +189,10 @@ std::string frames_text(double a, double b) {
 }
 
 Expected<void> check_distance(double d, double length, const Loc& where, const std::string& what) {
-  if (!std::isfinite(d)) return fail(ErrorCode::NotFinite, where, what + " is not finite");
-  if (d < 0) return fail(ErrorCode::InvalidArgument, where, what + " = " + num(d) + " is negative");
+  if (!std::isfinite(d)) return fail(ErrorCode::not_finite, where, what + " is not finite");
+  if (d < 0) return fail(ErrorCode::invalid_argument, where, what + " = " + num(d) + " is negative");
   if (d > length * (1 + kLengthSlack))
-    return fail(ErrorCode::InvalidArgument, where,
+    return fail(ErrorCode::invalid_argument, where,
                 what + " = " + num(d) + " is beyond the path's length " + num(length));
   return {};
 }
@@ -211,7 +211,7 @@ EaseSample<double> PathMotion::PennerUnitEase::sample(double t) const noexcept {
 }
 
 Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
-  if (!std::isfinite(fps) || !(fps > 0)) return fail(ErrorCode::InvalidArgument, {"fps"}, "fps = " + num(fps) + " must be > 0");
+  if (!std::isfinite(fps) || !(fps > 0)) return fail(ErrorCode::invalid_argument, {"fps"}, "fps = " + num(fps) + " must be > 0");
   auto arc = ArcLength<AnyCurve>::build(raw.path);
   if (!arc) return place(arc.error(), {"path"});
   const double L = arc->length();
@@ -223,10 +223,10 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
   Interval<double> range{0, 1};
   switch (sp.kind) {
     case SpeedKind::ease: {
-      if (!std::isfinite(sp.start_frame)) return fail(ErrorCode::NotFinite, {"speed", "start_frame"}, "start_frame is not finite");
-      if (!std::isfinite(sp.end_frame)) return fail(ErrorCode::NotFinite, {"speed", "end_frame"}, "end_frame is not finite");
+      if (!std::isfinite(sp.start_frame)) return fail(ErrorCode::not_finite, {"speed", "start_frame"}, "start_frame is not finite");
+      if (!std::isfinite(sp.end_frame)) return fail(ErrorCode::not_finite, {"speed", "end_frame"}, "end_frame is not finite");
       if (!(sp.end_frame > sp.start_frame))
-        return fail(ErrorCode::InvalidArgument, {"speed", "end_frame"},
+        return fail(ErrorCode::invalid_argument, {"speed", "end_frame"},
                     std::string(sp.end_frame == sp.start_frame ? "the ease's frame span is empty" : "the ease's frame span is reversed") +
                         ": end_frame " + num(sp.end_frame) + " must be after start_frame " + num(sp.start_frame));
       const double span = sp.end_frame - sp.start_frame;
@@ -241,7 +241,7 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
         if (made->distance) {
           to = from + *made->distance;
           if (to > L * (1 + kLengthSlack))
-            return fail(ErrorCode::InvalidArgument, {"speed", "ease"},
+            return fail(ErrorCode::invalid_argument, {"speed", "ease"},
                         "the acceleration graph covers " + num(*made->distance / scale) + (sp.fraction ? " of the length" : "") +
                             " from " + num(from / scale) + ", beyond the path's end (" + num(full) + ")");
         }
@@ -249,14 +249,14 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
       }
       if (auto ok = check_distance(to, L, Loc{"speed", "to"}, "to"); !ok) return ok.error();
       if (to < from)
-        return fail(ErrorCode::NotMonotone, {"speed", "to"},
+        return fail(ErrorCode::not_monotone, {"speed", "to"},
                     "the distance runs backwards from " + num(from) + " to " + num(to) + " " +
                         frames_text(sp.start_frame, sp.end_frame) + " (reverse the path instead)");
       auto ease = fixed ? Expected<PathMotion::UnitEase>(*fixed) : make_unit_ease(sp.ease, span, seconds, scale, to - from);
       if (!ease) return ease.error();
       if (to > from) {
         if (const auto back = ease_backwards(*ease, sp.start_frame, span))
-          return fail(ErrorCode::NotMonotone, {"speed", "ease"},
+          return fail(ErrorCode::not_monotone, {"speed", "ease"},
                       "the distance runs backwards " + frames_text(back->first, back->second) +
                           " (the ease's velocity is negative there; repair applies to keys only)");
       }
@@ -273,18 +273,18 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
       if (by_distance) {
         const auto& keys = sp.keys;
         if (keys.size() < 2)
-          return fail(ErrorCode::TooFewPoints, at, "needs at least 2 distance keys, got " + std::to_string(keys.size()));
+          return fail(ErrorCode::too_few_points, at, "needs at least 2 distance keys, got " + std::to_string(keys.size()));
         const bool with_speed = keys.front().speed.has_value();
         for (std::size_t i = 0; i < keys.size(); ++i) {
           const Loc where = sub(at, i);
-          if (!std::isfinite(keys[i].frame)) return fail(ErrorCode::NotFinite, sub(where, "frame"), "frame is not finite");
+          if (!std::isfinite(keys[i].frame)) return fail(ErrorCode::not_finite, sub(where, "frame"), "frame is not finite");
           if (auto ok = check_distance(keys[i].distance * scale, L, sub(where, "distance"), "key " + std::to_string(i) + "'s distance"); !ok)
             return ok.error();
           if (keys[i].speed.has_value() != with_speed)
-            return fail(ErrorCode::InvalidArgument, sub(where, "speed"), "give a speed on every key or on none");
-          if (with_speed && !std::isfinite(*keys[i].speed)) return fail(ErrorCode::NotFinite, sub(where, "speed"), "speed is not finite");
+            return fail(ErrorCode::invalid_argument, sub(where, "speed"), "give a speed on every key or on none");
+          if (with_speed && !std::isfinite(*keys[i].speed)) return fail(ErrorCode::not_finite, sub(where, "speed"), "speed is not finite");
           if (keys[i].acceleration)
-            return fail(ErrorCode::InvalidArgument, sub(where, "acceleration"),
+            return fail(ErrorCode::invalid_argument, sub(where, "acceleration"),
                         "distance_keys take no acceleration: use speed.kind \"constraints\" for ⟨frame, distance, speed, acceleration⟩");
         }
         if (with_speed) {
@@ -299,13 +299,13 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
       } else {
         const auto& keys = sp.velocities;
         if (keys.size() < 2)
-          return fail(ErrorCode::TooFewPoints, at, "needs at least 2 velocity keys, got " + std::to_string(keys.size()));
+          return fail(ErrorCode::too_few_points, at, "needs at least 2 velocity keys, got " + std::to_string(keys.size()));
         const double from = sp.from.value_or(0.0) * scale;
         const double to = sp.to.value_or(full) * scale;
         if (auto ok = check_distance(from, L, Loc{"speed", "from"}, "from"); !ok) return ok.error();
         if (auto ok = check_distance(to, L, Loc{"speed", "to"}, "to"); !ok) return ok.error();
         if (to < from)
-          return fail(ErrorCode::NotMonotone, {"speed", "to"}, "the distance runs backwards from " + num(from) + " to " + num(to));
+          return fail(ErrorCode::not_monotone, {"speed", "to"}, "the distance runs backwards from " + num(from) + " to " + num(to));
         std::vector<TimeVelocityKey<double>> k;
         for (const auto& key : keys) k.push_back({key.frame, key.speed * scale / fps});
         curve = DistanceTimeCurve<double>::from_velocity_curve(k, sp.fit, std::min(to, L) - std::min(from, L));
@@ -314,7 +314,7 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
       if (!curve) return place(curve.error(), at);
       if (const auto back = curve->find_backing_up()) {
         if (!sp.repair)
-          return fail(ErrorCode::NotMonotone, at,
+          return fail(ErrorCode::not_monotone, at,
                       "the distance runs backwards " + frames_text(back->t_begin, back->t_end) + " (speed down to " +
                           num(back->min_velocity * fps) + " per second at frame " + num(back->t_min_velocity) +
                           "); set speed.repair to use the monotone curve through the same keys");
@@ -329,19 +329,19 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
     case SpeedKind::constraints: {
       const Loc at{"speed", "keys"};
       const auto& keys = sp.keys;
-      if (keys.empty()) return fail(ErrorCode::TooFewPoints, at, "needs at least 1 constraint key, got none");
+      if (keys.empty()) return fail(ErrorCode::too_few_points, at, "needs at least 1 constraint key, got none");
       std::vector<MotionConstraint<double>> k;
       for (std::size_t i = 0; i < keys.size(); ++i) {
         const Loc where = sub(at, i);
-        if (!std::isfinite(keys[i].frame)) return fail(ErrorCode::NotFinite, sub(where, "frame"), "frame is not finite");
+        if (!std::isfinite(keys[i].frame)) return fail(ErrorCode::not_finite, sub(where, "frame"), "frame is not finite");
         if (auto ok = check_distance(keys[i].distance * scale, L, sub(where, "distance"), "key " + std::to_string(i) + "'s distance"); !ok)
           return ok.error();
-        if (keys[i].speed && !std::isfinite(*keys[i].speed)) return fail(ErrorCode::NotFinite, sub(where, "speed"), "speed is not finite");
+        if (keys[i].speed && !std::isfinite(*keys[i].speed)) return fail(ErrorCode::not_finite, sub(where, "speed"), "speed is not finite");
         if (keys[i].speed && *keys[i].speed < 0)
-          return fail(ErrorCode::InvalidArgument, sub(where, "speed"),
+          return fail(ErrorCode::invalid_argument, sub(where, "speed"),
                       "speed = " + num(*keys[i].speed) + " is negative (the object would move backwards)");
         if (keys[i].acceleration && !std::isfinite(*keys[i].acceleration))
-          return fail(ErrorCode::NotFinite, sub(where, "acceleration"), "acceleration is not finite");
+          return fail(ErrorCode::not_finite, sub(where, "acceleration"), "acceleration is not finite");
         MotionConstraint<double> c{keys[i].frame, std::min(keys[i].distance * scale, L)};
         if (keys[i].speed) c.v = *keys[i].speed * scale / fps;
         if (keys[i].acceleration) c.a = *keys[i].acceleration * scale / (fps * fps);
@@ -357,7 +357,7 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
       const Loc at{"speed", "accelerations"};
       const auto& keys = sp.accelerations;
       if (keys.size() < 2)
-        return fail(ErrorCode::TooFewPoints, at, "needs at least 2 acceleration keys, got " + std::to_string(keys.size()));
+        return fail(ErrorCode::too_few_points, at, "needs at least 2 acceleration keys, got " + std::to_string(keys.size()));
       const double from = sp.from.value_or(0.0) * scale;
       if (auto ok = check_distance(from, L, Loc{"speed", "from"}, "from"); !ok) return ok.error();
       std::optional<double> to;
@@ -365,7 +365,7 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
         to = *sp.to * scale;
         if (auto ok = check_distance(*to, L, Loc{"speed", "to"}, "to"); !ok) return ok.error();
         if (*to < from)
-          return fail(ErrorCode::NotMonotone, {"speed", "to"}, "the distance runs backwards from " + num(from) + " to " + num(*to));
+          return fail(ErrorCode::not_monotone, {"speed", "to"}, "the distance runs backwards from " + num(from) + " to " + num(*to));
       }
       std::vector<TimeAccelerationKey<double>> k;
       for (const auto& key : keys) k.push_back({key.frame, key.acceleration * scale / (fps * fps)});
@@ -383,7 +383,7 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
       }
       const double end = curve->sample(curve->domain().hi).s;
       if (end > L * (1 + kLengthSlack))
-        return fail(ErrorCode::InvalidArgument, at,
+        return fail(ErrorCode::invalid_argument, at,
                     "the accelerations carry the object to distance " + num(end / scale) + ", beyond the path's length " +
                         num(L / scale) + " (give speed.to to scale them)");
       range = curve->domain();
@@ -391,7 +391,7 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
       break;
     }
     case SpeedKind::track: {
-      if (!sp.track) return fail(ErrorCode::InvalidArgument, {"speed", "track"}, "the track speed needs a track");
+      if (!sp.track) return fail(ErrorCode::invalid_argument, {"speed", "track"}, "the track speed needs a track");
       const FCurve& track = *sp.track;
       const auto keys = track.keys();
       for (std::size_t i = 0; i < keys.size(); ++i) {
@@ -418,7 +418,7 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
         }
       }
       if (first >= 0)
-        return fail(ErrorCode::NotMonotone, {"speed", "track"},
+        return fail(ErrorCode::not_monotone, {"speed", "track"},
                     "the distance runs backwards " + frames_text(fa, fb) + " (the track's slope is negative there)");
       speed = PathMotion::TrackSpeed{track, scale};
       break;
@@ -428,20 +428,20 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
   // Orientation.
   const RawOrientation& o = raw.orientation;
   if (!is_finite(o.up) || !(squared_norm(o.up) > 0))
-    return fail(ErrorCode::InvalidArgument, {"orientation", "up"}, "the up vector must be finite and non-zero");
-  if (!is_finite(o.look_at)) return fail(ErrorCode::NotFinite, {"orientation", "look_at"}, "the look_at point is not finite");
+    return fail(ErrorCode::invalid_argument, {"orientation", "up"}, "the up vector must be finite and non-zero");
+  if (!is_finite(o.look_at)) return fail(ErrorCode::not_finite, {"orientation", "look_at"}, "the look_at point is not finite");
   if (o.banking) {
     if (!std::isfinite(o.banking->gain) || o.banking->gain < 0)
-      return fail(ErrorCode::InvalidArgument, {"orientation", "banking", "gain"},
+      return fail(ErrorCode::invalid_argument, {"orientation", "banking", "gain"},
                   "gain = " + num(o.banking->gain) + " must be finite and ≥ 0 (lean_out rolls the other way)");
     if (!(o.banking->max_bank_rad >= 0 && o.banking->max_bank_rad <= pi_v<double> / 2))
-      return fail(ErrorCode::InvalidArgument, {"orientation", "banking", "max_bank_rad"},
+      return fail(ErrorCode::invalid_argument, {"orientation", "banking", "max_bank_rad"},
                   "max_bank_rad = " + num(o.banking->max_bank_rad) + " must lie in [0, π/2]");
   }
   const Quatd& lq = o.local_rotation;
   const double lq_norm = std::sqrt(lq.w * lq.w + lq.x * lq.x + lq.y * lq.y + lq.z * lq.z);
   if (!std::isfinite(lq_norm) || !(lq_norm > 0))
-    return fail(ErrorCode::InvalidArgument, {"orientation", "local_rotation"}, "the local rotation must be a finite, non-zero quaternion");
+    return fail(ErrorCode::invalid_argument, {"orientation", "local_rotation"}, "the local rotation must be a finite, non-zero quaternion");
 
   PathMotion motion(std::move(*arc), std::move(speed), fps);
   motion.range_ = range;
@@ -456,11 +456,11 @@ Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps) {
                                                                                        .closing = raw.orientation.closing});
     if (!rmf && raw.orientation.closing == RmfClosing::distribute)
       return fail(rmf.error().code, {"orientation", "closing"}, rmf.error().message);
-    if (!rmf) return place(Error{rmf.error().code, rmf.error().message, ""}, {"orientation", "up"});
+    if (!rmf) return place(Error{rmf.error().code, rmf.error().message}, {"orientation", "up"});
     motion.rmf_.emplace(std::move(*rmf));
   } else if (o.mode == OrientationMode::frenet) {
     auto frenet = FrenetFrames<AnyCurve>::build(raw.path);
-    if (!frenet) return place(Error{frenet.error().code, frenet.error().message, ""}, {"orientation"});
+    if (!frenet) return place(Error{frenet.error().code, frenet.error().message}, {"orientation"});
     motion.frenet_.emplace(std::move(*frenet));
   }
   return motion;

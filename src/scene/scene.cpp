@@ -39,14 +39,14 @@ template <class... F>
 Overloaded(F...) -> Overloaded<F...>;
 
 Error error_at(ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
-  Error e{code, std::move(message), ""};
+  Error e{code, std::move(message)};
   e.prepend(steps);
   return e;
 }
 
 // Non-empty names, as the file format requires (the reader only checks that a name is a string).
 Expected<void> check_name(const std::string& name, std::initializer_list<LocationStep> steps) {
-  if (name.empty()) return error_at(ErrorCode::InvalidArgument, "a track needs a non-empty string \"name\"", steps);
+  if (name.empty()) return error_at(ErrorCode::invalid_argument, "a track needs a non-empty string \"name\"", steps);
   return {};
 }
 
@@ -99,7 +99,7 @@ Expected<SceneTrack> build_one(const RawQuatTrack& raw) {
 Expected<SceneTrack> build_one(const RawEulerTrack& raw) {
   if (auto ok = check_name(raw.name, {"name"}); !ok) return ok.error();
   auto sequence = parse_euler_sequence(raw.convention);
-  if (!sequence) return error_at(ErrorCode::InvalidArgument, sequence.error().message, {"convention"});
+  if (!sequence) return error_at(ErrorCode::invalid_argument, sequence.error().message, {"convention"});
   EulerTrackOptions<double> options;
   options.sequence = *sequence;
   options.mode = raw.mode;
@@ -128,7 +128,7 @@ Expected<TransformTrack<double>> build_local(const RawObject& raw) {
   const auto& translation = raw.translation ? *raw.translation : kNoTranslation;
   const auto& rotation = raw.rotation ? *raw.rotation : kNoRotation;
   if (const auto* c = std::get_if<Vec3d>(&translation)) {
-    if (!is_finite(*c)) return error_at(ErrorCode::NotFinite, "number is not finite", {"translation"});
+    if (!is_finite(*c)) return error_at(ErrorCode::not_finite, "number is not finite", {"translation"});
     local.rest.translation = *c;
   } else {
     auto t = build_vec3_channel(std::get<RawVec3Channel>(translation));
@@ -136,7 +136,7 @@ Expected<TransformTrack<double>> build_local(const RawObject& raw) {
     local.translation = std::move(*t);
   }
   if (const auto* c = std::get_if<Vec3d>(&raw.scale)) {
-    if (!is_finite(*c)) return error_at(ErrorCode::NotFinite, "number is not finite", {"scale"});
+    if (!is_finite(*c)) return error_at(ErrorCode::not_finite, "number is not finite", {"scale"});
     local.rest.scale = *c;
   } else {
     auto s = build_vec3_channel(std::get<RawVec3Channel>(raw.scale));
@@ -144,8 +144,8 @@ Expected<TransformTrack<double>> build_local(const RawObject& raw) {
     local.scale = std::move(*s);
   }
   if (const auto* c = std::get_if<Quatd>(&rotation)) {
-    if (!is_finite(*c)) return error_at(ErrorCode::NotFinite, "number is not finite", {"rotation"});
-    if (!(norm(*c) > 0)) return error_at(ErrorCode::InvalidArgument, "zero quaternion is not a rotation", {"rotation"});
+    if (!is_finite(*c)) return error_at(ErrorCode::not_finite, "number is not finite", {"rotation"});
+    if (!(norm(*c) > 0)) return error_at(ErrorCode::invalid_argument, "zero quaternion is not a rotation", {"rotation"});
     local.rest.rotation = normalized(*c);
   } else {
     const auto& keyed = std::get<RawQuatKeys>(rotation);
@@ -175,13 +175,13 @@ Transform<double> get_trs(const double* in) noexcept {
 }  // namespace
 
 Expected<Scene> build_scene(const RawScene& raw) {
-  if (!(raw.fps > 0)) return error_at(ErrorCode::InvalidArgument, "fps must be positive", {"fps"});
-  if (!std::isfinite(raw.fps)) return error_at(ErrorCode::NotFinite, "number is not finite", {"fps"});
+  if (!(raw.fps > 0)) return error_at(ErrorCode::invalid_argument, "fps must be positive", {"fps"});
+  if (!std::isfinite(raw.fps)) return error_at(ErrorCode::not_finite, "number is not finite", {"fps"});
   for (std::size_t i = 0; i < 2; ++i) {
-    if (!std::isfinite(raw.range[i])) return error_at(ErrorCode::NotFinite, "number is not finite", {"range", i});
+    if (!std::isfinite(raw.range[i])) return error_at(ErrorCode::not_finite, "number is not finite", {"range", i});
   }
   if (raw.range[1] < raw.range[0]) {
-    return error_at(ErrorCode::InvalidArgument, "range end is before its start", {"range", std::size_t{1}});
+    return error_at(ErrorCode::invalid_argument, "range end is before its start", {"range", std::size_t{1}});
   }
 
   std::vector<SceneColumn> columns;
@@ -193,7 +193,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
     const std::vector<LocationStep> owner_location(owner);
     const auto [it, inserted] = column_owner.emplace(column, json_pointer(owner_location));
     if (!inserted) {
-      return error_at(ErrorCode::InvalidArgument,
+      return error_at(ErrorCode::invalid_argument,
                       "output column \"" + column + "\" is also a column of " + it->second +
                           " (names must give distinct columns)",
                       owner);
@@ -213,7 +213,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
     if (!track) return prepended(track.error(), {"tracks", i});
     const std::string& name = std::visit([](const auto& t) -> const std::string& { return t.name; }, raw.tracks[i]);
     if (!track_names.insert(name).second) {
-      return error_at(ErrorCode::InvalidArgument, "duplicate track name \"" + name + "\"", {"tracks", i, "name"});
+      return error_at(ErrorCode::invalid_argument, "duplicate track name \"" + name + "\"", {"tracks", i, "name"});
     }
     // One letter per component column; none for a scalar or vec1 track (only F-curves are single precision).
     const std::string suffixes = std::visit(Overloaded{[](const SceneScalarTrack&) { return std::string(); },
@@ -238,10 +238,10 @@ Expected<Scene> build_scene(const RawScene& raw) {
   for (std::size_t p = 0; p < raw.paths.size(); ++p) {
     const RawScenePath& path = raw.paths[p];
     if (path.name.empty()) {
-      return error_at(ErrorCode::InvalidArgument, "a path needs a non-empty string \"name\"", {"paths", p, "name"});
+      return error_at(ErrorCode::invalid_argument, "a path needs a non-empty string \"name\"", {"paths", p, "name"});
     }
     if (!path_index.emplace(path.name, p).second) {
-      return error_at(ErrorCode::InvalidArgument, "duplicate path name \"" + path.name + "\"", {"paths", p, "name"});
+      return error_at(ErrorCode::invalid_argument, "duplicate path name \"" + path.name + "\"", {"paths", p, "name"});
     }
     auto arc = ArcLength<AnyCurve>::build(path.curve);
     if (!arc) return prepended(arc.error(), {"paths", p});
@@ -269,21 +269,21 @@ Expected<Scene> build_scene(const RawScene& raw) {
       const RawObject& o = raw.objects[i];
       if (auto ok = check_name(o.name, {"objects", i, "name"}); !ok) return ok.error();
       if (!object_index.emplace(o.name, i).second) {
-        return error_at(ErrorCode::InvalidArgument, "duplicate object name \"" + o.name + "\"", {"objects", i, "name"});
+        return error_at(ErrorCode::invalid_argument, "duplicate object name \"" + o.name + "\"", {"objects", i, "name"});
       }
       if (!o.path.empty() && o.translation) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "an object on a path takes its translation from the path: remove \"translation\"",
                         {"objects", i, "translation"});
       }
       if (!o.path.empty() && o.rotation) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "an object on a path takes its rotation from the path: remove \"rotation\" (a rotation on "
                         "top of the path frame is path.orientation.local_rotation)",
                         {"objects", i, "rotation"});
       }
       if (o.camera && o.rotation && !std::holds_alternative<RawOwnRotation<double>>(o.camera->coi)) {
-        return error_at(ErrorCode::InvalidArgument,
+        return error_at(ErrorCode::invalid_argument,
                         "a camera's rotation comes from its view: remove \"rotation\" (or view along it with "
                         "\"own_rotation\")",
                         {"objects", i, "rotation"});
@@ -298,10 +298,10 @@ Expected<Scene> build_scene(const RawScene& raw) {
                            std::vector<LocationStep> member) -> Expected<std::size_t> {
       const auto it = object_index.find(name);
       if (it == object_index.end()) {
-        return Error{ErrorCode::InvalidArgument, "no object named \"" + name + "\"", "", std::move(member)};
+        return Error{ErrorCode::invalid_argument, "no object named \"" + name + "\"", std::move(member)};
       }
       if (it->second == self) {
-        return Error{ErrorCode::InvalidArgument, "\"" + name + "\" cannot look at itself", "", std::move(member)};
+        return Error{ErrorCode::invalid_argument, "\"" + name + "\" cannot look at itself", std::move(member)};
       }
       reads[self].emplace_back(it->second, std::move(member));
       return it->second;
@@ -311,7 +311,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
       const std::string& parent = *raw.objects[i].parent;
       const auto it = object_index.find(parent);
       if (it == object_index.end()) {
-        return error_at(ErrorCode::InvalidArgument, "no object named \"" + parent + "\"", {"objects", i, "parent"});
+        return error_at(ErrorCode::invalid_argument, "no object named \"" + parent + "\"", {"objects", i, "parent"});
       }
       nodes[i].parent = it->second;
       reads[i].emplace_back(it->second, std::vector<LocationStep>{"objects", i, "parent"});
@@ -341,19 +341,19 @@ Expected<Scene> build_scene(const RawScene& raw) {
         if (const auto* name = std::get_if<std::string>(&leg.curve)) {
           const auto it = path_index.find(*name);
           if (it == path_index.end()) {
-            return Error{ErrorCode::InvalidArgument, "no path named \"" + *name + "\" in \"paths\"", "", at_member({"curve"})};
+            return Error{ErrorCode::invalid_argument, "no path named \"" + *name + "\" in \"paths\"", at_member({"curve"})};
           }
           curve = &raw.paths[it->second].curve;
         }
         RawPathMotion motion{.path = *curve, .speed = leg.speed, .orientation = leg.orientation};
         if (leg.speed.kind == SpeedKind::track) {
           if (o.path.size() > 1) {
-            return Error{ErrorCode::InvalidArgument, "a track speed drives a single-leg path only", "",
+            return Error{ErrorCode::invalid_argument, "a track speed drives a single-leg path only",
                          at_member({"speed", "kind"})};
           }
           const auto it = scalar_tracks.find(leg.speed_track);
           if (it == scalar_tracks.end()) {
-            return Error{ErrorCode::InvalidArgument, "no scalar track named \"" + leg.speed_track + "\"", "",
+            return Error{ErrorCode::invalid_argument, "no scalar track named \"" + leg.speed_track + "\"",
                          at_member({"speed", "track"})};
           }
           motion.speed.track = std::get<SceneScalarTrack>(tracks[it->second.first]).curve;
@@ -373,7 +373,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
         std::optional<std::size_t> look_at_object;
         if (!leg.look_at_object.empty()) {
           if (leg.orientation.mode != OrientationMode::look_at) {
-            return Error{ErrorCode::InvalidArgument, "an object to look at needs orientation.mode \"look_at\"", "",
+            return Error{ErrorCode::invalid_argument, "an object to look at needs orientation.mode \"look_at\"",
                          at_member({"orientation", "look_at"})};
           }
           auto target = find_object(leg.look_at_object, i, at_member({"orientation", "look_at"}));
@@ -398,11 +398,10 @@ Expected<Scene> build_scene(const RawScene& raw) {
         if (!extra.legs.empty()) {
           const double previous_end = extra.legs.back().motion.frame_range().hi;
           if (built->frame_range().lo < previous_end) {
-            return Error{ErrorCode::KeysNotIncreasing,
+            return Error{ErrorCode::keys_not_increasing,
                          "this leg starts at frame " + shortest_text(built->frame_range().lo) +
                              ", before the previous leg ends (frame " + shortest_text(previous_end) +
-                             "): legs follow each other in time",
-                         "", at_member({"speed"})};
+                             "): legs follow each other in time", at_member({"speed"})};
           }
         }
         const double length = built->length();
@@ -417,7 +416,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
           const char* member = view->coi_mode() == CoiMode::ahead ? "ahead"
                                : view->coi_mode() == CoiMode::path ? "coi_path"
                                                                     : "up_path";
-          return error_at(ErrorCode::InvalidArgument,
+          return error_at(ErrorCode::invalid_argument,
                           std::string("\"") + member + "\" needs the camera on a path (give the camera a \"path\")",
                           {"objects", i, "camera", member});
         }
@@ -443,7 +442,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
           if (name->empty()) continue;
           const auto it = path_index.find(*name);
           if (it == path_index.end()) {
-            return error_at(ErrorCode::InvalidArgument, "no path named \"" + *name + "\" in \"paths\"",
+            return error_at(ErrorCode::invalid_argument, "no path named \"" + *name + "\" in \"paths\"",
                             {"objects", i, "camera", member});
           }
           *slot = it->second;
@@ -451,7 +450,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
         if (!view->tilt_track_name().empty()) {
           const auto it = scalar_tracks.find(view->tilt_track_name());
           if (it == scalar_tracks.end()) {
-            return error_at(ErrorCode::InvalidArgument, "no scalar track named \"" + view->tilt_track_name() + "\"",
+            return error_at(ErrorCode::invalid_argument, "no scalar track named \"" + view->tilt_track_name() + "\"",
                             {"objects", i, "camera", "tilt_track"});
           }
           extra.tilt_column = it->second.second;
@@ -475,10 +474,9 @@ Expected<Scene> build_scene(const RawScene& raw) {
         if (next < reads[u].size()) {
           const auto& [v, member] = reads[u][next++];
           if (state[v] == 1) {
-            return Error{ErrorCode::InvalidArgument,
+            return Error{ErrorCode::invalid_argument,
                          "\"" + raw.objects[u].name + "\" depends on \"" + raw.objects[v].name +
-                             "\", which depends on it (a cycle of parents, look-at and camera targets)",
-                         "", member};
+                             "\", which depends on it (a cycle of parents, look-at and camera targets)", member};
           }
           if (state[v] == 0) {
             state[v] = 1;
@@ -519,7 +517,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
   for (std::size_t k = 0; k < raw.skins.size(); ++k) {
     const RawSkin& skin = raw.skins[k];
     if (skin.joints.empty()) {
-      return error_at(ErrorCode::InvalidArgument, "a skin needs at least one joint", {"skins", k, "joints"});
+      return error_at(ErrorCode::invalid_argument, "a skin needs at least one joint", {"skins", k, "joints"});
     }
     SceneSkin built{skin.name, {}};
     built.joints.reserve(skin.joints.size());
@@ -527,11 +525,11 @@ Expected<Scene> build_scene(const RawScene& raw) {
     for (std::size_t j = 0; j < skin.joints.size(); ++j) {
       const auto it = object_index.find(skin.joints[j]);
       if (it == object_index.end()) {
-        return error_at(ErrorCode::InvalidArgument, "no object named \"" + skin.joints[j] + "\" in \"objects\"",
+        return error_at(ErrorCode::invalid_argument, "no object named \"" + skin.joints[j] + "\" in \"objects\"",
                         {"skins", k, "joints", j});
       }
       if (!seen.insert(it->second).second) {
-        return error_at(ErrorCode::InvalidArgument, "joint \"" + skin.joints[j] + "\" appears twice in this skin",
+        return error_at(ErrorCode::invalid_argument, "joint \"" + skin.joints[j] + "\" appears twice in this skin",
                         {"skins", k, "joints", j});
       }
       built.joints.push_back(it->second);

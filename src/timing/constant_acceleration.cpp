@@ -16,7 +16,7 @@ std::string num(double v) { return shortest_text<double>(v); }
 
 template <Real T>
 Error bad(ErrorCode code, const char* member, std::string message) {
-  return Error{code, std::move(message), "", {std::string(member)}};
+  return Error{code, std::move(message), {std::string(member)}};
 }
 
 // Relative slack for a value at the edge of its admissible range: the closed forms round by a few
@@ -39,7 +39,7 @@ std::string range_text(double lo, double hi) {
 // "acceleration = 3 with t1 = 0.2 has no profile: acceleration must be in [..]".
 template <Real T>
 Error no_profile(const char* member, T value, const char* other, T other_value, T lo, T hi) {
-  return bad<T>(ErrorCode::InvalidArgument, member,
+  return bad<T>(ErrorCode::invalid_argument, member,
                 std::string(member) + " = " + num(double(value)) + " with " + other + " = " + num(double(other_value)) +
                     " has no constant-acceleration profile over distance 1 and time 1: " + member + " must be " +
                     range_text(double(lo), double(hi)));
@@ -63,36 +63,34 @@ Expected<ConstantAccelerationEase<T>> solve_constant_acceleration(const Constant
   for (const auto& [name, value] : members) {
     if (!value->has_value()) continue;
     if (given == 2)
-      return bad<T>(ErrorCode::InvalidArgument, name,
+      return bad<T>(ErrorCode::invalid_argument, name,
                     std::string("over-determined: ") + names[0] + " and " + names[1] +
                         " already fix the profile (distance 1 over time 1); leave " + name + " out");
-    if (!std::isfinite(**value)) return bad<T>(ErrorCode::NotFinite, name, std::string(name) + " is not finite");
+    if (!std::isfinite(**value)) return bad<T>(ErrorCode::not_finite, name, std::string(name) + " is not finite");
     names[given++] = name;
   }
   if (given < 2)
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  std::string("under-determined: constant acceleration needs two of t1, t2, v0, acceleration, deceleration; got ") +
-                     (given == 0 ? "none" : std::string("only ") + names[0]),
-                 "",
-                 {}};
+                     (given == 0 ? "none" : std::string("only ") + names[0])};
   // Ranges of the single values.
   if (p.t1 && !(*p.t1 >= T(0) && *p.t1 <= T(1)))
-    return bad<T>(ErrorCode::InvalidArgument, "t1", "t1 = " + num(double(*p.t1)) + " is outside [0, 1]");
+    return bad<T>(ErrorCode::invalid_argument, "t1", "t1 = " + num(double(*p.t1)) + " is outside [0, 1]");
   if (p.t2 && !(*p.t2 >= T(0) && *p.t2 <= T(1)))
-    return bad<T>(ErrorCode::InvalidArgument, "t2", "t2 = " + num(double(*p.t2)) + " is outside [0, 1]");
+    return bad<T>(ErrorCode::invalid_argument, "t2", "t2 = " + num(double(*p.t2)) + " is outside [0, 1]");
   if (p.v0 && !(*p.v0 >= T(1) && *p.v0 <= T(2)))
-    return bad<T>(ErrorCode::InvalidArgument, "v0",
+    return bad<T>(ErrorCode::invalid_argument, "v0",
                   "v0 = " + num(double(*p.v0)) + " must lie in [1, 2] (the cruise covers 2/v0 − 1 of the time)");
   if (p.acceleration && !(*p.acceleration > T(0)))
-    return bad<T>(ErrorCode::InvalidArgument, "acceleration", "acceleration = " + num(double(*p.acceleration)) + " must be > 0");
+    return bad<T>(ErrorCode::invalid_argument, "acceleration", "acceleration = " + num(double(*p.acceleration)) + " must be > 0");
   if (p.deceleration && !(*p.deceleration > T(0)))
-    return bad<T>(ErrorCode::InvalidArgument, "deceleration", "deceleration = " + num(double(*p.deceleration)) + " must be > 0");
+    return bad<T>(ErrorCode::invalid_argument, "deceleration", "deceleration = " + num(double(*p.deceleration)) + " must be > 0");
 
   const T inf = std::numeric_limits<T>::infinity();
   T t1{}, t2{};
   if (p.t1 && p.t2) {
     t1 = *p.t1, t2 = *p.t2;
-    if (t2 < t1) return bad<T>(ErrorCode::InvalidArgument, "t2", "t2 = " + num(double(t2)) + " must lie in [t1, 1] with t1 = " + num(double(t1)));
+    if (t2 < t1) return bad<T>(ErrorCode::invalid_argument, "t2", "t2 = " + num(double(t2)) + " must lie in [t1, 1] with t1 = " + num(double(t1)));
   } else if (p.t1 && p.v0) {
     // Eq. 3.21: t2 − t1 = 2/v0 − 1 ≤ 1 − t1.
     const T lo = T(2) / (T(2) - *p.t1);
@@ -139,7 +137,7 @@ Expected<ConstantAccelerationEase<T>> solve_constant_acceleration(const Constant
     const T a = *p.acceleration, d = *p.deceleration, k = T(1) / a + T(1) / d;
     if (!within(k, T(0), T(0.5))) {
       const T lo = a > T(2) ? T(2) * a / (a - T(2)) : inf;
-      return bad<T>(ErrorCode::InvalidArgument, "deceleration",
+      return bad<T>(ErrorCode::invalid_argument, "deceleration",
                     "deceleration = " + num(double(d)) + " with acceleration = " + num(double(a)) +
                         " has no constant-acceleration profile over distance 1 and time 1: 1/acceleration + 1/deceleration = " +
                         num(double(k)) + " must be ≤ 1/2" + (std::isinf(lo) ? std::string(" (acceleration must exceed 2)") : ", so deceleration ≥ " + num(double(lo))));
@@ -162,25 +160,23 @@ Expected<ConstantAccelerationGraph<T>> solve_equal_areas(const EqualAreasParams<
       if (!missing) missing = name;
       continue;
     }
-    if (!std::isfinite(**value)) return bad<T>(ErrorCode::NotFinite, name, std::string(name) + " is not finite");
+    if (!std::isfinite(**value)) return bad<T>(ErrorCode::not_finite, name, std::string(name) + " is not finite");
     ++given;
   }
   if (given == 4)
-    return bad<T>(ErrorCode::InvalidArgument, "t2",
+    return bad<T>(ErrorCode::invalid_argument, "t2",
                   "over-determined: acceleration, deceleration and t1 already fix t2 (a·t1 = d·(1 − t2)); leave one out");
   if (given < 3)
-    return Error{ErrorCode::InvalidArgument,
-                 "under-determined: the acceleration graph needs three of acceleration, deceleration, t1, t2; got " + std::to_string(given),
-                 "",
-                 {}};
+    return Error{ErrorCode::invalid_argument,
+                 "under-determined: the acceleration graph needs three of acceleration, deceleration, t1, t2; got " + std::to_string(given)};
   if (p.acceleration && !(*p.acceleration > T(0)))
-    return bad<T>(ErrorCode::InvalidArgument, "acceleration", "acceleration = " + num(double(*p.acceleration)) + " must be > 0");
+    return bad<T>(ErrorCode::invalid_argument, "acceleration", "acceleration = " + num(double(*p.acceleration)) + " must be > 0");
   if (p.deceleration && !(*p.deceleration > T(0)))
-    return bad<T>(ErrorCode::InvalidArgument, "deceleration", "deceleration = " + num(double(*p.deceleration)) + " must be > 0");
+    return bad<T>(ErrorCode::invalid_argument, "deceleration", "deceleration = " + num(double(*p.deceleration)) + " must be > 0");
   if (p.t1 && !(*p.t1 > T(0) && *p.t1 < T(1)))
-    return bad<T>(ErrorCode::InvalidArgument, "t1", "t1 = " + num(double(*p.t1)) + " must lie in (0, 1) (a finite acceleration needs time)");
+    return bad<T>(ErrorCode::invalid_argument, "t1", "t1 = " + num(double(*p.t1)) + " must lie in (0, 1) (a finite acceleration needs time)");
   if (p.t2 && !(*p.t2 > T(0) && *p.t2 < T(1)))
-    return bad<T>(ErrorCode::InvalidArgument, "t2", "t2 = " + num(double(*p.t2)) + " must lie in (0, 1) (a finite deceleration needs time)");
+    return bad<T>(ErrorCode::invalid_argument, "t2", "t2 = " + num(double(*p.t2)) + " must lie in (0, 1) (a finite deceleration needs time)");
 
   ConstantAccelerationGraph<T> g;
   const std::string m = missing;
@@ -203,13 +199,13 @@ Expected<ConstantAccelerationGraph<T>> solve_equal_areas(const EqualAreasParams<
       (m == "t1" ? g.t1 : g.t2) = (m == "t1" ? g.t2 : g.t1);  // one rounding apart: a triangle
     } else {
       const char* name = solved_time ? missing : "t2";
-      return bad<T>(ErrorCode::InvalidArgument, name,
+      return bad<T>(ErrorCode::invalid_argument, name,
                     "t1 = " + num(double(g.t1)) + " comes after t2 = " + num(double(g.t2)) +
                         ": the accelerating and decelerating phases overlap (a·t1 = d·(1 − t2) needs a·t1/d ≤ 1 − t1)");
     }
   }
   if (!(g.t1 > T(0)) || !(g.t2 < T(1)) || !std::isfinite(g.acceleration) || !std::isfinite(g.deceleration))
-    return bad<T>(ErrorCode::InvalidArgument, missing, std::string("the solved ") + missing + " is out of range");
+    return bad<T>(ErrorCode::invalid_argument, missing, std::string("the solved ") + missing + " is out of range");
   g.v0 = g.acceleration * g.t1;
   g.distance = g.v0 * (T(1) + g.t2 - g.t1) / T(2);
   return g;

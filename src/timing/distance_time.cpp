@@ -17,16 +17,16 @@ namespace {
 // Checks ≥ 2 keys, finite values and strictly increasing times; `values(i)` lists key i's numbers.
 template <class T, class Get>
 Expected<void> check_keys(std::size_t n, Get&& get) {
-  if (n < 2) return Error{ErrorCode::TooFewPoints, "needs at least 2 keys, got " + std::to_string(n), ""};
+  if (n < 2) return Error{ErrorCode::too_few_points, "needs at least 2 keys, got " + std::to_string(n)};
   for (std::size_t i = 0; i < n; ++i) {
     const auto [t, a, b] = get(i);
         if (!std::isfinite(t) || !std::isfinite(a) || !std::isfinite(b)) {
-      return Error{ErrorCode::NotFinite, "a value is not finite", "", {i}};
+      return Error{ErrorCode::not_finite, "a value is not finite", {i}};
     }
     if (i > 0) {
       const T prev = std::get<0>(get(i - 1));
       if (!(prev < t)) {
-        return Error{ErrorCode::KeysNotIncreasing, "time " + shortest_text(t) + " is not after " + shortest_text(prev), "", {i}};
+        return Error{ErrorCode::keys_not_increasing, "time " + shortest_text(t) + " is not after " + shortest_text(prev), {i}};
       }
     }
   }
@@ -125,7 +125,7 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::from_velocity_curve(std::sp
                                                                          VelocityFit fit, T total_distance) {
   const auto ok = check_keys<T>(keys.size(), [&](std::size_t i) { return std::tuple{keys[i].t, keys[i].v, T(0)}; });
   if (!ok) return ok.error();
-  if (!std::isfinite(total_distance)) return Error{ErrorCode::NotFinite, "total distance is not finite", "", {std::string("total_distance")}};
+  if (!std::isfinite(total_distance)) return Error{ErrorCode::not_finite, "total distance is not finite", {std::string("total_distance")}};
   const std::size_t n = keys.size();
   const T duration = keys[n - 1].t - keys[0].t;
   T area{};
@@ -141,8 +141,8 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::from_velocity_curve(std::sp
   T room{};
   for (std::size_t i = 0; i + 1 < n; ++i) room += (keys[i + 1].t - keys[i].t) * std::fabs(keys[i + 1].v - keys[i].v) / T(6);
   if (!std::isfinite(missing) || !std::isfinite(room)) {
-    return Error{ErrorCode::NotFinite,
-                 "the distance under the velocity keys overflows (speeds times frame spans beyond the number range)", ""};
+    return Error{ErrorCode::not_finite,
+                 "the distance under the velocity keys overflows (speeds times frame spans beyond the number range)"};
   }
   const bool within_room = std::fabs(missing) <= room;
   // Share of each interval's room used (|share| ≤ 1), and the even bump height beyond the room.
@@ -235,10 +235,9 @@ template <Real T>
 Expected<void> DistanceTimeCurve<T>::check_monotone() const {
   const auto b = find_backing_up();
   if (!b) return {};
-  return Error{ErrorCode::NotMonotone,
+  return Error{ErrorCode::not_monotone,
                "the object backs up from t = " + shortest_text(b->t_begin) + " to t = " + shortest_text(b->t_end) +
-                   " (velocity down to " + shortest_text(b->min_velocity) + " at t = " + shortest_text(b->t_min_velocity) + ")",
-               "segment " + std::to_string(b->segment)};
+                   " (velocity down to " + shortest_text(b->min_velocity) + " at t = " + shortest_text(b->t_min_velocity) + ")", {Element{"segment", std::size_t(b->segment)}}};
 }
 
 template <Real T>
@@ -246,10 +245,9 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::monotone_repair() const {
   const std::size_t n = t_.size();
   for (std::size_t i = 1; i < n; ++i) {
     if (s_[i] < s_[i - 1]) {
-      return Error{ErrorCode::NotMonotone,
+      return Error{ErrorCode::not_monotone,
                    "distance " + shortest_text(s_[i]) + " at t = " + shortest_text(t_[i]) + " is less than " + shortest_text(s_[i - 1]) +
-                       " at the key before: no monotone curve passes through the keys",
-                   "", {i}};
+                       " at the key before: no monotone curve passes through the keys", {i}};
     }
   }
   std::vector<T> m(n);

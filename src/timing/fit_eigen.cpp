@@ -23,27 +23,25 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
   const int j = int(data.size());
   const int k = options.degree;
   if (k < 1 || k > kMaxFitDegree) {
-    return Error{ErrorCode::InvalidArgument,
-                 "degree " + std::to_string(k) + " is outside [1, " + std::to_string(kMaxFitDegree) + "]", "", {"degree"}};
+    return Error{ErrorCode::invalid_argument,
+                 "degree " + std::to_string(k) + " is outside [1, " + std::to_string(kMaxFitDegree) + "]", {"degree"}};
   }
-  if (j < 2) return Error{ErrorCode::TooFewPoints, "needs at least 2 data points, got " + std::to_string(j), ""};
+  if (j < 2) return Error{ErrorCode::too_few_points, "needs at least 2 data points, got " + std::to_string(j)};
   const int n = options.control_points == 0 ? j : options.control_points;
   if (n < k + 1 || n > j) {
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  std::to_string(n) + " control points: needs degree + 1 = " + std::to_string(k + 1) +
-                     " <= control points <= " + std::to_string(j) + " (the number of data)",
-                 "", {"control_points"}};
+                     " <= control points <= " + std::to_string(j) + " (the number of data)", {"control_points"}};
   }
   for (int i = 0; i < j; ++i) {
     const std::vector<LocationStep> where = {"points", std::size_t(i)};
     if (!std::isfinite(data[std::size_t(i)].t) || !is_finite(data[std::size_t(i)].p)) {
-      return Error{ErrorCode::NotFinite, "a time or coordinate is not finite", "", where};
+      return Error{ErrorCode::not_finite, "a time or coordinate is not finite", where};
     }
     if (i > 0 && !(data[std::size_t(i - 1)].t < data[std::size_t(i)].t)) {
-      return Error{ErrorCode::KeysNotIncreasing,
+      return Error{ErrorCode::keys_not_increasing,
                    "time " + shortest_text<double>(double(data[std::size_t(i)].t)) + " is not after " +
-                       shortest_text<double>(double(data[std::size_t(i - 1)].t)),
-                   "", where};
+                       shortest_text<double>(double(data[std::size_t(i - 1)].t)), where};
     }
   }
   const double t_first = double(data.front().t), t_last = double(data.back().t);
@@ -69,11 +67,10 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
   }
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(N);
   if (qr.rank() < n) {
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "the basis matrix has rank " + std::to_string(qr.rank()) + " < " + std::to_string(n) +
                      " control points: some knot span holds too few data times (Schoenberg-Whitney); "
-                     "use fewer control points or spread the times",
-                 "", {"control_points"}};
+                     "use fewer control points or spread the times", {"control_points"}};
   }
   const Eigen::MatrixXd B = qr.solve(rhs);
 
@@ -88,12 +85,11 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
     // the largest value overshoots them, or a double solution cast to float): an error that names
     // the cause — the data's magnitude, at its largest row — never a curve holding inf/NaN.
     if (!is_finite(p)) {
-      return Error{ErrorCode::NotFinite,
+      return Error{ErrorCode::not_finite,
                    "the data are too large for this fit: control point " + std::to_string(c) +
                        " would exceed the largest " + (sizeof(T) >= 8 ? "double" : "float") +
                        " (the largest coordinate is " + shortest_text<double>(biggest) +
-                       " at this point); scale the data down",
-                   "", {"points", std::size_t(biggest_row)}};
+                       " at this point); scale the data down", {"points", std::size_t(biggest_row)}};
     }
     fit.curve.control_points.push_back(p);
   }
@@ -110,9 +106,8 @@ Expected<BSplineFit<P>> fit_bspline(std::span<const TimedPoint<P>> data, BSpline
   fit.rms_residual = T(std::ldexp(std::sqrt(sum / j), scale));
   fit.max_residual = T(std::ldexp(worst, scale));
   if (!std::isfinite(fit.rms_residual) || !std::isfinite(fit.max_residual)) {
-    return Error{ErrorCode::NotFinite,
-                 "the fit's residual is beyond the range of the scalar type (data too close to its largest value)",
-                 ""};
+    return Error{ErrorCode::not_finite,
+                 "the fit's residual is beyond the range of the scalar type (data too close to its largest value)"};
   }
   return fit;
 }

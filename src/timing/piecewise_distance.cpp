@@ -109,10 +109,9 @@ Expected<void> check_finite_segments(const std::vector<Coeffs<T>>& seg, const ch
     const bool finite = std::all_of(seg[i].begin(), seg[i].end(), [](T v) { return std::isfinite(v); }) &&
                         std::all_of(b.begin(), b.end(), [](T v) { return std::isfinite(v); });
     if (!finite) {
-      return Error{ErrorCode::NotFinite,
+      return Error{ErrorCode::not_finite,
                    std::string(what) + " " + std::to_string(i) + " → " + std::to_string(i + 1) +
-                       ": the distance curve between them overflows (speeds or accelerations too large for the interval)",
-                   "", {i}};
+                       ": the distance curve between them overflows (speeds or accelerations too large for the interval)", {i}};
     }
   }
   return {};
@@ -123,10 +122,9 @@ Expected<void> check_times(std::size_t n, auto&& time_of) {
   for (std::size_t i = 0; i < n; ++i) {
     const T t = time_of(i);
     if (i > 0 && !(time_of(i - 1) < t)) {
-      return Error{ErrorCode::KeysNotIncreasing,
+      return Error{ErrorCode::keys_not_increasing,
                    "time " + num(t) + " of tuple " + std::to_string(i) + " is not after time " + num(time_of(i - 1)) +
-                       (time_of(i - 1) == t ? " (two tuples at the same time)" : ""),
-                   "", {i}};
+                       (time_of(i - 1) == t ? " (two tuples at the same time)" : ""), {i}};
     }
   }
   return {};
@@ -138,20 +136,18 @@ template <Real T>
 Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_constraints(
     std::span<const MotionConstraint<T>> k) {
   const std::size_t n = k.size();
-  if (n == 0) return Error{ErrorCode::TooFewPoints, "needs at least 1 constraint tuple, got none", ""};
+  if (n == 0) return Error{ErrorCode::too_few_points, "needs at least 1 constraint tuple, got none"};
   for (std::size_t i = 0; i < n; ++i) {
     const bool finite = std::isfinite(k[i].t) && std::isfinite(k[i].s) && (!k[i].v || std::isfinite(*k[i].v)) &&
                         (!k[i].a || std::isfinite(*k[i].a));
-    if (!finite) return Error{ErrorCode::NotFinite, "tuple " + std::to_string(i) + " has a value that is not finite", "", {i}};
+    if (!finite) return Error{ErrorCode::not_finite, "tuple " + std::to_string(i) + " has a value that is not finite", {i}};
     if (k[i].v && *k[i].v < T(0))
-      return Error{ErrorCode::InvalidArgument,
-                   "tuple " + std::to_string(i) + ": speed " + num(*k[i].v) + " is negative (the object would move backwards)",
-                   "", {i}};
+      return Error{ErrorCode::invalid_argument,
+                   "tuple " + std::to_string(i) + ": speed " + num(*k[i].v) + " is negative (the object would move backwards)", {i}};
     if (i > 0 && k[i].s < k[i - 1].s)
-      return Error{ErrorCode::NotMonotone,
+      return Error{ErrorCode::not_monotone,
                    "tuple " + std::to_string(i) + ": distance " + num(k[i].s) + " is below the previous tuple's " +
-                       num(k[i - 1].s) + " (the object would move backwards)",
-                   "", {i}};
+                       num(k[i - 1].s) + " (the object would move backwards)", {i}};
   }
   if (auto ok = check_times<T>(n, [&](std::size_t i) { return k[i].t; }); !ok) return ok.error();
 
@@ -159,8 +155,8 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_constraints(
   for (const auto& tuple : k) c.t_.push_back(tuple.t);
   if (n == 1) {
     if ((k[0].v && *k[0].v != T(0)) || (k[0].a && *k[0].a != T(0)))
-      return Error{ErrorCode::InvalidArgument,
-                   "a single constraint tuple describes an object at rest: its speed and acceleration must be 0", "", {std::size_t{0}}};
+      return Error{ErrorCode::invalid_argument,
+                   "a single constraint tuple describes an object at rest: its speed and acceleration must be 0", {std::size_t{0}}};
     c.t_.push_back(k[0].t);
     c.v_ = {T(0), T(0)};
     c.seg_.push_back(Coefficients{k[0].s, 0, 0, 0, 0, 0});  // a zero-length interval, never divided by
@@ -198,11 +194,10 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_constraints(
   if (auto ok = check_finite_segments<T>(c.seg_, "tuples"); !ok) return ok.error();
   if (const auto back = c.find_backing_up()) {
     const std::size_t i = std::size_t(back->segment);
-    return Error{ErrorCode::NotMonotone,
+    return Error{ErrorCode::not_monotone,
                  "tuples " + std::to_string(i) + " → " + std::to_string(i + 1) + ": the object would move backwards between t = " +
                      num(back->t_begin) + " and " + num(back->t_end) + " (speed down to " + num(back->min_velocity) +
-                     " at t = " + num(back->t_min_velocity) + "); give smaller accelerations or speeds there",
-                 "", {i}};
+                     " at t = " + num(back->t_min_velocity) + "); give smaller accelerations or speeds there", {i}};
   }
   return c;
 }
@@ -211,18 +206,18 @@ template <Real T>
 Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_acceleration_curve(
     std::span<const TimeAccelerationKey<T>> keys, const AccelerationIntegration<T>& opt) {
   const std::size_t n = keys.size();
-  if (n < 2) return Error{ErrorCode::TooFewPoints, "needs at least 2 acceleration keys, got " + std::to_string(n), ""};
+  if (n < 2) return Error{ErrorCode::too_few_points, "needs at least 2 acceleration keys, got " + std::to_string(n)};
   for (std::size_t i = 0; i < n; ++i)
     if (!std::isfinite(keys[i].t) || !std::isfinite(keys[i].a))
-      return Error{ErrorCode::NotFinite, "key " + std::to_string(i) + " has a value that is not finite", "", {i}};
+      return Error{ErrorCode::not_finite, "key " + std::to_string(i) + " has a value that is not finite", {i}};
   if (auto ok = check_times<T>(n, [&](std::size_t i) { return keys[i].t; }); !ok) return ok.error();
   if (!std::isfinite(opt.start_speed) || opt.start_speed < T(0))
-    return Error{ErrorCode::InvalidArgument, "start speed " + num(opt.start_speed) + " must be finite and ≥ 0", "",
+    return Error{ErrorCode::invalid_argument, "start speed " + num(opt.start_speed) + " must be finite and ≥ 0",
                  {std::string("start_speed")}};
   if (!std::isfinite(opt.start_distance))
-    return Error{ErrorCode::NotFinite, "start distance is not finite", "", {std::string("start_distance")}};
+    return Error{ErrorCode::not_finite, "start distance is not finite", {std::string("start_distance")}};
   if (opt.end_distance && !std::isfinite(*opt.end_distance))
-    return Error{ErrorCode::NotFinite, "end distance is not finite", "", {std::string("end_distance")}};
+    return Error{ErrorCode::not_finite, "end distance is not finite", {std::string("end_distance")}};
 
   const bool linear = opt.shape == AccelerationShape::linear;
   // Integrates with accelerations scaled by `scale`; returns the curve (no monotone check).
@@ -253,10 +248,9 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_acceleration
     const T scale_ref = std::max({std::abs(need), std::abs(from_acc), std::abs(*opt.end_distance), T(1)});
     if (std::abs(from_acc) <= backwards_tolerance<T>() * scale_ref) {
       if (std::abs(need) > backwards_tolerance<T>() * scale_ref)
-        return Error{ErrorCode::InvalidArgument,
+        return Error{ErrorCode::invalid_argument,
                      "the accelerations add no distance, so the end distance " + num(*opt.end_distance) +
-                         " cannot be reached (coasting gives " + num(s_coast) + ")",
-                     "", {std::string("end_distance")}};
+                         " cannot be reached (coasting gives " + num(s_coast) + ")", {std::string("end_distance")}};
     } else {
       scale = need / from_acc;
     }
@@ -265,11 +259,10 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_acceleration
   if (auto ok = check_finite_segments<T>(c.seg_, "keys"); !ok) return ok.error();
   if (const auto back = c.find_backing_up()) {
     const std::size_t i = std::size_t(back->segment);
-    return Error{ErrorCode::NotMonotone,
+    return Error{ErrorCode::not_monotone,
                  "keys " + std::to_string(i) + " → " + std::to_string(i + 1) + ": the speed turns negative between t = " +
                      num(back->t_begin) + " and " + num(back->t_end) + " (down to " + num(back->min_velocity) + " at t = " +
-                     num(back->t_min_velocity) + "): the object would move backwards",
-                 "", {i}};
+                     num(back->t_min_velocity) + "): the object would move backwards", {i}};
   }
   return c;
 }

@@ -15,49 +15,46 @@ using fcurve_detail::recalc_handles;
 
 Expected<FCurve> build_fcurve(const RawFCurve& raw) {
   if (raw.keys.empty()) {
-    return Error{ErrorCode::TooFewPoints, "a track needs at least one key", "", {"keys"}};
+    return Error{ErrorCode::too_few_points, "a track needs at least one key", {"keys"}};
   }
   auto where = [](std::size_t i) { return std::vector<LocationStep>{"keys", i}; };
   FCurve curve;
   curve.keys_.reserve(raw.keys.size());
   for (std::size_t i = 0; i < raw.keys.size(); ++i) {
     const FCurveKey& k = raw.keys[i];
-    if (!std::isfinite(k.frame)) return Error{ErrorCode::NotFinite, "frame is not finite", "", where(i)};
-    if (!std::isfinite(k.value)) return Error{ErrorCode::NotFinite, "value is not finite", "", where(i)};
+    if (!std::isfinite(k.frame)) return Error{ErrorCode::not_finite, "frame is not finite", where(i)};
+    if (!std::isfinite(k.value)) return Error{ErrorCode::not_finite, "value is not finite", where(i)};
     const Vec2d handle_left = k.handle_left.value_or(Vec2d{k.frame - 1, k.value});
     const Vec2d handle_right = k.handle_right.value_or(Vec2d{k.frame + 1, k.value});
     if (!is_finite(handle_left) || !is_finite(handle_right)) {
-      return Error{ErrorCode::NotFinite, "a handle is not finite", "", where(i)};
+      return Error{ErrorCode::not_finite, "a handle is not finite", where(i)};
     }
     if (!std::isfinite(k.back) || !std::isfinite(k.amplitude) || !std::isfinite(k.period)) {
-      return Error{ErrorCode::NotFinite, "back, amplitude or period is not finite", "", where(i)};
+      return Error{ErrorCode::not_finite, "back, amplitude or period is not finite", where(i)};
     }
     if (std::abs(k.frame) > 1e30 || std::abs(k.value) > 1e30) {
-      return Error{ErrorCode::InvalidArgument, "frame or value beyond single precision (|x| > 1e30)", "", where(i)};
+      return Error{ErrorCode::invalid_argument, "frame or value beyond single precision (|x| > 1e30)", where(i)};
     }
     // Handles and easing parameters are stored in float too: beyond float's range the conversion
     // is undefined (inf in practice, then NaN in the Bézier solver).
     if (std::max({std::abs(handle_left.x), std::abs(handle_left.y), std::abs(handle_right.x),
                   std::abs(handle_right.y)}) > 1e30) {
-      return Error{ErrorCode::InvalidArgument, "a handle is beyond single precision (|x| > 1e30)", "", where(i)};
+      return Error{ErrorCode::invalid_argument, "a handle is beyond single precision (|x| > 1e30)", where(i)};
     }
     if (std::max({std::abs(k.back), std::abs(k.amplitude), std::abs(k.period)}) > 1e30) {
-      return Error{ErrorCode::InvalidArgument, "back, amplitude or period is beyond single precision (|x| > 1e30)",
-                   "", where(i)};
+      return Error{ErrorCode::invalid_argument, "back, amplitude or period is beyond single precision (|x| > 1e30)", where(i)};
     }
     if (i > 0) {
       const FCurveKey& p = raw.keys[i - 1];
       if (!(k.frame > p.frame)) {
-        return Error{ErrorCode::KeysNotIncreasing,
+        return Error{ErrorCode::keys_not_increasing,
                      "frame " + shortest_text<double>(k.frame) + " is not after the previous key's frame " +
-                         shortest_text<double>(p.frame) + " (keys must be sorted by strictly increasing frame)",
-                     "", {"keys", i, "frame"}};
+                         shortest_text<double>(p.frame) + " (keys must be sorted by strictly increasing frame)", {"keys", i, "frame"}};
       }
       if (!(float(k.frame) > float(p.frame))) {
-        return Error{ErrorCode::KeysNotIncreasing,
+        return Error{ErrorCode::keys_not_increasing,
                      "frame " + shortest_text<double>(k.frame) + " rounds to the same single-precision frame as key " +
-                         std::to_string(i - 1),
-                     "", where(i)};
+                         std::to_string(i - 1), where(i)};
       }
     }
     FCurve::Key s;
@@ -85,7 +82,7 @@ Expected<FCurve> build_fcurve(const RawFCurve& raw) {
     const FCurveCycles& c = *raw.cycles;
     for (auto [member, count] : {std::pair<const char*, int>{"count_before", c.count_before}, {"count_after", c.count_after}}) {
       if (count < 0 || count > 32767) {
-        return Error{ErrorCode::InvalidArgument, "expected a whole number in 0..32767 (0 = forever)", "",
+        return Error{ErrorCode::invalid_argument, "expected a whole number in 0..32767 (0 = forever)",
                      {"cycles", std::string(member)}};
       }
     }

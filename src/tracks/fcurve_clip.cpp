@@ -23,10 +23,9 @@ Expected<FCurveClip> build_fcurve_clip(std::span<const FCurve> curves, FCurveCli
 
 Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClipOptions options) {
   if (curves.size() % 10 != 0) {
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "a rig needs 10 F-curves per joint (location xyz, rotation_quaternion wxyz, scale xyz); got " +
-                     std::to_string(curves.size()),
-                 ""};
+                     std::to_string(curves.size())};
   }
   FCurveClip clip;
   clip.channels_ = curves.size();

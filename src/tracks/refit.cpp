@@ -140,10 +140,10 @@ std::vector<std::pair<std::size_t, Segment>> segment_greedy(std::size_t n, const
 Expected<void> check_holds(std::span<const std::size_t> holds, std::size_t n, const auto& same) {
   for (std::size_t i = 0; i < holds.size(); ++i) {
     if (!(holds[i] + 1 < n) || (i > 0 && !(holds[i] > holds[i - 1]))) {
-      return Error{ErrorCode::InvalidArgument, "holds must be strictly increasing sample indices below the last", "", {"holds", i}};
+      return Error{ErrorCode::invalid_argument, "holds must be strictly increasing sample indices below the last", {"holds", i}};
     }
     if (!same(holds[i])) {
-      return Error{ErrorCode::InvalidArgument, "a hold joins two samples that differ", "", {"holds", i}};
+      return Error{ErrorCode::invalid_argument, "a hold joins two samples that differ", {"holds", i}};
     }
   }
   return {};
@@ -181,16 +181,16 @@ RefitKeys assemble(const Grid& g, RefitInterpolation kind, const std::vector<std
 }
 
 Expected<void> check_grid(std::span<const double> frames, std::size_t values, std::size_t dim, double tolerance) {
-  if (!(tolerance > 0) || !std::isfinite(tolerance)) return Error{ErrorCode::InvalidArgument, "tolerance must be finite and > 0", "", {"tolerance"}};
-  if (dim == 0) return Error{ErrorCode::InvalidArgument, "a channel needs at least one component", "", {"dim"}};
-  if (frames.empty()) return Error{ErrorCode::TooFewPoints, "a channel needs at least one sample", "", {"samples"}};
+  if (!(tolerance > 0) || !std::isfinite(tolerance)) return Error{ErrorCode::invalid_argument, "tolerance must be finite and > 0", {"tolerance"}};
+  if (dim == 0) return Error{ErrorCode::invalid_argument, "a channel needs at least one component", {"dim"}};
+  if (frames.empty()) return Error{ErrorCode::too_few_points, "a channel needs at least one sample", {"samples"}};
   if (values != frames.size() * dim) {
-    return Error{ErrorCode::WrongArity, "values must hold dim components per frame", "", {"samples"}};
+    return Error{ErrorCode::wrong_arity, "values must hold dim components per frame", {"samples"}};
   }
   for (std::size_t j = 0; j < frames.size(); ++j) {
-    if (!std::isfinite(frames[j])) return Error{ErrorCode::NotFinite, "frame is not finite", "", {"samples", j}};
+    if (!std::isfinite(frames[j])) return Error{ErrorCode::not_finite, "frame is not finite", {"samples", j}};
     if (j > 0 && !(frames[j] > frames[j - 1])) {
-      return Error{ErrorCode::KeysNotIncreasing, "frames must be strictly increasing", "", {"samples", j}};
+      return Error{ErrorCode::keys_not_increasing, "frames must be strictly increasing", {"samples", j}};
     }
   }
   return {};
@@ -296,10 +296,10 @@ Expected<RefitKeys> refit_vector(std::span<const double> frames, std::span<const
                                  const RefitOptions& o) {
   if (auto ok = check_grid(frames, values.size(), dim, o.tolerance); !ok) return ok.error();
   for (std::size_t j = 0; j < values.size(); ++j) {
-    if (!std::isfinite(values[j])) return Error{ErrorCode::NotFinite, "value is not finite", "", {"samples", j / dim}};
+    if (!std::isfinite(values[j])) return Error{ErrorCode::not_finite, "value is not finite", {"samples", j / dim}};
   }
   if (!o.allow_step && !o.allow_linear && !o.allow_cubic) {
-    return Error{ErrorCode::InvalidArgument, "no interpolation allowed", "", {"allow_cubic"}};
+    return Error{ErrorCode::invalid_argument, "no interpolation allowed", {"allow_cubic"}};
   }
   const Grid g{frames, values, dim};
   const std::size_t n = frames.size();
@@ -343,15 +343,15 @@ Expected<RefitKeys> refit_vector(std::span<const double> frames, std::span<const
 Expected<RefitKeys> refit_rotation(std::span<const double> frames, std::span<const Quatd> quats, const RefitOptions& o) {
   if (auto ok = check_grid(frames, quats.size() * 4, 4, o.tolerance); !ok) return ok.error();
   if (!o.allow_step && !o.allow_linear && !o.allow_cubic) {
-    return Error{ErrorCode::InvalidArgument, "no interpolation allowed", "", {"allow_cubic"}};
+    return Error{ErrorCode::invalid_argument, "no interpolation allowed", {"allow_cubic"}};
   }
   const std::size_t n = frames.size();
   std::vector<Quatd> q(n);
   std::vector<double> flat(4 * n);
   for (std::size_t j = 0; j < n; ++j) {
-    if (!is_finite(quats[j])) return Error{ErrorCode::NotFinite, "quaternion is not finite", "", {"samples", j}};
+    if (!is_finite(quats[j])) return Error{ErrorCode::not_finite, "quaternion is not finite", {"samples", j}};
     const double len = norm(quats[j]);
-    if (!(len > 0)) return Error{ErrorCode::InvalidArgument, "zero quaternion is not a rotation", "", {"samples", j}};
+    if (!(len > 0)) return Error{ErrorCode::invalid_argument, "zero quaternion is not a rotation", {"samples", j}};
     q[j] = quats[j] / len;
     if (j > 0 && dot(q[j - 1], q[j]) < 0) q[j] = -q[j];  // sign continuity
     flat[4 * j] = q[j].w;

@@ -91,7 +91,7 @@ TEST(ArcLengthInverse, BatchAgreesAndClamps) {
   EXPECT_EQ(u[6], ex.curve.domain().hi);  // clamped above
   const auto bad = make_arc_length_inverse(arc, {.relative_tolerance = 0.0});
   ASSERT_FALSE(bad);
-  EXPECT_EQ(bad.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(bad.error().code, ErrorCode::invalid_argument);
 }
 
 }  // namespace

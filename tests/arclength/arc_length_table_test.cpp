@@ -80,20 +80,20 @@ TEST(ArcLengthTable, RejectsBadTablesNamingTheRow) {
   std::vector<double> u = {0, 0.5, 0.4, 1}, s = {0, 0.1, 0.2, 0.3};
   auto bad_u = ArcLengthTable<double>::from_entries(u, s);
   ASSERT_FALSE(bad_u);
-  EXPECT_EQ(bad_u.error().code, ErrorCode::KeysNotIncreasing);
-  EXPECT_EQ(bad_u.error().where, "row 2");
+  EXPECT_EQ(bad_u.error().code, ErrorCode::keys_not_increasing);
+  EXPECT_EQ(bad_u.error().place(), "row 2");
   u = {0, 0.3, 0.6, 1};
   s = {0, 0.2, 0.1, 0.3};
   auto bad_s = ArcLengthTable<double>::from_entries(u, s);
   ASSERT_FALSE(bad_s);
-  EXPECT_EQ(bad_s.error().code, ErrorCode::NotMonotone);
-  EXPECT_EQ(bad_s.error().where, "row 2");
+  EXPECT_EQ(bad_s.error().code, ErrorCode::not_monotone);
+  EXPECT_EQ(bad_s.error().place(), "row 2");
   std::vector<double> one = {0};
-  EXPECT_EQ(ArcLengthTable<double>::from_entries(one, one).error().code, ErrorCode::TooFewPoints);
+  EXPECT_EQ(ArcLengthTable<double>::from_entries(one, one).error().code, ErrorCode::too_few_points);
   s = {0.1, 0.2, 0.3, 0.4};
-  EXPECT_EQ(ArcLengthTable<double>::from_entries(u, s).error().where, "row 0");
+  EXPECT_EQ(ArcLengthTable<double>::from_entries(u, s).error().place(), "row 0");
   s = {0, std::nan(""), 0.3, 0.4};
-  EXPECT_EQ(ArcLengthTable<double>::from_entries(u, s).error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(ArcLengthTable<double>::from_entries(u, s).error().code, ErrorCode::not_finite);
 }
 
 TEST(ArcLengthTable, NonUniformTableUsesBinarySearch) {

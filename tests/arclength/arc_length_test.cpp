@@ -245,7 +245,7 @@ TEST(ArcLength, RejectsBadOptionsAndNonFiniteCurves) {
   bad.pieces[0].a.x = std::numeric_limits<double>::infinity();
   auto r = make_arc_length(bad);
   ASSERT_FALSE(r);
-  EXPECT_EQ(r.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(r.error().code, ErrorCode::not_finite);
 }
 
 TEST(ArcLength, FloatPrecisionWorksOnTheMuseum) {

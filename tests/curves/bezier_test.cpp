@@ -104,7 +104,7 @@ TEST(BezierDouble, GlobalControlEveryPointMovesTheWholeInterior) {
 TEST(BezierDouble, RejectsTooFewAndNonFinitePoints) {
   const auto one = build_bezier(std::vector<Vec2d>{{0, 0}});
   ASSERT_FALSE(one.has_value());
-  EXPECT_EQ(one.error().code, ErrorCode::TooFewPoints);
+  EXPECT_EQ(one.error().code, ErrorCode::too_few_points);
   const auto nan = build_bezier(std::vector<Vec2d>{{0, 0}, {1, std::nan("")}, {2, 0}});
   ASSERT_FALSE(nan.has_value());
   EXPECT_EQ(json_pointer(nan.error().location), "/points/1");

@@ -88,7 +88,7 @@ TEST(BSplineBasisDouble, KnotChecksNameTheKnot) {
   const std::vector<double> bad{0, 0, 2, 1, 3};
   const auto r = check_knots<double>(bad, 3, 1);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(r.error().code, ErrorCode::keys_not_increasing);
   EXPECT_EQ(json_pointer(r.error().location), "/knots/3");
   EXPECT_FALSE(check_knots<double>(std::vector<double>{0, 0, 0}, 3, 1).has_value());  // wrong count
   EXPECT_EQ(clamped_uniform_knots<double>(5, 2), (std::vector<double>{0, 0, 0, 1.0 / 3, 2.0 / 3, 1, 1, 1}));

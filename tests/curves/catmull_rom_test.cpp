@@ -190,7 +190,7 @@ TEST(CatmullRomDouble, CentripetalHasNoCuspWhereUniformReverses) {
 TEST(CatmullRomDouble, RejectsBadInput) {
   const auto one = build_catmull_rom(std::vector<Vec2d>{{0, 0}});
   ASSERT_FALSE(one.has_value());
-  EXPECT_EQ(one.error().code, ErrorCode::TooFewPoints);
+  EXPECT_EQ(one.error().code, ErrorCode::too_few_points);
   const auto alpha = build_catmull_rom(std::vector<Vec2d>{{0, 0}, {1, 0}}, {.alpha = 2});
   ASSERT_FALSE(alpha.has_value());
   EXPECT_EQ(json_pointer(alpha.error().location), "/alpha");

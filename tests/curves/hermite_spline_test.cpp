@@ -38,7 +38,7 @@ TEST(HermiteDouble, LocalControlAndErrors) {
   test::expect_derivatives_match_differences(build_hermite_spline(pts, tans).value(), rng);
   const auto bad = build_hermite_spline(pts, std::vector<Vec2d>(3));
   ASSERT_FALSE(bad.has_value());
-  EXPECT_EQ(bad.error().code, ErrorCode::WrongArity);
+  EXPECT_EQ(bad.error().code, ErrorCode::wrong_arity);
 }
 
 }  // namespace

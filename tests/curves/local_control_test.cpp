@@ -102,7 +102,7 @@ TEST(LocalControl, MovingAPointThatDoesNotExistIsAnError) {
   for (int i : {-1, 10}) {
     const auto moved = with_control_point(c, i, Vec3d{});
     ASSERT_FALSE(moved.has_value());
-    EXPECT_EQ(moved.error().code, ErrorCode::InvalidArgument);
+    EXPECT_EQ(moved.error().code, ErrorCode::invalid_argument);
     EXPECT_NE(moved.error().message.find("the curve has 10 (0 to 9)"), std::string::npos) << moved.error().message;
   }
   const auto nan = with_control_point(c, 2, Vec3d{std::nan(""), 0, 0});

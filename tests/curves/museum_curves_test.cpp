@@ -80,7 +80,7 @@ TYPED_TEST(MuseumCurves, EveryFamilyGivesFiniteResultsOrAClearError) {
 // Finite inputs whose built coefficients overflow (coordinates near the largest double, points
 // whose chordal spacing is subnormal, Lagrange params 1e-300 apart) used to build curves that
 // evaluated to NaN (`curve sample` printed -nan with exit 0).  Each family now either reports
-// NotFinite naming the place or evaluates finitely everywhere.
+// not_finite naming the place or evaluates finitely everywhere.
 TEST(MuseumCurvesDouble, OverflowingCoefficientsAreAClearError) {
   const double M = 1e308;
   const std::vector<double> huge{0, M, -M};
@@ -90,7 +90,7 @@ TEST(MuseumCurvesDouble, OverflowingCoefficientsAreAClearError) {
   auto check = [&](const auto& built, const std::string& family) {
     SCOPED_TRACE(family);
     if (!built) {
-      EXPECT_EQ(built.error().code, ErrorCode::NotFinite) << built.error().describe();
+      EXPECT_EQ(built.error().code, ErrorCode::not_finite) << built.error().describe();
       EXPECT_FALSE(built.error().location.empty());
       ++errors;
       return;

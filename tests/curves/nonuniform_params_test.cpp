@@ -215,17 +215,17 @@ TEST(NonUniformParamsDouble, BadParamsAreErrorsWithAPlace) {
   const std::vector<Vec2d> pts{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   auto e = build_natural_spline(pts, std::vector<double>{0, 1, 1, 2});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(e.error().code, ErrorCode::keys_not_increasing);
   EXPECT_NE(e.error().message.find("param 2"), std::string::npos) << e.error().message;
   auto w = build_closed_spline(pts, std::vector<double>{0, 1, 2, 3});  // closed needs n + 1
   ASSERT_FALSE(w);
-  EXPECT_EQ(w.error().code, ErrorCode::WrongArity);
+  EXPECT_EQ(w.error().code, ErrorCode::wrong_arity);
   auto nf = build_parabolic_blend(pts, std::vector<double>{0, 1, NAN, 3});
   ASSERT_FALSE(nf);
-  EXPECT_EQ(nf.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(nf.error().code, ErrorCode::not_finite);
   auto ov = build_hermite_spline(pts, pts, std::vector<double>{-1e308, 1e308, 1.1e308, 1.2e308});
   ASSERT_FALSE(ov);
-  EXPECT_EQ(ov.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(ov.error().code, ErrorCode::not_finite);
   EXPECT_FALSE(build_closed_spline(std::vector<Vec2d>{{0, 0}, {1, 0}}));  // two points: no closed C² curve
 }
 

@@ -7,7 +7,7 @@
 // spacings from 1e-12 to 1e6, geometric growth, clusters, a domain far from 0, ranges that
 // overflow or are subnormal, 1 and 2 segments); and through every piecewise-cubic family built on
 // every museum point list.  Zero-length segments are not legal (builders reject breakpoints that
-// do not increase: KeysNotIncreasing / NotFinite, tested with each builder), so none appear here.
+// do not increase: keys_not_increasing / not_finite, tested with each builder), so none appear here.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -295,12 +295,12 @@ TYPED_TEST(SegmentIndexTest, SubnormalSpacingIsRejectedNotNaN) {
   const T d = std::numeric_limits<T>::denorm_min();
   const auto built = PiecewiseCubic<P>::from_power_forms({T(0), d, T(1)}, std::vector<PowerCubic<P>>(2));
   ASSERT_FALSE(built);
-  EXPECT_EQ(built.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(built.error().code, ErrorCode::not_finite);
   EXPECT_EQ(json_pointer(built.error().location), "/breakpoints/1");
   const auto hermite = build_hermite_spline(std::vector<P>{P{}, P{1, 0, 0}, P{2, 0, 0}},
                                             std::vector<P>(3), std::vector<T>{T(0), d, T(1)});
   ASSERT_FALSE(hermite);
-  EXPECT_EQ(hermite.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(hermite.error().code, ErrorCode::not_finite);
 }
 
 TYPED_TEST(SegmentIndexTest, CentripetalAndChordalCatmullRomThroughRandomPoints) {

@@ -292,13 +292,13 @@ TEST(AssimpRead, KeyFaultsNameTheNodeAndKey) {
     ErrorCode code;
   };
   const std::vector<Case> cases = {
-      {"20;3;1.0,2.0,3.0", "20;3;1.0,nan,3.0", "NaN value", "node \"Child\", position, key 1: value is not finite", ErrorCode::NotFinite},
+      {"20;3;1.0,2.0,3.0", "20;3;1.0,nan,3.0", "NaN value", "node \"Child\", position, key 1: value is not finite", ErrorCode::not_finite},
       {"20;3;1.0,2.0,3.0", "20;3;1.0,1e39,3.0", "overflowing float", "node \"Child\", position, key 1: value is not finite",
-       ErrorCode::NotFinite},
+       ErrorCode::not_finite},
       {"10;4;0.70710678", "0;4;0.70710678", "repeated time", "node \"Child\", rotation, key 1: time 0 is not after",
-       ErrorCode::KeysNotIncreasing},
+       ErrorCode::keys_not_increasing},
       {"20;4;0.0,1.0", "5;4;0.0,1.0", "decreasing time", "node \"Child\", rotation, key 2: time 5 is not after",
-       ErrorCode::KeysNotIncreasing},
+       ErrorCode::keys_not_increasing},
   };
   for (const Case& c : cases) {
     auto raw = read_assimp_file(x_file("bad.x", replaced(kXFile, c.from, c.to)));
@@ -314,13 +314,13 @@ TEST(AssimpRead, UnreadableFilesAreRefused) {
   // Missing, not a regular file (a .fbx name on /dev/zero), too large (a sparse file), empty.
   auto missing = read_assimp_file(dir / "missing.fbx");
   ASSERT_FALSE(missing);
-  EXPECT_EQ(missing.error().code, ErrorCode::Io);
+  EXPECT_EQ(missing.error().code, ErrorCode::io);
   const fs::path zero = dir / "zero.fbx";
   fs::remove(zero);
   fs::create_symlink("/dev/zero", zero);
   auto device = read_assimp_file(zero);
   ASSERT_FALSE(device);
-  EXPECT_EQ(device.error().code, ErrorCode::Io);
+  EXPECT_EQ(device.error().code, ErrorCode::io);
   EXPECT_NE(device.error().message.find("not a regular file"), std::string::npos);
   const fs::path huge = dir / "huge.fbx";
   { std::ofstream(huge) << "x"; }
@@ -328,19 +328,19 @@ TEST(AssimpRead, UnreadableFilesAreRefused) {
   auto large = read_assimp_file(huge);
   fs::remove(huge);
   ASSERT_FALSE(large);
-  EXPECT_EQ(large.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(large.error().code, ErrorCode::unsupported);
   AssimpReadOptions small;
   small.max_file_bytes = 100;
   EXPECT_FALSE(read_assimp_file(x_file("walk.x", kXFile), small));
   // Binary and compressed .x: refused before assimp (its binary parser is not safe on damaged files).
   auto binary = read_assimp_file(x_file("binary.x", std::string("xof 0303bin 0032") + std::string(64, '\0')));
   ASSERT_FALSE(binary);
-  EXPECT_EQ(binary.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(binary.error().code, ErrorCode::unsupported);
   EXPECT_NE(binary.error().message.find("binary and compressed DirectX .x files are not read"), std::string::npos);
   EXPECT_FALSE(read_assimp(std::as_bytes(std::span<const char>("xof 0303bzip0032 ....", 21)), "x"));
   auto empty = read_assimp_file(x_file("empty.dae", ""));
   ASSERT_FALSE(empty);
-  EXPECT_EQ(empty.error().code, ErrorCode::Parse);
+  EXPECT_EQ(empty.error().code, ErrorCode::parse);
 
   // What assimp refuses: a truncated FBX and Collada file, garbage, another format under .fbx.
   const auto head_of = [](const fs::path& from, std::size_t n) {
@@ -368,8 +368,8 @@ TEST(AssimpRead, UnreadableFilesAreRefused) {
     auto raw = read_assimp_file(file);
     EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2)) << file;
     ASSERT_FALSE(raw) << file;
-    EXPECT_EQ(raw.error().code, ErrorCode::Parse) << file;
-    EXPECT_EQ(raw.error().where, file.string());
+    EXPECT_EQ(raw.error().code, ErrorCode::parse) << file;
+    EXPECT_EQ(raw.error().place(), file.string());
     EXPECT_EQ(raw.error().message.find('\n'), std::string::npos) << raw.error().message;
     EXPECT_LT(raw.error().message.size(), 300u) << raw.error().message;
   }
@@ -438,7 +438,7 @@ TEST(AssimpRead, ZeroQuaternionAndNaNTimeNameNodeAndKey) {
     m.channel->mRotationKeys[2].mValue = aiQuaternion(0, 0, 0, 0);
     auto raw = detail::assimp_to_raw_scene(m.scene, {});
     ASSERT_FALSE(raw);
-    EXPECT_EQ(raw.error().code, ErrorCode::InvalidArgument);
+    EXPECT_EQ(raw.error().code, ErrorCode::invalid_argument);
     EXPECT_EQ(raw.error().message, "animation 0 \"bend\", node \"knee\", rotation, key 2: zero quaternion is not a rotation");
   }
   {
@@ -446,7 +446,7 @@ TEST(AssimpRead, ZeroQuaternionAndNaNTimeNameNodeAndKey) {
     m.channel->mPositionKeys[1].mTime = std::numeric_limits<double>::quiet_NaN();
     auto raw = detail::assimp_to_raw_scene(m.scene, {});
     ASSERT_FALSE(raw);
-    EXPECT_EQ(raw.error().code, ErrorCode::NotFinite);
+    EXPECT_EQ(raw.error().code, ErrorCode::not_finite);
     EXPECT_EQ(raw.error().message, "animation 0 \"bend\", node \"knee\", position, key 1: time is not finite");
   }
   {

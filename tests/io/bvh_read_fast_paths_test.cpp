@@ -37,7 +37,7 @@ std::string positions_file(const std::vector<std::string>& numbers, const std::s
 
 std::vector<double> read_positions(const std::string& text) {
   auto raw = read_bvh(text);
-  EXPECT_TRUE(raw.has_value()) << (raw ? "" : raw.error().where + ": " + raw.error().message);
+  EXPECT_TRUE(raw.has_value()) << (raw ? "" : raw.error().place() + ": " + raw.error().message);
   std::vector<double> out;
   if (!raw) return out;
   for (const auto& k : std::get<RawVec3Channel>(*raw->objects[0].translation).keys) {
@@ -102,7 +102,7 @@ TEST(BvhReadFastPaths, LineEndsGiveTheSameKeysAndErrorLines) {
     auto r = read_bvh(positions_file(bad, eol));
     ASSERT_FALSE(r.has_value());
     const std::size_t lines_per_eol = eol == "\n\n" ? 2 : eol == "\r\r\n" ? 2 : 1;
-    EXPECT_EQ(r.error().where, "line " + std::to_string(15 * lines_per_eol - (lines_per_eol - 1)));
+    EXPECT_EQ(r.error().place(), "line " + std::to_string(15 * lines_per_eol - (lines_per_eol - 1)));
     EXPECT_EQ(r.error().message, "frame 1, value 2: '5,25' is not a number");
   }
 }

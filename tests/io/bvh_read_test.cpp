@@ -197,10 +197,10 @@ TEST(BvhRead, ScaleAndAxes) {
   for (const char* bad : {"up", "x,y", "x,x,y", "x,y,z,", "a,b,c"}) {
     auto r = read_bvh(text, {.axes = bad});
     ASSERT_FALSE(r.has_value()) << bad;
-    EXPECT_EQ(r.error().where, "--axes");
+    EXPECT_EQ(r.error().place(), "--axes");
   }
-  EXPECT_EQ(read_bvh(text, {.scale = 0}).error().where, "--scale");
-  EXPECT_EQ(read_bvh(text, {.scale = std::nan("")}).error().where, "--scale");
+  EXPECT_EQ(read_bvh(text, {.scale = 0}).error().place(), "--scale");
+  EXPECT_EQ(read_bvh(text, {.scale = std::nan("")}).error().place(), "--scale");
 }
 
 struct BadCase {
@@ -247,7 +247,7 @@ TEST(BvhRead, BadInputNamesTheLine) {
     SCOPED_TRACE(c.what);
     auto r = read_bvh(c.text);
     ASSERT_FALSE(r.has_value());
-    EXPECT_EQ(r.error().where, "line " + std::to_string(c.line)) << r.error().message;
+    EXPECT_EQ(r.error().place(), "line " + std::to_string(c.line)) << r.error().message;
     EXPECT_NE(r.error().message.find(c.message), std::string::npos) << r.error().message;
   }
 }
@@ -267,9 +267,9 @@ TEST(BvhRead, AMillionJointsAreRefusedQuickly) {
     auto r = read_bvh(text);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ASSERT_FALSE(r.has_value());
-    EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
+    EXPECT_EQ(r.error().code, ErrorCode::unsupported);
     const std::size_t line = 6 + (kMaxBvhJoints - 1) * (nested ? 4 : 5);  // the (limit + 1)-th joint's JOINT line
-    EXPECT_EQ(r.error().where, "line " + std::to_string(line)) << r.error().message;
+    EXPECT_EQ(r.error().place(), "line " + std::to_string(line)) << r.error().message;
     EXPECT_LT(seconds, 1.0);  // the limit is checked as joints come, not after reading 40 MB
   }
 }
@@ -282,8 +282,8 @@ TEST(BvhRead, FilesAboveTheSizeLimitAreNotRead) {
   auto r = read_bvh_file(path);
   std::filesystem::remove(path);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
-  EXPECT_EQ(r.error().where, path.string());
+  EXPECT_EQ(r.error().code, ErrorCode::unsupported);
+  EXPECT_EQ(r.error().place(), path.string());
   EXPECT_FALSE(read_bvh_file(path).has_value());  // gone: cannot open
 }
 

@@ -7,7 +7,7 @@
 // says how to regenerate them and what they hold), so this runs without Blender or Node.
 //
 // Skips: when the clip is not installed (assimp-testmodels), and — for the inbetween side only —
-// while read_input_file answers ErrorCode::Unsupported for .bvh (no BVH reader yet).  Any other
+// while read_input_file answers ErrorCode::unsupported for .bvh (no BVH reader yet).  Any other
 // error, or a disagreement, fails.
 #include <gtest/gtest.h>
 
@@ -182,8 +182,8 @@ TEST_P(BvhReference, BlenderAndThreeJsPositionsAgree) {
 
 TEST_P(BvhReference, InbetweenAgreesWithBlenderAndThreeJs) {
   Expected<RawScene> raw = read_input_file(clip_);
-  if (!raw && raw.error().code == ErrorCode::Unsupported) GTEST_SKIP() << "no BVH reader yet: " << raw.error().message;
-  ASSERT_TRUE(raw) << raw.error().message << " at " << raw.error().where;
+  if (!raw && raw.error().code == ErrorCode::unsupported) GTEST_SKIP() << "no BVH reader yet: " << raw.error().message;
+  ASSERT_TRUE(raw) << raw.error().message << " at " << raw.error().place();
   Expected<Scene> scene = build_scene(*raw);
   ASSERT_TRUE(scene) << scene.error().message;
 

@@ -161,7 +161,7 @@ TEST(BvhWrite, RefusesWhatBvhCannotHold) {
   raw.objects[1].scale = grow;
   auto scaled = write_bvh(built(raw));
   ASSERT_FALSE(scaled.has_value());
-  EXPECT_EQ(scaled.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(scaled.error().code, ErrorCode::unsupported);
   EXPECT_NE(scaled.error().message.find("object 'arm' has scale"), std::string::npos) << scaled.error().message;
   EXPECT_NE(scaled.error().message.find("BVH holds no scale"), std::string::npos);
   // A constant scale of 1 is fine; a scene with no objects is refused.

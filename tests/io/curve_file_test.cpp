@@ -142,7 +142,7 @@ TEST(CurveFile, ErrorsNameTheJsonPointer) {
   for (const auto& c : cases) {
     const auto r = parse_curve_json(c.text, "f.json");
     ASSERT_FALSE(r.has_value()) << c.text;
-    EXPECT_EQ(r.error().where, c.where) << c.text << " -> " << r.error().describe();
+    EXPECT_EQ(r.error().place(), c.where) << c.text << " -> " << r.error().describe();
     EXPECT_FALSE(r.error().message.empty());
   }
   const auto r = parse_curve_json(R"({"type": "bezier", "points": [[0,0,0],[1,1,1],[2,2,2],[3,3]]})", "f.json");

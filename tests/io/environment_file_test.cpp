@@ -104,7 +104,7 @@ TEST(EnvironmentFile, MalformedFilesNameThePointer) {
     const std::string text = doc.dump();
     const auto f = parse_environment_json(text, "env.json");
     ASSERT_FALSE(f) << c.pointer;
-    EXPECT_EQ(f.error().where, c.where) << c.pointer << ": " << f.error().message;
+    EXPECT_EQ(f.error().place(), c.where) << c.pointer << ": " << f.error().message;
     // The structured location is the same place (the pointer after "env.json:").
     EXPECT_EQ("env.json:" + json_pointer(f.error().location), std::string(c.where)) << c.pointer;
     if (have_jsonschema() && c.schema_sees_it) {
@@ -119,7 +119,7 @@ TEST(EnvironmentFile, MalformedFilesNameThePointer) {
   text.replace(at, text.find_first_of(",}", at) - at, "\"t0\":1e400");
   const auto big = parse_environment_json(text, "env.json");
   ASSERT_FALSE(big);
-  EXPECT_EQ(big.error().where, "env.json");
+  EXPECT_EQ(big.error().place(), "env.json");
   // Messages stay short whatever the file holds: an unterminated string of 10⁵ characters, a member
   // name of 10⁵ characters, 10⁵ nested arrays where the version goes.
   const std::string long_text(100000, 'a');
@@ -133,7 +133,7 @@ TEST(EnvironmentFile, MalformedFilesNameThePointer) {
   // Not JSON at all: the file is the place.
   const auto f = parse_environment_json("{\"inbetween_env\": 1", "env.json");
   ASSERT_FALSE(f);
-  EXPECT_EQ(f.error().where, "env.json");
+  EXPECT_EQ(f.error().place(), "env.json");
   // A syntax error names its line and column; nesting beyond 512 levels is refused, not recursed into.
   const auto line3 = parse_environment_json("{\"inbetween_env\": 1,\n\"radius\": 1,\n\"start\": [1, 2,, 3]}", "env.json");
   ASSERT_FALSE(line3);
@@ -196,7 +196,7 @@ TEST(EnvironmentFile, ExtremeNumbersGiveErrorsOrFiniteResultsSeededLoop) {
 }
 
 TEST(EnvironmentFile, LibraryErrorsGetTheFileName) {
-  const Error e{ErrorCode::InvalidArgument, "obstacle 2: radius must be finite and > 0", "",
+  const Error e{ErrorCode::invalid_argument, "obstacle 2: radius must be finite and > 0",
                 {std::string("obstacles"), std::size_t{2}, std::string("sphere"), std::string("radius")}};
   EXPECT_EQ(locate_environment_error(e, "env.json").describe(),
             "env.json:/obstacles/2/sphere/radius: obstacle 2: radius must be finite and > 0");

@@ -510,7 +510,7 @@ TEST(GltfRead, CameraNotesAndErrors) {
       continue;
     }
     // tinygltf itself may refuse a yfov ≤ 0 (a parse error); what it lets through is ours to refuse.
-    if (r.error().code != ErrorCode::Parse) {
+    if (r.error().code != ErrorCode::parse) {
       EXPECT_EQ(json_pointer(r.error().location), "/cameras/0/perspective/yfov") << r.error().describe();
       EXPECT_NE(r.error().message.find("yfov"), std::string::npos) << r.error().describe();
     }
@@ -550,7 +550,7 @@ TEST(GltfMalformed, TruncatedGlb) {
   const std::string glb = valid_file().glb();
   for (std::size_t cut : {std::size_t(3), std::size_t(12), std::size_t(20), glb.size() / 2, glb.size() - 1}) {
     const Error e = read_error(glb.substr(0, cut));
-    EXPECT_EQ(e.code, ErrorCode::Parse) << cut << ": " << e.describe();
+    EXPECT_EQ(e.code, ErrorCode::parse) << cut << ": " << e.describe();
   }
 }
 
@@ -566,7 +566,7 @@ TEST(GltfMalformed, AccessorCountDisagreesWithItsSampler) {
   GltfBuilder g = valid_file();
   g.doc["accessors"][1]["count"] = 2;
   Error e = read_error(g.gltf_embedded());
-  EXPECT_EQ(e.code, ErrorCode::WrongArity);
+  EXPECT_EQ(e.code, ErrorCode::wrong_arity);
   expect_mentions(e, {"output accessor 1 has 2 elements", "needs 3", "channel 0", "sampler 0"});
   EXPECT_EQ(json_pointer(e.location), "/animations/0/samplers/0");
   // CUBICSPLINE needs three elements per key.
@@ -581,13 +581,13 @@ TEST(GltfMalformed, NaNKeys) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(g.bin.data() + 12 + 4 * 4, &nan, 4);  // output element 1, component y
   Error e = read_error(g.gltf_embedded());
-  EXPECT_EQ(e.code, ErrorCode::NotFinite);
+  EXPECT_EQ(e.code, ErrorCode::not_finite);
   expect_mentions(e, {"output accessor 1", "element 1"});
   EXPECT_EQ(json_pointer(e.location), "/accessors/1");
   GltfBuilder t = valid_file();
   std::memcpy(t.bin.data() + 4, &nan, 4);  // key time 1
   e = read_error(t.gltf_embedded());
-  EXPECT_EQ(e.code, ErrorCode::NotFinite);
+  EXPECT_EQ(e.code, ErrorCode::not_finite);
   expect_mentions(e, {"input accessor 0", "key 1"});
 }
 
@@ -596,7 +596,7 @@ TEST(GltfMalformed, TimesNotIncreasing) {
   const float t = 0.25f;
   std::memcpy(g.bin.data() + 8, &t, 4);  // times 0, 0.5, 0.25
   const Error e = read_error(g.gltf_embedded());
-  EXPECT_EQ(e.code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(e.code, ErrorCode::keys_not_increasing);
   expect_mentions(e, {"input accessor 0", "key 2", "animation 0 \"take\"", "channel 0"});
 }
 
@@ -604,7 +604,7 @@ TEST(GltfMalformed, UnknownInterpolation) {
   GltfBuilder g = valid_file();
   g.doc["animations"][0]["samplers"][0]["interpolation"] = "BEZIER";
   const Error e = read_error(g.gltf_embedded());
-  EXPECT_EQ(e.code, ErrorCode::Unsupported);
+  EXPECT_EQ(e.code, ErrorCode::unsupported);
   expect_mentions(e, {"\"BEZIER\"", "sampler 0", "channel 0"});
   EXPECT_EQ(json_pointer(e.location), "/animations/0/samplers/0/interpolation");
 }
@@ -616,7 +616,7 @@ TEST(GltfMalformed, ExternalBufferThatDoesNotExist) {
   std::ofstream(p) << g.with_buffer("lost.bin").dump();
   auto raw = read_gltf_file(p);
   ASSERT_FALSE(raw.has_value());
-  EXPECT_EQ(raw.error().code, ErrorCode::Io) << raw.error().describe();
+  EXPECT_EQ(raw.error().code, ErrorCode::io) << raw.error().describe();
   EXPECT_NE(raw.error().message.find("lost.bin"), std::string::npos) << raw.error().describe();
   // A URI is a file name, never a shell word: nothing is expanded or run.
   std::ofstream(dir / "evil.gltf") << g.with_buffer("$(touch " + (dir / "ran").string() + ").bin").dump();

@@ -150,7 +150,7 @@ TEST(GltfSkin, BadSkinsNameTheirPlace) {
   auto place = [](const std::string& text) {
     auto scene = parse_scene(text, "");
     EXPECT_FALSE(scene.has_value());
-    return scene ? std::string("(built)") : scene.error().where + ": " + scene.error().message;
+    return scene ? std::string("(built)") : scene.error().place() + ": " + scene.error().message;
   };
   const std::string objects = R"("objects": [{"name": "a"}, {"name": "b", "parent": "a"}])";
   EXPECT_EQ(place(R"({"inbetween": 1, )" + objects + R"(, "skins": [{"joints": ["a"]}]})").substr(0, 7), "/skins:");

@@ -208,7 +208,7 @@ TEST(GltfWrite, BadOptionsAndEmptyScenesGetErrors) {
   ASSERT_TRUE(built);
   auto c = export_gltf(empty, *built);
   ASSERT_FALSE(c);
-  EXPECT_EQ(c.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(c.error().code, ErrorCode::unsupported);
 }
 
 // export_gltf reads authored keys from the raw scene and the rest from the built one: a raw scene
@@ -221,7 +221,7 @@ TEST(GltfWrite, ARawSceneThatIsNotTheSourceOfTheSceneIsRefused) {
   fewer.objects.pop_back();
   auto a = export_gltf(fewer, s.scene);
   ASSERT_FALSE(a);
-  EXPECT_EQ(a.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(a.error().code, ErrorCode::invalid_argument);
   EXPECT_EQ(json_pointer(a.error().location), "/objects");
   RawScene renamed = s.raw;
   renamed.objects[0].name += "_other";

@@ -207,7 +207,7 @@ TEST(Obj, PathsOnTheBlenderIcosphere) {
 // ------------------------------------------------------------------------------ malformed files
 std::string where_of(const std::string& text) {
   auto m = parse_obj(text, "m.obj");
-  return m ? "built" : m.error().where;
+  return m ? "built" : m.error().place();
 }
 std::string message_of(const std::string& text) {
   auto m = parse_obj(text, "m.obj");
@@ -259,7 +259,7 @@ TEST(Obj, ConcavePolygonsAreSplitFromACornerThatSeesThemWhole) {
                            "f 1 2 3 4 5 6 7 8\n",
                            "u.obj");
   ASSERT_FALSE(u_shape);
-  EXPECT_EQ(u_shape.error().where, "u.obj: line 10");
+  EXPECT_EQ(u_shape.error().place(), "u.obj: line 10");
   EXPECT_NE(u_shape.error().message.find("cannot be split"), std::string::npos);
 }
 
@@ -273,7 +273,7 @@ TEST(Obj, NormalsOnlyWhenEveryVertexHasOne) {
   // Normals of opposite faces at a vertex cancel: the sum is zero, named at the vertex's line.
   auto cancel = parse_obj(std::string(kSquare) + "vn 0 1 0\nvn 0 -1 0\nf 1//1 3//1 2//1\nf 1//2 4//2 3//2\n", "m.obj");
   ASSERT_FALSE(cancel);
-  EXPECT_EQ(cancel.error().where, "m.obj: line 1");
+  EXPECT_EQ(cancel.error().place(), "m.obj: line 1");
 }
 
 }  // namespace

@@ -36,8 +36,8 @@ TEST(ReadFile, RefusesDevicesFifosAndDirectoriesAtOnce) {
   for (const char* device : {"/dev/zero", "/dev/urandom", "/dev/null"}) {
     auto r = read_file_bytes(device);
     ASSERT_FALSE(r) << device;
-    EXPECT_EQ(r.error().code, ErrorCode::Io);
-    EXPECT_EQ(r.error().where, device);
+    EXPECT_EQ(r.error().code, ErrorCode::io);
+    EXPECT_EQ(r.error().place(), device);
     EXPECT_NE(r.error().message.find("not a regular file"), std::string::npos) << r.error().message;
   }
   // A FIFO with no writer: opening it would block; it is refused from its type.
@@ -64,7 +64,7 @@ TEST(ReadFile, RefusesAFileOverTheLimitFromItsSize) {
   fs::resize_file(big, kMaxInputFileBytes + 1);
   auto r = read_file_bytes(big);
   ASSERT_FALSE(r);
-  EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(r.error().code, ErrorCode::unsupported);
   EXPECT_NE(r.error().message.find("is 512 MiB, more than the 512 MiB an input file may have"), std::string::npos)
       << r.error().message;
   fs::remove(big);

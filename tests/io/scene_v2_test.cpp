@@ -180,8 +180,8 @@ TEST(SceneV2, CurveFileRelativeToTheScene) {
   // Without the scene's path the file is looked for in the current directory, and not found.
   auto lost = parse(test::slurp(scene_path));
   ASSERT_FALSE(lost.has_value());
-  EXPECT_EQ(lost.error().where, "/paths/0/file");
-  EXPECT_EQ(lost.error().code, ErrorCode::Io);
+  EXPECT_EQ(lost.error().place(), "/paths/0/file");
+  EXPECT_EQ(lost.error().code, ErrorCode::io);
   // An error inside the included file keeps its own place after the file's name.
   test::write_test_file("bad.json", R"({"type": "bezier", "points": [[0, 0, 0], [2, "x", 0]]})");
   const fs::path bad = test::write_test_file("b.json", R"({"inbetween": 2, "paths": [{"name": "l", "file": "bad.json"}]})");
@@ -199,7 +199,7 @@ TEST(SceneV2, CurveFileOrMeshThatIsADeviceIsRefusedAtOnce) {
         std::string(R"({"inbetween": 2, "paths": [{"name": "s", "surface": {"mesh": "/dev/zero", "from": 0, "to": 1}}]})")}) {
     auto r = read_scene_json(text);
     ASSERT_FALSE(r.has_value()) << text;
-    EXPECT_EQ(r.error().code, ErrorCode::Io) << r.error().describe();
+    EXPECT_EQ(r.error().code, ErrorCode::io) << r.error().describe();
     EXPECT_NE(r.error().message.find("not a regular file"), std::string::npos) << r.error().describe();
     EXPECT_EQ(r.error().describe().rfind("/paths/0/", 0), 0u) << r.error().describe();
   }
@@ -222,7 +222,7 @@ TEST(SceneV2, InlineCurveErrorsNameTheirPlace) {
   auto r = parse(R"({"inbetween": 2, "objects": [{"name": "o", "path": {"curve": {"type": "bezier", "points": []},
                      "speed": {"kind": "ease", "start_frame": 0, "end_frame": 1}}}]})");
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().where, "/objects/0/path/curve/points");
+  EXPECT_EQ(r.error().place(), "/objects/0/path/curve/points");
 }
 
 
@@ -254,20 +254,20 @@ TEST(SceneV2, ConstraintAndAccelerationSpeedsRead) {
   auto bad = parse(text(R"({"kind": "constraints", "keys": [{"frame": 0, "distance": 0}, {"frame": 10, "distance": 2, "speed": 4.8, "acceleration": 0},
                                                         {"frame": 20, "distance": 2.2, "speed": 0, "acceleration": -400}]})"));
   ASSERT_FALSE(bad.has_value());
-  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/keys/1");
+  EXPECT_EQ(bad.error().place(), "/objects/0/path/speed/keys/1");
   EXPECT_NE(bad.error().message.find("backwards"), std::string::npos) << bad.error().message;
   bad = parse(text(R"({"kind": "constraints", "keys": [{"frame": 0, "distance": 0}, {"frame": 0, "distance": 1}]})"));
   ASSERT_FALSE(bad.has_value());
-  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/keys/1");
+  EXPECT_EQ(bad.error().place(), "/objects/0/path/speed/keys/1");
   bad = parse(text(R"({"kind": "acceleration_keys", "accelerations": [{"frame": 0, "acceleration": 1}, {"frame": 4}]})"));
   ASSERT_FALSE(bad.has_value());
-  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/accelerations/1/acceleration");
+  EXPECT_EQ(bad.error().place(), "/objects/0/path/speed/accelerations/1/acceleration");
   bad = parse(text(R"({"kind": "acceleration_keys", "shape": "cubic", "accelerations": [{"frame": 0, "acceleration": 1}, {"frame": 4, "acceleration": 1}]})"));
   ASSERT_FALSE(bad.has_value());
-  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/shape");
+  EXPECT_EQ(bad.error().place(), "/objects/0/path/speed/shape");
   bad = parse(text(R"({"kind": "acceleration_keys", "accelerations": [{"frame": 0, "acceleration": 0}, {"frame": 4, "acceleration": 0}], "start_speed": -2})"));
   ASSERT_FALSE(bad.has_value());
-  EXPECT_EQ(bad.error().where, "/objects/0/path/speed/start_speed");
+  EXPECT_EQ(bad.error().place(), "/objects/0/path/speed/start_speed");
 }
 
 // A path on a mesh (texts 004 §3.4.4) as a scene path: the plane path's points are coplanar, so
@@ -302,7 +302,7 @@ TEST(SceneV2, SurfacePathIsASceneCurve) {
   const auto where = [&](const std::string& surface) {
     auto r = parse(text(surface));
     EXPECT_FALSE(r.has_value()) << surface;
-    return r ? std::string() : r.error().where + " | " + r.error().message;
+    return r ? std::string() : r.error().place() + " | " + r.error().message;
   };
   EXPECT_EQ(where(R"({"mesh": "no-such.obj", "from": 0, "to": 1})").rfind("/paths/0/surface/mesh |", 0), 0u);
   EXPECT_EQ(where(R"({"mesh": ")" + mesh + R"(", "from": 0, "to": 42})").rfind("/paths/0/surface/to |", 0), 0u);
@@ -324,7 +324,7 @@ TEST(SceneV2, SurfacePathIsASceneCurve) {
   auto both = parse(R"({"inbetween": 2, "paths": [{"name": "s", "curve": {"type": "bezier", "points": [[0,0,0],[1,0,0]]},
                         "surface": {"mesh": "x.obj", "from": 0, "to": 1}}], "objects": []})");
   ASSERT_FALSE(both.has_value());
-  EXPECT_EQ(both.error().where, "/paths/0/surface");
+  EXPECT_EQ(both.error().place(), "/paths/0/surface");
 }
 
 // A scalar track of the scene drives the distance (so a graph editor can); a track key beyond the
@@ -348,7 +348,7 @@ TEST(SceneV2, TrackSpeedReadsTheNamedScalarTrack) {
   EXPECT_NEAR(row[1 + 11], 0.2 * 24, 1e-5);  // speed: slope 0.2 per frame at 24 fps
   auto bad = parse(text(5));
   ASSERT_FALSE(bad.has_value());
-  EXPECT_EQ(bad.error().where, "/tracks/0/keys/1");
+  EXPECT_EQ(bad.error().place(), "/tracks/0/keys/1");
   EXPECT_NE(bad.error().message.find("/objects/0/path"), std::string::npos) << bad.error().message;
 }
 
@@ -359,7 +359,7 @@ TEST(SceneV2, PathColumnsAreOwnedLikeAnyOther) {
     "objects": [{"name": "o", "path": {"curve": {"type": "bezier", "points": [[0, 0, 0], [1, 0, 0]]},
                                        "speed": {"kind": "ease", "start_frame": 0, "end_frame": 1}}}]})");
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().where, "/objects/0/name");
+  EXPECT_EQ(r.error().place(), "/objects/0/name");
   EXPECT_NE(r.error().message.find("/tracks/0/name"), std::string::npos) << r.error().message;
 }
 

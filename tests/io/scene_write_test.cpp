@@ -165,7 +165,7 @@ TEST(SceneWrite, NonFiniteNumberIsRefusedWithItsPlace) {
   std::get<RawVectorTrack>(raw.tracks[3]).keys[1].value.y = std::numeric_limits<double>::quiet_NaN();
   auto text = write_scene_json(raw);
   ASSERT_FALSE(text.has_value());
-  EXPECT_EQ(text.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(text.error().code, ErrorCode::not_finite);
   EXPECT_EQ(json_pointer(text.error().location), "/tracks/3/keys/1/value/1");
   raw = every_member();
   raw.objects[0].translation = Vec3d{0, std::numeric_limits<double>::infinity(), 0};

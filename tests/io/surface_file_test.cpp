@@ -57,7 +57,7 @@ TEST(SurfaceFile, ErrorsNameThePointer) {
   for (const Case& c : cases) {
     const auto s = parse_surface_json(c.text, "s.json");
     ASSERT_FALSE(s) << c.text;
-    EXPECT_EQ(s.error().where, c.where) << c.text << ": " << s.error().message;
+    EXPECT_EQ(s.error().place(), c.where) << c.text << ": " << s.error().message;
     EXPECT_FALSE(s.error().message.empty());
   }
 }

@@ -56,7 +56,7 @@ TEST(EulerSequenceNames, ParseAllTwentyFourAndRejectTheRest) {
   for (const char* bad : {"XyZ", "XXY", "xy", "xyzx", "abc", "", "xzz"}) {
     const auto r = parse_euler_sequence(bad);
     ASSERT_FALSE(r.has_value()) << bad;
-    EXPECT_EQ(r.error().code, ErrorCode::Parse);
+    EXPECT_EQ(r.error().code, ErrorCode::parse);
     EXPECT_NE(r.error().message.find(std::string("'") + bad + "'"), std::string::npos) << r.error().message;
   }
 }

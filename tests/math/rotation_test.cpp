@@ -154,7 +154,7 @@ TYPED_TEST(RotationConversions, CheckRotationNamesWhatIsWrong) {
   EXPECT_TRUE(check_rotation(noisy).has_value());
   const auto scaled = check_rotation(rot * T(1.001));
   ASSERT_FALSE(scaled.has_value());
-  EXPECT_EQ(scaled.error().code, ErrorCode::NotARotation);
+  EXPECT_EQ(scaled.error().code, ErrorCode::not_a_rotation);
   EXPECT_NE(scaled.error().message.find("orthonormal"), std::string::npos);
   Mat3<T> mirror = rot;
   for (int c = 0; c < 3; ++c) mirror.m[0][c] = -mirror.m[0][c];
@@ -164,7 +164,7 @@ TYPED_TEST(RotationConversions, CheckRotationNamesWhatIsWrong) {
   Mat3<T> bad = rot;
   bad.m[2][2] = std::numeric_limits<T>::quiet_NaN();
   ASSERT_FALSE(check_rotation(bad).has_value());
-  EXPECT_EQ(check_rotation(bad).error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(check_rotation(bad).error().code, ErrorCode::not_finite);
   const auto checked = quat_from_rotation_matrix_checked(rot * T(2));
   EXPECT_FALSE(checked.has_value());
 }

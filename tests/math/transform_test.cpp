@@ -141,7 +141,7 @@ TYPED_TEST(TransformTest, RecoverTrsFromMatrix) {
   shear.m[0][1] = T(0.5);
   const auto s = transform_from_matrix(shear);
   ASSERT_FALSE(s.has_value());
-  EXPECT_EQ(s.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(s.error().code, ErrorCode::unsupported);
   EXPECT_NE(s.error().message.find("shear"), std::string::npos);
   // A non-uniform scale followed by a rotation and another non-uniform scale has shear too.
   const Mat4<T> sheared = scaling_matrix(Vec3<T>{1, 3, 1}) * rotation_z(T(0.5)) * scaling_matrix(Vec3<T>{2, 1, 1});
@@ -149,11 +149,11 @@ TYPED_TEST(TransformTest, RecoverTrsFromMatrix) {
   // Projective last row, zero scale and NaN are named.
   Mat4<T> proj;
   proj.m[3][0] = T(0.1);
-  EXPECT_EQ(transform_from_matrix(proj).error().code, ErrorCode::Unsupported);
-  EXPECT_EQ(transform_from_matrix(scaling_matrix(Vec3<T>{1, 0, 1})).error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(transform_from_matrix(proj).error().code, ErrorCode::unsupported);
+  EXPECT_EQ(transform_from_matrix(scaling_matrix(Vec3<T>{1, 0, 1})).error().code, ErrorCode::invalid_argument);
   Mat4<T> nan;
   nan.m[1][2] = std::numeric_limits<T>::quiet_NaN();
-  EXPECT_EQ(transform_from_matrix(nan).error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(transform_from_matrix(nan).error().code, ErrorCode::not_finite);
 }
 
 }  // namespace

@@ -147,7 +147,7 @@ TEST(Environment, BuilderErrorsNameTheObstacle) {
   e = with(MovingSphereObstacle{{0, 0, 0}, {std::nan(""), 0, 0}, 1, 0});
   ASSERT_FALSE(e);
   EXPECT_EQ(json_pointer(e.error().location), "/obstacles/1/moving_sphere/velocity");
-  EXPECT_EQ(e.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(e.error().code, ErrorCode::not_finite);
   RawEnvironment raw{-1, {0, 0, 0}, {1, 1, 1}, {}};
   EXPECT_EQ(json_pointer(Environment::build(raw).error().location), "/radius");
   raw = RawEnvironment{1, {0, 0, 0}, {1, 0, 1}, {}};

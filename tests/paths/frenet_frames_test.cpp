@@ -94,10 +94,10 @@ TEST(Frenet, RawFrameIsUndefinedOnTheStraightPiece) {
 TEST(Frenet, BadOptionsAreNamed) {
   auto a = build_frenet_frames(Helix<double>{}, {.samples_per_segment = 0});
   ASSERT_FALSE(a);
-  EXPECT_EQ(a.error().where, "samples_per_segment");
+  EXPECT_EQ(a.error().place(), "samples_per_segment");
   auto b = build_frenet_frames(Helix<double>{}, {.tolerance = -1.0});
   ASSERT_FALSE(b);
-  EXPECT_EQ(b.error().where, "tolerance");
+  EXPECT_EQ(b.error().place(), "tolerance");
 }
 
 // Museum: every degenerate polyline that builds a curve gives finite orthonormal frames.

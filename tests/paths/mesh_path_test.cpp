@@ -187,7 +187,7 @@ TEST(TriangleMesh, ComputedNormals) {
 TEST(TriangleMesh, BadInputIsNamed) {
   const auto where = [](const RawMesh<double>& raw) {
     auto m = build_triangle_mesh(raw);
-    return m ? std::string("built") : m.error().where;
+    return m ? std::string("built") : m.error().place();
   };
   RawMesh<double> raw = flat_grid<double>(1);  // 4 vertices, 2 faces
   EXPECT_EQ(where(RawMesh<double>{}), "vertices");
@@ -217,14 +217,17 @@ TEST(TriangleMesh, BadInputIsNamed) {
   bad.normals = {{0, 1, 0}, {0, 1, 0}, {0, 0, 0}, {0, 1, 0}};
   EXPECT_EQ(where(bad), "normal 2");
   // A caller's names for the places (a reader's lines, say): member and index, never parsed text.
+  // (This namer used to return the text "normals[2]"; a namer now returns a location, here the
+  // member and index as data steps.)
   const MeshPlaceNamer place = [](std::string_view member, std::size_t index) {
-    return std::string(member) + (index == kWholeMeshMember ? "" : "[" + std::to_string(index) + "]");
+    return index == kWholeMeshMember ? std::vector<LocationStep>{Parameter{std::string(member)}}
+                                     : std::vector<LocationStep>{std::string(member), index};
   };
-  EXPECT_EQ(build_triangle_mesh(bad, place).error().where, "normals[2]");
+  EXPECT_EQ(build_triangle_mesh(bad, place).error().place(), "/normals/2");
   bad = raw;
   bad.triangles[1][2] = 4;
-  EXPECT_EQ(build_triangle_mesh(bad, place).error().where, "triangles[1]");
-  EXPECT_EQ(build_triangle_mesh(RawMesh<double>{}, place).error().where, "vertices");
+  EXPECT_EQ(build_triangle_mesh(bad, place).error().place(), "/triangles/1");
+  EXPECT_EQ(build_triangle_mesh(RawMesh<double>{}, place).error().place(), "vertices");
 }
 
 // ------------------------------------------------------------------------------ flat meshes
@@ -456,7 +459,7 @@ TYPED_TEST(MeshPathTyped, RandomBumpyFieldsEveryResultHoldsItsGuarantees) {
                                   : edge_mesh_path(*mesh, from, to);
         if (!path) {
           EXPECT_FALSE(path.error().message.empty());
-          EXPECT_FALSE(path.error().where.empty());
+          EXPECT_FALSE(path.error().location.empty());
           EXPECT_NE(method, 2);  // a grid is connected
           ++failed;
           continue;
@@ -520,7 +523,7 @@ TEST(MeshPath, HugeAndTinyMeshesGiveTheSamePathsScaled) {
   // Beyond an eighth of the largest double a coordinate is refused, naming the vertex.
   RawMesh<double> too_big = unit;
   too_big.vertices[5].x = 1e308;
-  EXPECT_EQ(build_triangle_mesh(too_big).error().where, "vertex 5");
+  EXPECT_EQ(build_triangle_mesh(too_big).error().place(), "vertex 5");
 }
 
 TEST(MeshPath, ANotchTrapsTheGreedyAndPlaneWalksButNotTheEdgePath) {
@@ -555,11 +558,11 @@ TEST(MeshPath, ANotchTrapsTheGreedyAndPlaneWalksButNotTheEdgePath) {
 TEST(MeshPath, ErrorsNameTheArgumentOrThePlace) {
   const auto mesh = build_triangle_mesh(flat_grid<double>(3));
   ASSERT_TRUE(mesh);
-  EXPECT_EQ(plane_mesh_path(*mesh, 0, 16).error().where, "to");
-  EXPECT_EQ(greedy_mesh_path(*mesh, -1, 3).error().where, "from");
-  EXPECT_EQ(edge_mesh_path(*mesh, 0, 99).error().where, "to");
-  EXPECT_EQ(downhill_mesh_path(*mesh, 16).error().where, "start");
-  EXPECT_EQ(downhill_mesh_path(*mesh, 0, Vec3d{}).error().where, "up");
+  EXPECT_EQ(plane_mesh_path(*mesh, 0, 16).error().place(), "to");
+  EXPECT_EQ(greedy_mesh_path(*mesh, -1, 3).error().place(), "from");
+  EXPECT_EQ(edge_mesh_path(*mesh, 0, 99).error().place(), "to");
+  EXPECT_EQ(downhill_mesh_path(*mesh, 16).error().place(), "start");
+  EXPECT_EQ(downhill_mesh_path(*mesh, 0, Vec3d{}).error().place(), "up");
   // A flat mesh with up = +y: every vertex is a minimum, the path is the vertex alone.
   auto level = downhill_mesh_path(*mesh, 5);
   ASSERT_TRUE(level);

@@ -114,7 +114,7 @@ TEST(PathFinding, WallWithAGap) {
                              "#."});
   auto none = find_grid_path(diag, {0, 0}, {1, 1}, {.cut_corners = true});
   ASSERT_FALSE(none);
-  EXPECT_EQ(none.error().where, "goal");
+  EXPECT_EQ(none.error().place(), "goal");
 }
 
 TEST(PathFinding, MatchesBreadthFirstSearchOnRandomGrids) {
@@ -157,14 +157,14 @@ TEST(PathFinding, ErrorsNameTheCell) {
                           "..."});
   auto walled = find_grid_path(g, {0, 0}, {2, 2});
   ASSERT_FALSE(walled);
-  EXPECT_EQ(walled.error().where, "goal");
+  EXPECT_EQ(walled.error().place(), "goal");
   EXPECT_NE(walled.error().message.find("no path from (0, 0) to (2, 2)"), std::string::npos);
   auto blocked = find_grid_path(g, {2, 0}, {0, 0});
   ASSERT_FALSE(blocked);
-  EXPECT_EQ(blocked.error().where, "start");
+  EXPECT_EQ(blocked.error().place(), "start");
   auto outside = find_grid_path(g, {0, 0}, {3, 0});
   ASSERT_FALSE(outside);
-  EXPECT_EQ(outside.error().where, "goal");
+  EXPECT_EQ(outside.error().place(), "goal");
   auto same = find_grid_path(g, {1, 2}, {1, 2});
   ASSERT_TRUE(same);
   EXPECT_EQ(same->cells.size(), 1u);
@@ -172,7 +172,7 @@ TEST(PathFinding, ErrorsNameTheCell) {
   const std::vector<std::string> bad{"..", ".x"};
   auto parse = OccupancyGrid::from_rows(bad);
   ASSERT_FALSE(parse);
-  EXPECT_EQ(parse.error().where, "row 1, column 1");
+  EXPECT_EQ(parse.error().place(), "row 1, column 1");
   auto size = OccupancyGrid::build(2, 2, std::vector<bool>(3));
   ASSERT_FALSE(size);
 }
@@ -223,7 +223,7 @@ TEST(PathFinding, SmoothedPathPassesThroughTheWaypoints) {
   EXPECT_EQ(c1->point(0.5), (Vec2d{3, 0}));
   auto empty = smooth_grid_path<double>(GridPath{});
   ASSERT_FALSE(empty);
-  EXPECT_EQ(empty.error().where, "path");
+  EXPECT_EQ(empty.error().place(), "path");
 }
 
 TEST(PathFinding, CornersOfAStraightRunAreItsEnds) {

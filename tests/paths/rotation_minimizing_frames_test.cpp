@@ -120,7 +120,7 @@ TEST(Rmf, InitialNormalIsProjectedOffTheTangent) {
   EXPECT_NEAR(n.z, 1.0 / c, 1e-15);
   auto bad = build_rotation_minimizing_frames(h, {.initial_normal = Vec3d{std::nan(""), 0, 0}});
   ASSERT_FALSE(bad);
-  EXPECT_EQ(bad.error().where, "initial_normal");
+  EXPECT_EQ(bad.error().place(), "initial_normal");
 }
 
 // Straight middle: the RMF does not turn at all there (no rotation needed); the Frenet repair turns.
@@ -251,8 +251,8 @@ TEST(RmfClosed, OpenCurvesAreLeftAloneAndDistributeNeedsAClosedCurve) {
   for (double u : {0.0, 1.0, 7.0, 4 * pi_v<double>}) EXPECT_EQ(automatic->frame_at(u).normal, none->frame_at(u).normal);
   auto forced = build_rotation_minimizing_frames(h, {.closing = RmfClosing::distribute});
   ASSERT_FALSE(forced);
-  EXPECT_EQ(forced.error().code, ErrorCode::InvalidArgument);
-  EXPECT_EQ(forced.error().where, "closing");
+  EXPECT_EQ(forced.error().code, ErrorCode::invalid_argument);
+  EXPECT_EQ(forced.error().place(), "closing");
 }
 
 }  // namespace

@@ -352,12 +352,12 @@ TEST(Resample, MuseumAndErrors) {
   for (const Vec2d& q : *r) EXPECT_EQ(q, (Vec2d{1, 2}));
   EXPECT_EQ(json_pointer(resample_by_arc_length(same, 1).error().location), "/count");
   const std::vector<Vec2d> one{{0, 0}};
-  EXPECT_EQ(resample_by_arc_length(one, 3).error().code, ErrorCode::TooFewPoints);
+  EXPECT_EQ(resample_by_arc_length(one, 3).error().code, ErrorCode::too_few_points);
   const std::vector<Vec2d> nan{{0, 0}, {std::nan(""), 1}};
   EXPECT_EQ(json_pointer(resample_by_arc_length(nan, 3).error().location), "/points/1");
   const double big = std::numeric_limits<double>::max();
   const std::vector<double> huge{-big, big, -big};
-  EXPECT_EQ(resample_by_arc_length(huge, 3).error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(resample_by_arc_length(huge, 3).error().code, ErrorCode::not_finite);
 }
 
 }  // namespace

@@ -117,24 +117,24 @@ TEST(SurfacePath, BadInputIsNamed) {
   const double nan = std::nan("");
   auto a = walk_on_surface(sphere(), Vec3d{nan, 0, 0});
   ASSERT_FALSE(a);
-  EXPECT_EQ(a.error().where, "start");
+  EXPECT_EQ(a.error().place(), "start");
   auto b = walk_on_surface(sphere(), Vec3d{1, 0, 0}, {.step = 0.0});
   ASSERT_FALSE(b);
-  EXPECT_EQ(b.error().where, "step");
+  EXPECT_EQ(b.error().place(), "step");
   // Heading along the normal at (R, 0, 0): no tangent direction.
   auto c = walk_on_surface(sphere(), Vec3d{1, 0, 0}, {.mode = SurfaceWalk::heading, .heading = {1, 0, 0}});
   ASSERT_FALSE(c);
-  EXPECT_EQ(c.error().where, "heading");
+  EXPECT_EQ(c.error().place(), "heading");
   // The centre of the sphere has ∇F = 0: projection cannot start there.
   auto d = walk_on_surface(sphere(), Vec3d{0, 0, 0});
   ASSERT_FALSE(d);
-  EXPECT_EQ(d.error().where, "start");
+  EXPECT_EQ(d.error().place(), "start");
   auto e = walk_on_surface(sphere(), Vec3d{1, 0, 0}, {.max_steps = -1});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().where, "max_steps");
+  EXPECT_EQ(e.error().place(), "max_steps");
   auto f = walk_on_surface(sphere(), Vec3d{1, 0, 0}, {.up = {0, 0, 0}});
   ASSERT_FALSE(f);
-  EXPECT_EQ(f.error().where, "up");
+  EXPECT_EQ(f.error().place(), "up");
 }
 
 template <class T>

@@ -521,7 +521,7 @@ TEST(CameraView, BadRawViewsNameTheMember) {
     const auto built = build_camera_view(b.raw);
     ASSERT_FALSE(built.has_value());
     EXPECT_EQ(json_pointer(built.error().location), "/" + std::string(b.where));  // structured, rendered here only
-    EXPECT_TRUE(built.error().where.empty());
+    EXPECT_TRUE(std::all_of(built.error().location.begin(), built.error().location.end(), is_data_step));  // members and indices only
     EXPECT_FALSE(built.error().message.empty());
   }
   // Boundary cases that are legal: a cut (move_frames 0) and a hold that starts as the move ends.

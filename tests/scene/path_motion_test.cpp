@@ -578,7 +578,7 @@ TEST(PathMotion, ConstraintTuplesAreMetInSceneUnits) {
   raw.speed = RawSpeed{.kind = SpeedKind::constraints, .keys = {{0, 0}, {10, 2, 4.8, 0.0}, {20, 2.2, 0.0, -400.0}}};
   auto bad = build_path_motion(raw, kFps);
   ASSERT_FALSE(bad);
-  EXPECT_EQ(bad.error().code, ErrorCode::NotMonotone);
+  EXPECT_EQ(bad.error().code, ErrorCode::not_monotone);
   EXPECT_EQ(json_pointer(bad.error().location), "/speed/keys/1");
   // Equal frames, a negative speed, acceleration on a distance key, none at all.
   raw.speed = RawSpeed{.kind = SpeedKind::constraints, .keys = {{0, 0}, {0, 1}}};
@@ -628,7 +628,7 @@ TEST(PathMotion, AccelerationKeysIntegrateInClosedForm) {
                        .start_speed = 0.5};
   e = build_path_motion(raw, kFps);
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().code, ErrorCode::NotMonotone);
+  EXPECT_EQ(e.error().code, ErrorCode::not_monotone);
   EXPECT_EQ(json_pointer(e.error().location), "/speed/accelerations/1");
   raw.speed = RawSpeed{.kind = SpeedKind::acceleration_keys, .accelerations = {{0, 0.0}, {24, 0.0}}, .start_speed = -1};
   EXPECT_EQ(json_pointer(build_path_motion(raw, kFps).error().location), "/speed/start_speed");
@@ -828,7 +828,7 @@ TEST(PathMotion, BadSpecsAreErrorsThatSayWhere) {
   RawSpeed back{.kind = SpeedKind::distance_keys, .keys = {{0, 0}, {10, 4}, {20, 2}, {30, 6}},
                 .interpolation = PositionInterpolation::catmull_rom};
   e = err(back);
-  EXPECT_EQ(e.code, ErrorCode::NotMonotone);
+  EXPECT_EQ(e.code, ErrorCode::not_monotone);
   EXPECT_EQ(json_pointer(e.location), "/speed/keys");
   EXPECT_NE(e.message.find("between frames 1"), std::string::npos) << e.message;  // inside [10, 20]
   // Key distances that decrease cannot be repaired (no monotone curve passes through them).
@@ -838,7 +838,7 @@ TEST(PathMotion, BadSpecsAreErrorsThatSayWhere) {
   // Speeds that make the Hermite back up between non-decreasing keys can.
   RawSpeed overshoot{.kind = SpeedKind::distance_keys, .keys = {{0, 0, 0.0}, {10, 4, 200.0}, {20, 5, 0.0}}};
   e = err(overshoot);
-  EXPECT_EQ(e.code, ErrorCode::NotMonotone);
+  EXPECT_EQ(e.code, ErrorCode::not_monotone);
   EXPECT_NE(e.message.find("between frames"), std::string::npos) << e.message;
   overshoot.repair = true;
   auto repaired = build_path_motion(RawPathMotion{.path = path, .speed = overshoot}, kFps);

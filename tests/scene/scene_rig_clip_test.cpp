@@ -75,7 +75,7 @@ TEST(SceneRigClip, RefusesAnObjectOnAPathWithThePlace) {
   ASSERT_TRUE(scene) << scene.error().describe();
   const auto clip = build_scene_rig_clip(*scene);
   ASSERT_FALSE(clip);
-  EXPECT_EQ(clip.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(clip.error().code, ErrorCode::unsupported);
   EXPECT_EQ(json_pointer(clip.error().location), "/objects/1");
 }
 

@@ -48,7 +48,7 @@ std::string pointer_of(const RawScene& raw) {
   auto built = build_scene(raw);
   EXPECT_FALSE(built.has_value());
   if (built) return "(built)";
-  EXPECT_TRUE(built.error().where.empty());  // structured, nothing to parse back
+  EXPECT_TRUE(std::all_of(built.error().location.begin(), built.error().location.end(), is_data_step));  // a document path, nothing to parse back
   return json_pointer(built.error().location);
 }
 
@@ -214,12 +214,12 @@ TEST(ErrorLocation, RendersOneJsonPointerWithEscapes) {
   const std::vector<LocationStep> steps = {std::string("tracks"), std::size_t{2}, std::string("a/b~c"), std::size_t{0}};
   EXPECT_EQ(json_pointer(steps), "/tracks/2/a~1b~0c/0");  // RFC 6901 §3: '~' → ~0, '/' → ~1
   EXPECT_EQ(json_pointer(std::vector<LocationStep>{}), "");
-  Error e{ErrorCode::InvalidArgument, "bad", "", {std::string("frame")}};
+  Error e{ErrorCode::invalid_argument, "bad", {std::string("frame")}};
   e.prepend({std::string("keys"), std::size_t{3}}).prepend({std::string("tracks"), std::size_t{1}});
   EXPECT_EQ(json_pointer(e.location), "/tracks/1/keys/3/frame");
   EXPECT_EQ(e.describe(), "/tracks/1/keys/3/frame: bad");
   EXPECT_EQ(prepended(e, {std::string("x")}).describe(), "/x/tracks/1/keys/3/frame: bad");
-  const Error text{ErrorCode::Parse, "not valid JSON", "line 3, column 5"};
+  const Error text{ErrorCode::parse, "not valid JSON", {TextLine{3, 5}}};
   EXPECT_EQ(text.describe(), "line 3, column 5: not valid JSON");
 }
 

@@ -35,7 +35,7 @@ std::vector<PathExhibit<T>> museum_paths() {
   };
 }
 
-/// Bad polylines: each must be rejected with an Error whose `where` names `bad_index`
+/// Bad polylines: each must be rejected with an Error whose location names `bad_index`
 /// (-1: the whole input, e.g. empty).
 template <class T>
 struct BadPathExhibit {

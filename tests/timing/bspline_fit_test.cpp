@@ -143,7 +143,7 @@ TEST(BSplineFit, ErrorsNameTheProblem) {
   std::swap(shuffled[3], shuffled[4]);
   auto e = fit_bspline<double>(shuffled, {.degree = 2});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(e.error().code, ErrorCode::keys_not_increasing);
   EXPECT_EQ(json_pointer(e.error().location), "/points/4");
   // Times bunched at the start leave the middle hat function of a degree-1 fit without data.
   const std::vector<TimedPoint<double>> bunched = {{0, 0}, {0.01, 1}, {0.02, 2}, {0.03, 3}, {1, 4}};
@@ -162,13 +162,13 @@ TEST(BSplineFit, OverflowingControlPointsAreAnError) {
   const std::vector<TimedPoint<double>> d = {{0, 0}, {1, big}, {2, 0}};
   auto e = fit_bspline<double>(d, {.degree = 2});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(e.error().code, ErrorCode::not_finite);
   EXPECT_EQ(json_pointer(e.error().location), "/points/1");  // the largest datum, not the (default) control-point count
   const float bigf = std::numeric_limits<float>::max() / 1.5f;
   const std::vector<TimedPoint<float>> f = {{0, 0}, {1, bigf}, {2, 0}};
   auto ef = fit_bspline<float>(f, {.degree = 2});
   ASSERT_FALSE(ef);
-  EXPECT_EQ(ef.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(ef.error().code, ErrorCode::not_finite);
   // At M = 1 the same fit succeeds with P1 = 2 (the check rejects only non-finite results).
   const std::vector<TimedPoint<float>> small = {{0, 0}, {1, 1}, {2, 0}};
   auto ok = fit_bspline<float>(small, {.degree = 2});
@@ -187,7 +187,7 @@ TEST(BSplineFit, HugeDataBlameTheDataAndRepresentableFitsSucceed) {
   const std::vector<TimedPoint<double>> alternating = {{0, big}, {1, -big}, {2, big}, {3, -big}, {4, big}};
   auto e = fit_bspline<double>(alternating, {.degree = 3});
   ASSERT_FALSE(e);
-  EXPECT_EQ(e.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(e.error().code, ErrorCode::not_finite);
   EXPECT_EQ(json_pointer(e.error().location), "/points/0") << e.error().describe();
   EXPECT_NE(e.error().message.find("1.7e+308"), std::string::npos) << e.error().message;
   EXPECT_EQ(e.error().message.find("control points <="), std::string::npos) << e.error().message;

@@ -113,7 +113,7 @@ TEST(CubicBezierTiming, ValidatesXAndFiniteness) {
   ASSERT_FALSE(bad);
   EXPECT_EQ(json_pointer(bad.error().location), "/x1");
   EXPECT_EQ(json_pointer(CubicBezierTiming<double>::make(0.2, 0, -0.1, 1).error().location), "/x2");
-  EXPECT_EQ(CubicBezierTiming<double>::make(0.2, std::nan(""), 0.1, 1).error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(CubicBezierTiming<double>::make(0.2, std::nan(""), 0.1, 1).error().code, ErrorCode::not_finite);
   EXPECT_TRUE(CubicBezierTiming<double>::make(0, -3, 1, 4));  // y anywhere, x at the bounds
 }
 

@@ -52,10 +52,10 @@ TEST(DistanceTime, ValidationNamesTheKey) {
   const std::vector<TimeDistanceKey<double>> back = {{0, 0}, {1, 1}, {1, 2}};
   auto c = Curve::from_positions(back);
   ASSERT_FALSE(c);
-  EXPECT_EQ(c.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(c.error().code, ErrorCode::keys_not_increasing);
   EXPECT_EQ(json_pointer(c.error().location), "/2");
   const std::vector<TimeDistanceKey<double>> one = {{0, 0}};
-  EXPECT_EQ(Curve::from_positions(one).error().code, ErrorCode::TooFewPoints);
+  EXPECT_EQ(Curve::from_positions(one).error().code, ErrorCode::too_few_points);
   const std::vector<TimeDistanceVelocityKey<double>> nan = {{0, 0, 0}, {1, 1, std::nan("")}};
   EXPECT_EQ(json_pointer(Curve::from_constraints(nan).error().location), "/1");
 }
@@ -76,8 +76,8 @@ TEST(DistanceTime, BackingUpIsReportedWithWhere) {
   EXPECT_NEAR(c->sample(b->t_min_velocity).velocity, b->min_velocity, 1e-12);
   const auto check = c->check_monotone();
   ASSERT_FALSE(check);
-  EXPECT_EQ(check.error().code, ErrorCode::NotMonotone);
-  EXPECT_EQ(check.error().where, "segment 0");
+  EXPECT_EQ(check.error().code, ErrorCode::not_monotone);
+  EXPECT_EQ(check.error().place(), "segment 0");
 }
 
 TEST(DistanceTime, MonotoneRepairKeepsTheKeysAndNeverBacksUp) {
@@ -99,7 +99,7 @@ TEST(DistanceTime, MonotoneRepairKeepsTheKeysAndNeverBacksUp) {
   const std::vector<TimeDistanceKey<double>> down = {{0, 0}, {0.5, 0.7}, {0.7, 0.6}, {1, 1}};
   auto lin = Curve::from_positions(down);
   ASSERT_TRUE(lin);
-  EXPECT_EQ(lin->check_monotone().error().where, "segment 1");
+  EXPECT_EQ(lin->check_monotone().error().place(), "segment 1");
   EXPECT_EQ(json_pointer(lin->monotone_repair().error().location), "/2");
 }
 
@@ -265,7 +265,7 @@ TYPED_TEST(VelocityKeysTyped, Museum) {
   {  // a single key: too few, named
     auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{3, 1}}, VelocityFit::fix_keys_adjust_interior);
     ASSERT_FALSE(c);
-    EXPECT_EQ(c.error().code, ErrorCode::TooFewPoints);
+    EXPECT_EQ(c.error().code, ErrorCode::too_few_points);
   }
   {  // zero speeds and no distance: the object rests, speed exactly 0
     auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {5, 0}, {9, 0}}, VelocityFit::fix_keys_adjust_interior, T(0));
@@ -295,13 +295,13 @@ TYPED_TEST(VelocityKeysTyped, Museum) {
     const T big = std::numeric_limits<T>::max() / T(4);
     auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, big}, {100, big}}, VelocityFit::fix_keys_adjust_interior);
     ASSERT_FALSE(c);
-    EXPECT_EQ(c.error().code, ErrorCode::NotFinite);
+    EXPECT_EQ(c.error().code, ErrorCode::not_finite);
   }
   {  // a NaN or infinite key: named
     auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {1, std::numeric_limits<T>::infinity()}},
                                                        VelocityFit::fix_keys_adjust_interior);
     ASSERT_FALSE(c);
-    EXPECT_EQ(c.error().code, ErrorCode::NotFinite);
+    EXPECT_EQ(c.error().code, ErrorCode::not_finite);
     EXPECT_EQ(json_pointer(c.error().location), "/1");
   }
 }

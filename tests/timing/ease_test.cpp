@@ -100,7 +100,7 @@ TEST(Ease, SineAccelDecelEdgeParameters) {
   expect_endpoints(*full, 0.0, 0.0);
   EXPECT_FALSE(SineAccelDecelEase<double>::make(-0.1, 0.5));
   EXPECT_EQ(SineAccelDecelEase<double>::make(0.6, 0.5).error().location, (std::vector<LocationStep>{std::string("k2")}));
-  EXPECT_EQ(SineAccelDecelEase<double>::make(std::nan(""), 0.5).error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(SineAccelDecelEase<double>::make(std::nan(""), 0.5).error().code, ErrorCode::not_finite);
 }
 
 TEST(Ease, ConstantAccelerationVelocityAndAccelerationCurves) {

@@ -110,7 +110,7 @@ TYPED_TEST(PiecewiseDistanceTyped, RandomConstraintsAreMetExactly) {
       return lo;
     };
     if (!curve) {
-      ASSERT_EQ(curve.error().code, ErrorCode::NotMonotone) << curve.error().describe();
+      ASSERT_EQ(curve.error().code, ErrorCode::not_monotone) << curve.error().describe();
       ASSERT_EQ(curve.error().location.size(), 1u);
       ++refused;
       continue;
@@ -155,7 +155,7 @@ TYPED_TEST(PiecewiseDistanceTyped, RefusalNamesTheTupleAndIsReal) {
                                               {2, T(1.1), T(0), T(-40)}};
   auto c = Curve<T>::from_constraints(k);
   ASSERT_FALSE(c);
-  EXPECT_EQ(c.error().code, ErrorCode::NotMonotone);
+  EXPECT_EQ(c.error().code, ErrorCode::not_monotone);
   EXPECT_EQ(json_pointer(c.error().location), "/1");
   EXPECT_NE(c.error().message.find("tuples 1 → 2"), std::string::npos) << c.error().message;
   // The same polynomial, evaluated independently: the speed of the quintic Hermite with
@@ -183,7 +183,7 @@ TYPED_TEST(PiecewiseDistanceTyped, OverflowingSpeedIsRefusedNotSearched) {
         std::vector<MotionConstraint<T>>{{0, 0, T(0), huge}, {10, 1, T(0), std::nullopt}}}) {
     auto c = Curve<T>::from_constraints(k);
     ASSERT_FALSE(c);
-    EXPECT_EQ(c.error().code, ErrorCode::NotFinite) << c.error().message;
+    EXPECT_EQ(c.error().code, ErrorCode::not_finite) << c.error().message;
     EXPECT_EQ(json_pointer(c.error().location), "/0") << c.error().message;
     EXPECT_NE(c.error().message.find("tuples 0 → 1"), std::string::npos) << c.error().message;
   }
@@ -216,16 +216,16 @@ TYPED_TEST(PiecewiseDistanceTyped, Museum) {
     EXPECT_EQ((*c)(std::numeric_limits<T>::quiet_NaN()), T(0.5));
     EXPECT_EQ(c->sample(3).velocity, T(0));
     const K moving = {{3, T(0.5), T(1), std::nullopt}};
-    EXPECT_EQ(Curve<T>::from_constraints(moving).error().code, ErrorCode::InvalidArgument);
+    EXPECT_EQ(Curve<T>::from_constraints(moving).error().code, ErrorCode::invalid_argument);
   }
   {  // no tuple
-    EXPECT_EQ(Curve<T>::from_constraints(K{}).error().code, ErrorCode::TooFewPoints);
+    EXPECT_EQ(Curve<T>::from_constraints(K{}).error().code, ErrorCode::too_few_points);
   }
   {  // equal frames → error naming the second tuple
     const K k = {{0, 0, std::nullopt, std::nullopt}, {1, 1, std::nullopt, std::nullopt}, {1, 2, std::nullopt, std::nullopt}};
     auto c = Curve<T>::from_constraints(k);
     ASSERT_FALSE(c);
-    EXPECT_EQ(c.error().code, ErrorCode::KeysNotIncreasing);
+    EXPECT_EQ(c.error().code, ErrorCode::keys_not_increasing);
     EXPECT_EQ(json_pointer(c.error().location), "/2");
   }
   {  // negative speed, decreasing distance, NaN
@@ -233,10 +233,10 @@ TYPED_TEST(PiecewiseDistanceTyped, Museum) {
     EXPECT_EQ(json_pointer(Curve<T>::from_constraints(neg).error().location), "/0");
     const K dec = {{0, 0, std::nullopt, std::nullopt}, {1, 1, std::nullopt, std::nullopt}, {2, T(0.5), std::nullopt, std::nullopt}};
     auto d = Curve<T>::from_constraints(dec);
-    EXPECT_EQ(d.error().code, ErrorCode::NotMonotone);
+    EXPECT_EQ(d.error().code, ErrorCode::not_monotone);
     EXPECT_EQ(json_pointer(d.error().location), "/2");
     const K nan = {{0, 0, std::nullopt, std::nullopt}, {1, 1, std::nullopt, std::numeric_limits<T>::quiet_NaN()}};
-    EXPECT_EQ(Curve<T>::from_constraints(nan).error().code, ErrorCode::NotFinite);
+    EXPECT_EQ(Curve<T>::from_constraints(nan).error().code, ErrorCode::not_finite);
   }
   {  // missing speeds only: estimated, monotone (Fritsch–Butland), no NaN with a flat piece
     const K k = {{0, 0, std::nullopt, std::nullopt}, {1, 1, std::nullopt, std::nullopt}, {2, 1, std::nullopt, std::nullopt},
@@ -303,7 +303,7 @@ TYPED_TEST(PiecewiseDistanceTyped, AccelerationMuseum) {
     const K k = {{0, 0}, {1, T(-1)}, {4, 0}};
     auto c = Curve<T>::from_acceleration_curve(k, {.start_speed = T(2)});
     ASSERT_FALSE(c);
-    EXPECT_EQ(c.error().code, ErrorCode::NotMonotone);
+    EXPECT_EQ(c.error().code, ErrorCode::not_monotone);
     EXPECT_EQ(json_pointer(c.error().location), "/1");
   }
   {  // braking exactly to a stop is fine (speed 0 at the end, never below)
@@ -321,7 +321,7 @@ TYPED_TEST(PiecewiseDistanceTyped, AccelerationMuseum) {
   }
   {  // equal frames, one key, negative start speed
     EXPECT_EQ(json_pointer(Curve<T>::from_acceleration_curve(K{{0, 1}, {0, 2}}).error().location), "/1");
-    EXPECT_EQ(Curve<T>::from_acceleration_curve(K{{0, 1}}).error().code, ErrorCode::TooFewPoints);
+    EXPECT_EQ(Curve<T>::from_acceleration_curve(K{{0, 1}}).error().code, ErrorCode::too_few_points);
     EXPECT_EQ(json_pointer(Curve<T>::from_acceleration_curve(K{{0, 1}, {1, 1}}, {.start_speed = T(-1)}).error().location),
               "/start_speed");
   }

@@ -191,7 +191,7 @@ TEST(EulerTrackBuild, RejectsBadInput) {
   EXPECT_EQ(json_pointer(r.error().location), "/keys/1");
   r = build_euler_track(std::vector{ekey(1, {0, 0, 0}), ekey(1, {0, 0, 0})});
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(r.error().code, ErrorCode::keys_not_increasing);
   EulerTrackOptions<double> bad;
   bad.sequence.axes = {0, 0, 1};
   EXPECT_FALSE(build_euler_track(std::vector{ekey(0, {0, 0, 0})}, bad).has_value());

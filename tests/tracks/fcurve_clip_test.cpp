@@ -225,7 +225,7 @@ TEST(FCurveClip, RigRefusesACountNotAMultipleOfTen) {
   const FCurve plain = build_fcurve(raw).value();
   const auto r = build_fcurve_rig(std::vector<FCurve>(9, plain));
   ASSERT_FALSE(r);
-  EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(r.error().code, ErrorCode::invalid_argument);
 }
 
 // ---- The Cycles modifier through the runtime -------------------------------------------------

@@ -419,24 +419,24 @@ TEST(FCurveBuild, RejectsBadKeysNamingTheKey) {
   RawFCurve unsorted{.keys = {inserted(0, 0), inserted(5, 1), inserted(3, 2)}};
   auto r = build_fcurve(unsorted);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(r.error().code, ErrorCode::keys_not_increasing);
   EXPECT_EQ(json_pointer(r.error().location), "/keys/2/frame");
 
   RawFCurve nan{.keys = {inserted(0, 0), inserted(5, std::numeric_limits<double>::quiet_NaN())}};
   r = build_fcurve(nan);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(r.error().code, ErrorCode::not_finite);
   EXPECT_EQ(json_pointer(r.error().location), "/keys/1");
 
   RawFCurve same_float{.keys = {inserted(1, 0), inserted(1.00000001, 1)}};  // distinct doubles, same float
   r = build_fcurve(same_float);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(r.error().code, ErrorCode::keys_not_increasing);
   EXPECT_EQ(json_pointer(r.error().location), "/keys/1");
 
   r = build_fcurve(RawFCurve{});
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::TooFewPoints);
+  EXPECT_EQ(r.error().code, ErrorCode::too_few_points);
 
   // Finite but beyond float: a handle of 1e300 gave NaN values (float conversion to inf).
   RawFCurve huge_handle{.keys = {inserted(1, 0), inserted(3, 0)}};
@@ -444,7 +444,7 @@ TEST(FCurveBuild, RejectsBadKeysNamingTheKey) {
   huge_handle.keys[1].handle_left = Vec2d{2, 1e300};
   r = build_fcurve(huge_handle);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(r.error().code, ErrorCode::invalid_argument);
   EXPECT_EQ(json_pointer(r.error().location), "/keys/1");
   RawFCurve huge_amplitude{.keys = {inserted(1, 0), inserted(3, 1)}};
   huge_amplitude.keys[0].interpolation = Interpolation::elastic;
@@ -456,7 +456,7 @@ TEST(FCurveBuild, RejectsBadKeysNamingTheKey) {
   RawFCurve bad_count{.keys = {inserted(0, 0)}, .cycles = FCurveCycles{.count_after = -1}};
   r = build_fcurve(bad_count);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(r.error().code, ErrorCode::invalid_argument);
   EXPECT_EQ(json_pointer(r.error().location), "/cycles/count_after");
 }
 

@@ -316,7 +316,7 @@ TEST(QuatTrack, GltfCubicIsNormalisedHermite) {
   // Tangents are none or one per key.
   auto wrong = build_quat_track(std::vector{a, b}, std::vector{tangents[0]});
   ASSERT_FALSE(wrong.has_value());
-  EXPECT_EQ(wrong.error().code, ErrorCode::WrongArity);
+  EXPECT_EQ(wrong.error().code, ErrorCode::wrong_arity);
   EXPECT_EQ(json_pointer(wrong.error().location), "/tangents");
 }
 
@@ -361,10 +361,10 @@ TEST(QuatTrackBuild, RejectsBadKeys) {
   EXPECT_EQ(json_pointer(r.error().location), "/keys/1/value");
   r = build_quat_track(std::vector{qkey(0, Q{}), qkey(0, Q{})});
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(r.error().code, ErrorCode::keys_not_increasing);
   r = build_quat_track(std::vector{qkey(0, Q::from_wxyz(std::nan(""), 0, 0, 0))});
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(r.error().code, ErrorCode::not_finite);
   EXPECT_FALSE(build_quat_track(std::vector<QuatKey<double>>{}).has_value());
 }
 

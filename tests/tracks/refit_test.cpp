@@ -220,7 +220,7 @@ TEST(Refit, HoldsKeepAStillStretchStillWithoutItsGridPoints) {
   const std::vector<std::size_t> wrong{holds[0] - 1};
   const auto bad = refit_vector(reduced, values, 1, {.tolerance = kTolerance, .holds = wrong});
   ASSERT_FALSE(bad);
-  EXPECT_EQ(bad.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(bad.error().code, ErrorCode::invalid_argument);
   const std::vector<std::size_t> past{reduced.size() - 1};
   EXPECT_FALSE(refit_vector(reduced, values, 1, {.tolerance = kTolerance, .holds = past}));
 }
@@ -230,7 +230,7 @@ TEST(Refit, BadInputGetsAnErrorWithAPlace) {
   const std::vector<double> v = {0, 1, 2, 3};
   auto k = refit_vector(f, v, 1);
   ASSERT_FALSE(k);
-  EXPECT_EQ(k.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(k.error().code, ErrorCode::keys_not_increasing);
   EXPECT_EQ(json_pointer(k.error().location), "/samples/2");
   const std::vector<double> g = {0, 1};
   EXPECT_FALSE(refit_vector(g, std::vector<double>{0, 1}, 1, {.tolerance = 0}));

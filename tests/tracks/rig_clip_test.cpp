@@ -86,14 +86,14 @@ TEST(RigClip, RefusesWhatItCannotSampleWithThePlace) {
   EXPECT_TRUE(build_rig_clip<double>(ok, slerp, ok));
   const auto e1 = build_rig_clip<double>(cycling, slerp, ok);
   ASSERT_FALSE(e1);
-  EXPECT_EQ(e1.error().code, ErrorCode::Unsupported);
+  EXPECT_EQ(e1.error().code, ErrorCode::unsupported);
   EXPECT_EQ(json_pointer(e1.error().location), "/translations/0");
   const auto e2 = build_rig_clip<double>(ok, squad, ok);
   ASSERT_FALSE(e2);
   EXPECT_EQ(json_pointer(e2.error().location), "/rotations/0/keys/0");
   const auto e3 = build_rig_clip<double>(ok, slerp, std::vector<Track<Vec3d>>{});
   ASSERT_FALSE(e3);
-  EXPECT_EQ(e3.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(e3.error().code, ErrorCode::invalid_argument);
 }
 
 }  // namespace

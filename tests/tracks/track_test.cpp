@@ -259,29 +259,29 @@ TEST(TrackBuild, RejectsBadKeysNamingTheKey) {
   std::vector<TrackKey<double>> keys = {key<double>(0, 0), key<double>(1, 1), key<double>(1, 2)};
   auto r = build_track(keys);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::KeysNotIncreasing);
+  EXPECT_EQ(r.error().code, ErrorCode::keys_not_increasing);
   EXPECT_EQ(json_pointer(r.error().location), "/keys/2/frame");
   keys[2].frame = 2;
   keys[1].value = std::numeric_limits<double>::infinity();
   r = build_track(keys);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(r.error().code, ErrorCode::not_finite);
   EXPECT_EQ(json_pointer(r.error().location), "/keys/1/value");
   keys[1].value = 0;
   keys[1].tangent = TangentKind::kochanek_bartels;
   keys[1].bias = 2;
   r = build_track(keys);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(r.error().code, ErrorCode::invalid_argument);
   EXPECT_EQ(json_pointer(r.error().location), "/keys/1/bias");
-  EXPECT_TRUE(r.error().where.empty());  // a structured place only
+  EXPECT_TRUE(std::all_of(r.error().location.begin(), r.error().location.end(), is_data_step));  // a document path only
   EXPECT_EQ(json_pointer(build_track(std::vector<TrackKey<double>>{}).error().location), "/keys");
   EXPECT_FALSE(build_track(std::vector<TrackKey<double>>{}).has_value());
   // Finite values whose chord slope overflows: (−1e308 − 1e308) / 1 = −inf at key 0.
   const std::vector<TrackKey<double>> far = {key<double>(0, 1e308), key<double>(1, -1e308), key<double>(2, 1e308)};
   r = build_track(far);
   ASSERT_FALSE(r.has_value());
-  EXPECT_EQ(r.error().code, ErrorCode::NotFinite);
+  EXPECT_EQ(r.error().code, ErrorCode::not_finite);
   EXPECT_EQ(json_pointer(r.error().location), "/keys/0");
 }
 

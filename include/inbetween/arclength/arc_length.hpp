@@ -61,14 +61,13 @@ class ArcLength {
   static Expected<ArcLength> build(C curve, const ArcLengthOptions<T>& opt = {}) {
     if (!(opt.relative_tolerance > T(0)) || opt.order < 1 || opt.order > kMaxGaussLegendreOrder ||
         opt.min_depth < 0 || opt.max_depth < opt.min_depth) {
-      return Error{ErrorCode::InvalidArgument,
-                   "needs relative_tolerance > 0, 1 <= order <= 64 and 0 <= min_depth <= max_depth",
-                   "options"};
+      return Error{ErrorCode::invalid_argument,
+                   "needs relative_tolerance > 0, 1 <= order <= 64 and 0 <= min_depth <= max_depth", {Parameter{"options"}}};
     }
     const auto dom = curve.domain();
     const T estimate = gauss_length(curve, dom.lo, dom.hi, opt.order);
     if (!std::isfinite(estimate)) {
-      return Error{ErrorCode::NotFinite, "the curve's speed is not finite", ""};
+      return Error{ErrorCode::not_finite, "the curve's speed is not finite"};
     }
     const T tol = estimate > T(0) ? opt.relative_tolerance * estimate : opt.relative_tolerance;
     auto table = adaptive_gauss_table(
@@ -77,7 +76,7 @@ class ArcLength {
                                        .max_evaluations_per_segment = opt.max_evaluations_per_segment});
     if (!table) return table.error();
     if (!std::isfinite(table->length())) {
-      return Error{ErrorCode::NotFinite, "the curve's length is not finite", ""};
+      return Error{ErrorCode::not_finite, "the curve's length is not finite"};
     }
     return ArcLength(std::move(curve), std::move(*table), gauss_legendre_rule(opt.order));
   }

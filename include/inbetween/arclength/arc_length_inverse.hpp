@@ -50,8 +50,7 @@ class ArcLengthInverse {
   /// Builds the pieces from `arc` (copied).  Errors: options out of range (InvalidArgument).
   static Expected<ArcLengthInverse> build(ArcLength<C> arc, const ArcLengthInverseOptions<T>& opt = {}) {
     if (!(opt.relative_tolerance > T(0)) || opt.max_halvings < 0 || opt.max_halvings > 30) {
-      return Error{ErrorCode::InvalidArgument, "needs relative_tolerance > 0 and 0 <= max_halvings <= 30",
-                   "options"};
+      return Error{ErrorCode::invalid_argument, "needs relative_tolerance > 0 and 0 <= max_halvings <= 30", {Parameter{"options"}}};
     }
     ArcLengthInverse inv(std::move(arc));
     const ArcLength<C>& a = inv.arc_;

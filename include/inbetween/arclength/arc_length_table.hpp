@@ -95,12 +95,11 @@ Expected<ArcLengthTable<typename C::scalar_type>> forward_difference_table(
     const C& curve, ForwardDifferenceOptions opt = {}) {
   using T = typename C::scalar_type;
   if (opt.entries < 2) {
-    return Error{ErrorCode::InvalidArgument, "entries is " + std::to_string(opt.entries) + ", needs at least 2",
-                 "entries"};
+    return Error{ErrorCode::invalid_argument, "entries is " + std::to_string(opt.entries) + ", needs at least 2", {Parameter{"entries"}}};
   }
   if (opt.supersample < 1) {
-    return Error{ErrorCode::InvalidArgument,
-                 "supersample is " + std::to_string(opt.supersample) + ", needs at least 1", "supersample"};
+    return Error{ErrorCode::invalid_argument,
+                 "supersample is " + std::to_string(opt.supersample) + ", needs at least 1", {Parameter{"supersample"}}};
   }
   const auto dom = curve.domain();
   const std::int64_t chords = std::int64_t(opt.entries - 1) * opt.supersample;
@@ -149,8 +148,8 @@ Expected<ArcLengthTable<typename C::scalar_type>> adaptive_forward_difference_ta
   using T = typename C::scalar_type;
   using P = typename C::point_type;
   if (!(opt.tolerance > T(0)) || opt.min_depth < 0 || opt.max_depth < opt.min_depth) {
-    return Error{ErrorCode::InvalidArgument,
-                 "needs tolerance > 0 and 0 <= min_depth <= max_depth", "options"};
+    return Error{ErrorCode::invalid_argument,
+                 "needs tolerance > 0 and 0 <= min_depth <= max_depth", {Parameter{"options"}}};
   }
   const auto dom = curve.domain();
   std::vector<T> u{dom.lo}, s{T(0)};
@@ -214,10 +213,9 @@ Expected<ArcLengthTable<typename C::scalar_type>> adaptive_gauss_table(
   using T = typename C::scalar_type;
   if (!(opt.tolerance > T(0)) || opt.min_depth < 0 || opt.max_depth < opt.min_depth || opt.order < 1 ||
       opt.order > kMaxGaussLegendreOrder) {
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "needs tolerance > 0, 0 <= min_depth <= max_depth and 1 <= order <= " +
-                     std::to_string(kMaxGaussLegendreOrder),
-                 "options"};
+                     std::to_string(kMaxGaussLegendreOrder), {Parameter{"options"}}};
   }
   const auto dom = curve.domain();
   std::vector<T> u{dom.lo}, s{T(0)};

@@ -31,7 +31,7 @@ struct AdaptiveGaussOptions {
   int max_depth = 30;  ///< no interval is split more often than this (cusps, rounding)
   /// Work budget: at most this many integrand evaluations per curve segment for the subdivision
   /// (the budget of a call is this times the number of segments, shared among them).  When it
-  /// runs out no interval is split further: the table builders return BudgetExceeded, the
+  /// runs out no interval is split further: the table builders return budget_exceeded, the
   /// length functions return the estimate reached so far (documented fallback).  Sane curves use
   /// about 1% of the default (the museum: at most 1 395 per segment); a degree-19 Lagrange curve
   /// whose speed is noisier than the tolerance used 2.6e8 evaluations before there was a budget.

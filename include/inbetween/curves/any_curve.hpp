@@ -6,8 +6,10 @@
 
 #include <span>
 #include <array>
+#include <cassert>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 #include "inbetween/curves/bezier.hpp"
 #include "inbetween/curves/bezier_path.hpp"
@@ -62,6 +64,13 @@ using AnyCurveVariant =
                  CubicSpline<Vec3d>, KochanekBartelsSpline<Vec3d>, ParabolicBlendSpline<Vec3d>, BSpline<Vec3d>,
                  LagrangeCurve<Vec3d>>;
 
+/// The degree-1 Bézier from the origin to the origin, built: what a default AnyCurve holds.
+inline BezierCurve<Vec3d> origin_segment() {
+  auto c = BezierCurve<Vec3d>::build(std::vector<Vec3d>{Vec3d{}, Vec3d{}});
+  assert(c.has_value());  // two finite points always build
+  return std::move(*c);
+}
+
 /// A curve of any family: its kind, the dimension of its points as authored (1, 2 or 3; lower
 /// dimensions are padded with zeros) and the built curve.  Use std::visit on `curve` to reach the concrete type; the members below forward
 /// to it, so AnyCurve itself satisfies Curve, SegmentedCurve and ControlledCurve (over Vec3d) and
@@ -72,7 +81,10 @@ struct AnyCurve {
 
   CurveKind kind = CurveKind::bezier;  ///< the family
   int dimension = 3;                   ///< 1, 2 or 3: components written back and printed
-  AnyCurveVariant curve{};             ///< the built curve (padded points)
+  /// The built curve (padded points).  A default AnyCurve (a RawScenePath before the reader fills
+  /// it) holds the degree-1 Bézier from the origin to the origin, made by its builder like any other
+  /// curve: there is no empty curve (the families have no public default constructor).
+  AnyCurveVariant curve = origin_segment();
 
   /// Parameter domain of the held curve.
   Interval<double> domain() const noexcept {

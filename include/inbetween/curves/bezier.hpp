@@ -59,9 +59,6 @@ class BezierCurve {
   using scalar_type = scalar_of<P>;  ///< its scalar
   using T = scalar_type;             ///< shorthand
 
-  /// The straight segment from zero to zero (degree 1).
-  BezierCurve() : BezierCurve(std::vector<P>{P{}, P{}}) {}
-
   /// Builds from ≥ 2 finite control points.
   static Expected<BezierCurve> build(std::span<const P> points) {
     if (auto ok = detail::check_points(points, 2, "bezier"); !ok) return ok.error();
@@ -171,8 +168,8 @@ template <Point P>
 Expected<PiecewiseCubic<P>> to_piecewise_cubic(const BezierCurve<P>& bezier) {
   using T = scalar_of<P>;
   if (bezier.degree() > 3)
-    return Error{ErrorCode::Unsupported,
-                 "only Bezier curves of degree <= 3 are cubics, got degree " + std::to_string(bezier.degree()), "", {"degree"}};
+    return Error{ErrorCode::unsupported,
+                 "only Bezier curves of degree <= 3 are cubics, got degree " + std::to_string(bezier.degree()), {"degree"}};
   const auto e = bezier.degree() == 3 ? bezier : bezier.degree() == 2 ? bezier.elevate_degree()
                                                                       : bezier.elevate_degree().elevate_degree();
   const auto p = e.control_points();

@@ -19,17 +19,14 @@ template <Point P>
 class BezierPath : public PiecewiseCubic<P> {
  public:
   using T = scalar_of<P>;  ///< the scalar of P
-  /// An empty curve (no segments); build with the factory below.
-  BezierPath() = default;
 
   /// Builds from 3k + 1 finite points (k ≥ 1).
   static Expected<BezierPath> build(std::span<const P> points) {
     if (auto ok = detail::check_points(points, 4, "bezier-path"); !ok) return ok.error();
     if (points.size() % 3 != 1) {
-      return Error{ErrorCode::WrongArity,
+      return Error{ErrorCode::wrong_arity,
                    "bezier-path needs 3k + 1 points (P0, C, C, P1, C, C, P2, ...), got " +
-                       std::to_string(points.size()),
-                   "", {"points"}};
+                       std::to_string(points.size()), {"points"}};
     }
     BezierPath s;
     const int k = int(points.size() / 3);
@@ -52,6 +49,10 @@ class BezierPath : public PiecewiseCubic<P> {
 
   /// Number of anchors (k + 1); anchor j is control point 3j and lies on the curve at u = j.
   int anchor_count() const noexcept { return this->segment_count() + 1; }
+
+ private:
+  /// The empty curve the builder fills; built curves only come from build() (house style).
+  BezierPath() = default;
 };
 
 /// Builds a composite cubic Bézier path; see BezierPath::build.

@@ -31,16 +31,12 @@ class BSpline {
   /// Maximum supported degree (evaluation uses fixed-size scratch; no allocation).
   static constexpr int max_degree = 15;
 
-  /// The degree-1 segment from zero to zero.
-  BSpline() : BSpline(std::vector<P>{P{}, P{}}, std::vector<T>{0, 0, 1, 1}, 1, false) {}
-
   /// Builds from control points (≥ degree + 1, finite), 1 ≤ degree ≤ max_degree, and a knot vector
   /// (points + degree + 1 non-decreasing finite values; empty = clamped uniform on [0, 1]).
   static Expected<BSpline> build(std::span<const P> points, int degree, std::span<const T> knots = {}) {
     if (degree < 1 || degree > max_degree)
-      return Error{ErrorCode::InvalidArgument,
-                   "degree must be between 1 and " + std::to_string(max_degree) + ", got " + std::to_string(degree),
-                   "", {"degree"}};
+      return Error{ErrorCode::invalid_argument,
+                   "degree must be between 1 and " + std::to_string(max_degree) + ", got " + std::to_string(degree), {"degree"}};
     if (auto ok = detail::check_points(points, degree + 1, "bspline"); !ok) return ok.error();
     std::vector<T> k = knots.empty() ? clamped_uniform_knots<T>(int(points.size()), degree)
                                      : std::vector<T>(knots.begin(), knots.end());
@@ -53,9 +49,8 @@ class BSpline {
   /// everywhere including the seam.  Domain [degree, degree + points.size()].
   static Expected<BSpline> build_periodic(std::span<const P> points, int degree) {
     if (degree < 1 || degree > max_degree)
-      return Error{ErrorCode::InvalidArgument,
-                   "degree must be between 1 and " + std::to_string(max_degree) + ", got " + std::to_string(degree),
-                   "", {"degree"}};
+      return Error{ErrorCode::invalid_argument,
+                   "degree must be between 1 and " + std::to_string(max_degree) + ", got " + std::to_string(degree), {"degree"}};
     if (auto ok = detail::check_points(points, 2, "periodic bspline"); !ok) return ok.error();
     std::vector<P> wrapped(points.begin(), points.end());
     for (int i = 0; i < degree; ++i) wrapped.push_back(points[i % points.size()]);
@@ -223,9 +218,8 @@ template <Point P>
 Expected<PiecewiseCubic<P>> to_piecewise_cubic(const BSpline<P>& spline) {
   using T = scalar_of<P>;
   if (spline.degree() > 3)
-    return Error{ErrorCode::Unsupported,
-                 "only B-splines of degree <= 3 are piecewise cubics, got degree " + std::to_string(spline.degree()),
-                 "", {"degree"}};
+    return Error{ErrorCode::unsupported,
+                 "only B-splines of degree <= 3 are piecewise cubics, got degree " + std::to_string(spline.degree()), {"degree"}};
   std::vector<T> breaks;
   std::vector<PowerCubic<P>> segs;
   for (int i = 0; i < spline.segment_count(); ++i) {

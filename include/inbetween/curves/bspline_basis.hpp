@@ -89,31 +89,27 @@ template <Real T>
 Expected<void> check_knots(std::span<const T> knots, int point_count, int degree) {
   const int want = point_count + degree + 1;
   if (int(knots.size()) != want)
-    return Error{ErrorCode::WrongArity,
-                 "expected " + std::to_string(want) + " knots (points + degree + 1), got " + std::to_string(knots.size()),
-                 "", {"knots"}};
+    return Error{ErrorCode::wrong_arity,
+                 "expected " + std::to_string(want) + " knots (points + degree + 1), got " + std::to_string(knots.size()), {"knots"}};
   for (int i = 0; i < want; ++i) {
     if (!std::isfinite(knots[i]))
-      return Error{ErrorCode::NotFinite, "knot " + std::to_string(i) + " is not finite", "", {"knots", std::size_t(i)}};
+      return Error{ErrorCode::not_finite, "knot " + std::to_string(i) + " is not finite", {"knots", std::size_t(i)}};
     if (i > 0 && knots[i] < knots[i - 1])
-      return Error{ErrorCode::KeysNotIncreasing,
+      return Error{ErrorCode::keys_not_increasing,
                    "knot " + std::to_string(i) + " (" + shortest_text<double>(double(knots[i])) + ") is less than knot " +
-                       std::to_string(i - 1) + " (" + shortest_text<double>(double(knots[i - 1])) + ")",
-                   "", {"knots", std::size_t(i)}};
+                       std::to_string(i - 1) + " (" + shortest_text<double>(double(knots[i - 1])) + ")", {"knots", std::size_t(i)}};
   }
   int run = 1;
   for (int i = 1; i < want; ++i) {
     run = knots[i] == knots[i - 1] ? run + 1 : 1;
     if (run > degree + 1)
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "knot " + std::to_string(i) + " repeats a value more than degree + 1 = " +
-                       std::to_string(degree + 1) + " times",
-                   "", {"knots", std::size_t(i)}};
+                       std::to_string(degree + 1) + " times", {"knots", std::size_t(i)}};
   }
   if (!(knots[degree] < knots[point_count]))
-    return Error{ErrorCode::InvalidArgument,
-                 "empty parameter domain: knot " + std::to_string(degree) + " equals knot " + std::to_string(point_count),
-                 "", {"knots"}};
+    return Error{ErrorCode::invalid_argument,
+                 "empty parameter domain: knot " + std::to_string(degree) + " equals knot " + std::to_string(point_count), {"knots"}};
   return {};
 }
 

@@ -44,15 +44,12 @@ template <Point P>
 class CatmullRomSpline : public PiecewiseCubic<P> {
  public:
   using T = scalar_of<P>;  ///< the scalar of P
-  /// An empty curve (no segments); build with the factory below.
-  CatmullRomSpline() = default;
 
   /// Builds through `points` (≥ 2, finite); alpha must lie in [0, 1] and tension be finite.
   static Expected<CatmullRomSpline> build(std::span<const P> points, const CatmullRomOptions<T>& options = {}) {
     if (auto ok = detail::check_points(points, 2, "catmull-rom"); !ok) return ok.error();
     if (!(options.alpha >= T(0) && options.alpha <= T(1)))
-      return Error{ErrorCode::InvalidArgument, "alpha must lie in [0, 1], got " + shortest_text<double>(double(options.alpha)),
-                   "", {"alpha"}};
+      return Error{ErrorCode::invalid_argument, "alpha must lie in [0, 1], got " + shortest_text<double>(double(options.alpha)), {"alpha"}};
     if (auto ok = detail::check_finite(options.tension, "tension"); !ok) return ok.error();
     const int n = int(points.size());
     const bool closed = options.closed;
@@ -115,6 +112,8 @@ class CatmullRomSpline : public PiecewiseCubic<P> {
   std::span<const P> tangents() const noexcept { return tangents_; }
 
  private:
+  /// The empty curve the builder fills; built curves only come from build() (house style).
+  CatmullRomSpline() = default;
   CatmullRomOptions<T> options_{};
   std::vector<P> tangents_{P{}};
 };

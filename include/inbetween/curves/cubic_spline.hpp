@@ -40,8 +40,6 @@ template <Point P>
 class CubicSpline : public PiecewiseCubic<P> {
  public:
   using T = scalar_of<P>;  ///< the scalar of P
-  /// An empty curve (no segments); build with the factory below.
-  CubicSpline() = default;
 
   /// Builds the spline through `points` (≥ 2, finite; ≥ 3 for Closed).  For Clamped,
   /// `start_tangent` and `end_tangent` are dP/dt at the first and last parameter (ignored
@@ -57,8 +55,8 @@ class CubicSpline : public PiecewiseCubic<P> {
     if (!tp) return tp.error();
     const std::vector<T>& t = *tp;
     if (end == CubicSplineEnd::clamped) {
-      if (!is_finite(start_tangent)) return Error{ErrorCode::NotFinite, "start tangent is not finite", "", {"start_tangent"}};
-      if (!is_finite(end_tangent)) return Error{ErrorCode::NotFinite, "end tangent is not finite", "", {"end_tangent"}};
+      if (!is_finite(start_tangent)) return Error{ErrorCode::not_finite, "start tangent is not finite", {"start_tangent"}};
+      if (!is_finite(end_tangent)) return Error{ErrorCode::not_finite, "end tangent is not finite", {"end_tangent"}};
     }
     const int n = int(points.size());
     // Tridiagonal system sub[i] D_{i−1} + diag[i] D_i + sup[i] D_{i+1} = rhs[i], solved by the
@@ -112,6 +110,8 @@ class CubicSpline : public PiecewiseCubic<P> {
   CubicSplineEnd end_condition() const noexcept { return end_; }
 
  private:
+  /// The empty curve the builder fills; built curves only come from build() (house style).
+  CubicSpline() = default;
   // The C² row at point i (neighbours im, ip), scaled so that equal spacing h gives 1, 4, 1 and
   // 3 (P_{i+1} − P_{i−1}) / h, bit for bit the uniform rows when h = 1.
   static void interior_row(std::span<const P> p, const std::vector<T>& t, int im, int i, int ip, T& sub, T& diag,

@@ -18,8 +18,6 @@ template <Point P>
 class HermiteSpline : public PiecewiseCubic<P> {
  public:
   using T = scalar_of<P>;  ///< the scalar of P
-  /// An empty curve (no segments); build with the factory below.
-  HermiteSpline() = default;
 
   /// Builds from positions and tangents dP/dt (same count, ≥ 2, finite) at parameters `params`
   /// (strictly increasing, one per point; empty: 0, 1, …); segment i is the Hermite cubic over
@@ -30,10 +28,9 @@ class HermiteSpline : public PiecewiseCubic<P> {
                                        std::span<const T> params = {}) {
     if (auto ok = detail::check_points(points, 2, "hermite"); !ok) return ok.error();
     if (tangents.size() != points.size()) {
-      return Error{ErrorCode::WrongArity,
+      return Error{ErrorCode::wrong_arity,
                    "hermite needs one tangent per point: " + std::to_string(points.size()) +
-                       " points but " + std::to_string(tangents.size()) + " tangents",
-                   "", {"tangents"}};
+                       " points but " + std::to_string(tangents.size()) + " tangents", {"tangents"}};
     }
     if (auto ok = detail::check_points(tangents, 2, "hermite", "tangent"); !ok) return ok.error();
     auto tp = detail::check_params(params, points.size(), "hermite");
@@ -59,6 +56,8 @@ class HermiteSpline : public PiecewiseCubic<P> {
   std::span<const P> tangents() const noexcept { return tangents_; }
 
  private:
+  /// The empty curve the builder fills; built curves only come from build() (house style).
+  HermiteSpline() = default;
   std::vector<P> tangents_{P{}};
 };
 

@@ -35,8 +35,6 @@ template <Point P>
 class KochanekBartelsSpline : public PiecewiseCubic<P> {
  public:
   using T = scalar_of<P>;  ///< the scalar of P
-  /// An empty curve (no segments); build with the factory below.
-  KochanekBartelsSpline() = default;
 
   /// Builds through `points` (≥ 2, finite).  `keys` holds one TcbParams per point, or exactly one
   /// shared by all points; each value must be finite (error locations {"keys", i}, {"keys"}).
@@ -51,15 +49,13 @@ class KochanekBartelsSpline : public PiecewiseCubic<P> {
     const std::vector<T>& t = *tp;
     auto h = [&](int i) { return t[std::clamp(i, 0, n - 2) + 1] - t[std::clamp(i, 0, n - 2)]; };
     if (keys.size() != 1 && int(keys.size()) != n) {
-      return Error{ErrorCode::WrongArity,
+      return Error{ErrorCode::wrong_arity,
                    "kochanek-bartels needs one tension/continuity/bias per point or a single shared one: " +
-                       std::to_string(n) + " points but " + std::to_string(keys.size()) + " keys",
-                   "", {"keys"}};
+                       std::to_string(n) + " points but " + std::to_string(keys.size()) + " keys", {"keys"}};
     }
     for (std::size_t i = 0; i < keys.size(); ++i) {
       if (!std::isfinite(keys[i].tension) || !std::isfinite(keys[i].continuity) || !std::isfinite(keys[i].bias))
-        return Error{ErrorCode::NotFinite, "key " + std::to_string(i) + " has a non-finite parameter",
-                     "", {"keys", std::size_t(i)}};
+        return Error{ErrorCode::not_finite, "key " + std::to_string(i) + " has a non-finite parameter", {"keys", std::size_t(i)}};
     }
     auto key = [&](int i) -> const TcbParams<T>& { return keys.size() == 1 ? keys[0] : keys[i]; };
     auto at = [&](int i) -> P {
@@ -98,6 +94,8 @@ class KochanekBartelsSpline : public PiecewiseCubic<P> {
   std::span<const TcbParams<T>> keys() const noexcept { return keys_; }
 
  private:
+  /// The empty curve the builder fills; built curves only come from build() (house style).
+  KochanekBartelsSpline() = default;
   std::vector<TcbParams<T>> keys_{TcbParams<T>{}};
 };
 

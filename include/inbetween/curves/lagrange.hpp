@@ -24,9 +24,6 @@ class LagrangeCurve {
   using scalar_type = scalar_of<P>;  ///< its scalar
   using T = scalar_type;             ///< shorthand
 
-  /// The segment from zero to zero over [0, 1].
-  LagrangeCurve() : params_{T(0), T(1)}, points_{P{}, P{}}, coeffs_{P{}, P{}} {}
-
   /// Builds through `points` (≥ 2, finite) at `params` (same count, finite, strictly increasing;
   /// empty = 0, 1, …, n − 1).  Error locations: {"points", i}, {"params", i}, or {"params"} when the divided
   /// differences overflow (params too close together for T).
@@ -40,19 +37,17 @@ class LagrangeCurve {
       for (int i = 0; i < n; ++i) c.params_[i] = T(i);
     } else {
       if (int(params.size()) != n)
-        return Error{ErrorCode::WrongArity,
+        return Error{ErrorCode::wrong_arity,
                      "lagrange needs one param per point: " + std::to_string(n) + " points but " +
-                         std::to_string(params.size()) + " params",
-                     "", {"params"}};
+                         std::to_string(params.size()) + " params", {"params"}};
       for (int i = 0; i < n; ++i) {
         if (!std::isfinite(params[i]))
-          return Error{ErrorCode::NotFinite, "param " + std::to_string(i) + " is not finite", "", {"params", std::size_t(i)}};
+          return Error{ErrorCode::not_finite, "param " + std::to_string(i) + " is not finite", {"params", std::size_t(i)}};
         if (i > 0 && !(params[i] > params[i - 1]))
-          return Error{ErrorCode::KeysNotIncreasing,
+          return Error{ErrorCode::keys_not_increasing,
                        "param " + std::to_string(i) + " (" + shortest_text<double>(double(params[i])) +
                            ") is not greater than param " + std::to_string(i - 1) + " (" +
-                           shortest_text<double>(double(params[i - 1])) + ")",
-                       "", {"params", std::size_t(i)}};
+                           shortest_text<double>(double(params[i - 1])) + ")", {"params", std::size_t(i)}};
       }
       c.params_.assign(params.begin(), params.end());
     }
@@ -65,11 +60,10 @@ class LagrangeCurve {
     // scalar type, or huge coordinates): an error, never a curve that evaluates to inf or NaN.
     for (int i = 0; i < n; ++i) {
       if (!is_finite(c.coeffs_[i]))
-        return Error{ErrorCode::NotFinite,
+        return Error{ErrorCode::not_finite,
                      "divided difference " + std::to_string(i) +
                          " overflows: the params are too close together (or the points too large) for this "
-                         "scalar type",
-                     "", {"params"}};
+                         "scalar type", {"params"}};
     }
     return c;
   }
@@ -111,6 +105,9 @@ class LagrangeCurve {
   Interval<T> influence(int) const noexcept { return domain(); }
 
  private:
+  /// The empty curve build() fills.
+  LagrangeCurve() = default;
+
   // Nested multiplication of the Newton form with the derivatives carried along (u in the domain).
   P derivative_plain(T u, int k) const noexcept {
     P d0{}, d1{}, d2{}, d3{};

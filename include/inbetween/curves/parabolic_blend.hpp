@@ -23,8 +23,6 @@ template <Point P>
 class ParabolicBlendSpline : public PiecewiseCubic<P> {
  public:
   using T = scalar_of<P>;  ///< the scalar of P
-  /// An empty curve (no segments); build with the factory below.
-  ParabolicBlendSpline() = default;
 
   /// Builds through `points` (≥ 2, finite) at `params` (one per point, strictly increasing; empty:
   /// 0, 1, …; error location {"params", i}).
@@ -91,6 +89,10 @@ class ParabolicBlendSpline : public PiecewiseCubic<P> {
     if (auto ok = s.finish_build("parabolic"); !ok) return ok.error();
     return s;
   }
+
+ private:
+  /// The empty curve the builder fills; built curves only come from build() (house style).
+  ParabolicBlendSpline() = default;
 };
 
 /// Builds a parabolic-blend spline; see ParabolicBlendSpline::build.

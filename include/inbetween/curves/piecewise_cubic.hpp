@@ -57,9 +57,6 @@ class PiecewiseCubic {
   using scalar_type = scalar_of<P>;  ///< its scalar
   using T = scalar_type;             ///< shorthand
 
-  /// An empty curve (no segments); build with from_segments.
-  PiecewiseCubic() = default;
-
   /// A chain from breakpoints u_0 < … < u_n (finite, strictly increasing) and n power-form
   /// segments over their local v ∈ [0, 1].  Its control points are the joints P(u_0), …, P(u_n)
   /// (interpolated); joint i influences the segments that touch it.  Used to convert B-splines and
@@ -67,28 +64,23 @@ class PiecewiseCubic {
   /// KeysNotIncreasing or NotFinite at {"breakpoints", i}, NotFinite at {"segments", i}.
   static Expected<PiecewiseCubic> from_power_forms(std::vector<T> breakpoints, std::vector<PowerCubic<P>> segments) {
     if (segments.empty() || breakpoints.size() != segments.size() + 1)
-      return Error{ErrorCode::WrongArity,
+      return Error{ErrorCode::wrong_arity,
                    "need n >= 1 segments and n + 1 breakpoints, got " + std::to_string(segments.size()) +
-                       " segments and " + std::to_string(breakpoints.size()) + " breakpoints",
-                   "", {"segments"}};
+                       " segments and " + std::to_string(breakpoints.size()) + " breakpoints", {"segments"}};
     for (std::size_t i = 0; i < breakpoints.size(); ++i) {
       if (!std::isfinite(breakpoints[i]))
-        return Error{ErrorCode::NotFinite, "breakpoint " + std::to_string(i) + " is not finite",
-                     "", {"breakpoints", std::size_t(i)}};
+        return Error{ErrorCode::not_finite, "breakpoint " + std::to_string(i) + " is not finite", {"breakpoints", std::size_t(i)}};
       if (i > 0 && !(breakpoints[i] > breakpoints[i - 1]))
-        return Error{ErrorCode::KeysNotIncreasing, "breakpoint " + std::to_string(i) + " is not after breakpoint " +
-                                                       std::to_string(i - 1),
-                     "", {"breakpoints", std::size_t(i)}};
+        return Error{ErrorCode::keys_not_increasing, "breakpoint " + std::to_string(i) + " is not after breakpoint " +
+                                                       std::to_string(i - 1), {"breakpoints", std::size_t(i)}};
       if (i > 0 && !std::isfinite(T(1) / (breakpoints[i] - breakpoints[i - 1])))
-        return Error{ErrorCode::NotFinite, "the spacing between breakpoints " + std::to_string(i - 1) + " and " +
-                                               std::to_string(i) + " is too small for this scalar type (subnormal)",
-                     "", {"breakpoints", std::size_t(i)}};
+        return Error{ErrorCode::not_finite, "the spacing between breakpoints " + std::to_string(i - 1) + " and " +
+                                               std::to_string(i) + " is too small for this scalar type (subnormal)", {"breakpoints", std::size_t(i)}};
     }
     for (std::size_t i = 0; i < segments.size(); ++i) {
       const auto& g = segments[i];
       if (!is_finite(g.a) || !is_finite(g.b) || !is_finite(g.c) || !is_finite(g.d))
-        return Error{ErrorCode::NotFinite, "segment " + std::to_string(i) + " has a non-finite coefficient",
-                     "", {"segments", std::size_t(i)}};
+        return Error{ErrorCode::not_finite, "segment " + std::to_string(i) + " has a non-finite coefficient", {"segments", std::size_t(i)}};
     }
     PiecewiseCubic c;
     c.breaks_ = std::move(breakpoints);
@@ -190,6 +182,10 @@ class PiecewiseCubic {
   }
 
  protected:
+  /// The empty chain a family's builder fills (breaks_, segments_, …) before finish_build(); a
+  /// built curve only comes from a builder (from_power_forms or a family's build).
+  PiecewiseCubic() = default;
+
   /// The cursor's slow path: clamp, segment lookup, refill, evaluate as point(u) does.
   P point_refill(T u, PiecewiseCursor<T>& cursor) const noexcept {
     // NaN compares false everywhere and clamps to itself: evaluate it without caching (the
@@ -230,11 +226,10 @@ class PiecewiseCubic {
       // in point(u) and in the cursor would be 0·inf = NaN at the breakpoint.
       if (!std::isfinite(breaks_[i]) || (i > 0 && !(breaks_[i] > breaks_[i - 1])) ||
           (i > 0 && !std::isfinite(T(1) / (breaks_[i] - breaks_[i - 1])))) {
-        return Error{ErrorCode::NotFinite,
+        return Error{ErrorCode::not_finite,
                      std::string(family) + ": the parameter spacing at joint " + std::to_string(i) +
                          " underflows or overflows (points too close together or too far apart for this "
-                         "scalar type)",
-                     "", {"points"}};
+                         "scalar type)", {"points"}};
       }
     }
     for (std::size_t i = 0; i < segments_.size(); ++i) {
@@ -244,11 +239,10 @@ class PiecewiseCubic {
         const T bound = std::abs(Tr::get(g.a, k)) + std::abs(Tr::get(g.b, k)) + std::abs(Tr::get(g.c, k)) +
                         std::abs(Tr::get(g.d, k));
         if (!std::isfinite(bound)) {
-          return Error{ErrorCode::NotFinite,
+          return Error{ErrorCode::not_finite,
                        std::string(family) + ": segment " + std::to_string(i) +
                            " overflows (coordinates or tangents too large, or points too close together, for this "
-                           "scalar type)",
-                       "", {"points"}};
+                           "scalar type)", {"points"}};
         }
       }
     }
@@ -279,15 +273,13 @@ template <Point P>
 Expected<void> check_points(std::span<const P> points, int min_count, const char* family,
                             const char* item = "point") {
   if (int(points.size()) < min_count) {
-    return Error{ErrorCode::TooFewPoints,
+    return Error{ErrorCode::too_few_points,
                  std::string(family) + " needs at least " + std::to_string(min_count) + " " + item +
-                     "s, got " + std::to_string(points.size()),
-                 "", {std::string(item) + "s"}};
+                     "s, got " + std::to_string(points.size()), {std::string(item) + "s"}};
   }
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!is_finite(points[i])) {
-      return Error{ErrorCode::NotFinite, std::string(item) + " " + std::to_string(i) + " is not finite",
-                   "", {std::string(item) + "s", std::size_t(i)}};
+      return Error{ErrorCode::not_finite, std::string(item) + " " + std::to_string(i) + " is not finite", {std::string(item) + "s", std::size_t(i)}};
     }
   }
   return {};
@@ -304,22 +296,20 @@ Expected<std::vector<T>> check_params(std::span<const T> params, std::size_t cou
     return t;
   }
   if (params.size() != count)
-    return Error{ErrorCode::WrongArity,
-                 std::string(family) + " needs " + std::to_string(count) + " params, got " + std::to_string(params.size()),
-                 "", {"params"}};
+    return Error{ErrorCode::wrong_arity,
+                 std::string(family) + " needs " + std::to_string(count) + " params, got " + std::to_string(params.size()), {"params"}};
   for (std::size_t i = 0; i < params.size(); ++i) {
     if (!std::isfinite(params[i]))
-      return Error{ErrorCode::NotFinite, "param " + std::to_string(i) + " is not finite", "", {"params", i}};
+      return Error{ErrorCode::not_finite, "param " + std::to_string(i) + " is not finite", {"params", i}};
     if (i > 0 && !(params[i] > params[i - 1]))
-      return Error{ErrorCode::KeysNotIncreasing,
+      return Error{ErrorCode::keys_not_increasing,
                    "param " + std::to_string(i) + " (" + shortest_text<double>(double(params[i])) +
                        ") is not greater than param " + std::to_string(i - 1) + " (" +
-                       shortest_text<double>(double(params[i - 1])) + ")",
-                   "", {"params", i}};
+                       shortest_text<double>(double(params[i - 1])) + ")", {"params", i}};
     // The spacing itself must be a finite positive number (1e308 − (−1e308) overflows).
     if (i > 0 && !std::isfinite(params[i] - params[i - 1]))
-      return Error{ErrorCode::NotFinite, "the spacing between params " + std::to_string(i - 1) + " and " +
-                                             std::to_string(i) + " overflows", "", {"params", i}};
+      return Error{ErrorCode::not_finite, "the spacing between params " + std::to_string(i - 1) + " and " +
+                                             std::to_string(i) + " overflows", {"params", i}};
   }
   t.assign(params.begin(), params.end());
   return t;
@@ -328,7 +318,7 @@ Expected<std::vector<T>> check_params(std::span<const T> params, std::size_t cou
 /// Checks that a scalar option is finite; `where` is its name (the location {where}).
 template <Real T>
 Expected<void> check_finite(T value, const char* where) {
-  if (!std::isfinite(value)) return Error{ErrorCode::NotFinite, std::string(where) + " is not finite", "", {std::string(where)}};
+  if (!std::isfinite(value)) return Error{ErrorCode::not_finite, std::string(where) + " is not finite", {std::string(where)}};
   return {};
 }
 

@@ -17,7 +17,7 @@ using AxesMatrix = std::array<std::array<int, 3>, 3>;
 /// Z-up, (x, y, z) → (x, −z, y), what Blender's importers do by default; "y-up" turns a Z-up file
 /// into Y-up, (x, y, z) → (x, z, −y); otherwise three signed axis letters separated by commas
 /// naming where each new axis comes from, e.g. "x,-z,y" (= "z-up") or "-x,y,-z" (a half turn about
-/// y).  A mirror (determinant −1) is allowed.  Error: ErrorCode::Parse with where = "--axes".
+/// y).  A mirror (determinant −1) is allowed.  Error: ErrorCode::parse at Parameter{"--axes"}.
 [[nodiscard]] Expected<AxesMatrix> parse_axes(std::string_view name);
 
 }  // namespace inbetween

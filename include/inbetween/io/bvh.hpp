@@ -64,16 +64,16 @@ struct BvhReadOptions {
 };
 
 /// Reads BVH text into a RawScene: fps = 1 / Frame Time (or options.fps), range = [0, last frame],
-/// one object per joint.  Errors (`where` = "line N", from 1, of the fault): no HIERARCHY or
+/// one object per joint.  Errors (location {TextLine{N}}, "line N", from 1, of the fault): no HIERARCHY or
 /// MOTION, a missing or extra brace, a joint without a name or OFFSET, an unknown or repeated
 /// channel name, a CHANNELS count that disagrees with the names on its line, two joints with the
 /// same name, more than kMaxBvhJoints joints, a `Frames:` count that is not a non-negative integer
 /// or more keys than kMaxBvhKeys, a Frame Time that is not finite and > 0, fewer frame lines than
 /// `Frames:` (at the `Frames:` line), a frame line with too few or too many numbers, a number that
-/// is not finite; options that are out of range (`where` = "--scale", "--axes", "--fps").
+/// is not finite; options that are out of range (at Parameter{"--scale"}, {"--axes"}, {"--fps"}).
 [[nodiscard]] Expected<RawScene> read_bvh(std::string_view text, const BvhReadOptions& options = {});
 
-/// read_bvh() of a file's content; ErrorCode::Io (where = the path) when it cannot be read,
+/// read_bvh() of a file's content; ErrorCode::io (at Source{the path}) when it cannot be read,
 /// Unsupported when it is larger than kMaxBvhFileBytes.
 [[nodiscard]] Expected<RawScene> read_bvh_file(const std::filesystem::path& file, const BvhReadOptions& options = {});
 

@@ -14,8 +14,8 @@ namespace inbetween {
 /// The curve format version this library reads and writes.
 inline constexpr int curve_format_version = 1;
 
-/// Parses and builds a curve file.  Errors carry `where` = "<source_name>:<JSON pointer>" (for
-/// example "path.json:/points/3") and a message such as "expected 3 numbers".
+/// Parses and builds a curve file.  Errors are located {Source{source_name}, members…}, rendered
+/// "<source_name>:<JSON pointer>" (for example "path.json:/points/3"), and a message such as "expected 3 numbers".
 Expected<AnyCurve> parse_curve_json(std::string_view text, std::string_view source_name);
 
 /// Writes a curve as a version-1 curve file (pretty-printed JSON ending in a newline) with

@@ -27,15 +27,14 @@ struct EnvironmentFile {
 };
 
 /// Parses an environment file.  The JSON is read with bounded nesting (at most 512 levels); a
-/// syntax error names its line and column.  Errors carry the structured place in
-/// `location` ({"obstacles", 2, "box", "min", 1}) and, rendered once, `where` =
-/// "<source_name>:<JSON pointer>" ("env.json:/obstacles/2/box/min/1"; just the source name for
-/// errors of the whole text), and say what was expected.
+/// syntax error names its line and column.  Errors carry the place in `location`,
+/// ({Source{source_name}, "obstacles", 2, "box", "min", 1}, rendered "env.json:/obstacles/2/box/min/1";
+/// just the source for errors of the whole text), and say what was expected.
 Expected<EnvironmentFile> parse_environment_json(std::string_view text, std::string_view source_name);
 /// A library error (Environment::build, plan_polyline, time_path) whose `location` names a place in
-/// the environment file ({"obstacles", 3, "sphere", "radius"}) with `where` set to
-/// "<source_name>:<JSON pointer>" ("env.json:/obstacles/3/sphere/radius"); an error without a
-/// location gets just the source name.
+/// the environment file ({"obstacles", 3, "sphere", "radius"}) placed in the file: {Source{source_name}, …}
+/// ("env.json:/obstacles/3/sphere/radius"); an error without a place in the file (a parameter of
+/// the call) gets just the source.
 Error locate_environment_error(const Error& error, std::string_view source_name);
 
 }  // namespace inbetween

@@ -65,7 +65,7 @@ struct GltfImport {
 /// Reads a `.gltf` or `.glb` file (told apart by the glb magic "glTF", not by the extension) and
 /// the selected animation into a RawScene: objects = nodes in index order, weights tracks first,
 /// fps = options.fps, range = [start, end] of the animation × fps ([0, 0] without animation).
-/// Errors: ErrorCode::Io for a file (or external buffer) that cannot be read, Parse for what
+/// Errors: ErrorCode::io for a file (or external buffer) that cannot be read, Parse for what
 /// tinygltf rejects (truncated .glb, bad JSON), and for animation data (accessor out of its
 /// buffer, count disagreeing with the sampler, NaN, times not increasing, unknown interpolation)
 /// the code of the fault with a structured `location` into the glTF JSON

@@ -10,7 +10,7 @@
 /// the `vn` its face corners name (Blender's flat "s off" export names each face's normal at its
 /// corners, so the sum is the angle-free average of the faces around it); when some vertex has no
 /// `vn`, all normals are computed by the mesh builder instead (area-weighted).
-/// Errors (`where` = "<source_name>: line N", or the source name alone for a mesh with no vertex
+/// Errors (location {Source{source_name}, TextLine{N}}, "<source_name>: line N", or the source alone for a mesh with no vertex
 /// or face): a `v`/`vn` line with fewer than 3 numbers or a NaN/infinite one, a face with fewer
 /// than 3 or more than 255 corners, an index 0 or not a number, a face that names a vertex the file
 /// does not have, a face with zero area or a repeated vertex, an edge shared by three faces, and

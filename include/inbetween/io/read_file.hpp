@@ -19,7 +19,7 @@ namespace inbetween {
 /// limits").  A glTF binary of 1 024 joints keyed at 30 fps for 10 minutes is about 300 MB.
 inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{512} << 20;
 
-/// The whole content of `file`.  Errors (`where` = the file's name): code Io when the file does
+/// The whole content of `file`.  Errors (location {Source{file}}): code Io when the file does
 /// not exist or cannot be opened or read, or is not a regular file ("is a directory", "is not a
 /// regular file (a device, FIFO or socket)"); code Unsupported when it is larger than `max_bytes`
 /// (the message names both sizes).  Symbolic links are followed.
@@ -27,7 +27,7 @@ inline constexpr std::uintmax_t kMaxInputFileBytes = std::uintmax_t{512} << 20;
                                                     std::uintmax_t max_bytes = kMaxInputFileBytes);
 
 /// The whole content of a stream (standard input) up to `max_bytes`; more is an error (code
-/// Unsupported, `where` = `name`) after reading at most max_bytes + 1 bytes.
+/// Unsupported, location {Source{name}}) after reading at most max_bytes + 1 bytes.
 [[nodiscard]] Expected<std::string> read_stream_bytes(std::istream& in, std::string_view name,
                                                       std::uintmax_t max_bytes = kMaxInputFileBytes);
 

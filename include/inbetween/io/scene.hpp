@@ -18,19 +18,18 @@ inline constexpr int scene_format_version_min = 1;
 /// The newest scene format version this reader accepts.
 inline constexpr int scene_format_version_max = 2;
 
-/// Reads scene JSON text into a RawScene.  Errors: ErrorCode::Parse with `where` = "line L, column
-/// C" for text that is not JSON (also a number beyond double's range, and nesting deeper than
-/// 512 levels); otherwise a structured `location` (the JSON pointer as steps, empty for the
-/// document root) with `where` empty.  `source_path` is the scene file's path: curve files named by
+/// Reads scene JSON text into a RawScene.  Errors: ErrorCode::parse at TextLine{L, C} ("line L,
+/// column C") for text that is not JSON (also a number beyond double's range, and nesting deeper
+/// than 512 levels); otherwise the JSON pointer as location steps (empty for the document root).  `source_path` is the scene file's path: curve files named by
 /// "file" members are read relative to its folder (empty or "-", for text from standard input:
-/// relative to the current directory).  A curve file that cannot be read is ErrorCode::Io at its
+/// relative to the current directory).  A curve file that cannot be read is ErrorCode::io at its
 /// "file" member, naming the resolved path and the system's reason; an error inside it keeps its
 /// own place after the file's name ("/paths/0/file: climb.json:/points/3: …").
 [[nodiscard]] Expected<RawScene> read_scene_json(std::string_view json_text, std::string_view source_path = {});
 
-/// read_scene_json() then build_scene().  A structured location is rendered once, into `where`,
-/// as a JSON pointer ("/tracks/2/keys/3/frame"; "/" for the document root), so describe() reads
-/// "/tracks/2/keys/3/frame: frame 2.5 is not after …".
+/// read_scene_json() then build_scene(); describe() reads "/tracks/2/keys/3/frame: frame 2.5 is not
+/// after …".  An error about the whole document has an empty location; the tool and the Python
+/// module print it as "/" (describe_in(e, file, "/")).
 /// `source_path` as for read_scene_json().
 [[nodiscard]] Expected<Scene> parse_scene(std::string_view json_text, std::string_view source_path = {});
 

@@ -25,7 +25,7 @@ struct SceneWriteOptions {
   int indent = 2;
 };
 
-/// The scene file text of `scene` (ends with a newline).  Errors: ErrorCode::NotFinite when a
+/// The scene file text of `scene` (ends with a newline).  Errors: ErrorCode::not_finite when a
 /// number is NaN or infinite (JSON cannot hold it), with the structured `location` of the member
 /// in the RawScene — which is its JSON pointer in the file ({"tracks", 2, "keys", 3, "value"}).
 /// No other check: a RawScene that build_scene() rejects is written as it is.

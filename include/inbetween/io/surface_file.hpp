@@ -24,8 +24,8 @@ namespace inbetween {
 inline constexpr int surface_format_version = 1;
 
 /// Parses and builds a surface file.  The JSON is read with bounded nesting; a syntax error names
-/// its line and column.  Every error has `where` = "<source_name>:<JSON pointer>"
-/// ("terrain.json:/height_field/heights/2/5") or just the source name for the whole text.
+/// its line and column.  Every error is located {Source{source_name}, members…}:
+/// "<source_name>:<JSON pointer>" ("terrain.json:/height_field/heights/2/5") or just the source name for the whole text.
 Expected<SurfaceShape> parse_surface_json(std::string_view text, std::string_view source_name);
 
 }  // namespace inbetween

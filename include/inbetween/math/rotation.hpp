@@ -167,20 +167,19 @@ Expected<void> check_rotation(const Mat3<T>& r, T tol = rotation_check_tolerance
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       if (!std::isfinite(r.m[i][j]))
-        return Error{ErrorCode::NotFinite, "matrix entry (" + std::to_string(i) + ", " + std::to_string(j) +
-                                               ") is not finite", ""};
+        return Error{ErrorCode::not_finite, "matrix entry (" + std::to_string(i) + ", " + std::to_string(j) +
+                                               ") is not finite"};
   const T det = determinant(r);
   if (det < T(0))
-    return Error{ErrorCode::NotARotation,
-                 "determinant is " + detail::message_number(double(det)) + ": a reflection, not a rotation", ""};
+    return Error{ErrorCode::not_a_rotation,
+                 "determinant is " + detail::message_number(double(det)) + ": a reflection, not a rotation"};
   const T off = max_abs_diff(transpose(r) * r, Mat3<T>::identity());
   if (off > tol)
-    return Error{ErrorCode::NotARotation,
+    return Error{ErrorCode::not_a_rotation,
                  "not orthonormal: max |R^T R - I| = " + detail::message_number(double(off)) + " exceeds " +
-                     detail::message_number(double(tol)),
-                 ""};
+                     detail::message_number(double(tol))};
   if (std::abs(det - T(1)) > tol)
-    return Error{ErrorCode::NotARotation, "determinant is " + detail::message_number(double(det)) + ", not 1", ""};
+    return Error{ErrorCode::not_a_rotation, "determinant is " + detail::message_number(double(det)) + ", not 1"};
   return {};
 }
 

@@ -185,26 +185,25 @@ template <Real T>
 Expected<Transform<T>> transform_from_matrix(const Mat4<T>& m, const DecomposeOptions<T>& options = {}) {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c)
-      if (!std::isfinite(m.m[r][c])) return Error{ErrorCode::NotFinite, "matrix entry is not finite", ""};
+      if (!std::isfinite(m.m[r][c])) return Error{ErrorCode::not_finite, "matrix entry is not finite"};
   const T tol = options.tolerance;
   if (std::abs(m.m[3][0]) > tol || std::abs(m.m[3][1]) > tol || std::abs(m.m[3][2]) > tol ||
       std::abs(m.m[3][3] - T(1)) > tol)
-    return Error{ErrorCode::Unsupported, "last row is not (0, 0, 0, 1): a projective matrix has no TRS form", ""};
+    return Error{ErrorCode::unsupported, "last row is not (0, 0, 0, 1): a projective matrix has no TRS form"};
   const Mat3<T> l = m.linear();
   Vec3<T> cols[3] = {l.column(0), l.column(1), l.column(2)};
   Vec3<T> s{norm(cols[0]), norm(cols[1]), norm(cols[2])};
   for (int c = 0; c < 3; ++c)
     if (!(s[c] > T(0)))
-      return Error{ErrorCode::InvalidArgument, "column " + std::to_string(c) + " is zero: zero scale has no rotation", ""};
+      return Error{ErrorCode::invalid_argument, "column " + std::to_string(c) + " is zero: zero scale has no rotation"};
   for (int c = 0; c < 3; ++c) cols[c] = cols[c] / s[c];
   const T d01 = std::abs(dot(cols[0], cols[1])), d02 = std::abs(dot(cols[0], cols[2])),
           d12 = std::abs(dot(cols[1], cols[2]));
   const T shear = std::fmax(d01, std::fmax(d02, d12));
   if (shear > tol)
-    return Error{ErrorCode::Unsupported,
+    return Error{ErrorCode::unsupported,
                  "linear part has shear (largest cosine between columns " + detail::message_number(double(shear)) +
-                     "): no TRS transform reproduces it",
-                 ""};
+                     "): no TRS transform reproduces it"};
   if (determinant(l) < T(0)) {
     s.x = -s.x;
     cols[0] = -cols[0];

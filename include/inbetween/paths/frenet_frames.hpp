@@ -76,14 +76,11 @@ class FrenetFrames {
   /// (InvalidArgument naming the option).
   static Expected<FrenetFrames> build(C curve, const FrenetOptions<T>& options = {}) {
     if (options.samples_per_segment < 1)
-      return Error{ErrorCode::InvalidArgument,
-                   "samples_per_segment must be at least 1, got " + std::to_string(options.samples_per_segment),
-                   "samples_per_segment"};
+      return Error{ErrorCode::invalid_argument,
+                   "samples_per_segment must be at least 1, got " + std::to_string(options.samples_per_segment), {Parameter{"samples_per_segment"}}};
     if (!(options.tolerance >= T(0)) || !std::isfinite(options.tolerance))
-      return Error{ErrorCode::InvalidArgument, "tolerance must be finite and >= 0", "tolerance"};
-    FrenetFrames f;
-    f.curve_ = std::move(curve);
-    f.tol_ = options.tolerance;
+      return Error{ErrorCode::invalid_argument, "tolerance must be finite and >= 0", {Parameter{"tolerance"}}};
+    FrenetFrames f(std::move(curve), options.tolerance);
     const std::vector<T> us = detail::path_sample_parameters(f.curve_, options.samples_per_segment);
     std::vector<bool> ok(us.size());
     for (std::size_t i = 0; i < us.size(); ++i) ok[i] = frenet_frame(f.curve_, us[i], f.tol_).defined;
@@ -150,6 +147,9 @@ class FrenetFrames {
   }
 
  private:
+  /// The frames' curve; build() fills the rest.  Built frames only come from build() (house style).
+  explicit FrenetFrames(C curve, T tolerance) : curve_(std::move(curve)), tol_(tolerance) {}
+
   static PathFrame<T> with_normal(const Vec3<T>& t, const Vec3<T>& n) noexcept {
     return {t, n, cross(t, n)};
   }
@@ -171,7 +171,7 @@ class FrenetFrames {
     return {u_bad, fr};
   }
 
-  C curve_{};
+  C curve_;
   T tol_{};
   std::vector<StraightPiece> pieces_;
 };

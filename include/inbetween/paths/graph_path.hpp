@@ -38,7 +38,7 @@ class EdgeGraph {
   static Expected<EdgeGraph> build(std::span<const Vec3<T>> vertices, std::span<const std::array<int, 2>> edges) {
     for (std::size_t i = 0; i < vertices.size(); ++i)
       if (!is_finite(vertices[i]))
-        return Error{ErrorCode::NotFinite, "vertex " + std::to_string(i) + " is not finite", "vertex " + std::to_string(i)};
+        return Error{ErrorCode::not_finite, "vertex " + std::to_string(i) + " is not finite", {Element{"vertex", std::size_t(i)}}};
     EdgeGraph g;
     g.vertices_.assign(vertices.begin(), vertices.end());
     g.adjacent_.resize(vertices.size());
@@ -46,13 +46,11 @@ class EdgeGraph {
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const auto [a, b] = edges[e];
       if (a < 0 || b < 0 || a >= n || b >= n)
-        return Error{ErrorCode::InvalidArgument,
+        return Error{ErrorCode::invalid_argument,
                      "edge joins vertices " + std::to_string(a) + " and " + std::to_string(b) + ", but there are " +
-                         std::to_string(n),
-                     "edge " + std::to_string(e)};
+                         std::to_string(n), {Element{"edge", std::size_t(e)}}};
       if (a == b)
-        return Error{ErrorCode::InvalidArgument, "edge joins vertex " + std::to_string(a) + " to itself",
-                     "edge " + std::to_string(e)};
+        return Error{ErrorCode::invalid_argument, "edge joins vertex " + std::to_string(a) + " to itself", {Element{"edge", std::size_t(e)}}};
       g.adjacent_[std::size_t(a)].push_back(b);
       g.adjacent_[std::size_t(b)].push_back(a);
     }
@@ -73,8 +71,7 @@ class EdgeGraph {
       const auto& tri = triangles[t];
       for (int k = 0; k < 3; ++k) {
         if (tri[std::size_t(k)] < 0 || tri[std::size_t(k)] >= n || tri[std::size_t(k)] == tri[std::size_t((k + 1) % 3)])
-          return Error{ErrorCode::InvalidArgument, "triangle has a vertex index out of range or repeated",
-                       "triangle " + std::to_string(t)};
+          return Error{ErrorCode::invalid_argument, "triangle has a vertex index out of range or repeated", {Element{"triangle", std::size_t(t)}}};
         edges.push_back({tri[std::size_t(k)], tri[std::size_t((k + 1) % 3)]});
       }
     }
@@ -105,10 +102,10 @@ template <Real T>
 Expected<void> check_graph_ends(const EdgeGraph<T>& g, int start, int goal) {
   for (const auto& [v, name] : {std::pair{start, "start"}, std::pair{goal, "goal"}})
     if (v < 0 || v >= g.vertex_count())
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    std::string(name) + " vertex " + std::to_string(v) + " is not one of the " +
                        std::to_string(g.vertex_count()) + " vertices",
-                   name};
+                   {Parameter{name}}};
   return {};
 }
 }  // namespace detail
@@ -138,13 +135,12 @@ Expected<GraphPath<T>> greedy_edge_path(const EdgeGraph<T>& graph, int start, in
       }
     }
     if (best < 0)
-      return Error{ErrorCode::InvalidArgument,
-                   "greedy walk stuck: vertex " + std::to_string(cur) + " has no edges", "goal"};
+      return Error{ErrorCode::invalid_argument,
+                   "greedy walk stuck: vertex " + std::to_string(cur) + " has no edges", {Parameter{"goal"}}};
     if (visited[std::size_t(best)])
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "greedy walk would revisit vertex " + std::to_string(best) + " (from vertex " + std::to_string(cur) +
-                       "): a dead end or a loop; use shortest_graph_path",
-                   "goal"};
+                       "): a dead end or a loop; use shortest_graph_path", {Parameter{"goal"}}};
     visited[std::size_t(best)] = true;
     out.length += distance(graph.vertex(cur), graph.vertex(best));
     out.vertices.push_back(best);
@@ -183,10 +179,9 @@ Expected<GraphPath<T>> shortest_graph_path(const EdgeGraph<T>& graph, int start,
     }
   }
   if (!closed[std::size_t(goal)])
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "no path from vertex " + std::to_string(start) + " to vertex " + std::to_string(goal) +
-                     ": they are not connected",
-                 "goal"};
+                     ": they are not connected", {Parameter{"goal"}}};
   GraphPath<T> out;
   for (int v = goal; v >= 0; v = parent[std::size_t(v)]) out.vertices.push_back(v);
   std::reverse(out.vertices.begin(), out.vertices.end());

@@ -81,17 +81,19 @@ namespace detail {
 template <Real T>
 Expected<void> check_mesh_vertex(const TriangleMesh<T>& mesh, int v, const char* name) {
   if (v < 0 || v >= mesh.vertex_count())
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "vertex " + std::to_string(v) + " is not one of the mesh's " + std::to_string(mesh.vertex_count()) +
                      " vertices (0 to " + std::to_string(mesh.vertex_count() - 1) + ")",
-                 name};
+                 {Parameter{name}}};
   if (mesh.faces_around(v).empty())
-    return Error{ErrorCode::InvalidArgument, "vertex " + std::to_string(v) + " belongs to no face", name};
+    return Error{ErrorCode::invalid_argument, "vertex " + std::to_string(v) + " belongs to no face", {Parameter{name}}};
   return {};
 }
 
-/// "edge a-b", smaller index first.
-inline std::string edge_name(int a, int b) { return "edge " + std::to_string(std::min(a, b)) + "-" + std::to_string(std::max(a, b)); }
+/// The place "edge a-b", smaller index first.
+inline Element edge_name(int a, int b) {
+  return Element{"edge", std::size_t(std::min(a, b)), std::size_t(std::max(a, b))};
+}
 
 /// The corners of face f other than v, in the face's order after v.
 template <Real T>
@@ -230,10 +232,9 @@ Expected<std::vector<Vec3<T>>> plane_mesh_path(const TriangleMesh<T>& mesh, int 
   // Unit vectors' cross product below 1e-9 means the chord and the average normal are parallel to
   // within 1e-9 rad (or the normals cancel): no plane is defined.
   if (!(norm(m_raw) > T(1e-9) * norm(chord)))
-    return Error{ErrorCode::InvalidArgument,
+    return Error{ErrorCode::invalid_argument,
                  "no plane: the line from vertex " + std::to_string(from) + " to vertex " + std::to_string(to) +
-                     " is parallel to the average of their normals (or the normals cancel)",
-                 "to"};
+                     " is parallel to the average of their normals (or the normals cancel)", {Parameter{"to"}}};
   const V m = m_raw / norm(m_raw);
   const T tol = kMeshWalkTolerance<T> * mesh.scale();
   const auto sd = [&](int v) { return dot(m, V(mesh.vertex(v) - p0)); };
@@ -284,11 +285,10 @@ Expected<std::vector<Vec3<T>>> plane_mesh_path(const TriangleMesh<T>& mesh, int 
         if (d > best_dot) best_dot = d, best = &c;
       }
       if (best == nullptr)
-        return Error{ErrorCode::InvalidArgument,
+        return Error{ErrorCode::invalid_argument,
                      blocked && !mesh.on_boundary(v)
                          ? "the plane walk returns to where it has been without meeting vertex " + std::to_string(to)
-                         : "the plane leaves the mesh at vertex " + std::to_string(v) + " (boundary)",
-                     "vertex " + std::to_string(v)};
+                         : "the plane leaves the mesh at vertex " + std::to_string(v) + " (boundary)", {Element{"vertex", std::size_t(v)}}};
       forward = normalized(V(best->p - pv), forward);
       out.push_back(best->p);
       if (best->vertex >= 0) {
@@ -303,21 +303,19 @@ Expected<std::vector<Vec3<T>>> plane_mesh_path(const TriangleMesh<T>& mesh, int 
     // On edge (a, b): into the face beyond.
     const int f = mesh.face_across_edge(spot.from, spot.a, spot.b);
     if (f < 0)
-      return Error{ErrorCode::InvalidArgument, "the plane leaves the mesh across a boundary edge",
-                   detail::edge_name(spot.a, spot.b)};
+      return Error{ErrorCode::invalid_argument, "the plane leaves the mesh across a boundary edge",
+                   {detail::edge_name(spot.a, spot.b)}};
     if (face_seen[std::size_t(f)])
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "the plane walk enters face " + std::to_string(f) + " a second time without meeting vertex " +
-                       std::to_string(to),
-                   "face " + std::to_string(f)};
+                       std::to_string(to), {Element{"face", std::size_t(f)}}};
     face_seen[std::size_t(f)] = 1;
     const int c = detail::third_corner(mesh, f, spot.a, spot.b);
     const V prev = out.back();
     const int sc = side(c);
     if (c == to || sc == 0) {
       if (c != to && vertex_seen[std::size_t(c)])
-        return Error{ErrorCode::InvalidArgument, "the plane walk returns to vertex " + std::to_string(c),
-                     "vertex " + std::to_string(c)};
+        return Error{ErrorCode::invalid_argument, "the plane walk returns to vertex " + std::to_string(c), {Element{"vertex", std::size_t(c)}}};
       out.push_back(mesh.vertex(c));
       vertex_seen[std::size_t(c)] = 1;
       spot = {.vertex = c};
@@ -328,7 +326,7 @@ Expected<std::vector<Vec3<T>>> plane_mesh_path(const TriangleMesh<T>& mesh, int 
     }
     forward = normalized(V(out.back() - prev), forward);
   }
-  return Error{ErrorCode::InvalidArgument, "the plane walk did not reach vertex " + std::to_string(to), "to"};
+  return Error{ErrorCode::invalid_argument, "the plane walk did not reach vertex " + std::to_string(to), {Parameter{"to"}}};
 }
 
 /// The greedy walk across faces from vertex `from` to vertex `to` (file comment).
@@ -344,9 +342,8 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
   detail::MeshSpot spot{.vertex = from};
   const auto go_vertex = [&](int v) -> Expected<void> {
     if (vertex_seen[std::size_t(v)])
-      return Error{ErrorCode::InvalidArgument,
-                   "the greedy walk would return to vertex " + std::to_string(v) + " (a trap)",
-                   "vertex " + std::to_string(v)};
+      return Error{ErrorCode::invalid_argument,
+                   "the greedy walk would return to vertex " + std::to_string(v) + " (a trap)", {Element{"vertex", std::size_t(v)}}};
     vertex_seen[std::size_t(v)] = 1;
     out.push_back(mesh.vertex(v));
     spot = {.vertex = v};
@@ -399,17 +396,15 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
         if (c > best_cos) best_cos = c, best = nb;
       }
       if (best < 0)  // cannot happen: a vertex in a face has neighbours, and their cosines are finite
-        return Error{ErrorCode::InvalidArgument, "the greedy walk is stuck at vertex " + std::to_string(v),
-                     "vertex " + std::to_string(v)};
+        return Error{ErrorCode::invalid_argument, "the greedy walk is stuck at vertex " + std::to_string(v), {Element{"vertex", std::size_t(v)}}};
       if (auto ok = go_vertex(best); !ok) return ok.error();
       continue;
     }
     const int f = mesh.face_across_edge(spot.from, spot.a, spot.b);
     const V q = out.back();
     if (f >= 0 && face_seen[std::size_t(f)])
-      return Error{ErrorCode::InvalidArgument,
-                   "the greedy walk would enter face " + std::to_string(f) + " again (a trap)",
-                   "face " + std::to_string(f)};
+      return Error{ErrorCode::invalid_argument,
+                   "the greedy walk would enter face " + std::to_string(f) + " again (a trap)", {Element{"face", std::size_t(f)}}};
     detail::FaceCross<T> cr{};
     if (f >= 0) {
       if (detail::third_corner(mesh, f, spot.a, spot.b) == to) {
@@ -433,7 +428,7 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
       spot = {.vertex = -1, .a = cr.a, .b = cr.b, .w = double(cr.w), .from = f};
     }
   }
-  return Error{ErrorCode::InvalidArgument, "the greedy walk did not reach vertex " + std::to_string(to), "to"};
+  return Error{ErrorCode::invalid_argument, "the greedy walk did not reach vertex " + std::to_string(to), {Parameter{"to"}}};
 }
 
 /// The shortest path along edges from vertex `from` to vertex `to` (Dijkstra/A*; graph_path.hpp).
@@ -444,7 +439,7 @@ Expected<std::vector<Vec3<T>>> edge_mesh_path(const TriangleMesh<T>& mesh, int f
   auto graph = EdgeGraph<T>::from_triangles(mesh.vertices(), mesh.faces());
   if (!graph) return graph.error();  // cannot happen: the mesh was validated
   auto path = shortest_graph_path(*graph, from, to);
-  if (!path) return Error{ErrorCode::InvalidArgument, path.error().message, "to"};
+  if (!path) return Error{ErrorCode::invalid_argument, path.error().message, {Parameter{"to"}}};
   std::vector<Vec3<T>> out;
   out.reserve(path->vertices.size());
   for (int v : path->vertices) out.push_back(mesh.vertex(v));
@@ -461,7 +456,7 @@ Expected<DownhillPath<T>> downhill_mesh_path(const TriangleMesh<T>& mesh, int st
   if (auto ok = detail::check_mesh_vertex(mesh, start, "start"); !ok) return ok.error();
   const V u = normalized(up, V{});
   if (!is_finite(up) || squared_norm(u) == T(0))
-    return Error{ErrorCode::InvalidArgument, "up must be a non-zero finite vector", "up"};
+    return Error{ErrorCode::invalid_argument, "up must be a non-zero finite vector", {Parameter{"up"}}};
   DownhillPath<T> out{{mesh.vertex(start)}, DownhillStop::minimum};
   const auto height = [&](const V& p) { return dot(p, u); };
   const auto downhill = [&](int f) {  // D = −up + n (n · up)

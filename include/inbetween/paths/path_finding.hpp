@@ -87,8 +87,8 @@ struct GridPath {
   int expanded = 0;             ///< cells taken from the open list (a measure of search effort)
 };
 
-/// A* from start to goal.  Errors (InvalidArgument, `where` "start" or "goal"): a cell off the grid
-/// or blocked, and — where "goal" — "no path" when the goal cannot be reached.  start == goal
+/// A* from start to goal.  Errors (InvalidArgument at Parameter{"start"} or {"goal"}): a cell off
+/// the grid or blocked, and — at "goal" — "no path" when the goal cannot be reached.  start == goal
 /// gives the one-cell path of length 0.
 Expected<GridPath> find_grid_path(const OccupancyGrid& grid, GridCell start, GridCell goal,
                                   const GridPathOptions& options = {});
@@ -120,9 +120,9 @@ std::vector<Vec2<T>> grid_path_waypoints(const GridPath& path, const GridSmoothi
 /// builder's errors.
 template <Real T>
 Expected<CatmullRomSpline<Vec2<T>>> smooth_grid_path(const GridPath& path, const GridSmoothingOptions<T>& options = {}) {
-  if (path.cells.empty()) return Error{ErrorCode::TooFewPoints, "the grid path has no cells", "path"};
+  if (path.cells.empty()) return Error{ErrorCode::too_few_points, "the grid path has no cells", {Parameter{"path"}}};
   if (!(options.cell_size > T(0)) || !std::isfinite(options.cell_size))
-    return Error{ErrorCode::InvalidArgument, "cell_size must be finite and > 0", "cell_size"};
+    return Error{ErrorCode::invalid_argument, "cell_size must be finite and > 0", {Parameter{"cell_size"}}};
   std::vector<Vec2<T>> pts = grid_path_waypoints(path, options);
   if (pts.size() == 1) pts.push_back(pts[0]);
   return build_catmull_rom(pts, {.alpha = options.alpha});

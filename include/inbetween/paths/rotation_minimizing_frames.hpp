@@ -106,13 +106,11 @@ class RotationMinimizingFrames {
   /// initial_normal (NotFinite).
   static Expected<RotationMinimizingFrames> build(C curve, const RmfOptions<T>& options = {}) {
     if (options.samples_per_segment < 1)
-      return Error{ErrorCode::InvalidArgument,
-                   "samples_per_segment must be at least 1, got " + std::to_string(options.samples_per_segment),
-                   "samples_per_segment"};
+      return Error{ErrorCode::invalid_argument,
+                   "samples_per_segment must be at least 1, got " + std::to_string(options.samples_per_segment), {Parameter{"samples_per_segment"}}};
     if (!is_finite(options.initial_normal))
-      return Error{ErrorCode::NotFinite, "initial_normal is not finite", "initial_normal"};
-    RotationMinimizingFrames f;
-    f.curve_ = std::move(curve);
+      return Error{ErrorCode::not_finite, "initial_normal is not finite", {Parameter{"initial_normal"}}};
+    RotationMinimizingFrames f(std::move(curve));
     f.u_ = detail::path_sample_parameters(f.curve_, options.samples_per_segment);
     const std::size_t n = f.u_.size();
     f.x_.resize(n);
@@ -137,10 +135,9 @@ class RotationMinimizingFrames {
     const bool closed = n > 1 && norm(f.x_[n - 1] - f.x_[0]) <= tol * std::max(T(1), extent) &&
                         norm(f.t_[n - 1] - f.t_[0]) <= tol;
     if (options.closing == RmfClosing::distribute && !closed)
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "closing = distribute needs a closed curve: the end is " + std::to_string(double(norm(f.x_[n - 1] - f.x_[0]))) +
-                       " from the start and the end tangent differs by " + std::to_string(double(norm(f.t_[n - 1] - f.t_[0]))),
-                   "closing"};
+                       " from the start and the end tangent differs by " + std::to_string(double(norm(f.t_[n - 1] - f.t_[0]))), {Parameter{"closing"}}};
     f.s_.assign(n, T(0));
     const GaussLegendreRule rule = gauss_legendre_rule(8);
     for (std::size_t i = 0; i + 1 < n; ++i) f.s_[i + 1] = f.s_[i] + f.length_between(f.u_[i], f.u_[i + 1], rule);
@@ -185,12 +182,15 @@ class RotationMinimizingFrames {
   }
 
  private:
+  /// The frames' curve; build() fills the rest.  Built frames only come from build() (house style).
+  explicit RotationMinimizingFrames(C curve) : curve_(std::move(curve)) {}
+
   T length_between(T a, T b, const GaussLegendreRule& rule) const noexcept {
     const T l = integrate_gauss_legendre<T>([&](T v) { return norm(curve_.derivative(v, 1)); }, a, b, rule);
     return std::isfinite(l) ? l : T(0);
   }
 
-  C curve_{};
+  C curve_;
   std::vector<T> u_;
   std::vector<Vec3<T>> x_, t_, r_;
   std::vector<T> s_;  // arc length at each sample

@@ -39,12 +39,11 @@ namespace detail {
 template <Point P>
 Expected<void> check_path_points(std::span<const P> points, std::size_t min_count = 1) {
   if (points.size() < min_count)
-    return Error{ErrorCode::TooFewPoints,
-                 "need at least " + std::to_string(min_count) + " points, got " + std::to_string(points.size()),
-                 "", {"points"}};
+    return Error{ErrorCode::too_few_points,
+                 "need at least " + std::to_string(min_count) + " points, got " + std::to_string(points.size()), {"points"}};
   for (std::size_t i = 0; i < points.size(); ++i)
     if (!is_finite(points[i]))
-      return Error{ErrorCode::NotFinite, "point " + std::to_string(i) + " is not finite", "", {"points", std::size_t(i)}};
+      return Error{ErrorCode::not_finite, "point " + std::to_string(i) + " is not finite", {"points", std::size_t(i)}};
   return {};
 }
 }  // namespace detail
@@ -60,8 +59,7 @@ Expected<std::vector<P>> smooth_linear(std::span<const P> points, const LinearSm
   using T = scalar_of<P>;
   if (auto ok = detail::check_path_points(points); !ok) return ok.error();
   if (options.iterations < 0)
-    return Error{ErrorCode::InvalidArgument, "iterations must be >= 0, got " + std::to_string(options.iterations),
-                 "", {"iterations"}};
+    return Error{ErrorCode::invalid_argument, "iterations must be >= 0, got " + std::to_string(options.iterations), {"iterations"}};
   std::vector<P> cur(points.begin(), points.end()), next = cur;
   for (int it = 0; it < options.iterations; ++it) {
     for (std::size_t i = 1; i + 1 < cur.size(); ++i)
@@ -83,8 +81,7 @@ Expected<std::vector<P>> smooth_cubic(std::span<const P> points, const CubicSmoo
   using T = scalar_of<P>;
   if (auto ok = detail::check_path_points(points); !ok) return ok.error();
   if (options.iterations < 0)
-    return Error{ErrorCode::InvalidArgument, "iterations must be >= 0, got " + std::to_string(options.iterations),
-                 "", {"iterations"}};
+    return Error{ErrorCode::invalid_argument, "iterations must be >= 0, got " + std::to_string(options.iterations), {"iterations"}};
   std::vector<P> cur(points.begin(), points.end()), next = cur;
   const std::size_t n = cur.size();
   const T half = T(0.5), third = T(1) / T(3);
@@ -183,7 +180,7 @@ Expected<std::vector<P>> smooth_convolution(std::span<const P> points,
   using T = scalar_of<P>;
   if (auto ok = detail::check_path_points(points); !ok) return ok.error();
   if (!(options.radius > T(0)) || !std::isfinite(options.radius))
-    return Error{ErrorCode::InvalidArgument, "radius must be finite and > 0", "", {"radius"}};
+    return Error{ErrorCode::invalid_argument, "radius must be finite and > 0", {"radius"}};
   const int n = int(points.size());
   // Offsets beyond n − 1 always clamp to an end point, so their mass is lumped (any radius works).
   const T reach = std::ceil(options.radius - T(0.5));
@@ -233,13 +230,13 @@ Expected<std::vector<P>> resample_by_arc_length(std::span<const P> points, std::
   using T = scalar_of<P>;
   if (auto ok = detail::check_path_points(points, 2); !ok) return ok.error();
   if (count < 2)
-    return Error{ErrorCode::InvalidArgument, "count must be at least 2 (the two ends), got " + std::to_string(count), "",
+    return Error{ErrorCode::invalid_argument, "count must be at least 2 (the two ends), got " + std::to_string(count),
                  {"count"}};
   const std::size_t n = points.size();
   T total{};
   for (std::size_t i = 0; i + 1 < n; ++i) total += distance(points[i], points[i + 1]);
   if (!std::isfinite(total))
-    return Error{ErrorCode::NotFinite, "the path's length overflows the number type", "", {"points"}};
+    return Error{ErrorCode::not_finite, "the path's length overflows the number type", {"points"}};
   std::vector<P> out(count, points[0]);
   if (!(total > T(0))) return out;
   std::size_t j = 0;   // current chord [j, j + 1]

@@ -135,7 +135,7 @@ struct SurfaceWalkOptions {
 };
 
 /// The path from `start` (projected onto the surface first) following options.mode; the first
-/// point is the projected start.  Errors (InvalidArgument / NotFinite, `where` naming the item):
+/// point is the projected start.  Errors (invalid_argument / not_finite at the Parameter naming the item):
 /// a non-finite start ("start"), a start where the gradient is zero or not finite ("start"), a step
 /// that is not finite and positive ("step"), max_steps < 0 ("max_steps"), a heading that is zero
 /// or parallel to the normal at the start ("heading"), a zero up in Downhill mode ("up").
@@ -145,26 +145,24 @@ Expected<std::vector<Vec3<typename S::scalar_type>>> walk_on_surface(
     const SurfaceWalkOptions<typename S::scalar_type>& options = {}) {
   using T = typename S::scalar_type;
   using V = Vec3<T>;
-  if (!is_finite(start)) return Error{ErrorCode::NotFinite, "start point is not finite", "start"};
+  if (!is_finite(start)) return Error{ErrorCode::not_finite, "start point is not finite", {Parameter{"start"}}};
   if (!(options.step > T(0)) || !std::isfinite(options.step))
-    return Error{ErrorCode::InvalidArgument, "step must be finite and > 0", "step"};
+    return Error{ErrorCode::invalid_argument, "step must be finite and > 0", {Parameter{"step"}}};
   if (options.max_steps < 0)
-    return Error{ErrorCode::InvalidArgument, "max_steps must be >= 0, got " + std::to_string(options.max_steps),
-                 "max_steps"};
+    return Error{ErrorCode::invalid_argument, "max_steps must be >= 0, got " + std::to_string(options.max_steps), {Parameter{"max_steps"}}};
   const V up = normalized(options.up, V{});
   if (options.mode == SurfaceWalk::downhill && squared_norm(up) == T(0))
-    return Error{ErrorCode::InvalidArgument, "up must be a non-zero finite vector", "up"};
+    return Error{ErrorCode::invalid_argument, "up must be a non-zero finite vector", {Parameter{"up"}}};
   std::vector<V> path{project_to_surface(surface, start, options.projection)};
   const V g0 = surface.gradient(path[0]);
   if (!(squared_norm(g0) > T(0)) || !is_finite(g0))
-    return Error{ErrorCode::InvalidArgument, "the surface gradient is zero or not finite at the start", "start"};
+    return Error{ErrorCode::invalid_argument, "the surface gradient is zero or not finite at the start", {Parameter{"start"}}};
   V dir{};
   if (options.mode == SurfaceWalk::heading) {
     const V n = normalized(g0, V{});
     const V h = options.heading - n * dot(options.heading, n);
     if (!is_finite(options.heading) || !(norm(h) > T(1e-9) * norm(options.heading)))
-      return Error{ErrorCode::InvalidArgument, "heading is zero or parallel to the surface normal at the start",
-                   "heading"};
+      return Error{ErrorCode::invalid_argument, "heading is zero or parallel to the surface normal at the start", {Parameter{"heading"}}};
     dir = normalized(h, V{});
   }
   for (int k = 0; k < options.max_steps; ++k) {

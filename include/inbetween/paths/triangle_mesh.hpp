@@ -3,7 +3,7 @@
 /// gives) → build_triangle_mesh → TriangleMesh, an immutable mesh with unit vertex normals and the
 /// adjacency the surface walks need (faces around a vertex, the face across each edge).
 ///
-/// What the builder accepts (everything else is an Error whose `where` names the item, in the
+/// What the builder accepts (everything else is an Error whose location names the item, in the
 /// builder's words below or through a MeshPlaceNamer):
 ///   - at least one vertex ("vertices") and one triangle ("triangles");
 ///   - finite vertex coordinates of magnitude at most kMeshMaxCoordinate ("vertex i"), so that
@@ -66,15 +66,17 @@ class TriangleMesh;
 inline constexpr std::size_t kWholeMeshMember = static_cast<std::size_t>(-1);
 
 /// Names the place of a builder error from the RawMesh member ("vertices", "triangles" or
-/// "normals") and the index in it (or kWholeMeshMember), so that a reader can say "line 12" of its
-/// file without parsing a place back out of text.  Empty: default_mesh_place.
-using MeshPlaceNamer = std::function<std::string(std::string_view member, std::size_t index)>;
+/// "normals") and the index in it (or kWholeMeshMember) as an Error location, so that a reader can
+/// say "line 12" of its file ({Source{"mesh.obj"}, TextLine{12}}) without parsing a place back out
+/// of text.  Empty: default_mesh_place.
+using MeshPlaceNamer = std::function<std::vector<LocationStep>(std::string_view member, std::size_t index)>;
 
-/// The builder's own names: "vertex i", "face f", "normal i", or the member's name for the whole.
-inline std::string default_mesh_place(std::string_view member, std::size_t index) {
-  if (index == kWholeMeshMember) return std::string(member);
-  const char* item = member == "vertices" ? "vertex " : (member == "triangles" ? "face " : "normal ");
-  return item + std::to_string(index);
+/// The builder's own names: {Element{"vertex", i}} ("vertex i"), "face f", "normal i", or the
+/// member's name for the whole ({Parameter{"vertices"}}).
+inline std::vector<LocationStep> default_mesh_place(std::string_view member, std::size_t index) {
+  if (index == kWholeMeshMember) return {Parameter{std::string(member)}};
+  const char* item = member == "vertices" ? "vertex" : (member == "triangles" ? "face" : "normal");
+  return {Element{item, index}};
 }
 
 /// Checks `raw` (file comment) and builds the mesh with its adjacency; errors name their place
@@ -157,18 +159,18 @@ Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshP
   };
   const auto face_name = [&](std::size_t f) { return name("triangles", f); };
   if (raw.vertices.empty())
-    return Error{ErrorCode::TooFewPoints, "the mesh has no vertices", name("vertices", kWholeMeshMember)};
+    return Error{ErrorCode::too_few_points, "the mesh has no vertices", name("vertices", kWholeMeshMember)};
   if (raw.triangles.empty())
-    return Error{ErrorCode::TooFewPoints, "the mesh has no faces", name("triangles", kWholeMeshMember)};
+    return Error{ErrorCode::too_few_points, "the mesh has no faces", name("triangles", kWholeMeshMember)};
   const int n = int(raw.vertices.size());
   T extent{};  // the largest |coordinate|: area weights are computed in units of it
   for (std::size_t i = 0; i < raw.vertices.size(); ++i) {
     if (!is_finite(raw.vertices[i]))
-      return Error{ErrorCode::NotFinite, "vertex " + std::to_string(i) + " has a coordinate that is not finite",
+      return Error{ErrorCode::not_finite, "vertex " + std::to_string(i) + " has a coordinate that is not finite",
                    name("vertices", i)};
     const T big = std::max({std::abs(raw.vertices[i].x), std::abs(raw.vertices[i].y), std::abs(raw.vertices[i].z)});
     if (big > kMeshMaxCoordinate<T>)
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "vertex " + std::to_string(i) + " has a coordinate of magnitude " + shortest_text(double(big)) +
                        ", beyond the mesh limit " + shortest_text(double(kMeshMaxCoordinate<T>)),
                    name("vertices", i)};
@@ -185,13 +187,13 @@ Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshP
     for (int k = 0; k < 3; ++k) {
       const int v = t[std::size_t(k)];
       if (v < 0 || v >= n)
-        return Error{ErrorCode::InvalidArgument,
+        return Error{ErrorCode::invalid_argument,
                      "face uses vertex " + std::to_string(v) + ", but the mesh has " + std::to_string(n) +
                          " vertices (0 to " + std::to_string(n - 1) + ")",
                      face_name(f)};
     }
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "face repeats a vertex (" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " +
                        std::to_string(t[2]) + ")",
                    face_name(f)};
@@ -203,7 +205,7 @@ Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshP
     const V rel = longest > T(0) ? cross(V((b - a) / longest), V((c - a) / longest)) : V{};
     const T rel_norm = norm(rel);
     if (!(rel_norm > kMeshAreaTolerance<T>))
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "face (vertices " + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " +
                        std::to_string(t[2]) + ") has zero area",
                    face_name(f)};
@@ -229,14 +231,14 @@ Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshP
     std::size_t j = i;
     while (j < edges.size() && edges[j][0] == edges[i][0] && edges[j][1] == edges[i][1]) ++j;
     if (j - i > 2)
-      return Error{ErrorCode::InvalidArgument,
+      return Error{ErrorCode::invalid_argument,
                    "edge (" + std::to_string(edges[i][0]) + ", " + std::to_string(edges[i][1]) +
                        ") is shared by faces " + std::to_string(edges[i][2]) + ", " + std::to_string(edges[i + 1][2]) +
                        " and " + std::to_string(edges[i + 2][2]) + "; a surface allows two",
                    face_name(std::size_t(edges[i + 2][2]))};
     if (j - i == 2) {
       if (edges[i][2] == edges[i + 1][2])  // cannot happen: faces repeat no vertex
-        return Error{ErrorCode::InvalidArgument, "face uses an edge twice", face_name(std::size_t(edges[i][2]))};
+        return Error{ErrorCode::invalid_argument, "face uses an edge twice", face_name(std::size_t(edges[i][2]))};
       mesh.across_[std::size_t(edges[i][2])][std::size_t(edges[i][3])] = edges[i + 1][2];
       mesh.across_[std::size_t(edges[i + 1][2])][std::size_t(edges[i + 1][3])] = edges[i][2];
     }
@@ -258,7 +260,7 @@ Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshP
   // Normals.
   if (!raw.normals.empty()) {
     if (raw.normals.size() != raw.vertices.size())
-      return Error{ErrorCode::WrongArity,
+      return Error{ErrorCode::wrong_arity,
                    "there are " + std::to_string(raw.normals.size()) + " normals for " + std::to_string(n) +
                        " vertices; give one per vertex or none",
                    name("normals", kWholeMeshMember)};
@@ -266,7 +268,7 @@ Expected<TriangleMesh<T>> build_triangle_mesh(const RawMesh<T>& raw, const MeshP
     for (std::size_t i = 0; i < raw.normals.size(); ++i) {
       const T len = norm(raw.normals[i]);
       if (!is_finite(raw.normals[i]) || !(len > T(0)))
-        return Error{is_finite(raw.normals[i]) ? ErrorCode::InvalidArgument : ErrorCode::NotFinite,
+        return Error{is_finite(raw.normals[i]) ? ErrorCode::invalid_argument : ErrorCode::not_finite,
                      "the normal of vertex " + std::to_string(i) + " is zero or not finite", name("normals", i)};
       mesh.normals_[i] = raw.normals[i] / len;
     }

@@ -339,7 +339,7 @@ class PathMotion {
 /// Validates `raw` and builds the motion; `fps` (> 0, finite) converts speeds between per frame and
 /// per second.  Errors carry the member path as structured location steps, relative to `raw`
 /// ({"speed", "end_frame"}, {"speed", "keys", 3, "distance"}, {"orientation", "up"}, …; a scene
-/// prepends the object's place); `where` stays empty:
+/// prepends the object's place); a nested builder's element ("segment 1") goes into the message:
 /// - a path with a non-finite length;
 /// - ease: a frame span of zero or reversed, non-finite frames, an ease parameter out of range, a
 ///   distance range outside [0, L] or running backwards (from > to), an ease that runs backwards

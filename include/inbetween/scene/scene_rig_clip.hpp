@@ -29,8 +29,8 @@ namespace inbetween {
   const auto objects = scene.objects();
   for (std::size_t i = 0; i < objects.size(); ++i) {
     if (!scene.path_legs(i).empty() || scene.camera(i) != nullptr) {
-      return Error{ErrorCode::Unsupported,
-                   "object '" + objects[i].name + "' moves on a path or is a camera: sample it with the Scene", "",
+      return Error{ErrorCode::unsupported,
+                   "object '" + objects[i].name + "' moves on a path or is a camera: sample it with the Scene",
                    {"objects", i}};
     }
     const TransformTrack<double>& local = objects[i].local;

@@ -26,13 +26,13 @@ class CubicBezierTiming {
     const T v[4] = {x1, y1, x2, y2};
     const char* names[4] = {"x1", "y1", "x2", "y2"};
     for (int i = 0; i < 4; ++i) {
-      if (!std::isfinite(v[i])) return Error{ErrorCode::NotFinite, std::string(names[i]) + " is not finite", "", {std::string(names[i])}};
+      if (!std::isfinite(v[i])) return Error{ErrorCode::not_finite, std::string(names[i]) + " is not finite", {std::string(names[i])}};
     }
     if (x1 < T(0) || x1 > T(1)) {
-      return Error{ErrorCode::InvalidArgument, "x1 = " + shortest_text<double>(double(x1)) + " is outside [0, 1]", "", {std::string("x1")}};
+      return Error{ErrorCode::invalid_argument, "x1 = " + shortest_text<double>(double(x1)) + " is outside [0, 1]", {std::string("x1")}};
     }
     if (x2 < T(0) || x2 > T(1)) {
-      return Error{ErrorCode::InvalidArgument, "x2 = " + shortest_text<double>(double(x2)) + " is outside [0, 1]", "", {std::string("x2")}};
+      return Error{ErrorCode::invalid_argument, "x2 = " + shortest_text<double>(double(x2)) + " is outside [0, 1]", {std::string("x2")}};
     }
     return CubicBezierTiming(x1, y1, x2, y2);
   }

@@ -130,7 +130,7 @@ class DistanceTimeCurve {
   /// The first interval where the velocity drops below zero (beyond rounding), or nothing when
   /// s(t) never decreases.
   std::optional<BackingUp<T>> find_backing_up() const noexcept;
-  /// Success when s(t) never decreases; else ErrorCode::NotMonotone with the time span and the
+  /// Success when s(t) never decreases; else ErrorCode::not_monotone with the time span and the
   /// most negative velocity in the message and "segment i" as the place.
   Expected<void> check_monotone() const;
   /// A monotone C¹ cubic through the same keys (t_i, s_i): key velocities are the curve's own

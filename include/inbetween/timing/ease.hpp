@@ -84,11 +84,11 @@ class SineAccelDecelEase {
  public:
   /// Builds the ease; requires 0 ≤ k1 ≤ k2 ≤ 1 (finite).  Error InvalidArgument names k1 or k2.
   static Expected<SineAccelDecelEase> make(T k1, T k2) {
-    if (!std::isfinite(k1) || !std::isfinite(k2)) return Error{ErrorCode::NotFinite, "k1 and k2 must be finite", "", {std::string("k1")}};
-    if (k1 < T(0) || k1 > T(1)) return Error{ErrorCode::InvalidArgument, "k1 = " + shortest_text<double>(double(k1)) + " is outside [0, 1]", "", {std::string("k1")}};
+    if (!std::isfinite(k1) || !std::isfinite(k2)) return Error{ErrorCode::not_finite, "k1 and k2 must be finite", {std::string("k1")}};
+    if (k1 < T(0) || k1 > T(1)) return Error{ErrorCode::invalid_argument, "k1 = " + shortest_text<double>(double(k1)) + " is outside [0, 1]", {std::string("k1")}};
     if (k2 < k1 || k2 > T(1)) {
-      return Error{ErrorCode::InvalidArgument,
-                   "k2 = " + shortest_text<double>(double(k2)) + " must lie in [k1, 1] with k1 = " + shortest_text<double>(double(k1)), "", {std::string("k2")}};
+      return Error{ErrorCode::invalid_argument,
+                   "k2 = " + shortest_text<double>(double(k2)) + " must lie in [k1, 1] with k1 = " + shortest_text<double>(double(k1)), {std::string("k2")}};
     }
     return SineAccelDecelEase(k1, k2);
   }
@@ -131,11 +131,11 @@ class ConstantAccelerationEase {
   /// Builds the ease; requires 0 ≤ t1 ≤ t2 ≤ 1 (finite).  t1 = 0 or t2 = 1 drop that phase (the
   /// velocity jumps there).
   static Expected<ConstantAccelerationEase> make(T t1, T t2) {
-    if (!std::isfinite(t1) || !std::isfinite(t2)) return Error{ErrorCode::NotFinite, "t1 and t2 must be finite", "", {std::string("t1")}};
-    if (t1 < T(0) || t1 > T(1)) return Error{ErrorCode::InvalidArgument, "t1 = " + shortest_text<double>(double(t1)) + " is outside [0, 1]", "", {std::string("t1")}};
+    if (!std::isfinite(t1) || !std::isfinite(t2)) return Error{ErrorCode::not_finite, "t1 and t2 must be finite", {std::string("t1")}};
+    if (t1 < T(0) || t1 > T(1)) return Error{ErrorCode::invalid_argument, "t1 = " + shortest_text<double>(double(t1)) + " is outside [0, 1]", {std::string("t1")}};
     if (t2 < t1 || t2 > T(1)) {
-      return Error{ErrorCode::InvalidArgument,
-                   "t2 = " + shortest_text<double>(double(t2)) + " must lie in [t1, 1] with t1 = " + shortest_text<double>(double(t1)), "", {std::string("t2")}};
+      return Error{ErrorCode::invalid_argument,
+                   "t2 = " + shortest_text<double>(double(t2)) + " must lie in [t1, 1] with t1 = " + shortest_text<double>(double(t1)), {std::string("t2")}};
     }
     return ConstantAccelerationEase(t1, t2);
   }

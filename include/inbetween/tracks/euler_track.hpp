@@ -99,19 +99,19 @@ class EulerTrack {
 template <Real T>
 [[nodiscard]] Expected<EulerTrack<T>> build_euler_track(std::span<const EulerKey<T>> keys,
                                                         const EulerTrackOptions<T>& options = {}) {
-  if (!options.sequence.valid()) return Error{ErrorCode::InvalidArgument, "invalid Euler convention", "", {"sequence"}};
-  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a track needs at least one key", "", {"keys"}};
+  if (!options.sequence.valid()) return Error{ErrorCode::invalid_argument, "invalid Euler convention", {"sequence"}};
+  if (keys.empty()) return Error{ErrorCode::too_few_points, "a track needs at least one key", {"keys"}};
   for (std::size_t i = 0; i < keys.size(); ++i) {
     for (T a : keys[i].angles_rad) {
-      if (!std::isfinite(a)) return Error{ErrorCode::NotFinite, "angle is not finite", "", {"keys", i}};
+      if (!std::isfinite(a)) return Error{ErrorCode::not_finite, "angle is not finite", {"keys", i}};
     }
     // The angle curves are made by the track (Euler filter), so there are no tangents to give;
     // glTF tangents belong to quaternion keys.
     if (keys[i].tangent == TangentKind::explicit_hermite) {
-      return Error{ErrorCode::Unsupported, "Euler keys take no explicit tangents", "", {"keys", i, "tangent"}};
+      return Error{ErrorCode::unsupported, "Euler keys take no explicit tangents", {"keys", i, "tangent"}};
     }
     if (keys[i].interpolation == QuatInterpolation::gltf_cubic) {
-      return Error{ErrorCode::Unsupported, "Euler keys take no glTF tangents", "", {"keys", i, "interpolation"}};
+      return Error{ErrorCode::unsupported, "Euler keys take no glTF tangents", {"keys", i, "interpolation"}};
     }
   }
   std::optional<Track<Vec3<T>>> angles;

@@ -230,19 +230,18 @@ template <Real T>
 Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, std::span<const QuatKeyTangents<T>> tangents,
                                         const QuatSplineOptions<T>& options) {
   using namespace quat_track_detail;
-  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a track needs at least one key", "", {"keys"}};
+  if (keys.empty()) return Error{ErrorCode::too_few_points, "a track needs at least one key", {"keys"}};
   if (!tangents.empty() && tangents.size() != keys.size()) {
-    return Error{ErrorCode::WrongArity,
+    return Error{ErrorCode::wrong_arity,
                  std::to_string(tangents.size()) + " tangent pairs for " + std::to_string(keys.size()) +
-                     " keys (none, or one per key)",
-                 "", {"tangents"}};
+                     " keys (none, or one per key)", {"tangents"}};
   }
   if (!(options.distance_factor > T(0) && options.distance_factor <= T(1))) {
-    return Error{ErrorCode::InvalidArgument, "must be in (0, 1]", "", {"distance_factor"}};
+    return Error{ErrorCode::invalid_argument, "must be in (0, 1]", {"distance_factor"}};
   }
   const std::size_t n = keys.size();
   auto fail = [](ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
-    Error e{code, std::move(message), ""};
+    Error e{code, std::move(message)};
     e.prepend(steps);
     return e;
   };
@@ -265,15 +264,15 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, std::s
   tr.length_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const auto& k = keys[i];
-    if (!std::isfinite(k.frame)) return fail(ErrorCode::NotFinite, "frame is not finite", {"keys", i, "frame"});
-    if (!is_finite(k.value)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "value"});
+    if (!std::isfinite(k.frame)) return fail(ErrorCode::not_finite, "frame is not finite", {"keys", i, "frame"});
+    if (!is_finite(k.value)) return fail(ErrorCode::not_finite, "quaternion or tangent is not finite", {"keys", i, "value"});
     const QuatKeyTangents<T> t = tangents.empty() ? QuatKeyTangents<T>{} : tangents[i];
-    if (!is_finite(t.in)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "in_tangent"});
-    if (!is_finite(t.out)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "out_tangent"});
+    if (!is_finite(t.in)) return fail(ErrorCode::not_finite, "quaternion or tangent is not finite", {"keys", i, "in_tangent"});
+    if (!is_finite(t.out)) return fail(ErrorCode::not_finite, "quaternion or tangent is not finite", {"keys", i, "out_tangent"});
     const T len = norm(k.value);
-    if (!(len > T(0))) return fail(ErrorCode::InvalidArgument, "zero quaternion is not a rotation", {"keys", i, "value"});
+    if (!(len > T(0))) return fail(ErrorCode::invalid_argument, "zero quaternion is not a rotation", {"keys", i, "value"});
     if (i > 0 && !(k.frame > keys[i - 1].frame)) {
-      return fail(ErrorCode::KeysNotIncreasing,
+      return fail(ErrorCode::keys_not_increasing,
                   "frame " + shortest_text(double(k.frame)) + " is not after the previous key's frame " +
                       shortest_text(double(keys[i - 1].frame)) + " (keys must be sorted by strictly increasing frame)",
                   {"keys", i, "frame"});

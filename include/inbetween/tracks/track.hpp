@@ -225,24 +225,24 @@ template <class V>
 Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend before, TrackExtend after) {
   using T = scalar_of<V>;
   using PT = PointTraits<V>;
-  if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a track needs at least one key", "", {"keys"}};
+  if (keys.empty()) return Error{ErrorCode::too_few_points, "a track needs at least one key", {"keys"}};
   const std::size_t n = keys.size();
   auto fail = [](ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
-    Error e{code, std::move(message), ""};
+    Error e{code, std::move(message)};
     e.prepend(steps);
     return e;
   };
   for (std::size_t i = 0; i < n; ++i) {
     const auto& k = keys[i];
-    if (!std::isfinite(k.frame)) return fail(ErrorCode::NotFinite, "frame is not finite", {"keys", i, "frame"});
-    if (!track_detail::finite(k.value)) return fail(ErrorCode::NotFinite, "value is not finite", {"keys", i, "value"});
-    if (!track_detail::finite(k.in_tangent)) return fail(ErrorCode::NotFinite, "a tangent is not finite", {"keys", i, "in_tangent"});
-    if (!track_detail::finite(k.out_tangent)) return fail(ErrorCode::NotFinite, "a tangent is not finite", {"keys", i, "out_tangent"});
+    if (!std::isfinite(k.frame)) return fail(ErrorCode::not_finite, "frame is not finite", {"keys", i, "frame"});
+    if (!track_detail::finite(k.value)) return fail(ErrorCode::not_finite, "value is not finite", {"keys", i, "value"});
+    if (!track_detail::finite(k.in_tangent)) return fail(ErrorCode::not_finite, "a tangent is not finite", {"keys", i, "in_tangent"});
+    if (!track_detail::finite(k.out_tangent)) return fail(ErrorCode::not_finite, "a tangent is not finite", {"keys", i, "out_tangent"});
     for (auto [member, p] : {std::pair<const char*, T>{"tension", k.tension}, {"continuity", k.continuity}, {"bias", k.bias}}) {
-      if (!(p >= T(-1) && p <= T(1))) return fail(ErrorCode::InvalidArgument, "must be in [-1, 1]", {"keys", i, std::string(member)});
+      if (!(p >= T(-1) && p <= T(1))) return fail(ErrorCode::invalid_argument, "must be in [-1, 1]", {"keys", i, std::string(member)});
     }
     if (i > 0 && !(k.frame > keys[i - 1].frame)) {
-      return fail(ErrorCode::KeysNotIncreasing,
+      return fail(ErrorCode::keys_not_increasing,
                   "frame " + shortest_text(double(k.frame)) + " is not after the previous key's frame " +
                       shortest_text(double(keys[i - 1].frame)) + " (keys must be sorted by strictly increasing frame)",
                   {"keys", i, "frame"});
@@ -322,7 +322,7 @@ Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend be
     }
     // Finite keys can still give an infinite slope (values near the type's maximum a frame apart).
     if (!track_detail::finite(in) || !track_detail::finite(out)) {
-      return fail(ErrorCode::NotFinite, "the tangent overflows (values too far apart for the key spacing)", {"keys", i});
+      return fail(ErrorCode::not_finite, "the tangent overflows (values too far apart for the key spacing)", {"keys", i});
     }
     tr.in_[i] = in;
     tr.out_[i] = out;
@@ -342,7 +342,7 @@ Expected<Track<V>> build_track(std::span<const TrackKey<V>> keys, TrackExtend be
     // Finite keys and slopes can still overflow here (values near the type's maximum, or a slope
     // times a huge key spacing): reject, so that no built track evaluates to inf or NaN.
     if (!track_detail::finite(g.a) || !track_detail::finite(g.b) || !track_detail::finite(g.c))
-      return fail(ErrorCode::NotFinite,
+      return fail(ErrorCode::not_finite,
                   "the segment after this key overflows (values or tangents times the key spacing too large for the "
                   "scalar type)",
                   {"keys", i});

@@ -92,7 +92,7 @@ template <Real T>
   const std::size_t n = nodes.size();
   for (std::size_t i = 0; i < n; ++i) {
     if (nodes[i].parent && *nodes[i].parent >= n) {
-      return Error{ErrorCode::InvalidArgument, "parent index " + std::to_string(*nodes[i].parent) + " is out of range", "",
+      return Error{ErrorCode::invalid_argument, "parent index " + std::to_string(*nodes[i].parent) + " is out of range",
                    {i, "parent"}};
     }
   }
@@ -109,8 +109,7 @@ template <Real T>
       if (!nodes[i].parent) break;
       i = *nodes[i].parent;
       if (state[i] == 1) {
-        return Error{ErrorCode::InvalidArgument, "\"" + nodes[i].name + "\" is its own ancestor (the parent links form a cycle)",
-                     "", {i, "parent"}};
+        return Error{ErrorCode::invalid_argument, "\"" + nodes[i].name + "\" is its own ancestor (the parent links form a cycle)", {i, "parent"}};
       }
     }
     for (auto it = chain.rbegin(); it != chain.rend(); ++it) {

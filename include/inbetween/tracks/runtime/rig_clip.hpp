@@ -210,10 +210,9 @@ void push_constant_rot(std::vector<T>& data, T lo, T hi, const Quat<T>& q) {
 template <Real T, class Channels>
 Expected<bool> add_vec(Channels& ch, const Track<Vec3<T>>& tr, std::size_t joint, const char* kind) {
   if (tr.extend_before() != TrackExtend::constant || tr.extend_after() != TrackExtend::constant) {
-    return Error{ErrorCode::Unsupported,
+    return Error{ErrorCode::unsupported,
                  std::string("the runtime holds the end values outside the keys; this ") + kind +
-                     " track extends otherwise (use TrackExtend::constant)",
-                 "", {std::string(kind), joint}};
+                     " track extends otherwise (use TrackExtend::constant)", {std::string(kind), joint}};
   }
   const auto f = tr.frames();
   const auto v = tr.values();
@@ -477,7 +476,7 @@ Expected<RigClip<T>> build_rig_clip(std::span<const Track<Vec3<T>>> translations
                                     std::span<const QuatTrack<T>> rotations,
                                     std::span<const Track<Vec3<T>>> scales) {
   if (translations.size() != rotations.size() || scales.size() != rotations.size()) {
-    return Error{ErrorCode::InvalidArgument, "translations, rotations and scales need one track per joint each", ""};
+    return Error{ErrorCode::invalid_argument, "translations, rotations and scales need one track per joint each"};
   }
   RigClip<T> clip;
   clip.joints_ = rotations.size();
@@ -496,12 +495,11 @@ Expected<RigClip<T>> build_rig_clip(std::span<const Track<Vec3<T>>> translations
     for (std::size_t i = 0; i + 1 < n; ++i) {
       const QuatInterpolation mode = q.interpolation(i);
       if (mode != QuatInterpolation::step && mode != QuatInterpolation::slerp) {
-        return Error{ErrorCode::Unsupported, "the runtime samples step and slerp rotation segments only", "",
+        return Error{ErrorCode::unsupported, "the runtime samples step and slerp rotation segments only",
                      {"rotations", j, "keys", i}};
       }
       if (mode == QuatInterpolation::slerp && dot(k[i], k[i + 1]) < T(0)) {
-        return Error{ErrorCode::Unsupported, "a long-way slerp segment (keys on opposite sides) is not supported",
-                     "", {"rotations", j, "keys", i + 1}};
+        return Error{ErrorCode::unsupported, "a long-way slerp segment (keys on opposite sides) is not supported", {"rotations", j, "keys", i + 1}};
       }
       if (mode == QuatInterpolation::step) {
         rig_detail::push_constant_rot<T>(ch.data, f[i], f[i + 1], k[i]);
