@@ -48,15 +48,16 @@ def write_scenes(folder, n, rng):
     return {"jobs": [{"args": a} for a in jobs]}
 
 
-def timed_run(manifest, folder, client):
+def timed_run(manifest, folder, client, jobs_per_task=None):
     load_before = os.getloadavg()[0]
     t0 = time.perf_counter()
-    s = batch.run(manifest, client=client, base_dir=folder, force=True, progress="never")
+    s = batch.run(manifest, client=client, base_dir=folder, force=True, progress="never", jobs_per_task=jobs_per_task)
     wall = time.perf_counter() - t0
     load_after = os.getloadavg()[0]
     assert s["counts"]["failed"] == 0, [j["message"] for j in s["jobs"] if j["status"] == "failed"]
     in_worker = [j["seconds"] for j in s["jobs"]]
-    return {"wall": wall, "load": (load_before, load_after), "job_median": statistics.median(in_worker)}
+    return {"wall": wall, "load": (load_before, load_after), "job_median": statistics.median(in_worker),
+            "jobs_per_task": s["jobs_per_task"]}
 
 
 def main():
@@ -66,6 +67,7 @@ def main():
     p.add_argument("--repeat", type=int, default=3)
     p.add_argument("--work", help="folder for the scenes and outputs (default: a temporary one, removed)")
     a = p.parse_args()
+    a.cli = os.path.abspath(a.cli)
     import distributed
 
     folder = pathlib.Path(a.work or tempfile.mkdtemp(prefix="inbetween-batch-bench-"))
@@ -73,17 +75,19 @@ def main():
         manifest = write_scenes(folder, a.scenes, np.random.default_rng(SEED))
         print(f"batch bench: {a.scenes} frame22-sized scenes, frames {FRAMES} (701 rows each), "
               f"{os.cpu_count()} cores, seed {SEED}, {folder}")
-        clusters, results = {}, {1: [], 2: []}
+        clusters, results = {}, {1: [], 2: [], "1x1": []}
         for n in (1, 2):
             t0 = time.perf_counter()
             cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                               dashboard_address=None, silence_logs=40)
+                                               dashboard_address="127.0.0.1:0", worker_dashboard_address="127.0.0.1:0",
+                                       silence_logs=40)
             client = distributed.Client(cluster)
             clusters[n] = (cluster, client, time.perf_counter() - t0)
             timed_run({"jobs": manifest["jobs"][:4]}, folder, client)  # warm-up: imports in the workers
-        for _ in range(a.repeat):  # interleaved: 1, 2, 1, 2, …
+        for _ in range(a.repeat):  # interleaved: 1, 2, 1 one job per task, 1, 2, …
             for n in (1, 2):
                 results[n].append(timed_run(manifest, folder, clusters[n][1]))
+            results["1x1"].append(timed_run(manifest, folder, clusters[1][1], jobs_per_task=1))
         for cluster, client, _ in clusters.values():
             client.close()
             cluster.close()
@@ -100,14 +104,15 @@ def main():
             assert out.read_bytes() == (folder / job["args"][-1]).read_bytes(), job
         cli_job = statistics.median(cli_times)
 
-        best = {n: min(results[n], key=lambda r: r["wall"]) for n in (1, 2)}
-        print(f"{'workers':>8} {'jobs wall (min of ' + str(a.repeat) + ')':>22} {'all runs':>24} "
+        best = {n: min(results[n], key=lambda r: r["wall"]) for n in results}
+        print(f"{'workers':>8} {'jobs/task':>9} {'jobs wall (min of ' + str(a.repeat) + ')':>22} {'all runs':>24} "
               f"{'per job':>10} {'in worker':>10} {'load avg before/after':>22}")
-        for n in (1, 2):
+        for n in results:
             b = best[n]
             runs = ", ".join(f"{r['wall']:.2f}" for r in results[n])
-            print(f"{n:>8} {b['wall']:>20.2f} s {runs:>22} s {b['wall'] / a.scenes * 1e3:>7.1f} ms "
-                  f"{b['job_median'] * 1e3:>7.1f} ms {b['load'][0]:>10.2f} / {b['load'][1]:.2f}")
+            print(f"{str(n)[0]:>8} {b['jobs_per_task']:>9} {b['wall']:>20.2f} s {runs:>22} s "
+                  f"{b['wall'] / a.scenes * 1e3:>7.1f} ms {b['job_median'] * 1e3:>7.1f} ms "
+                  f"{b['load'][0]:>10.2f} / {b['load'][1]:.2f}")
         speedup = best[1]["wall"] / best[2]["wall"]
         per_job_1 = best[1]["wall"] / a.scenes
         print(f"speed-up 2 workers / 1: {speedup:.2f}x (target >= 1.8x); cluster start "
@@ -115,10 +120,13 @@ def main():
         print(f"per job: the tool (one process) {cli_job * 1e3:.1f} ms median of {CLI_JOBS}; the batch on 1 worker "
               f"{per_job_1 * 1e3:.1f} ms (the command itself {best[1]['job_median'] * 1e3:.1f} ms in the worker): "
               f"overhead against the tool {(per_job_1 - cli_job) * 1e3:+.1f} ms, Dask's own "
-              f"{(per_job_1 - best[1]['job_median']) * 1e3:.1f} ms")
+              f"{(per_job_1 - best[1]['job_median']) * 1e3:.1f} ms ({best['1x1']['wall'] / a.scenes * 1e3:.1f} ms per job "
+              f"at one job per task: Dask's per-task cost "
+              f"{(best['1x1']['wall'] / a.scenes - best['1x1']['job_median']) * 1e3:.1f} ms)")
         print(json.dumps({"scenes": a.scenes, "speedup": speedup, "wall_1": best[1]["wall"], "wall_2": best[2]["wall"],
                           "all_1": [r["wall"] for r in results[1]], "all_2": [r["wall"] for r in results[2]],
-                          "load": {n: [r["load"] for r in results[n]] for n in (1, 2)},
+                          "all_1x1": [r["wall"] for r in results["1x1"]],
+                          "load": {str(n): [r["load"] for r in results[n]] for n in results},
                           "cli_job": cli_job, "batch_job_1": per_job_1, "in_worker_job": best[1]["job_median"]}))
     finally:
         if not a.work:

@@ -52,6 +52,11 @@ RETRIES = 1
 #: it reports the job failed (KilledWorker); the local cluster sets it, an existing scheduler keeps
 #: its own ``distributed.scheduler.allowed-failures`` (Dask's default is the same 3).
 ALLOWED_FAILURES = 3
+#: Jobs per Dask task (``jobs_per_task`` unset): every worker gets at least this many tasks …
+TASKS_PER_WORKER = 16
+#: … of at most this many jobs each (a killed worker's task is rerun whole: outputs already
+#: written are written again, the same bytes).
+MAX_JOBS_PER_TASK = 32
 #: Exit codes, as the tool's.
 EXIT_OK, EXIT_INTERNAL, EXIT_FAILED = 0, 1, 2
 #: Longest stderr text kept per job in the summary (characters; the tail is cut).
@@ -140,6 +145,19 @@ def run_job(args, base_dir):
     return {"exit_code": int(code), "message": _message(err) if code else "",
             "stderr": err[-MAX_STDERR_CHARS:], "stdout_bytes": len(out), "seconds": seconds,
             "worker": worker, "host": socket.gethostname(), "pid": os.getpid()}
+
+
+def run_jobs(jobs, base_dir):
+    """Runs several jobs (lists of arguments) one after the other in this worker: one Dask task,
+    so that jobs of a few milliseconds do not pay the scheduler's per-task cost each."""
+    return [run_job(args, base_dir) for args in jobs]
+
+
+def _jobs_per_task(n_jobs, n_workers):
+    """Jobs per Dask task: 1 for small batches; for large ones enough that each task is a few
+    jobs (Dask's per-task cost, about a millisecond, against jobs of ~10 ms) while every worker
+    still gets at least TASKS_PER_WORKER tasks to balance the load; at most MAX_JOBS_PER_TASK."""
+    return max(1, min(MAX_JOBS_PER_TASK, n_jobs // (n_workers * TASKS_PER_WORKER)))
 
 
 def _command_of(args):
@@ -250,14 +268,15 @@ def _write_json_atomically(path, doc):
 
 
 def run(manifest, scheduler=None, workers=None, summary=None, force=False, progress="auto", client=None,
-        base_dir=None):
+        base_dir=None, jobs_per_task=None):
     """Runs a manifest's jobs on Dask; returns the summary (a dictionary, also written to `summary`
     when given).  `manifest`: a file (paths relative to its folder) or a dictionary (paths relative
     to `base_dir`, default the current folder).  `scheduler`: an existing scheduler's address
     ("tcp://host:8786"); without it a local cluster of `workers` processes (default: the machine's
     cores) runs the jobs and is closed at the end.  `client`: a distributed.Client to use instead of
     either.  `force`: run the jobs whose outputs are up to date too.  `progress`: "auto" (a bar on a
-    terminal), "always" or "never".  Raises ManifestError for a manifest that cannot be read; jobs
+    terminal), "always" or "never".  `jobs_per_task`: jobs sent to a worker as one Dask task (default:
+    1 for small batches, more for large ones, see _jobs_per_task).  Raises ManifestError for a manifest that cannot be read; jobs
     that fail are in the summary ("status": "failed"), never raised."""
     import dask
     from distributed import Client, LocalCluster, as_completed
@@ -288,6 +307,7 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
     to_run = [e for e in entries if e["status"] == "pending"]
 
     cluster = own_client = None
+    per_task = 0
     address, n_workers, allowed_failures = "", 0, ALLOWED_FAILURES
     bar = _Progress(len(entries), progress)
     done = sum(1 for e in entries if e["status"] != "pending")
@@ -302,7 +322,8 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
                 else:
                     with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES}):
                         cluster = LocalCluster(n_workers=int(workers or os.cpu_count() or 1), threads_per_worker=1,
-                                               processes=True, host="127.0.0.1", dashboard_address=None,
+                                               processes=True, host="127.0.0.1", dashboard_address="127.0.0.1:0",
+                                               worker_dashboard_address="127.0.0.1:0",
                                                silence_logs=40)
                     own_client = client = Client(cluster)
             address = client.scheduler.address
@@ -312,28 +333,31 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
             except Exception:  # noqa: BLE001 (an older scheduler: report the default)
                 pass
             bar.update(done, failed, force=True)
+            per_task = jobs_per_task or _jobs_per_task(len(to_run), max(n_workers, 1))
             token = f"{os.getpid()}-{int(time.time() * 1e6)}"
             futures = {}
-            for e in to_run:
-                f = client.submit(run_job, e["args"], base_dir, key=f"inbetween-job-{e['index']}-{token}",
-                                  pure=False, retries=RETRIES)
-                futures[f] = e
+            for start in range(0, len(to_run), per_task):
+                chunk = to_run[start:start + per_task]
+                f = client.submit(run_jobs, [e["args"] for e in chunk], base_dir,
+                                  key=f"inbetween-jobs-{chunk[0]['index']}-{token}", pure=False, retries=RETRIES)
+                futures[f] = chunk
             for f in as_completed(list(futures)):
-                e = futures[f]
+                chunk = futures[f]
                 try:
-                    r = f.result()
-                    e.update(status="done" if r["exit_code"] == 0 else "failed", exit_code=r["exit_code"],
-                             message=r["message"], seconds=r["seconds"], worker=r["worker"], stderr=r["stderr"])
-                except Exception as exc:  # noqa: BLE001 (KilledWorker, or the job raised RETRIES + 1 times)
+                    for e, r in zip(chunk, f.result()):
+                        e.update(status="done" if r["exit_code"] == 0 else "failed", exit_code=r["exit_code"],
+                                 message=r["message"], seconds=r["seconds"], worker=r["worker"], stderr=r["stderr"])
+                except Exception as exc:  # noqa: BLE001 (KilledWorker, or the task raised RETRIES + 1 times)
                     kind = type(exc).__name__
-                    if kind == "KilledWorker":
-                        why = (f"batch: jobs/{e['index']}: its worker died {allowed_failures + 1} times "
-                               f"(allowed-failures {allowed_failures}): {exc}")
-                    else:
-                        why = f"batch: jobs/{e['index']}: {kind}: {exc}"
-                    e.update(status="failed", exit_code=EXIT_INTERNAL, message=" ".join(why.split()))
-                done += 1
-                failed += e["status"] == "failed"
+                    for e in chunk:
+                        if kind == "KilledWorker":
+                            why = (f"batch: jobs/{e['index']}: its worker died {allowed_failures + 1} times "
+                                   f"(allowed-failures {allowed_failures}): {exc}")
+                        else:
+                            why = f"batch: jobs/{e['index']}: {kind}: {exc}"
+                        e.update(status="failed", exit_code=EXIT_INTERNAL, message=" ".join(why.split()))
+                done += len(chunk)
+                failed += sum(e["status"] == "failed" for e in chunk)
                 bar.update(done, failed)
     finally:
         bar.finish()
@@ -351,6 +375,7 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
         "scheduler": address,
         "workers": n_workers,
         "retries": RETRIES,
+        "jobs_per_task": per_task,
         "allowed_failures": allowed_failures,
         "started": started.isoformat(timespec="seconds"),
         "seconds": time.perf_counter() - t0,
@@ -374,14 +399,18 @@ def main(argv=None) -> int:
                                                "--scheduler: wait until this many workers are connected")
     p.add_argument("--summary", help="write the summary (JSON, docs/batch-summary.schema.json) to this file")
     p.add_argument("--force", action="store_true", help="run the jobs whose outputs are newer than their inputs too")
+    p.add_argument("--jobs-per-task", type=int, help="jobs sent to a worker as one Dask task (default: 1 for small "
+                                                     "batches, up to 32 for large ones)")
     p.add_argument("--progress", choices=("auto", "always", "never"), default="auto",
                    help="progress bar on standard error: auto (when it is a terminal), always, never")
     a = p.parse_args(argv)
     if a.workers is not None and a.workers < 1:
         p.error("--workers: at least 1")
+    if a.jobs_per_task is not None and a.jobs_per_task < 1:
+        p.error("--jobs-per-task: at least 1")
     try:
         result = run(a.manifest, scheduler=a.scheduler, workers=a.workers, summary=a.summary, force=a.force,
-                     progress=a.progress)
+                     progress=a.progress, jobs_per_task=a.jobs_per_task)
     except ManifestError as e:
         print(f"batch: {e}", file=sys.stderr)
         return EXIT_FAILED
@@ -401,6 +430,6 @@ def main(argv=None) -> int:
 
 if __name__ == "__main__":
     # Through the package's module (not this __main__ copy), so that the jobs Dask sends to the
-    # workers name inbetween.batch.run_job, which every worker imports.
+    # workers name inbetween.batch.run_jobs, which every worker imports.
     from inbetween.batch import main as _main
     sys.exit(_main())

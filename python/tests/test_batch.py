@@ -92,7 +92,8 @@ def client():
     """A local cluster of 2 single-threaded worker processes on 127.0.0.1, shared by the tests that
     need no fresh one."""
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                       dashboard_address=None, silence_logs=40)
+                                       dashboard_address="127.0.0.1:0", worker_dashboard_address="127.0.0.1:0",
+                                       silence_logs=40)
     c = distributed.Client(cluster)
     yield c
     c.close()
@@ -155,10 +156,12 @@ def test_failures_are_reported_with_the_tools_message_and_the_others_finish(tmp_
             ["bake", "shots/s02.json", "-o", "out/s00.csv"]]                  # the same output as job 0
     manifest = tmp_path / "manifest.json"
     manifest.write_text(json.dumps({"jobs": [{"args": a} for a in jobs]}))
+    # 2 jobs per Dask task: a failing job does not take the others of its task with it
     code = batch.main([str(manifest), "--scheduler", client.scheduler.address, "--summary",
-                       str(tmp_path / "summary.json"), "--progress", "never"])
+                       str(tmp_path / "summary.json"), "--progress", "never", "--jobs-per-task", "2"])
     assert code == 2
     s = json.loads((tmp_path / "summary.json").read_text())
+    assert s["jobs_per_task"] == 2
     status = [j["status"] for j in s["jobs"]]
     assert status == ["done", "failed", "failed", "failed", "done", "failed", "done", "failed", "failed", "failed"]
     assert s["counts"] == {"done": 3, "skipped": 0, "failed": 7}
@@ -273,7 +276,7 @@ def test_a_worker_killed_mid_write_loses_nothing(tmp_path, source_dir):
     try:
         scheduler_file = tmp_path / "scheduler.json"
         procs.start([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", "0",
-                     "--no-dashboard", "--scheduler-file", str(scheduler_file)], log)
+                     "--no-dashboard", "--dashboard-address", "127.0.0.1:0", "--scheduler-file", str(scheduler_file)], log)
         deadline = time.monotonic() + START_TIMEOUT_S
         while not scheduler_file.exists():
             assert time.monotonic() < deadline, (tmp_path / "dask.log").read_text()
@@ -282,7 +285,8 @@ def test_a_worker_killed_mid_write_loses_nothing(tmp_path, source_dir):
         address = json.loads(scheduler_file.read_text())["address"]
         assert address.startswith("tcp://127.0.0.1:")
         workers = [procs.start([sys.executable, "-m", "distributed.cli.dask_worker", address, "--host", "127.0.0.1",
-                                "--nthreads", "1", "--no-nanny", "--no-dashboard", "--death-timeout", "60",
+                                "--nthreads", "1", "--no-nanny", "--no-dashboard", "--dashboard-address", "127.0.0.1:0",
+                                "--death-timeout", "60",
                                 "--local-directory", str(tmp_path / f"w{k}")], log) for k in range(2)]
         result = {}
         runner = threading.Thread(target=lambda: result.update(
