@@ -114,6 +114,7 @@ def test_local_cluster_bakes_50_scenes_and_converts_10_byte_for_byte(tmp_path, r
                         "--summary", str(tmp_path / "summary.json")], capture_output=True, text=True,
                        timeout=300)
     assert r.returncode == 0, r.stderr
+    assert "batch [" not in r.stderr, "no progress bar when standard error is not a terminal"
     assert f"{len(jobs)} jobs: {len(jobs)} done, 0 skipped (up to date), 0 failed" in r.stdout, r.stdout
     summary = json.loads((tmp_path / "summary.json").read_text())
     assert summary["workers"] == 2 and summary["counts"] == {"done": len(jobs), "skipped": 0, "failed": 0}
@@ -215,6 +216,33 @@ def test_temporaries_of_the_outputs_are_swept_and_nothing_else(tmp_path, client,
     assert s["counts"]["done"] == 1
     assert sorted(s["swept"]) == sorted(str(out / n) for n in left)
     assert sorted(p.name for p in out.iterdir()) == sorted(kept + ["s00.csv"])
+
+
+def test_the_progress_bar_draws_on_a_terminal_only():
+    class Stream:
+        def __init__(self, tty):
+            self.tty, self.text = tty, ""
+
+        def isatty(self):
+            return self.tty
+
+        def write(self, t):
+            self.text += t
+
+        def flush(self):
+            pass
+
+    for tty, mode, drawn in ((True, "auto", True), (False, "auto", False), (False, "always", True),
+                             (True, "never", False)):
+        s = Stream(tty)
+        bar = batch._Progress(4, mode, s)
+        bar.update(1, 0, force=True)
+        bar.update(3, 1, force=True)
+        bar.finish()
+        assert ("batch [" in s.text) == drawn, (tty, mode, s.text)
+        if drawn:
+            assert "\rbatch [######################........]  75%  3/4 jobs  1 failed  ETA" in s.text, s.text
+            assert s.text.endswith("\r") and s.text.rsplit("\r", 2)[1].strip() == "", "the line is cleared"
 
 
 def test_manifest_errors_name_the_place(tmp_path):
