@@ -60,6 +60,18 @@ def timed_run(manifest, folder, client, jobs_per_task=None):
             "jobs_per_task": s["jobs_per_task"]}
 
 
+def threads_wall(manifest, folder, n_threads):
+    """The same jobs through _run_cli in n_threads threads of this process, no Dask: what the
+    machine's free cores allow right now (the ceiling of the workers' speed-up)."""
+    from concurrent.futures import ThreadPoolExecutor
+    from inbetween import _inbetween
+    t0 = time.perf_counter()
+    with ThreadPoolExecutor(n_threads) as pool:
+        codes = list(pool.map(lambda job: _inbetween._run_cli(job["args"], str(folder))[0], manifest["jobs"]))
+    assert not any(codes)
+    return time.perf_counter() - t0
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--cli", default=str(ROOT / "build" / "release" / "inbetween"))
@@ -91,6 +103,10 @@ def main():
         for cluster, client, _ in clusters.values():
             client.close()
             cluster.close()
+        ceiling = {1: [], 2: []}
+        for _ in range(a.repeat):
+            for n in (1, 2):
+                ceiling[n].append(threads_wall(manifest, folder, n))
 
         # the tool, one process per job, on the first CLI_JOBS jobs (and the same bytes)
         cli_times = []
@@ -114,16 +130,21 @@ def main():
                   f"{b['wall'] / a.scenes * 1e3:>7.1f} ms {b['job_median'] * 1e3:>7.1f} ms "
                   f"{b['load'][0]:>10.2f} / {b['load'][1]:.2f}")
         speedup = best[1]["wall"] / best[2]["wall"]
+        machine = min(ceiling[1]) / min(ceiling[2])
         per_job_1 = best[1]["wall"] / a.scenes
         print(f"speed-up 2 workers / 1: {speedup:.2f}x (target >= 1.8x); cluster start "
               f"{clusters[1][2]:.1f} s (1 worker), {clusters[2][2]:.1f} s (2 workers)")
+        print(f"the machine's ceiling now: the same jobs in 2 threads / 1 of one process, no Dask: {machine:.2f}x "
+              f"({', '.join(f'{t:.2f}' for t in ceiling[1])} s / {', '.join(f'{t:.2f}' for t in ceiling[2])} s; "
+              f"load {os.getloadavg()[0]:.2f})")
         print(f"per job: the tool (one process) {cli_job * 1e3:.1f} ms median of {CLI_JOBS}; the batch on 1 worker "
               f"{per_job_1 * 1e3:.1f} ms (the command itself {best[1]['job_median'] * 1e3:.1f} ms in the worker): "
               f"overhead against the tool {(per_job_1 - cli_job) * 1e3:+.1f} ms, Dask's own "
               f"{(per_job_1 - best[1]['job_median']) * 1e3:.1f} ms ({best['1x1']['wall'] / a.scenes * 1e3:.1f} ms per job "
               f"at one job per task: Dask's per-task cost "
               f"{(best['1x1']['wall'] / a.scenes - best['1x1']['job_median']) * 1e3:.1f} ms)")
-        print(json.dumps({"scenes": a.scenes, "speedup": speedup, "wall_1": best[1]["wall"], "wall_2": best[2]["wall"],
+        print(json.dumps({"scenes": a.scenes, "speedup": speedup, "machine_ceiling": machine,
+                          "threads_1": ceiling[1], "threads_2": ceiling[2], "wall_1": best[1]["wall"], "wall_2": best[2]["wall"],
                           "all_1": [r["wall"] for r in results[1]], "all_2": [r["wall"] for r in results[2]],
                           "all_1x1": [r["wall"] for r in results["1x1"]],
                           "load": {str(n): [r["load"] for r in results[n]] for n in results},
