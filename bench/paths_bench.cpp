@@ -125,7 +125,7 @@ void BM_SmoothGaussian(benchmark::State& state) {
   const auto y = noisy(10000);
   const double r = double(state.range(0));
   for (auto _ : state)
-    benchmark::DoNotOptimize(smooth_convolution(y, {.kernel = SmoothingKernel::Gaussian, .radius = r}));
+    benchmark::DoNotOptimize(smooth_convolution(y, {.kernel = SmoothingKernel::gaussian, .radius = r}));
   state.SetItemsProcessed(state.iterations() * 10000);
 }
 BENCHMARK(BM_SmoothGaussian)->Arg(2)->Arg(8);

@@ -243,7 +243,7 @@ void BM_RigRuntime(benchmark::State& state) {
   for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
   const auto clip = build_rig_clip<T>(tv, rv, sv).value();
   const double end = rig_end(rig), step = 1.0 / double(state.range(1));
-  RigContext ctx = make_rig_context(clip);
+  RigClipCursor ctx = make_rig_clip_cursor(clip);
   std::vector<JointPose<T>> pose(rig.size());
   double frame = 0;
   for (auto _ : state) {
@@ -326,7 +326,7 @@ const FCurveClip& fcurve_rig_clip(int joints) {
 // Sequential playback of an F-curve rig clip from frame 0 to `end` in `step`s, wrapping to 0 (one
 // sample_fcurve_rig per iteration); counter pieces_per_curve.
 void play_fcurve_rig(benchmark::State& state, const FCurveClip& clip, double end, double step) {
-  auto ctx = make_fcurve_context(clip);
+  auto ctx = make_fcurve_clip_cursor(clip);
   std::vector<JointPose<float>> pose(clip.joints());
   double frame = 0;
   for (auto _ : state) {
@@ -415,7 +415,7 @@ void BM_RigKernel(benchmark::State& state) {
   const auto clip = build_rig_clip<T>(tv, rv, sv).value();
   const double end = rig_end(rig), step = 1.0 / double(state.range(1));
   bench_rig::hwy_limit_to_avx2(K == RigKernel::hwy_dynamic_avx2);
-  const auto sample = [&](T frame, RigContext<T>& ctx, std::span<JointPose<T>> out) {
+  const auto sample = [&](T frame, RigClipCursor<T>& ctx, std::span<JointPose<T>> out) {
     if constexpr (K == RigKernel::none) bench_rig::sample_rig_with(clip, frame, ctx, out, ZeroLanes<T>{});
     else if constexpr (K == RigKernel::std_simd) bench_rig::sample_rig_with(clip, frame, ctx, out, rig_detail::StdSimdLanes<T>{});
     else if constexpr (K == RigKernel::xsimd) bench_rig::sample_rig_with(clip, frame, ctx, out, bench_rig::XsimdLanes<T>{});
@@ -425,7 +425,7 @@ void BM_RigKernel(benchmark::State& state) {
   std::vector<JointPose<T>> pose(rig.size()), ref(rig.size());
   double diff = 0;
   if (K != RigKernel::none) {
-    RigContext ref_ctx = make_rig_context(clip), ctx = make_rig_context(clip);
+    RigClipCursor ref_ctx = make_rig_clip_cursor(clip), ctx = make_rig_clip_cursor(clip);
     for (double frame = 0; frame <= end; frame += step) {
       sample_rig(clip, T(frame), ref_ctx, std::span<JointPose<T>>(ref));
       sample(T(frame), ctx, std::span<JointPose<T>>(pose));
@@ -436,7 +436,7 @@ void BM_RigKernel(benchmark::State& state) {
       }
     }
   }
-  RigContext ctx = make_rig_context(clip);
+  RigClipCursor ctx = make_rig_clip_cursor(clip);
   double frame = 0;
   for (auto _ : state) {
     sample(T(frame), ctx, std::span<JointPose<T>>(pose));

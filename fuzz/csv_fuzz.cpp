@@ -47,7 +47,7 @@ void smooth(const cli::CsvTable& t) {
   const std::span<const double> points(x);
   (void)smooth_linear(points, {.iterations = 2});
   (void)smooth_cubic(points, {.iterations = 1, .smooth_ends = true});
-  (void)smooth_convolution(points, {.kernel = SmoothingKernel::Gaussian, .radius = 1.5, .fix_ends = false});
+  (void)smooth_convolution(points, {.kernel = SmoothingKernel::gaussian, .radius = 1.5, .fix_ends = false});
 }
 
 }  // namespace

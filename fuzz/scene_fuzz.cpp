@@ -45,7 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (curves.empty() || curves.size() > 16 || keys > 256) return 0;
   const auto clip = build_fcurve_clip(curves);
   if (!clip) return 0;
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   std::vector<float> values(curves.size());
   const float runtime_frames[] = {float(a), float(fuzz::lerp_in(a, b, 0.37)), float(b), float(b) + 7.25f, 1e6f,
                                   -1e6f, 3e38f, float(a) - 0.5f, -31.75f};

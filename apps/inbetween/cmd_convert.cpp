@@ -8,6 +8,7 @@
 //     each channel (why, keys before/after, measured max error) on standard error;
 //   - any input → BVH (.bvh): the objects sampled at every whole frame of the range
 //     (inbetween/io/bvh.hpp, docs/bvh.md), notes on standard error.
+// The input is read and built once (load_raw_and_scene) and each output takes what it needs.
 // The output is written whole or not at all.
 #include <cmath>
 #include <cstdio>
@@ -40,9 +41,6 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-// The input as a raw scene: a scene file, glTF, BVH or an assimp file.
-RawScene read_raw(const ConvertOptions& opt) { return load_raw(opt.input); }
-
 void print_report(const GltfExport& out) {
   for (const std::string& note : out.notes) tool_err() << "note: " << note << '\n';
   for (const GltfChannelReport& c : out.channels) {
@@ -62,11 +60,18 @@ void print_report(const GltfExport& out) {
 
 void run_convert(const ConvertOptions& opt) {
   if (!std::isfinite(opt.input.fps)) throw CommandError{"--fps: not a finite positive number"};
-  const bool to_json = ends_with(opt.output, ".json");
+  const bool to_json = ends_with(opt.output, ".json"), to_bvh = ends_with(opt.output, ".bvh");
   const bool glb = ends_with(opt.output, ".glb"), gltf = ends_with(opt.output, ".gltf");
-  if (ends_with(opt.output, ".bvh")) {
-    const Scene scene = load_scene(opt.input);
-    auto out = write_bvh(scene);
+  if (!to_json && !to_bvh && !glb && !gltf) {
+    throw CommandError{"convert: " + opt.input.path + " → " + opt.output +
+                       " is not a supported conversion: the output must end in .gltf or .glb (export of a scene or glTF "
+                       "file), .bvh (BVH motion, docs/bvh.md) or .json (a scene file)"};
+  }
+  // Read and built once for every output, each taking what it needs: BVH the scene, the scene
+  // file writer the raw scene (checked by the build), the glTF exporter both.
+  const LoadedScene in = load_raw_and_scene(opt.input);
+  if (to_bvh) {
+    auto out = write_bvh(in.scene);
     if (!out) throw CommandError{opt.input.path + ": " + out.error().describe()};
     write_output(opt.output, out->text);
     if (!opt.quiet)
@@ -76,28 +81,18 @@ void run_convert(const ConvertOptions& opt) {
   if (to_json) {
     // glTF → scene file, or scene file → scene file (the writer's form: version 2, defaults left
     // out, curve files inlined).
-    const RawScene raw = read_raw(opt);
-    if (auto scene = build_scene(raw); !scene) throw CommandError{opt.input.path + ": " + scene.error().describe()};
-    auto text = write_scene_json(raw);
+    auto text = write_scene_json(in.raw);
     if (!text) throw CommandError{opt.input.path + ": " + text.error().describe()};
     write_output(opt.output, *text);
     return;
   }
-  if (!glb && !gltf) {
-    throw CommandError{"convert: " + opt.input.path + " → " + opt.output +
-                       " is not a supported conversion: the output must end in .gltf or .glb (export of a scene or glTF "
-                       "file), .bvh (BVH motion, docs/bvh.md) or .json (a scene file)"};
-  }
-  const RawScene raw = read_raw(opt);
-  auto scene = build_scene(raw);
-  if (!scene) throw CommandError{opt.input.path + ": " + scene.error().describe()};
   GltfExportOptions o;
   o.tolerance = opt.reduce > 0 ? opt.reduce : opt.tolerance;
   o.reduce = opt.reduce > 0;
   o.substeps = opt.substeps;
   o.binary = glb;
   o.cubic = !opt.no_cubic;
-  auto out = export_gltf(raw, *scene, o);
+  auto out = export_gltf(in.raw, in.scene, o);
   if (!out) throw CommandError{opt.input.path + ": " + out.error().describe()};
   write_output(opt.output, out->bytes);
   if (!opt.quiet) print_report(*out);

@@ -747,8 +747,8 @@ void demo_curves(std::ostream& out) {
       << "); largest change at u outside [2, 6]: " << std::setprecision(3) << outside << "\n";
     out << r.str();
   };
-  moved_row(AnyCurve{CurveKind::CatmullRom, 2, build_catmull_rom(same).value()});
-  moved_row(AnyCurve{CurveKind::Natural, 2, build_natural_spline(same).value()});
+  moved_row(AnyCurve{CurveKind::catmull_rom, 2, build_catmull_rom(same).value()});
+  moved_row(AnyCurve{CurveKind::natural, 2, build_natural_spline(same).value()});
   out << "  (inbetween curve plot examples/curves/same-points-catmull-rom.json examples/curves/same-points-natural.json\n"
          "   --move 4:0,2 -o fig.svg draws it; curve info FILE --point 4 reports it)\n";
 }

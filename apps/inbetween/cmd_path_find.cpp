@@ -142,7 +142,7 @@ void setup(CLI::App& root) {
       const bool option = first && (*first == "fps" || *first == "speed");
       fail(found.error(), file, timing ? "no timing: " : option ? "" : "no path: ");
     }
-    const std::string curve = write_curve_json(AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{found->smooth.curve}});
+    const std::string curve = write_curve_json(AnyCurve{CurveKind::catmull_rom, 3, AnyCurveVariant{found->smooth.curve}});
     const std::string report = timing_json(*found, parsed->timing, env->capsule().value_or(CapsuleMover{}));
     const std::string poses = found->capsule ? poses_csv(*found->capsule, parsed->timing.fps) : "";
     write_output(args->output, curve);

@@ -43,7 +43,7 @@ std::string fit_to_curve_file(const CsvTable& csv, const std::string& path, int 
   }
   auto curve = BSpline<Vec3d>::build(points, fit->curve.degree, fit->curve.knots);
   if (!curve) throw CommandError{curve.error().describe()};  // a fit's knots are valid: not expected
-  return write_curve_json(AnyCurve{CurveKind::BSpline, dim, AnyCurveVariant{std::move(*curve)}});
+  return write_curve_json(AnyCurve{CurveKind::bspline, dim, AnyCurveVariant{std::move(*curve)}});
 }
 
 void setup(CLI::App& root) {

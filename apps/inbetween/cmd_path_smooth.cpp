@@ -47,8 +47,8 @@ std::vector<P> smooth_points(const std::vector<P>& pts, const CsvTable& t, const
     if (!b) fail(b.error(), t, a);
     return b->points;
   } else {
-    const SmoothingKernel k = a.method == "box" ? SmoothingKernel::Box
-                              : a.method == "tent" ? SmoothingKernel::Tent : SmoothingKernel::Gaussian;
+    const SmoothingKernel k = a.method == "box" ? SmoothingKernel::box
+                              : a.method == "tent" ? SmoothingKernel::tent : SmoothingKernel::gaussian;
     std::vector<P> cur = pts;
     for (int i = 0; i < a.iterations; ++i) {
       r = smooth_convolution(cur, {.kernel = k, .radius = a.radius, .fix_ends = a.fix_ends});

@@ -82,7 +82,7 @@ std::string curve_through(const std::vector<Vec3d>& points) {
   if (kept.size() < 2) throw CommandError{"--curve: the path is a single point; there is no curve through it"};
   auto spline = build_catmull_rom(kept, CatmullRomOptions<double>{.alpha = 0.5});
   if (!spline) throw CommandError{"--curve: " + spline.error().describe()};
-  return write_curve_json(AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{std::move(*spline)}});
+  return write_curve_json(AnyCurve{CurveKind::catmull_rom, 3, AnyCurveVariant{std::move(*spline)}});
 }
 
 // Writes the CSV and, with --curve, the curve file (both checked before either is written).
@@ -154,7 +154,7 @@ std::pair<std::string, std::vector<Vec3d>> surface_paths(const Args& a, const st
                        " has no implicit form to walk on; downhill takes a plane, sphere, torus or height_field"};
   const Vec3d from = start.size() == 2 ? surface->point(start[0], start[1]) : Vec3d{start[0], start[1], start[2]};
   SurfaceWalkOptions<double> options;
-  options.mode = SurfaceWalk::Downhill;
+  options.mode = SurfaceWalk::downhill;
   options.up = {a.up[0], a.up[1], a.up[2]};
   options.step = a.step == 0 ? surface->scale() / kStepsPerScale : a.step;
   options.max_steps = a.max_steps;

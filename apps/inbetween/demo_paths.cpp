@@ -61,8 +61,8 @@ void demo_smoothing(std::ostream& out) {
   auto lin = smooth_linear(y);
   auto cub = smooth_cubic(y);
   auto cube = smooth_cubic(y, {.smooth_ends = true});
-  auto tent = smooth_convolution(y, {.kernel = SmoothingKernel::Tent, .radius = 1.0});
-  auto gauss = smooth_convolution(y, {.kernel = SmoothingKernel::Gaussian, .radius = 2.0});
+  auto tent = smooth_convolution(y, {.kernel = SmoothingKernel::tent, .radius = 1.0});
+  auto gauss = smooth_convolution(y, {.kernel = SmoothingKernel::gaussian, .radius = 2.0});
   auto bsp = smooth_bspline(y, {.degree = 3, .control_points = 6});
   if (!lin || !cub || !cube || !tent || !gauss || !bsp) return;
   out << "\nsmoothing the texts' data set (section 3.4.3), y values:\n";

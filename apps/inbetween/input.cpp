@@ -66,14 +66,16 @@ RawScene load_raw(const InputArgs& args) {
   return std::move(*raw);
 }
 
-Scene load_scene(const InputArgs& args) {
+LoadedScene load_raw_and_scene(const InputArgs& args) {
   RawScene raw = load_raw(args);
   auto scene = build_scene(raw);
   if (!scene) {
     if (input_format_of(args) == InputFormat::scene_json) throw CommandError{scene_file_error(args.path, scene.error())};
     throw CommandError{args.path + ": " + scene.error().describe()};
   }
-  return std::move(*scene);
+  return LoadedScene{std::move(raw), std::move(*scene)};
 }
+
+Scene load_scene(const InputArgs& args) { return std::move(load_raw_and_scene(args).scene); }
 
 }  // namespace inbetween::cli

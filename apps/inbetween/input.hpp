@@ -35,7 +35,16 @@ void add_input_options(CLI::App* cmd, InputArgs& args, const std::string& name, 
 /// CommandError "<path>: <place>: <message>" (exit code 2).
 [[nodiscard]] RawScene load_raw(const InputArgs& args);
 
-/// load_raw() then build_scene(); a build error names the scene member.
+/// A raw scene and the scene built from it (export_gltf reads both).
+struct LoadedScene {
+  RawScene raw;  ///< as read
+  Scene scene;   ///< build_scene(raw)
+};
+
+/// load_raw() then build_scene(), keeping both; a build error names the scene member.
+[[nodiscard]] LoadedScene load_raw_and_scene(const InputArgs& args);
+
+/// load_raw_and_scene()'s scene.
 [[nodiscard]] Scene load_scene(const InputArgs& args);
 
 }  // namespace inbetween::cli

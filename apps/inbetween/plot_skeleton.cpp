@@ -29,7 +29,6 @@ namespace fs = std::filesystem;
 constexpr std::size_t kMaxDots = 150;          // position dots per view at most (as the path views)
 constexpr std::size_t kMaxPoseJoints = 256;    // a larger sub-hierarchy is plotted without poses
 constexpr double kLeft = 96, kTop = 90;        // page layout (pixels), as plot.cpp
-constexpr double kViewSize = 330, kViewGap = 130;
 // One colour per pose, early to late.
 constexpr const char* kPoseColours[] = {"#6a3d9a", "#1f78b4", "#33a02c", "#ff7f00", "#e31a1c"};
 static_assert(std::size(kPoseColours) >= std::size_t(kTrajectoryPoses));
@@ -50,19 +49,6 @@ bool write_text(const fs::path& path, const std::string& text) {
   return bool(out);
 }
 
-struct View {
-  const char* title;
-  int h, v;
-  bool flip_x, flip_y;
-  const char* x_label;
-  const char* y_label;
-};
-// Third-angle views, as the path views of plot.cpp.
-constexpr View kViews[] = {
-    {"top view (looking down −y; z grows downwards)", 0, 2, false, true, "x (scene units)", "z (scene units)"},
-    {"front view (looking along −z)", 0, 1, false, false, "x (scene units)", "y (scene units)"},
-    {"side view (from +x, looking along −x; z grows leftwards)", 2, 1, true, false, "z (scene units)", "y (scene units)"},
-};
 constexpr const char* kAxis[3] = {"x", "y", "z"};
 
 class TrajectoryPlotter {
@@ -188,7 +174,7 @@ class TrajectoryPlotter {
     }
     title += ": top, front and side views";
 
-    SvgDocument doc(kLeft + 2 * (kViewSize + kViewGap) + 40, kTop + 2 * (kViewSize + kViewGap), title);
+    SvgDocument doc(kLeft + 2 * (kThreeViewSize + kThreeViewGap) + 40, kTop + 2 * (kThreeViewSize + kThreeViewGap), title);
     doc.text("text", {{"class", "title"}, {"x", "16"}, {"y", "28"}, {"font-size", "17"}, {"font-weight", "bold"}}, title);
     doc.text("text", {{"x", "16"}, {"y", "48"}, {"fill", "#555555"}}, subtitle);
     std::string all_frames;
@@ -197,18 +183,8 @@ class TrajectoryPlotter {
       all_frames += num(frame(g));
     }
     for (int vi = 0; vi < 3; ++vi) {
-      const View& view = kViews[vi];
-      const double left = vi == 2 ? kLeft + kViewSize + kViewGap : kLeft;
-      const double top = vi == 0 ? kTop : kTop + kViewSize + kViewGap;
-      std::vector<double> hs, vs;
-      for (const auto& p : everything) {
-        hs.push_back(p[view.h]);
-        vs.push_back(p[view.v]);
-      }
-      const auto [h0, h1] = padded_range(hs, 0.08);
-      const auto [v0, v1] = padded_range(vs, 0.08);
-      Panel panel(left, top, kViewSize, kViewSize, h0, h1, v0, v1, view.flip_x, view.flip_y);
-      panel.equal_aspect();
+      const ThreeView& view = kThreeViews[vi];
+      const Panel panel = three_view_panel(vi, everything, kLeft, kTop);
       panel.begin(doc, view.title, view.x_label, view.y_label);
       panel.begin_data(doc);
       auto column = [&](std::size_t i, int axis) { return objects[i].name + ".translation." + kAxis[axis]; };

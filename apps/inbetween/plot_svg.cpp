@@ -171,6 +171,22 @@ std::pair<double, double> padded_range(const std::vector<double>& values, double
   return {std::max(lo - d, -big), std::min(hi + d, big)};
 }
 
+Panel three_view_panel(int vi, const std::vector<Vec3d>& points, double left, double top) {
+  const ThreeView& view = kThreeViews[vi];
+  std::vector<double> hs, vs;
+  for (const auto& p : points) {
+    hs.push_back(p[view.h]);
+    vs.push_back(p[view.v]);
+  }
+  const auto [h0, h1] = padded_range(hs, 0.08);
+  const auto [v0, v1] = padded_range(vs, 0.08);
+  const double x = vi == 2 ? left + kThreeViewSize + kThreeViewGap : left;
+  const double y = vi == 0 ? top : top + kThreeViewSize + kThreeViewGap;
+  Panel panel(x, y, kThreeViewSize, kThreeViewSize, h0, h1, v0, v1, view.flip_x, view.flip_y);
+  panel.equal_aspect();
+  return panel;
+}
+
 Panel::Panel(double left, double top, double width, double height, double x0, double x1, double y0, double y1,
              bool flip_x, bool flip_y)
     : left_(left), top_(top), width_(width), height_(height), x0_(x0), x1_(x1), y0_(y0), y1_(y1),

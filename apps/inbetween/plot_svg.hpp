@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include "inbetween/math/vec.hpp"
+
 namespace inbetween::cli {
 
 /// The shortest text that reads back to the same double ("-0" as "0"), as std::to_chars writes it.
@@ -108,6 +110,29 @@ class Panel {
   bool flip_x_, flip_y_;
   std::string clip_id_;
 };
+
+/// One of the three orthographic views of the path and trajectory pages: scene axis h across and
+/// v up (0 x, 1 y, 2 z), flipped where the view looks from the other side.
+struct ThreeView {
+  const char* title;    ///< the panel's title
+  int h, v;             ///< scene axes across and up
+  bool flip_x, flip_y;  ///< x grows leftwards, y downwards
+  const char* x_label;  ///< label of the axis across
+  const char* y_label;  ///< label of the axis up
+};
+/// The top, front and side views, in that order (third-angle projection).
+inline constexpr ThreeView kThreeViews[3] = {
+    {"top view (looking down −y; z grows downwards)", 0, 2, false, true, "x (scene units)", "z (scene units)"},
+    {"front view (looking along −z)", 0, 1, false, false, "x (scene units)", "y (scene units)"},
+    {"side view (from +x, looking along −x; z grows leftwards)", 2, 1, true, false, "z (scene units)", "y (scene units)"},
+};
+/// Pixel size of one view and the gap between views.
+inline constexpr double kThreeViewSize = 330, kThreeViewGap = 130;
+
+/// The panel of view `vi` (kThreeViews) in the third-angle layout whose top-left view starts at
+/// (left, top): the top view above the front view, the side view to its right.  Its ranges hold
+/// every point of `points` along the view's axes, padded by 8 %, with equal scales.
+Panel three_view_panel(int vi, const std::vector<Vec3d>& points, double left, double top);
 
 /// The colour of component i of a multi-line plot (x, y, z red, green, blue; w grey; r, g, b, a
 /// red, green, blue, grey; further ones a fixed palette).

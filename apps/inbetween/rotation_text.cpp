@@ -21,24 +21,24 @@ double angle_out(double v, bool degrees) { return degrees ? rad_to_deg(v) : v; }
 
 std::size_t RotationFormat::arity() const {
   switch (kind) {
-    case FormatKind::Quat:
-    case FormatKind::QuatXyzw:
-    case FormatKind::AxisAngle: return 4;
-    case FormatKind::Matrix: return 9;
-    case FormatKind::RotVec:
-    case FormatKind::Euler: return 3;
+    case FormatKind::quat:
+    case FormatKind::quat_xyzw:
+    case FormatKind::axis_angle: return 4;
+    case FormatKind::matrix: return 9;
+    case FormatKind::rotvec:
+    case FormatKind::euler: return 3;
   }
   return 0;
 }
 
 std::string RotationFormat::layout() const {
   switch (kind) {
-    case FormatKind::Quat: return "w x y z";
-    case FormatKind::QuatXyzw: return "x y z w";
-    case FormatKind::Matrix: return "9 entries, row-major";
-    case FormatKind::AxisAngle: return "x y z angle";
-    case FormatKind::RotVec: return "x y z";
-    case FormatKind::Euler: return "three angles in the order of " + sequence.name();
+    case FormatKind::quat: return "w x y z";
+    case FormatKind::quat_xyzw: return "x y z w";
+    case FormatKind::matrix: return "9 entries, row-major";
+    case FormatKind::axis_angle: return "x y z angle";
+    case FormatKind::rotvec: return "x y z";
+    case FormatKind::euler: return "three angles in the order of " + sequence.name();
   }
   return {};
 }
@@ -51,18 +51,18 @@ const char* const kRotationFormatHelp =
 std::optional<RotationFormat> parse_rotation_format(const std::string& text, std::string& why) {
   RotationFormat f;
   f.name = text;
-  if (text == "quat") f.kind = FormatKind::Quat;
-  else if (text == "quat-xyzw") f.kind = FormatKind::QuatXyzw;
-  else if (text == "matrix") f.kind = FormatKind::Matrix;
-  else if (text == "axis-angle") f.kind = FormatKind::AxisAngle;
-  else if (text == "rotvec") f.kind = FormatKind::RotVec;
+  if (text == "quat") f.kind = FormatKind::quat;
+  else if (text == "quat-xyzw") f.kind = FormatKind::quat_xyzw;
+  else if (text == "matrix") f.kind = FormatKind::matrix;
+  else if (text == "axis-angle") f.kind = FormatKind::axis_angle;
+  else if (text == "rotvec") f.kind = FormatKind::rotvec;
   else if (text.rfind("euler:", 0) == 0) {
     auto seq = parse_euler_sequence(std::string_view(text).substr(6));
     if (!seq) {
       why = seq.error().message;
       return std::nullopt;
     }
-    f.kind = FormatKind::Euler;
+    f.kind = FormatKind::euler;
     f.sequence = *seq;
   } else {
     why = "unknown format '" + text + "'; expected one of: " + kRotationFormatHelp;
@@ -111,29 +111,29 @@ std::string split_rotation_numbers(std::string_view line, std::vector<double>& o
 // Reads one rotation; throws CommandError naming the line.
 Quatd read_rotation(const RotationFormat& f, const std::vector<double>& v, bool degrees, const std::string& where) {
   switch (f.kind) {
-    case FormatKind::Quat:
-    case FormatKind::QuatXyzw: {
-      const Quatd q = f.kind == FormatKind::Quat ? Quatd::from_wxyz(v[0], v[1], v[2], v[3])
+    case FormatKind::quat:
+    case FormatKind::quat_xyzw: {
+      const Quatd q = f.kind == FormatKind::quat ? Quatd::from_wxyz(v[0], v[1], v[2], v[3])
                                                  : Quatd::from_xyzw(v[0], v[1], v[2], v[3]);
       if (!(norm(q) > 0)) throw CommandError{where + ": a zero quaternion is not a rotation"};
       return normalized(q);
     }
-    case FormatKind::Matrix: {
+    case FormatKind::matrix: {
       const Mat3d r{{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}}};
       auto q = quat_from_rotation_matrix_checked(r);
       if (!q) throw CommandError{where + ": not a rotation matrix within 1e-6: " + q.error().message};
       return *q;
     }
-    case FormatKind::AxisAngle: {
+    case FormatKind::axis_angle: {
       const Vec3d axis{v[0], v[1], v[2]};
       if (!(norm(axis) > 0)) throw CommandError{where + ": the axis (0, 0, 0) has no direction"};
       return Quatd::from_axis_angle(axis, angle_in(v[3], degrees));
     }
-    case FormatKind::RotVec: {
+    case FormatKind::rotvec: {
       const Vec3d r{v[0], v[1], v[2]};
       return quat_from_rotation_vector(degrees ? r * (pi_v<double> / 180) : r);
     }
-    case FormatKind::Euler:
+    case FormatKind::euler:
       return quat_from_euler(f.sequence, EulerTriple<double>{angle_in(v[0], degrees), angle_in(v[1], degrees),
                                                              angle_in(v[2], degrees)});
   }
@@ -145,21 +145,21 @@ std::vector<double> write_rotation(const RotationFormat& f, const Quatd& q_in, b
   gimbal = false;
   const Quatd q = canonical(q_in);
   switch (f.kind) {
-    case FormatKind::Quat: return {q.w, q.x, q.y, q.z};
-    case FormatKind::QuatXyzw: return {q.x, q.y, q.z, q.w};
-    case FormatKind::Matrix: {
+    case FormatKind::quat: return {q.w, q.x, q.y, q.z};
+    case FormatKind::quat_xyzw: return {q.x, q.y, q.z, q.w};
+    case FormatKind::matrix: {
       const Mat3d r = matrix_from_quat(q);
       return {r.m[0][0], r.m[0][1], r.m[0][2], r.m[1][0], r.m[1][1], r.m[1][2], r.m[2][0], r.m[2][1], r.m[2][2]};
     }
-    case FormatKind::AxisAngle: {
+    case FormatKind::axis_angle: {
       const AxisAngled aa = axis_angle_from_quat(q);
       return {aa.axis.x, aa.axis.y, aa.axis.z, angle_out(aa.angle_rad, degrees)};
     }
-    case FormatKind::RotVec: {
+    case FormatKind::rotvec: {
       const Vec3d r = rotation_vector_from_quat(q) * (degrees ? 180 / pi_v<double> : 1.0);
       return {r.x, r.y, r.z};
     }
-    case FormatKind::Euler: {
+    case FormatKind::euler: {
       const EulerAngles<double> e = euler_from_quat(f.sequence, q);
       gimbal = e.gimbal_lock;
       return {angle_out(e.angles_rad[0], degrees), angle_out(e.angles_rad[1], degrees),

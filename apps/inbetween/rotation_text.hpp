@@ -15,11 +15,11 @@
 namespace inbetween::cli {
 
 /// The representations `rotation convert` reads and writes.
-enum class RotationFormatKind { Quat, QuatXyzw, Matrix, AxisAngle, RotVec, Euler };
+enum class RotationFormatKind { quat, quat_xyzw, matrix, axis_angle, rotvec, euler };
 
 /// A parsed --from/--to format.
 struct RotationFormat {
-  RotationFormatKind kind = RotationFormatKind::Quat;  ///< the representation
+  RotationFormatKind kind = RotationFormatKind::quat;  ///< the representation
   EulerSequence sequence{};                            ///< the axis sequence, for Euler
   std::string name;                                    ///< the text given, for messages
 

@@ -64,7 +64,7 @@ using rig_detail::hwy_static_target;
 
 /// sample_rig with another lane kernel: the same refresh, the same group loop and AoS write.
 template <Real T, class Lanes>
-void sample_rig_with(const RigClip<T>& clip, T frame, RigContext<T>& context, std::span<JointPose<T>> out,
+void sample_rig_with(const RigClip<T>& clip, T frame, RigClipCursor<T>& context, std::span<JointPose<T>> out,
                      const Lanes& lanes) noexcept {
   frame = rig_detail::refresh(clip, frame, context);
   rig_detail::evaluate(context, frame, out, lanes);

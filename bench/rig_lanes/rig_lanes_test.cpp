@@ -45,7 +45,7 @@ void check_kernel(const char* name, const Lanes& lanes, bool print) {
     const Rig<T> rig = random_rig<T>(rng, 37);
     const auto clip = build_rig_clip<T>(rig.translations, rig.rotations, rig.scales);
     ASSERT_TRUE(clip) << clip.error().describe();
-    RigContext ref_ctx = make_rig_context(*clip), ctx = make_rig_context(*clip);
+    RigClipCursor ref_ctx = make_rig_clip_cursor(*clip), ctx = make_rig_clip_cursor(*clip);
     std::vector<JointPose<T>> ref(clip->joints()), pose(clip->joints());
     std::vector<T> frames;
     for (T t = -6; t < 40; t += T(0.23)) frames.push_back(t);

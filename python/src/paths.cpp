@@ -87,7 +87,7 @@ void bind_paths(py::module_& m) {
     info["square"] = fit.square;
     info["knots"] = fit.curve.knots;
     py::object curve_type = py::module_::import("inbetween._inbetween").attr("Curve");
-    py::object c = curve_type(write_curve_json(AnyCurve{CurveKind::BSpline, dim, AnyCurveVariant{std::move(curve)}}));
+    py::object c = curve_type(write_curve_json(AnyCurve{CurveKind::bspline, dim, AnyCurveVariant{std::move(curve)}}));
     return py::make_tuple(c, info);
   }, py::arg("t"), py::arg("points"), py::arg("degree") = 3, py::arg("control_points") = 0,
      "Least-squares B-spline of `degree` with `control_points` control points (0: as many as data, interpolation) "
@@ -106,9 +106,9 @@ void bind_paths(py::module_& m) {
       out = take(smooth_cubic(pts, {.iterations = iterations, .smooth_ends = smooth_ends}), "smooth");
     } else if (method == "convolution") {
       ConvolutionOptions<double> o;
-      if (kernel == "box") o.kernel = SmoothingKernel::Box;
-      else if (kernel == "tent") o.kernel = SmoothingKernel::Tent;
-      else if (kernel == "gaussian") o.kernel = SmoothingKernel::Gaussian;
+      if (kernel == "box") o.kernel = SmoothingKernel::box;
+      else if (kernel == "tent") o.kernel = SmoothingKernel::tent;
+      else if (kernel == "gaussian") o.kernel = SmoothingKernel::gaussian;
       else throw py::value_error("smooth: kernel \"" + kernel + "\" is not one of box, tent, gaussian");
       o.radius = radius;
       o.fix_ends = fix_ends;
@@ -159,7 +159,7 @@ void bind_paths(py::module_& m) {
     const auto found = find_path(*env, parsed.ends, {.planner = parsed.planner, .timing = parsed.timing, .steering = steering});
     if (!found) throw BindingError(locate_environment_error(found.error(), name));
     py::object curve_type = py::module_::import("inbetween._inbetween").attr("Curve");
-    py::object c = curve_type(write_curve_json(AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{found->smooth.curve}}));
+    py::object c = curve_type(write_curve_json(AnyCurve{CurveKind::catmull_rom, 3, AnyCurveVariant{found->smooth.curve}}));
     std::vector<std::array<double, 2>> keys;
     for (const auto& k : found->timing.keys) keys.push_back({k.t, k.s});
     py::dict timing;

@@ -261,9 +261,9 @@ void bind_rotations(py::module_& m) {
     require_finite(b, 4, "b");
     require_finite(u, 1, "u");
     SlerpOptions opt;
-    if (path == "shortest") opt.path = RotationPath::Shortest;
-    else if (path == "longest") opt.path = RotationPath::Longest;
-    else if (path == "as_given") opt.path = RotationPath::AsGiven;
+    if (path == "shortest") opt.path = RotationPath::shortest;
+    else if (path == "longest") opt.path = RotationPath::longest;
+    else if (path == "as_given") opt.path = RotationPath::as_given;
     else throw py::value_error("slerp: path \"" + path + "\" is not one of shortest, longest, as_given");
     std::vector<py::ssize_t> shape = nu == n && u.ndim() > 0 ? out_shape(u, 0, {4})
                                      : na == n ? out_shape(a, 1, {4}) : out_shape(b, 1, {4});

@@ -40,16 +40,16 @@ int authored_point_count(const AnyCurve& c) noexcept { return c.control_point_co
 
 bool has_local_control(CurveKind kind) noexcept {
   switch (kind) {
-    case CurveKind::Bezier:
-    case CurveKind::Natural:
-    case CurveKind::Lagrange:
+    case CurveKind::bezier:
+    case CurveKind::natural:
+    case CurveKind::lagrange:
       return false;
-    case CurveKind::BezierPath:
-    case CurveKind::Hermite:
-    case CurveKind::CatmullRom:
-    case CurveKind::KochanekBartels:
-    case CurveKind::Parabolic:
-    case CurveKind::BSpline:
+    case CurveKind::bezier_path:
+    case CurveKind::hermite:
+    case CurveKind::catmull_rom:
+    case CurveKind::kochanek_bartels:
+    case CurveKind::parabolic:
+    case CurveKind::bspline:
       return true;
   }
   return false;
@@ -112,10 +112,10 @@ Expected<AnyCurve> with_control_point(const AnyCurve& c, int i, const Vec3d& p) 
         } else if constexpr (std::is_same_v<C, CubicSpline<Vec3d>>) {
           const std::vector<double> params(curve.params().begin(), curve.params().end());
           switch (curve.end_condition()) {
-            case CubicSplineEnd::Closed: return wrap(c, build_closed_spline(pts, params));
-            case CubicSplineEnd::Clamped:
+            case CubicSplineEnd::closed: return wrap(c, build_closed_spline(pts, params));
+            case CubicSplineEnd::clamped:
               return wrap(c, build_clamped_spline(pts, curve.tangents().front(), curve.tangents().back(), params));
-            case CubicSplineEnd::Natural: break;
+            case CubicSplineEnd::natural: break;
           }
           return wrap(c, build_natural_spline(pts, params));
         } else if constexpr (std::is_same_v<C, KochanekBartelsSpline<Vec3d>>) {

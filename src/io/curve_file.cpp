@@ -181,20 +181,21 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
   }
   if (!doc.contains("type") || !doc["type"].is_string()) return r.fail(ptr("type"), "missing or not a string");
   const std::string type = doc["type"].get<std::string>();
+  const std::optional<CurveKind> kind = enum_from_string<CurveKind>(type);  // nullopt: refused below
   // Unknown fields are rejected, so a misspelt option ("tensoin") is not silently ignored.
-  static const std::vector<std::pair<std::string, std::vector<std::string>>> fields = {
-      {"bezier", {}},
-      {"bezier-path", {}},
-      {"hermite", {"tangents", "params"}},
-      {"catmull-rom", {"alpha", "tension", "closed"}},
-      {"natural", {"start_tangent", "end_tangent", "params", "closed"}},
-      {"kochanek-bartels", {"tension", "continuity", "bias", "params"}},
-      {"parabolic", {"params"}},
-      {"bspline", {"degree", "knots", "periodic"}},
-      {"lagrange", {"params"}},
+  static const std::vector<std::pair<CurveKind, std::vector<std::string>>> fields = {
+      {CurveKind::bezier, {}},
+      {CurveKind::bezier_path, {}},
+      {CurveKind::hermite, {"tangents", "params"}},
+      {CurveKind::catmull_rom, {"alpha", "tension", "closed"}},
+      {CurveKind::natural, {"start_tangent", "end_tangent", "params", "closed"}},
+      {CurveKind::kochanek_bartels, {"tension", "continuity", "bias", "params"}},
+      {CurveKind::parabolic, {"params"}},
+      {CurveKind::bspline, {"degree", "knots", "periodic"}},
+      {CurveKind::lagrange, {"params"}},
   };
-  for (const auto& [kind, extra] : fields) {
-    if (kind != type) continue;
+  for (const auto& [k, extra] : fields) {
+    if (k != kind) continue;
     for (const auto& item : doc.items()) {
       const std::string& key = item.key();
       if (key == "version" || key == "type" || key == "points") continue;
@@ -211,22 +212,22 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
 
   // The optional "params" member (parameters t_i of the points) of the interpolating splines.
   std::vector<double> params;
-  if (doc.contains("params") && type != "lagrange") {
+  if (doc.contains("params") && kind != CurveKind::lagrange) {
     auto k = read_numbers(r, doc, "params");
     if (!k) return k.error();
     params = *k;
     if (params.empty()) return r.fail(ptr("params"), "expected params, got an empty array", ErrorCode::WrongArity);
   }
 
-  if (type == "bezier") return wrap(r, CurveKind::Bezier, dim, build_bezier(pts));
-  if (type == "bezier-path") return wrap(r, CurveKind::BezierPath, dim, build_bezier_path(pts));
-  if (type == "parabolic") return wrap(r, CurveKind::Parabolic, dim, build_parabolic_blend(pts, params));
-  if (type == "hermite") {
+  if (kind == CurveKind::bezier) return wrap(r, CurveKind::bezier, dim, build_bezier(pts));
+  if (kind == CurveKind::bezier_path) return wrap(r, CurveKind::bezier_path, dim, build_bezier_path(pts));
+  if (kind == CurveKind::parabolic) return wrap(r, CurveKind::parabolic, dim, build_parabolic_blend(pts, params));
+  if (kind == CurveKind::hermite) {
     auto tangents = read_points(r, doc, "tangents", dim);
     if (!tangents) return tangents.error();
-    return wrap(r, CurveKind::Hermite, dim, build_hermite_spline(pts, *tangents, params));
+    return wrap(r, CurveKind::hermite, dim, build_hermite_spline(pts, *tangents, params));
   }
-  if (type == "catmull-rom") {
+  if (kind == CurveKind::catmull_rom) {
     CatmullRomOptions<double> o;
     for (const char* f : {"alpha", "tension"}) {
       auto v = read_optional_number(r, doc, f);
@@ -237,9 +238,9 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
       if (!doc["closed"].is_boolean()) return r.fail(ptr("closed"), "expected true or false");
       o.closed = doc["closed"].get<bool>();
     }
-    return wrap(r, CurveKind::CatmullRom, dim, build_catmull_rom(pts, o));
+    return wrap(r, CurveKind::catmull_rom, dim, build_catmull_rom(pts, o));
   }
-  if (type == "natural") {
+  if (kind == CurveKind::natural) {
     const bool has_start = doc.contains("start_tangent"), has_end = doc.contains("end_tangent");
     if (has_start != has_end)
       return r.fail(ptr(has_start ? "end_tangent" : "start_tangent"),
@@ -251,16 +252,16 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
     }
     if (closed) {
       if (has_start) return r.fail(ptr("start_tangent"), "a closed spline takes no end tangents");
-      return wrap(r, CurveKind::Natural, dim, build_closed_spline(pts, params));
+      return wrap(r, CurveKind::natural, dim, build_closed_spline(pts, params));
     }
-    if (!has_start) return wrap(r, CurveKind::Natural, dim, build_natural_spline(pts, params));
+    if (!has_start) return wrap(r, CurveKind::natural, dim, build_natural_spline(pts, params));
     auto start = read_point(r, doc["start_tangent"], ptr("start_tangent"), dim);
     if (!start) return start.error();
     auto end = read_point(r, doc["end_tangent"], ptr("end_tangent"), dim);
     if (!end) return end.error();
-    return wrap(r, CurveKind::Natural, dim, build_clamped_spline(pts, *start, *end, params));
+    return wrap(r, CurveKind::natural, dim, build_clamped_spline(pts, *start, *end, params));
   }
-  if (type == "kochanek-bartels") {
+  if (kind == CurveKind::kochanek_bartels) {
     auto tension = read_tcb(r, doc, "tension", pts.size());
     if (!tension) return tension.error();
     auto continuity = read_tcb(r, doc, "continuity", pts.size());
@@ -274,9 +275,9 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
       keys[i].continuity = (*continuity)[continuity->size() == 1 ? 0 : i];
       keys[i].bias = (*bias)[bias->size() == 1 ? 0 : i];
     }
-    return wrap(r, CurveKind::KochanekBartels, dim, build_kochanek_bartels(pts, keys, params));
+    return wrap(r, CurveKind::kochanek_bartels, dim, build_kochanek_bartels(pts, keys, params));
   }
-  if (type == "bspline") {
+  if (kind == CurveKind::bspline) {
     if (!doc.contains("degree") || !doc["degree"].is_number_integer())
       return r.fail(ptr("degree"), "expected an integer degree");
     const long long degree = doc["degree"].get<long long>();
@@ -290,7 +291,7 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
     }
     if (periodic) {
       if (doc.contains("knots")) return r.fail(ptr("knots"), "a periodic bspline takes no knots (they are uniform)");
-      return wrap(r, CurveKind::BSpline, dim, build_periodic_bspline(pts, int(degree)));
+      return wrap(r, CurveKind::bspline, dim, build_periodic_bspline(pts, int(degree)));
     }
     std::vector<double> knots;
     if (doc.contains("knots")) {
@@ -299,9 +300,9 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
       knots = *k;
       if (knots.empty()) return r.fail(ptr("knots"), "expected knots, got an empty array", ErrorCode::WrongArity);
     }
-    return wrap(r, CurveKind::BSpline, dim, build_bspline(pts, int(degree), knots));
+    return wrap(r, CurveKind::bspline, dim, build_bspline(pts, int(degree), knots));
   }
-  if (type == "lagrange") {
+  if (kind == CurveKind::lagrange) {
     // The "params" read above skips lagrange (here an empty array means the default 0, 1, …), so
     // `params` is still empty: fill it from the member.
     if (doc.contains("params")) {
@@ -309,11 +310,11 @@ Expected<AnyCurve> io_detail::read_curve_value(const nlohmann::json& value) {
       if (!k) return k.error();
       params = *k;
     }
-    return wrap(r, CurveKind::Lagrange, dim, build_lagrange(pts, params));
+    return wrap(r, CurveKind::lagrange, dim, build_lagrange(pts, params));
   }
-  return r.fail(ptr("type"), "unknown curve type \"" + io_detail::truncated(type) +
-                             "\"; expected one of bezier, bezier-path, hermite, catmull-rom, natural, "
-                             "kochanek-bartels, parabolic, bspline, lagrange",
+  std::string expected;
+  for (const std::string_view name : enum_names<CurveKind>()) (expected += expected.empty() ? "" : ", ") += name;
+  return r.fail(ptr("type"), "unknown curve type \"" + io_detail::truncated(type) + "\"; expected one of " + expected,
                 ErrorCode::Unsupported);
 }
 
@@ -360,7 +361,7 @@ std::string write_curve_json(const AnyCurve& any) {
           doc["closed"] = c.options().closed;
         } else if constexpr (std::is_same_v<C, CubicSpline<Vec3d>>) {
           if (c.closed()) doc["closed"] = true;
-          if (c.end_condition() == CubicSplineEnd::Clamped) {
+          if (c.end_condition() == CubicSplineEnd::clamped) {
             doc["start_tangent"] = point_json(c.tangents().front(), dim);
             doc["end_tangent"] = point_json(c.tangents().back(), dim);
           }

@@ -4,6 +4,8 @@
 // animation, channel, sampler or accessor and build_scene() never sees a bad key.
 #include "inbetween/io/gltf.hpp"
 
+#include "gltf_read_internal.hpp"
+
 #include <tiny_gltf.h>
 
 #include <nlohmann/json.hpp>
@@ -33,25 +35,12 @@
 namespace inbetween {
 namespace {
 
-namespace tg = tinygltf;
+using namespace gltf_read_detail;
 
-// Accessors without a bufferView are all zeros (then perhaps sparse): their element count is not
-// bounded by any buffer, so it is bounded here (16 Mi elements) to keep a hostile count from
-// allocating without limit.
-constexpr std::size_t kMaxUnbackedElements = std::size_t(1) << 24;
 // Weights columns (nodes × their mesh's morph targets): many nodes sharing a mesh with many targets
 // would multiply two small numbers of the file into an unbounded number of tracks (memory and
 // time of a file that is small itself; build_scene()'s track-name check is O(n log n)).
 constexpr std::size_t kMaxWeightColumns = std::size_t(1) << 14;
-
-Error error_at(ErrorCode code, std::string message, std::initializer_list<LocationStep> steps) {
-  Error e{code, std::move(message), ""};
-  e.prepend(steps);
-  return e;
-}
-
-// A name from the file in a message: escaped (a newline does not split the message) and cut short.
-std::string quoted(const std::string& name) { return name.empty() ? std::string() : " " + quote_excerpt(name); }
 
 // ------------------------------------------------------------------------------ file callbacks
 // tinygltf's default callbacks expand paths with wordexp(), which runs command substitutions of a
@@ -79,594 +68,9 @@ bool skip_image(tg::Image*, const int, std::string*, std::string*, int, int, con
   return true;
 }
 
-// ------------------------------------------------------------------------------ accessors
-int component_size(int type) {
-  switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
-    default: return 0;
-  }
-}
-
-const char* type_name(int components) {
-  switch (components) {
-    case 1: return "SCALAR";
-    case 2: return "VEC2";
-    case 3: return "VEC3";
-    case 4: return "VEC4";
-    default: return "?";
-  }
-}
-
-// One component at `p` as the specification's Appendix C / §3.11 says: floats as stored,
-// normalised integers c → max(c / 127, −1) (byte), c / 255 (ubyte), max(c / 32767, −1) (short),
-// c / 65535 (ushort).
-double decode_component(const unsigned char* p, int type) {
-  switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-      float f;
-      std::memcpy(&f, p, 4);
-      return double(f);
-    }
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-      std::int8_t c;
-      std::memcpy(&c, p, 1);
-      return std::max(double(c) / 127.0, -1.0);
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return double(p[0]) / 255.0;
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      std::int16_t c;
-      std::memcpy(&c, p, 2);
-      return std::max(double(c) / 32767.0, -1.0);
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      std::uint16_t c;
-      std::memcpy(&c, p, 2);
-      return double(c) / 65535.0;
-    }
-    default: return 0;
-  }
-}
-
-std::uint32_t decode_index(const unsigned char* p, int type) {
-  switch (type) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      std::uint16_t c;
-      std::memcpy(&c, p, 2);
-      return c;
-    }
-    default: {
-      std::uint32_t c;
-      std::memcpy(&c, p, 4);
-      return c;
-    }
-  }
-}
-
-// The bytes [offset, offset + length) of buffer view `view_index`, checked against the view and
-// its buffer; `what` names the user for messages.
-Expected<const unsigned char*> view_bytes(const tg::Model& model, int view_index, std::size_t offset,
-                                          std::size_t length, std::size_t accessor, const std::string& what,
-                                          std::initializer_list<LocationStep> where) {
-  if (view_index < 0 || std::size_t(view_index) >= model.bufferViews.size()) {
-    return error_at(ErrorCode::InvalidArgument,
-                    "accessor " + std::to_string(accessor) + ": " + what + " bufferView " + std::to_string(view_index) +
-                        " does not exist (the file has " + std::to_string(model.bufferViews.size()) + ")",
-                    where);
-  }
-  const tg::BufferView& view = model.bufferViews[std::size_t(view_index)];
-  if (view.buffer < 0 || std::size_t(view.buffer) >= model.buffers.size()) {
-    return error_at(ErrorCode::InvalidArgument,
-                    "bufferView " + std::to_string(view_index) + ": buffer " + std::to_string(view.buffer) + " does not exist",
-                    {"bufferViews", std::size_t(view_index), "buffer"});
-  }
-  const std::size_t buffer_size = model.buffers[std::size_t(view.buffer)].data.size();
-  if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) {
-    return error_at(ErrorCode::InvalidArgument,
-                    "bufferView " + std::to_string(view_index) + " (bytes " + std::to_string(view.byteOffset) + " + " +
-                        std::to_string(view.byteLength) + ") extends past the end of buffer " +
-                        std::to_string(view.buffer) + " (" + std::to_string(buffer_size) + " bytes), used by accessor " +
-                        std::to_string(accessor),
-                    {"bufferViews", std::size_t(view_index)});
-  }
-  if (offset > view.byteLength || length > view.byteLength - offset) {
-    return error_at(ErrorCode::InvalidArgument,
-                    "accessor " + std::to_string(accessor) + ": " + what + " needs bytes " + std::to_string(offset) +
-                        " + " + std::to_string(length) + " of bufferView " + std::to_string(view_index) + ", which has " +
-                        std::to_string(view.byteLength) + " (the buffer is shorter than the accessor)",
-                    where);
-  }
-  return model.buffers[std::size_t(view.buffer)].data.data() + view.byteOffset + offset;
-}
-
-// All elements of accessor `index` as doubles, `components` per element, decoded as the
-// specification says (normalised integers only where `allow_normalized`, sparse substitution).
-// Every byte read is checked to lie inside its bufferView and buffer.
-Expected<std::vector<double>> read_accessor_data(const tg::Model& model, int index, int components, bool allow_normalized) {
-  if (index < 0 || std::size_t(index) >= model.accessors.size()) {
-    return error_at(ErrorCode::InvalidArgument,
-                    "accessor " + std::to_string(index) + " does not exist (the file has " +
-                        std::to_string(model.accessors.size()) + ")",
-                    {});
-  }
-  const std::size_t ai = std::size_t(index);
-  const tg::Accessor& acc = model.accessors[ai];
-  const std::string name = "accessor " + std::to_string(ai);
-  const int type_components = tg::GetNumComponentsInType(std::uint32_t(acc.type));
-  if (type_components != components) {
-    return error_at(ErrorCode::WrongArity,
-                    name + " must be " + type_name(components) + ", not a " +
-                        (type_components > 4 ? std::string("matrix") : type_name(type_components)),
-                    {"accessors", ai, "type"});
-  }
-  const int ctype = acc.componentType;
-  const int csize = component_size(ctype);
-  const bool is_float = ctype == TINYGLTF_COMPONENT_TYPE_FLOAT;
-  if (csize == 0 || ctype == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-    return error_at(ErrorCode::Unsupported,
-                    name + ": component type " + std::to_string(ctype) + " cannot hold animation data",
-                    {"accessors", ai, "componentType"});
-  }
-  if (!is_float && !(allow_normalized && acc.normalized)) {
-    return error_at(ErrorCode::Unsupported,
-                    name + ": " +
-                        (allow_normalized ? "integer components must be normalized (\"normalized\": true)"
-                                          : "must have float components (5126)"),
-                    {"accessors", ai, "componentType"});
-  }
-  const std::size_t count = acc.count;
-  const std::size_t elem = std::size_t(csize) * std::size_t(components);
-  std::vector<double> out;
-  if (acc.bufferView < 0) {
-    if (count > kMaxUnbackedElements) {
-      return error_at(ErrorCode::InvalidArgument,
-                      name + ": " + std::to_string(count) + " elements without a bufferView (at most " +
-                          std::to_string(kMaxUnbackedElements) + ")",
-                      {"accessors", ai, "count"});
-    }
-    out.assign(count * std::size_t(components), 0.0);
-  } else {
-    if (std::size_t(acc.bufferView) >= model.bufferViews.size()) {
-      return error_at(ErrorCode::InvalidArgument,
-                      name + ": bufferView " + std::to_string(acc.bufferView) + " does not exist (the file has " +
-                          std::to_string(model.bufferViews.size()) + ")",
-                      {"accessors", ai, "bufferView"});
-    }
-    const tg::BufferView& view = model.bufferViews[std::size_t(acc.bufferView)];
-    std::size_t stride = elem;
-    if (view.byteStride != 0) {
-      if (view.byteStride < elem || view.byteStride % std::size_t(csize) != 0) {
-        return error_at(ErrorCode::InvalidArgument,
-                        name + ": byteStride " + std::to_string(view.byteStride) + " of bufferView " +
-                            std::to_string(acc.bufferView) + " is smaller than an element (" + std::to_string(elem) +
-                            " bytes) or not a multiple of the component size",
-                        {"bufferViews", std::size_t(acc.bufferView), "byteStride"});
-      }
-      stride = view.byteStride;
-    }
-    std::size_t length = 0;
-    if (count > 0) {
-      if (count - 1 > (std::numeric_limits<std::size_t>::max() - elem) / stride) {
-        return error_at(ErrorCode::InvalidArgument, name + ": count " + std::to_string(count) + " is too large",
-                        {"accessors", ai, "count"});
-      }
-      length = (count - 1) * stride + elem;
-    }
-    auto bytes = view_bytes(model, acc.bufferView, acc.byteOffset, length, ai, "data", {"accessors", ai});
-    if (!bytes) return bytes.error();
-    out.resize(count * std::size_t(components));
-    for (std::size_t i = 0; i < count; ++i)
-      for (int c = 0; c < components; ++c)
-        out[i * std::size_t(components) + std::size_t(c)] =
-            decode_component(*bytes + i * stride + std::size_t(c) * std::size_t(csize), ctype);
-  }
-  if (acc.sparse.isSparse) {
-    const auto& sp = acc.sparse;
-    if (sp.count < 1 || std::size_t(sp.count) > count) {
-      return error_at(ErrorCode::InvalidArgument,
-                      name + ": sparse count " + std::to_string(sp.count) + " is not in [1, " + std::to_string(count) + "]",
-                      {"accessors", ai, "sparse", "count"});
-    }
-    const std::size_t n = std::size_t(sp.count);
-    const int itype = sp.indices.componentType;
-    if (itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        itype != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
-      return error_at(ErrorCode::InvalidArgument,
-                      name + ": sparse indices component type " + std::to_string(itype) + " is not an unsigned integer",
-                      {"accessors", ai, "sparse", "indices", "componentType"});
-    }
-    if (sp.indices.byteOffset < 0 || sp.values.byteOffset < 0) {
-      return error_at(ErrorCode::InvalidArgument, name + ": negative sparse byteOffset", {"accessors", ai, "sparse"});
-    }
-    const std::size_t isize = std::size_t(component_size(itype));
-    auto ibytes = view_bytes(model, sp.indices.bufferView, std::size_t(sp.indices.byteOffset), n * isize, ai,
-                             "sparse indices", {"accessors", ai, "sparse", "indices"});
-    if (!ibytes) return ibytes.error();
-    auto vbytes = view_bytes(model, sp.values.bufferView, std::size_t(sp.values.byteOffset), n * elem, ai,
-                             "sparse values", {"accessors", ai, "sparse", "values"});
-    if (!vbytes) return vbytes.error();
-    std::int64_t previous = -1;
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::uint32_t target = decode_index(*ibytes + k * isize, itype);
-      if (std::int64_t(target) <= previous || target >= count) {
-        return error_at(ErrorCode::InvalidArgument,
-                        name + ": sparse index " + std::to_string(k) + " (" + std::to_string(target) +
-                            ") is not after the previous one or not below count " + std::to_string(count),
-                        {"accessors", ai, "sparse", "indices"});
-      }
-      previous = target;
-      for (int c = 0; c < components; ++c)
-        out[std::size_t(target) * std::size_t(components) + std::size_t(c)] =
-            decode_component(*vbytes + k * elem + std::size_t(c) * std::size_t(csize), ctype);
-    }
-  }
-  return out;
-}
-
-// read_accessor_data() with `role` (the animation, channel and sampler using the accessor) in
-// front of every message.
-Expected<std::vector<double>> read_accessor(const tg::Model& model, int index, int components, bool allow_normalized,
-                                            const std::string& role) {
-  auto data = read_accessor_data(model, index, components, allow_normalized);
-  if (data) return data;
-  Error e = data.error();
-  if (e.message.rfind(role, 0) != 0) e.message = role + ": " + e.message;
-  return e;
-}
-
-// ------------------------------------------------------------------------------ nodes
-// Unique object names: the node's name, node<index> without one, "#<index>" appended while taken.
-std::vector<std::string> object_names(const tg::Model& model) {
-  std::vector<std::string> names;
-  std::set<std::string> taken;
-  for (std::size_t i = 0; i < model.nodes.size(); ++i) {
-    std::string name = model.nodes[i].name;
-    if (name.empty()) name.append("node").append(std::to_string(i));  // (append: GCC 12's -Wrestrict misfires on "node" + …)
-    while (taken.count(name)) name.append("#").append(std::to_string(i));
-    taken.insert(name);
-    names.push_back(std::move(name));
-  }
-  return names;
-}
-
-Expected<Transformd> rest_pose(const tg::Node& node, std::size_t index) {
-  Transformd rest;
-  if (node.matrix.size() == 16) {
-    Mat4<double> m;  // glTF matrices are column-major
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) m.m[r][c] = node.matrix[std::size_t(c * 4 + r)];
-    auto trs = transform_from_matrix(m);
-    if (!trs) {
-      return error_at(trs.error().code, "node " + std::to_string(index) + ": matrix: " + trs.error().message,
-                      {"nodes", index, "matrix"});
-    }
-    return *trs;
-  }
-  if (node.translation.size() == 3) rest.translation = Vec3d{node.translation[0], node.translation[1], node.translation[2]};
-  if (node.rotation.size() == 4)
-    rest.rotation = Quatd::from_wxyz(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-  if (node.scale.size() == 3) rest.scale = Vec3d{node.scale[0], node.scale[1], node.scale[2]};
-  if (!is_finite(rest.translation) || !is_finite(rest.scale) || !is_finite(rest.rotation)) {
-    return error_at(ErrorCode::NotFinite, "node " + std::to_string(index) + ": TRS is not finite", {"nodes", index});
-  }
-  if (!(norm(rest.rotation) > 0)) {
-    return error_at(ErrorCode::InvalidArgument, "node " + std::to_string(index) + ": rotation is a zero quaternion",
-                    {"nodes", index, "rotation"});
-  }
-  return rest;
-}
-
-// Morph target count of a node (its mesh's first primitive; 0 without mesh).
-std::size_t morph_targets(const tg::Model& model, const tg::Node& node) {
-  if (node.mesh < 0 || std::size_t(node.mesh) >= model.meshes.size()) return 0;
-  const tg::Mesh& mesh = model.meshes[std::size_t(node.mesh)];
-  if (mesh.primitives.empty()) return mesh.weights.size();
-  return mesh.primitives[0].targets.size();
-}
-
-// ------------------------------------------------------------------------------ animation
-enum class Sampling : std::uint8_t { step, linear, cubic };
-
-struct Channel {
-  std::size_t node = 0;
-  std::string path;
-  Sampling sampling = Sampling::linear;
-  std::vector<double> frames;
-  std::vector<double> values;  // per key: (cubic: in-tangent, value, out-tangent) × width
-  std::size_t width = 0;       // numbers per element
-};
-
-Expected<std::size_t> select_animation(const tg::Model& model, const std::string& wanted) {
-  if (wanted.empty()) return std::size_t(0);
-  for (std::size_t i = 0; i < model.animations.size(); ++i)
-    if (model.animations[i].name == wanted) return i;
-  if (!wanted.empty() && wanted.find_first_not_of("0123456789") == std::string::npos && wanted.size() < 10) {
-    const std::size_t i = std::stoul(wanted);
-    if (i < model.animations.size()) return i;
-  }
-  std::string list;
-  for (std::size_t i = 0; i < model.animations.size(); ++i)
-    list += (i ? ", " : "") + std::to_string(i) + quoted(model.animations[i].name);
-  return Error{ErrorCode::InvalidArgument,
-               "no animation is named or numbered " + quote_excerpt(wanted) + " (the file has " +
-                   std::to_string(model.animations.size()) + (list.empty() ? "" : ": " + list) + ")",
-               ""};
-}
-
-Expected<Channel> read_channel(const tg::Model& model, std::size_t a, std::size_t c, double fps,
-                               const std::vector<std::string>& names) {
-  const tg::Animation& anim = model.animations[a];
-  const tg::AnimationChannel& ch = anim.channels[c];
-  const std::string head = "animation " + std::to_string(a) + quoted(anim.name) + ", channel " + std::to_string(c);
-  if (ch.target_node < 0 || std::size_t(ch.target_node) >= model.nodes.size()) {
-    return error_at(ErrorCode::InvalidArgument,
-                    head + ": target node " + std::to_string(ch.target_node) + " does not exist (the file has " +
-                        std::to_string(model.nodes.size()) + " nodes)",
-                    {"animations", a, "channels", c, "target", "node"});
-  }
-  Channel out;
-  out.node = std::size_t(ch.target_node);
-  out.path = ch.target_path;
-  const std::string target = head + " (node " + std::to_string(out.node) + " " + quote_excerpt(names[out.node]) + " " + out.path + ")";
-  std::size_t width = 0;
-  int components = 0;
-  bool normalized_ok = false;
-  if (out.path == "translation" || out.path == "scale") {
-    width = 3;
-    components = 3;
-  } else if (out.path == "rotation") {
-    width = 4;
-    components = 4;
-    normalized_ok = true;
-  } else if (out.path == "weights") {
-    width = morph_targets(model, model.nodes[out.node]);
-    components = 1;
-    normalized_ok = true;
-    if (width == 0) {
-      return error_at(ErrorCode::InvalidArgument, target + ": the node has no mesh with morph targets",
-                      {"animations", a, "channels", c, "target", "path"});
-    }
-  } else {
-    return error_at(ErrorCode::Unsupported,
-                    target + ": path \"" + out.path + "\" is not translation, rotation, scale or weights",
-                    {"animations", a, "channels", c, "target", "path"});
-  }
-  out.width = width;
-  if (ch.sampler < 0 || std::size_t(ch.sampler) >= anim.samplers.size()) {
-    return error_at(ErrorCode::InvalidArgument,
-                    target + ": sampler " + std::to_string(ch.sampler) + " does not exist (the animation has " +
-                        std::to_string(anim.samplers.size()) + ")",
-                    {"animations", a, "channels", c, "sampler"});
-  }
-  const std::size_t s = std::size_t(ch.sampler);
-  const tg::AnimationSampler& sampler = anim.samplers[s];
-  const std::string where = target + ", sampler " + std::to_string(s);
-  if (sampler.interpolation == "STEP") {
-    out.sampling = Sampling::step;
-  } else if (sampler.interpolation == "LINEAR") {
-    out.sampling = Sampling::linear;
-  } else if (sampler.interpolation == "CUBICSPLINE") {
-    out.sampling = Sampling::cubic;
-  } else {
-    return error_at(ErrorCode::Unsupported,
-                    where + ": interpolation \"" + sampler.interpolation + "\" is not STEP, LINEAR or CUBICSPLINE",
-                    {"animations", a, "samplers", s, "interpolation"});
-  }
-  auto times = read_accessor(model, sampler.input, 1, false, where + " input");
-  if (!times) {
-    Error e = times.error();
-    if (e.location.empty()) e.prepend({"animations", a, "samplers", s, "input"});
-    return e;
-  }
-  const std::size_t n = times->size();
-  const std::size_t in_acc = std::size_t(sampler.input);
-  if (n == 0) {
-    return error_at(ErrorCode::TooFewPoints, where + ": input accessor " + std::to_string(in_acc) + " has no key times",
-                    {"accessors", in_acc, "count"});
-  }
-  for (std::size_t k = 0; k < n; ++k) {
-    const double t = (*times)[k];
-    if (!std::isfinite(t)) {
-      return error_at(ErrorCode::NotFinite,
-                      where + ": input accessor " + std::to_string(in_acc) + ", key " + std::to_string(k) + ": time is not finite",
-                      {"accessors", in_acc});
-    }
-    if (k > 0 && !(t > (*times)[k - 1])) {
-      return error_at(ErrorCode::KeysNotIncreasing,
-                      where + ": input accessor " + std::to_string(in_acc) + ", key " + std::to_string(k) + ": time " +
-                          shortest_text(t) + " is not after the previous key's " + shortest_text((*times)[k - 1]) +
-                          " (times must increase strictly)",
-                      {"accessors", in_acc});
-    }
-    const double frame = t * fps;
-    if (!std::isfinite(frame) || (k > 0 && !(frame > out.frames.back()))) {
-      return error_at(ErrorCode::InvalidArgument,
-                      where + ": input accessor " + std::to_string(in_acc) + ", key " + std::to_string(k) + ": time " +
-                          shortest_text(t) + " × fps " + shortest_text(fps) + " is not a finite, increasing frame",
-                      {"accessors", in_acc});
-    }
-    out.frames.push_back(frame);
-  }
-  auto values = read_accessor(model, sampler.output, components, normalized_ok, where + " output");
-  if (!values) {
-    Error e = values.error();
-    if (e.location.empty()) e.prepend({"animations", a, "samplers", s, "output"});
-    return e;
-  }
-  const std::size_t out_acc = std::size_t(sampler.output);
-  const std::size_t per_key = (out.sampling == Sampling::cubic ? 3 : 1) * width;
-  const std::size_t elements = values->size() / std::size_t(components);
-  const std::size_t needed = n * per_key / std::size_t(components);
-  if (elements != needed) {
-    return error_at(ErrorCode::WrongArity,
-                    where + ": output accessor " + std::to_string(out_acc) + " has " + std::to_string(elements) +
-                        " elements; " + sampler.interpolation + " with " + std::to_string(n) + " key times (input accessor " +
-                        std::to_string(in_acc) + ")" + (out.path == "weights" ? " and " + std::to_string(width) + " morph targets" : "") +
-                        " needs " + std::to_string(needed),
-                    {"animations", a, "samplers", s});
-  }
-  for (std::size_t i = 0; i < values->size(); ++i) {
-    if (!std::isfinite((*values)[i])) {
-      return error_at(ErrorCode::NotFinite,
-                      where + ": output accessor " + std::to_string(out_acc) + ", element " +
-                          std::to_string(i / std::size_t(components)) + " is not finite",
-                      {"accessors", out_acc});
-    }
-  }
-  if (out.path == "rotation") {
-    const std::size_t stride = out.sampling == Sampling::cubic ? 12 : 4;
-    const std::size_t offset = out.sampling == Sampling::cubic ? 4 : 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double* q = values->data() + k * stride + offset;
-      if (!(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] > 0)) {
-        return error_at(ErrorCode::InvalidArgument,
-                        where + ": output accessor " + std::to_string(out_acc) + ", key " + std::to_string(k) +
-                            ": zero quaternion is not a rotation",
-                        {"accessors", out_acc});
-      }
-    }
-  }
-  out.values = std::move(*values);
-  return out;
-}
-
-// Element e (of `width` numbers) of part p (0 in-tangent, 1 value, 2 out-tangent; 1 alone for
-// STEP and LINEAR) of key k.
-const double* element(const Channel& ch, std::size_t k, int part) {
-  if (ch.sampling != Sampling::cubic) return ch.values.data() + k * ch.width;
-  return ch.values.data() + (k * 3 + std::size_t(part)) * ch.width;
-}
-
-TangentKind tangent_kind(Sampling s) {
-  switch (s) {
-    case Sampling::step: return TangentKind::stepped;
-    case Sampling::linear: return TangentKind::linear;
-    case Sampling::cubic: return TangentKind::explicit_hermite;
-  }
-  return TangentKind::linear;
-}
-
-// translation / scale: glTF tangents are per second of the key interval; a track's slopes are per
-// frame, so slope = tangent / fps (the Hermite's t_d·b_k equals h_frames·(b_k / fps)).
-RawVec3Channel vec3_channel(const Channel& ch, double fps) {
-  RawVec3Channel out;
-  for (std::size_t k = 0; k < ch.frames.size(); ++k) {
-    TrackKey<Vec3d> key;
-    key.frame = ch.frames[k];
-    const double* v = element(ch, k, 1);
-    key.value = Vec3d{v[0], v[1], v[2]};
-    key.tangent = tangent_kind(ch.sampling);
-    if (ch.sampling == Sampling::cubic) {
-      const double* a = element(ch, k, 0);
-      const double* b = element(ch, k, 2);
-      key.in_tangent = Vec3d{a[0], a[1], a[2]} / fps;
-      key.out_tangent = Vec3d{b[0], b[1], b[2]} / fps;
-    }
-    out.keys.push_back(key);
-  }
-  return out;
-}
-
-Quatd quat_xyzw(const double* p) { return Quatd::from_wxyz(p[3], p[0], p[1], p[2]); }
-
-RawQuatKeys rotation_channel(const Channel& ch, double fps) {
-  RawQuatKeys out;
-  for (std::size_t k = 0; k < ch.frames.size(); ++k) {
-    QuatKey<double> key;
-    key.frame = ch.frames[k];
-    key.value = quat_xyzw(element(ch, k, 1));
-    switch (ch.sampling) {
-      case Sampling::step: key.interpolation = QuatInterpolation::step; break;
-      case Sampling::linear: key.interpolation = QuatInterpolation::slerp; break;
-      case Sampling::cubic:
-        key.interpolation = QuatInterpolation::gltf_cubic;
-        key.in_tangent = quat_xyzw(element(ch, k, 0)) * (1.0 / fps);
-        key.out_tangent = quat_xyzw(element(ch, k, 2)) * (1.0 / fps);
-        break;
-    }
-    out.keys.push_back(key);
-  }
-  return out;
-}
-
-RawVectorTrack weight_track(const std::string& name, const Channel& ch, std::size_t target, double fps) {
-  RawVectorTrack out;
-  out.name = name;
-  out.kind = VectorKind::vec1;
-  for (std::size_t k = 0; k < ch.frames.size(); ++k) {
-    TrackKey<Vec4d> key;
-    key.frame = ch.frames[k];
-    key.value = Vec4d{element(ch, k, 1)[target], 0, 0, 0};
-    key.tangent = tangent_kind(ch.sampling);
-    if (ch.sampling == Sampling::cubic) {
-      key.in_tangent = Vec4d{element(ch, k, 0)[target] / fps, 0, 0, 0};
-      key.out_tangent = Vec4d{element(ch, k, 2)[target] / fps, 0, 0, 0};
-    }
-    out.keys.push_back(key);
-  }
-  return out;
-}
-
-// The scene camera of a node with a glTF camera (docs/gltf.md, "Cameras"): a perspective camera
-// views along the node's own rotation (RawOwnRotation: glTF cameras look down local −Z with +Y up,
-// as scene cameras do) with its yfov; none (and a note) for an orthographic one, which a scene
-// camera cannot express.  znear, zfar and aspectRatio have no place in a scene camera: a note
-// names those that differ from what the exporter writes back (0.1, 1000, none).
-Expected<std::optional<RawCameraViewd>> node_camera(const tg::Model& model, std::size_t i, const std::string& name,
-                                                    std::vector<std::string>* notes) {
-  const tg::Node& node = model.nodes[i];
-  if (node.camera < 0) return std::optional<RawCameraViewd>{};
-  const std::size_t c = std::size_t(node.camera);
-  if (c >= model.cameras.size()) {
-    return error_at(ErrorCode::InvalidArgument,
-                    "node " + std::to_string(i) + ": camera " + std::to_string(c) + " does not exist (" +
-                        std::to_string(model.cameras.size()) + " cameras)",
-                    {"nodes", i, "camera"});
-  }
-  const tg::Camera& camera = model.cameras[c];
-  const std::string which = "node " + std::to_string(i) + " " + quote_excerpt(name) + ": camera " + std::to_string(c) + quoted(camera.name);
-  if (camera.type != "perspective") {
-    if (notes) {
-      notes->push_back(which + " is " + (camera.type.empty() ? std::string("of no type") : camera.type) +
-                       ": imported as a plain object (scene cameras are perspective only)");
-    }
-    return std::optional<RawCameraViewd>{};
-  }
-  const tg::PerspectiveCamera& p = camera.perspective;
-  constexpr double kPi = 3.14159265358979323846;
-  // Checked in degrees, as the scene camera holds it: a yfov a hair below π can round to 180°.
-  const double yfov_deg = p.yfov * (180 / kPi);
-  if (!std::isfinite(p.yfov) || !(yfov_deg > 0) || !(yfov_deg < 180)) {
-    return error_at(ErrorCode::InvalidArgument,
-                    which + ": yfov " + shortest_text(p.yfov) + " is not an angle in (0, pi) radians",
-                    {"cameras", c, "perspective", "yfov"});
-  }
-  std::string dropped;
-  auto drop = [&dropped](const char* member, double value) {
-    dropped += (dropped.empty() ? "" : ", ") + std::string(member) + " " + shortest_text(value);
-  };
-  if (p.znear != 0.1) drop("znear", p.znear);
-  if (p.zfar != 1000 && p.zfar != 0) drop("zfar", p.zfar);
-  if (p.zfar == 0) dropped += std::string(dropped.empty() ? "" : ", ") + "zfar infinite";
-  if (p.aspectRatio != 0) drop("aspectRatio", p.aspectRatio);
-  if (notes && !dropped.empty()) {
-    notes->push_back(which + ": " + dropped +
-                     " not kept (a scene camera keeps yfov only; export writes znear 0.1, zfar 1000, no aspectRatio)");
-  }
-  RawCameraViewd view;
-  view.yfov_deg = yfov_deg;
-  view.coi = RawOwnRotation<double>{};
-  return std::optional<RawCameraViewd>{view};
-}
-
 using io_detail::whole_frame_within_key_precision;  // key_time.hpp
 
-Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& options) {
+Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& options, std::vector<std::string>& notes) {
   if (!(options.fps > 0) || !std::isfinite(options.fps)) {
     return Error{ErrorCode::InvalidArgument, "fps " + shortest_text(options.fps) + " is not finite and positive", ""};
   }
@@ -756,7 +160,7 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
     if (auto it = channels.find({i, "translation"}); it != channels.end()) object.translation = vec3_channel(it->second, fps);
     if (auto it = channels.find({i, "scale"}); it != channels.end()) object.scale = vec3_channel(it->second, fps);
     if (auto it = channels.find({i, "rotation"}); it != channels.end()) object.rotation = rotation_channel(it->second, fps);
-    auto camera = node_camera(model, i, names[i], options.notes);
+    auto camera = node_camera(model, i, names[i], &notes);
     if (!camera) return camera.error();
     object.camera = std::move(*camera);
     scene.objects.push_back(std::move(object));
@@ -802,148 +206,14 @@ Expected<RawScene> to_raw_scene(const tg::Model& model, const GltfReadOptions& o
   return scene;
 }
 
-// ------------------------------------------------------------------------------ failures
-// tinygltf reports a missing required member in words without a place, on two lines ("'input'
-// property is missing." and "`input` field is missing in animation.sampler").  When it refuses a
-// file, the JSON is walked here for the first required member of glTF 2.0's schema that is
-// missing or of the wrong type, so the error names it by JSON pointer; otherwise tinygltf's own
-// text is kept, on one line and cut short.
-
-// The JSON part of a .gltf or .glb (its first chunk); nullopt when it cannot be parsed.
-std::optional<nlohmann::json> gltf_json(std::span<const std::byte> bytes) {
-  const auto* p = reinterpret_cast<const char*>(bytes.data());
-  std::size_t begin = 0, size = bytes.size();
-  if (bytes.size() >= 4 && std::memcmp(p, "glTF", 4) == 0) {
-    if (bytes.size() < 20) return std::nullopt;
-    std::uint32_t chunk = 0;
-    std::memcpy(&chunk, p + 12, 4);
-    if (std::memcmp(p + 16, "JSON", 4) != 0 || chunk > bytes.size() - 20) return std::nullopt;
-    begin = 20;
-    size = chunk;
-  }
-  auto j = nlohmann::json::parse(p + begin, p + begin + size, nullptr, false);
-  if (j.is_discarded()) return std::nullopt;
-  return j;
-}
-
-enum class Want { number, integer, string, object, array };
-
-const char* want_name(Want w) {
-  switch (w) {
-    case Want::number: return "a number";
-    case Want::integer: return "an integer";
-    case Want::string: return "a string";
-    case Want::object: return "an object";
-    case Want::array: return "an array";
-  }
-  return "a value";
-}
-
-bool has_type(const nlohmann::json& v, Want w) {
-  switch (w) {
-    case Want::number: return v.is_number();
-    case Want::integer: return v.is_number_integer();
-    case Want::string: return v.is_string();
-    case Want::object: return v.is_object();
-    case Want::array: return v.is_array();
-  }
-  return false;
-}
-
-// The first required member of glTF 2.0 (the schema's "required" lists, for the parts inbetween
-// reads) that is missing or of the wrong type, with its place.
-std::optional<Error> missing_required(const nlohmann::json& root) {
-  using Steps = std::vector<LocationStep>;
-  std::optional<Error> found;
-  auto fail = [&](Steps at, std::string message) {
-    if (!found) found = Error{ErrorCode::Parse, std::move(message), "", std::move(at)};
-  };
-  // Members `names` of the object at `at`, each of type `w`.
-  auto require = [&](const nlohmann::json& obj, const Steps& at, std::initializer_list<std::pair<const char*, Want>> names) {
-    for (const auto& [name, w] : names) {
-      Steps here = at;
-      here.emplace_back(std::string(name));
-      const auto it = obj.find(name);
-      if (it == obj.end()) {
-        fail(here, "required member \"" + std::string(name) + "\" is missing");
-      } else if (!has_type(*it, w)) {
-        fail(here, "expected " + std::string(want_name(w)) + ", found " + std::string(it->type_name()));
-      }
-    }
-  };
-  // Every element of the array `name` of `obj` (when present) must be an object; `each` checks it.
-  auto each = [&](const nlohmann::json& obj, const Steps& at, const char* name, auto&& check) {
-    const auto it = obj.find(name);
-    if (it == obj.end()) return;
-    Steps arr = at;
-    arr.emplace_back(std::string(name));
-    if (!it->is_array()) return fail(arr, "expected an array, found " + std::string(it->type_name()));
-    for (std::size_t i = 0; i < it->size() && !found; ++i) {
-      Steps el = arr;
-      el.emplace_back(i);
-      if (!(*it)[i].is_object()) {
-        fail(el, "expected an object, found " + std::string((*it)[i].type_name()));
-      } else {
-        check((*it)[i], el);
-      }
-    }
-  };
-  if (!root.is_object()) {
-    fail({}, "expected a JSON object, found " + std::string(root.type_name()));
-    return found;
-  }
-  require(root, {}, {{"asset", Want::object}});
-  if (!found) require(root["asset"], {std::string("asset")}, {{"version", Want::string}});
-  each(root, {}, "accessors", [&](const nlohmann::json& a, const Steps& at) {
-    require(a, at, {{"componentType", Want::integer}, {"count", Want::integer}, {"type", Want::string}});
-  });
-  each(root, {}, "bufferViews", [&](const nlohmann::json& v, const Steps& at) {
-    require(v, at, {{"buffer", Want::integer}, {"byteLength", Want::integer}});
-  });
-  each(root, {}, "buffers", [&](const nlohmann::json& b, const Steps& at) { require(b, at, {{"byteLength", Want::integer}}); });
-  each(root, {}, "animations", [&](const nlohmann::json& a, const Steps& at) {
-    require(a, at, {{"channels", Want::array}, {"samplers", Want::array}});
-    each(a, at, "samplers", [&](const nlohmann::json& s, const Steps& sat) {
-      require(s, sat, {{"input", Want::integer}, {"output", Want::integer}});
-    });
-    each(a, at, "channels", [&](const nlohmann::json& c, const Steps& cat) {
-      require(c, cat, {{"sampler", Want::integer}, {"target", Want::object}});
-      if (!found) {
-        Steps t = cat;
-        t.emplace_back(std::string("target"));
-        require(c["target"], t, {{"path", Want::string}});
-      }
-    });
-  });
-  each(root, {}, "cameras", [&](const nlohmann::json& c, const Steps& at) {
-    require(c, at, {{"type", Want::string}});
-    // Each projection's members in a call of its own: an initializer_list kept inside a pair
-    // outlives its array (found by the gltf fuzz target under ASan: stack-use-after-scope).
-    auto projection = [&](const char* kind, std::initializer_list<std::pair<const char*, Want>> members) {
-      if (found || !c.contains(kind) || !c[kind].is_object()) return;
-      Steps k = at;
-      k.emplace_back(std::string(kind));
-      require(c[kind], k, members);
-    };
-    projection("perspective", {{"yfov", Want::number}, {"znear", Want::number}});
-    projection("orthographic", {{"xmag", Want::number}, {"ymag", Want::number}, {"zfar", Want::number}, {"znear", Want::number}});
-  });
-  each(root, {}, "skins", [&](const nlohmann::json& s, const Steps& at) { require(s, at, {{"joints", Want::array}}); });
-  each(root, {}, "meshes", [&](const nlohmann::json& m, const Steps& at) {
-    require(m, at, {{"primitives", Want::array}});
-    each(m, at, "primitives", [&](const nlohmann::json& p, const Steps& pat) { require(p, pat, {{"attributes", Want::object}}); });
-  });
-  return found;
-}
-
 }  // namespace
 
 bool is_glb(std::span<const std::byte> bytes) noexcept {
   return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
 }
 
-Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
-                             const GltfReadOptions& options) {
+Expected<GltfImport> import_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
+                                 const GltfReadOptions& options) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
     return Error{ErrorCode::Unsupported, "files of 4 GiB and more are not read", ""};
   }
@@ -976,15 +246,37 @@ Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesy
     return Error{missing_file ? ErrorCode::Io : ErrorCode::Parse,
                  "not a readable glTF 2.0 file: " + (err.empty() ? std::string("tinygltf gave no reason") : err), ""};
   }
-  return to_raw_scene(model, options);
+  GltfImport out;
+  auto scene = to_raw_scene(model, options, out.notes);
+  if (!scene) return scene.error();
+  out.scene = std::move(*scene);
+  return out;
 }
 
-Expected<RawScene> read_gltf_file(const std::filesystem::path& file, const GltfReadOptions& options) {
+Expected<GltfImport> import_gltf_file(const std::filesystem::path& file, const GltfReadOptions& options) {
   auto text = read_file_bytes(file);
   if (!text) return text.error();
   std::filesystem::path dir = file.parent_path();
   if (dir.empty()) dir = ".";
-  return read_gltf(std::as_bytes(std::span<const char>(*text)), dir, options);
+  return import_gltf(std::as_bytes(std::span<const char>(*text)), dir, options);
+}
+
+namespace {
+// The scene of an import; its notes also go to the deprecated GltfReadOptions::notes when set.
+Expected<RawScene> scene_of(Expected<GltfImport> imported, const GltfReadOptions& options) {
+  if (!imported) return imported.error();
+  if (options.notes) options.notes->insert(options.notes->end(), imported->notes.begin(), imported->notes.end());
+  return std::move(imported->scene);
+}
+}  // namespace
+
+Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
+                             const GltfReadOptions& options) {
+  return scene_of(import_gltf(bytes, base_dir, options), options);
+}
+
+Expected<RawScene> read_gltf_file(const std::filesystem::path& file, const GltfReadOptions& options) {
+  return scene_of(import_gltf_file(file, options), options);
 }
 
 }  // namespace inbetween

@@ -19,6 +19,7 @@
 #include <variant>
 
 #include "inbetween/math/format.hpp"
+#include "inbetween/math/quote.hpp"
 #include "inbetween/tracks/refit.hpp"
 
 namespace inbetween {
@@ -278,7 +279,7 @@ bool translation_sampled(const Scene& scene, std::size_t i) { return !scene.path
 // A camera viewing along its own rotation (a glTF camera node read back) without tilt keeps that
 // rotation: its keys are written as any object's, not resampled from the view.
 bool keeps_own_rotation(const CameraView<double>& view) {
-  return view.coi_mode() == CoiMode::OwnRotation && view.tilt_rad() == 0 && view.tilt_track_name().empty();
+  return view.coi_mode() == CoiMode::own_rotation && view.tilt_rad() == 0 && view.tilt_track_name().empty();
 }
 bool rotation_sampled(const Scene& scene, std::size_t i) {
   const CameraView<double>* view = scene.camera(i);
@@ -340,6 +341,61 @@ std::vector<std::vector<Transform<double>>> sample_locals(const Scene& scene, co
   return out;
 }
 
+// export_gltf reads the authored keys and their kinds from `raw` and everything else from `scene`:
+// a pair that was not built one from the other is refused, naming the first object where they
+// differ (its name, or a keyed channel that one has and the other has not, or other keys).
+Expected<void> check_built_from(const RawScene& raw, const Scene& scene) {
+  const auto nodes = scene.objects();
+  const auto differ = [](const std::string& what, std::initializer_list<LocationStep> at) {
+    Error e{ErrorCode::InvalidArgument, "the raw scene is not the one the scene was built from: " + what, ""};
+    e.prepend(at);
+    return e;
+  };
+  if (raw.objects.size() != nodes.size()) {
+    return differ(std::to_string(raw.objects.size()) + " objects in the raw scene, " + std::to_string(nodes.size()) +
+                      " in the scene",
+                  {"objects"});
+  }
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const RawObject& ro = raw.objects[i];
+    const HierarchyNode<double>& node = nodes[i];
+    if (ro.name != node.name) {
+      return differ("object " + std::to_string(i) + " is" + (ro.name.empty() ? std::string(" unnamed") : " " + quote_excerpt(ro.name)) +
+                        " in the raw scene and " + quote_excerpt(node.name) + " in the scene",
+                    {"objects", i, "name"});
+    }
+    const auto same_keys = [&](const char* channel, bool built, const auto* keys, auto frames) -> Expected<void> {
+      bool same = built == (keys != nullptr);
+      if (same && keys) {
+        same = keys->size() == frames.size();
+        for (std::size_t k = 0; same && k < keys->size(); ++k) same = (*keys)[k].frame == frames[k];
+      }
+      if (same) return {};
+      return differ("object " + quote_excerpt(node.name) + " has other " + channel + " keys in the raw scene than in the scene",
+                    {"objects", i, channel});
+    };
+    const auto vec3_keys = [](const auto& channel) -> const std::vector<TrackKey<Vec3d>>* {
+      const auto* c = std::get_if<RawVec3Channel>(&channel);
+      return c ? &c->keys : nullptr;
+    };
+    if (!translation_sampled(scene, i)) {
+      const auto* keys = ro.translation ? vec3_keys(*ro.translation) : nullptr;
+      const auto& t = node.local.translation;
+      if (auto ok = same_keys("translation", t.has_value(), keys, t ? t->frames() : std::span<const double>{}); !ok) return ok;
+    }
+    if (!rotation_sampled(scene, i)) {
+      const auto* c = ro.rotation ? std::get_if<RawQuatKeys>(&*ro.rotation) : nullptr;
+      const auto& r = node.local.rotation;
+      if (auto ok = same_keys("rotation", r.has_value(), c ? &c->keys : nullptr, r ? r->frames() : std::span<const double>{}); !ok)
+        return ok;
+    }
+    const auto& sc = node.local.scale;
+    if (auto ok = same_keys("scale", sc.has_value(), vec3_keys(ro.scale), sc ? sc->frames() : std::span<const double>{}); !ok)
+      return ok;
+  }
+  return {};
+}
+
 }  // namespace
 
 Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const GltfExportOptions& options) {
@@ -360,7 +416,7 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
   }
   const auto nodes = scene.objects();
   if (nodes.empty()) return Error{ErrorCode::Unsupported, "the scene has no objects to export as glTF nodes", "", {"objects"}};
-  INBETWEEN_ASSERT(nodes.size() == raw.objects.size());
+  if (auto ok = check_built_from(raw, scene); !ok) return ok.error();
   const double first = scene.range_start(), last = scene.range_end(), fps = scene.fps();
   // Key times are float seconds from the range's start: the range must last a float's worth of
   // seconds, and its grid (substeps per frame) must fit the exporter's bound.
@@ -616,8 +672,9 @@ Expected<GltfExport> export_gltf(const RawScene& raw, const Scene& scene, const 
             // glTF cubic: the authored signs and tangents (see quat_track.hpp).
             const Quatd q = authored;
             keys.values.insert(keys.values.end(), {q.w, q.x, q.y, q.z});
-            keys.in_slopes.insert(keys.in_slopes.end(), {a.in_tangent.w, a.in_tangent.x, a.in_tangent.y, a.in_tangent.z});
-            keys.out_slopes.insert(keys.out_slopes.end(), {a.out_tangent.w, a.out_tangent.x, a.out_tangent.y, a.out_tangent.z});
+            const QuatKeyTangents<double> t = rc.tangents.empty() ? QuatKeyTangents<double>{} : rc.tangents[k];
+            keys.in_slopes.insert(keys.in_slopes.end(), {t.in.w, t.in.x, t.in.y, t.in.z});
+            keys.out_slopes.insert(keys.out_slopes.end(), {t.out.w, t.out.x, t.out.y, t.out.z});
           } else {
             // Signs continuous (the track's choice), otherwise as authored.
             const Quatd q = dot(track.keys()[k], authored) < 0 ? -authored : authored;

@@ -60,8 +60,10 @@ Expected<RawScene> read_input_file(const std::filesystem::path& file, const Inpu
       GltfReadOptions gltf;
       gltf.animation = options.animation;
       if (options.fps > 0) gltf.fps = options.fps;
-      gltf.notes = options.notes;
-      return read_gltf_file(file, gltf);
+      auto imported = import_gltf_file(file, gltf);
+      if (!imported) return imported.error();
+      if (options.notes) options.notes->insert(options.notes->end(), imported->notes.begin(), imported->notes.end());
+      return std::move(imported->scene);
     }
     case InputFormat::bvh: {
       BvhReadOptions bvh;

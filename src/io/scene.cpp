@@ -229,9 +229,14 @@ Expected<RawQuatKeys> read_quat_keys_impl(const json& j, const Loc& loc) {
     q.frame = *frame;
     q.value = quat_from(*value);
     q.interpolation = *interp;
-    q.in_tangent = quat_from(*tin);
-    q.out_tangent = quat_from(*tout);
     out.keys.push_back(q);
+    // Tangents only once some key has them (given, or required by gltf_cubic); the keys before
+    // it had none, i.e. zero.
+    const QuatKeyTangents<double> t{quat_from(*tin), quat_from(*tout)};
+    if (!out.tangents.empty() || gltf || t != QuatKeyTangents<double>{}) {
+      out.tangents.resize(i + 1);
+      out.tangents.back() = t;
+    }
   }
   return out;
 }
@@ -245,6 +250,7 @@ Expected<RawQuatTrack> read_quat_track(const json& j, const Loc& loc) {
   auto keys = read_quat_keys_impl(j, loc);
   if (!keys) return keys.error();
   track.keys = std::move(keys->keys);
+  track.tangents = std::move(keys->tangents);
   track.distance_factor = keys->distance_factor;
   track.time_aware = keys->time_aware;
   return track;

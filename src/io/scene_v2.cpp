@@ -156,7 +156,7 @@ Expected<AnyCurve> read_surface_curve(const json& sj, const Loc& loc, const Cont
   else if (kept.back() != points->back()) kept.push_back(points->back());
   auto spline = build_catmull_rom(kept, CatmullRomOptions<double>{.alpha = 0.5});
   if (!spline) return error_at(spline.error().code, spline.error().describe(), loc);
-  return AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{std::move(*spline)}};
+  return AnyCurve{CurveKind::catmull_rom, 3, AnyCurveVariant{std::move(*spline)}};
 }
 
 // A curve given as "curve" (a path name or an inline curve object), "file" (a curve file) or
@@ -322,7 +322,7 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
     }
   }
   auto interpolation =
-      name_member(sj, loc, "interpolation", PositionInterpolation::MonotoneCubic, names_of<PositionInterpolation, 3>());
+      name_member(sj, loc, "interpolation", PositionInterpolation::monotone_cubic, names_of<PositionInterpolation, 3>());
   if (!interpolation) return interpolation.error();
   sp.interpolation = *interpolation;
   if (sp.kind == SpeedKind::velocity_keys) {
@@ -338,7 +338,7 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
       sp.velocities.push_back(RawVelocityKey{*frame, *speed});
     }
   }
-  auto fit = name_member(sj, loc, "fit", VelocityFit::FixKeysAdjustInterior, names_of<VelocityFit, 2>());
+  auto fit = name_member(sj, loc, "fit", VelocityFit::fix_keys_adjust_interior, names_of<VelocityFit, 2>());
   if (!fit) return fit.error();
   sp.fit = *fit;
   if (sp.kind == SpeedKind::acceleration_keys) {
@@ -353,7 +353,7 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
       if (!acceleration) return acceleration.error();
       sp.accelerations.push_back(RawAccelerationKey{*frame, *acceleration});
     }
-    auto shape = name_member(sj, loc, "shape", AccelerationShape::Constant, names_of<AccelerationShape, 2>());
+    auto shape = name_member(sj, loc, "shape", AccelerationShape::constant, names_of<AccelerationShape, 2>());
     if (!shape) return shape.error();
     sp.shape = *shape;
     auto start_speed = number_member(sj, loc, "start_speed", 0.0);

@@ -104,8 +104,8 @@ class Writer {
     if (after != TrackExtend::constant) out["after"] = name_of(after, kExtend);
   }
 
-  void quat_keys(json& out, const std::vector<QuatKey<double>>& keys, double distance_factor, bool time_aware,
-                 const std::vector<LocationStep>& loc) {
+  void quat_keys(json& out, const std::vector<QuatKey<double>>& keys, const std::vector<QuatKeyTangents<double>>& tangents,
+                 double distance_factor, bool time_aware, const std::vector<LocationStep>& loc) {
     json list = json::array();
     const Quatd zero = Quatd::from_wxyz(0, 0, 0, 0);
     for (std::size_t i = 0; i < keys.size(); ++i) {
@@ -117,8 +117,9 @@ class Writer {
       if (k.interpolation != QuatInterpolation::slerp) kj["interpolation"] = name_of(k.interpolation, kQuatInterp);
       if (k.long_way) kj["long_way"] = true;
       const bool gltf = k.interpolation == QuatInterpolation::gltf_cubic;
-      if (gltf || !(k.in_tangent == zero)) kj["in_tangent"] = quat(k.in_tangent, at(kl, "in_tangent"));
-      if (gltf || !(k.out_tangent == zero)) kj["out_tangent"] = quat(k.out_tangent, at(kl, "out_tangent"));
+      const QuatKeyTangents<double> t = i < tangents.size() ? tangents[i] : QuatKeyTangents<double>{};
+      if (gltf || !(t.in == zero)) kj["in_tangent"] = quat(t.in, at(kl, "in_tangent"));
+      if (gltf || !(t.out == zero)) kj["out_tangent"] = quat(t.out, at(kl, "out_tangent"));
       list.push_back(std::move(kj));
     }
     out["keys"] = std::move(list);
@@ -176,7 +177,7 @@ class Writer {
     json j = json::object();
     j["name"] = t.name;
     j["kind"] = "quaternion";
-    quat_keys(j, t.keys, t.distance_factor, t.time_aware, loc);
+    quat_keys(j, t.keys, t.tangents, t.distance_factor, t.time_aware, loc);
     return j;
   }
 
@@ -327,8 +328,8 @@ class Writer {
     if (o.closing != RmfClosing::automatic) j["closing"] = std::string(to_string(o.closing));
     if (leg.local_rotation_keys) {
       json rj = json::object();
-      quat_keys(rj, leg.local_rotation_keys->keys, leg.local_rotation_keys->distance_factor, leg.local_rotation_keys->time_aware,
-                at(loc, "local_rotation"));
+      const RawQuatKeys& keys = *leg.local_rotation_keys;
+      quat_keys(rj, keys.keys, keys.tangents, keys.distance_factor, keys.time_aware, at(loc, "local_rotation"));
       j["local_rotation"] = std::move(rj);
     } else if (!(o.local_rotation == Quatd{})) {
       j["local_rotation"] = quat(o.local_rotation, at(loc, "local_rotation"));
@@ -399,7 +400,7 @@ class Writer {
     } else {
       const auto& keyed = std::get<RawQuatKeys>(*o.rotation);
       json rj = json::object();
-      quat_keys(rj, keyed.keys, keyed.distance_factor, keyed.time_aware, at(loc, "rotation"));
+      quat_keys(rj, keyed.keys, keyed.tangents, keyed.distance_factor, keyed.time_aware, at(loc, "rotation"));
       j["rotation"] = std::move(rj);
     }
     j["scale"] = vec3_channel(o.scale, at(loc, "scale"));

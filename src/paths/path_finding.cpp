@@ -22,7 +22,7 @@ constexpr double kSqrt2 = 1.4142135623730951;
 
 double heuristic(GridCell a, GridCell b, GridMoves moves) {
   const double dx = std::abs(a.x - b.x), dy = std::abs(a.y - b.y);
-  if (moves == GridMoves::Four) return dx + dy;
+  if (moves == GridMoves::four) return dx + dy;
   return std::max(dx, dy) + (kSqrt2 - 1) * std::min(dx, dy);  // octile distance
 }
 
@@ -108,7 +108,7 @@ Expected<GridPath> find_grid_path(const OccupancyGrid& grid, GridCell start, Gri
   open.emplace(heuristic(start, goal, options.moves), -0.0, order++, start.x, start.y);
   static constexpr int kDx[8] = {1, -1, 0, 0, 1, 1, -1, -1};
   static constexpr int kDy[8] = {0, 0, 1, -1, 1, -1, 1, -1};
-  const int moves = options.moves == GridMoves::Four ? 4 : 8;
+  const int moves = options.moves == GridMoves::four ? 4 : 8;
   GridPath out;
   while (!open.empty()) {
     const auto [f, neg_g, ord, cx, cy] = open.top();

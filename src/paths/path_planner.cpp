@@ -496,9 +496,7 @@ Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPo
   }
 }
 
-std::string_view avoidance_name(Avoidance a) noexcept {
-  return a == Avoidance::Timing ? "timing" : a == Avoidance::Steering ? "steering" : "none";
-}
+std::string_view avoidance_name(Avoidance a) noexcept { return enum_name(a); }
 
 Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRomSpline<Vec3d>>& path,
                                const PathTimingOptions& options) {
@@ -510,11 +508,11 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
   const double L = path.length(), dt = 1 / options.fps;
   struct Draft {
     std::vector<TimeDistanceKey<double>> keys;
-    Avoidance avoidance = Avoidance::None;
+    Avoidance avoidance = Avoidance::none;
     double wait = 0, clearance_slack = 0;
   } out;
   auto finish = [&]() -> Expected<PathTiming> {
-    auto curve = DistanceTimeCurve<double>::from_positions(out.keys, PositionInterpolation::Linear);
+    auto curve = DistanceTimeCurve<double>::from_positions(out.keys, PositionInterpolation::linear);
     if (!curve) return curve.error();
     const double duration = out.keys.back().t;
     return PathTiming{std::move(*curve), std::move(out.keys), out.avoidance, duration, out.wait, out.clearance_slack};
@@ -522,14 +520,14 @@ Expected<PathTiming> time_path(const Environment& env, const ArcLength<CatmullRo
   const auto moving = env.moving_indices();
   if (L == 0) {
     out.keys = {{0, 0}, {dt, 0}};
-    if (!moving.empty()) out.avoidance = Avoidance::Timing;
+    if (!moving.empty()) out.avoidance = Avoidance::timing;
     return finish();
   }
   if (moving.empty()) {
     out.keys = {{0, 0}, {L / options.speed, L}};
     return finish();
   }
-  out.avoidance = Avoidance::Timing;
+  out.avoidance = Avoidance::timing;
   const int K = options.substeps;
   const double ds = options.speed * dt / K;
   const double nominal = L / options.speed;
@@ -786,11 +784,11 @@ Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, cons
     }
     keys.back().s = arc->length();
     if (keys.size() == 1) keys.push_back({1 / options.timing.fps, keys[0].s});
-    auto curve = DistanceTimeCurve<double>::from_positions(keys, PositionInterpolation::Linear);
+    auto curve = DistanceTimeCurve<double>::from_positions(keys, PositionInterpolation::linear);
     if (!curve) return curve.error();
     const double duration = keys.back().t;
-    PathTiming timing{std::move(*curve), std::move(keys), Avoidance::None, duration, wait, 0};
-    return FoundPath{std::move(*poly), std::move(*smooth), std::move(*arc), std::move(timing), Avoidance::None, {}, ends,
+    PathTiming timing{std::move(*curve), std::move(keys), Avoidance::none, duration, wait, 0};
+    return FoundPath{std::move(*poly), std::move(*smooth), std::move(*arc), std::move(timing), Avoidance::none, {}, ends,
                      std::move(*motion)};
   }
   auto first = attempt(env, ends, options);
@@ -852,7 +850,7 @@ Expected<FoundPath> find_path(const Environment& env, const PathEnds& ends, cons
     cur_ends = *progress_ends;
     detours.push_back(*progress_detour);
   }
-  const Avoidance avoidance = detours.empty() ? cur.timing->value().avoidance : Avoidance::Steering;
+  const Avoidance avoidance = detours.empty() ? cur.timing->value().avoidance : Avoidance::steering;
   return FoundPath{std::move(*cur.polyline), std::move(*cur.smooth), std::move(*cur.arc),
                    std::move(*cur.timing).value(), avoidance, std::move(detours), std::move(cur_ends), std::nullopt};
 }

@@ -74,7 +74,7 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
     auto t = make_target(look->target, Loc{"look_at"});
     if (!t) return t.error();
     view.look_ = *t;
-    view.mode_ = t->slot < 0 ? CoiMode::Point : CoiMode::Object;
+    view.mode_ = t->slot < 0 ? CoiMode::point : CoiMode::object;
   } else if (const auto* ahead = std::get_if<RawLookAhead<T>>(&raw.coi)) {
     if (!std::isfinite(ahead->distance) || ahead->distance < T(0)) {
       return error_at(ErrorCode::InvalidArgument,
@@ -90,13 +90,13 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
       return error_at(ErrorCode::InvalidArgument,
                          "the spread must be finite and >= 0, got " + shortest_text(ahead->spread), Loc{"ahead", "spread"});
     }
-    view.mode_ = CoiMode::Ahead;
+    view.mode_ = CoiMode::ahead;
     view.ahead_distance_ = ahead->distance;
     view.ahead_count_ = ahead->count;
     view.ahead_spread_ = ahead->spread;
   } else if (const auto* path = std::get_if<RawCoiPath>(&raw.coi)) {
     if (path->path.empty()) return error_at(ErrorCode::InvalidArgument, "the COI path name is empty", Loc{"coi_path"});
-    view.mode_ = CoiMode::Path;
+    view.mode_ = CoiMode::path;
     view.coi_path_name_ = path->path;
   } else if (const auto* own = std::get_if<RawOwnRotation<T>>(&raw.coi)) {
     if (!std::isfinite(own->distance) || !(own->distance > T(0))) {
@@ -114,14 +114,14 @@ Expected<CameraView<T>> build_camera_view(const RawCameraView<T>& raw) {
                       "a camera viewing along its own rotation takes its up from that rotation: remove \"up\"",
                       Loc{"up"});
     }
-    view.mode_ = CoiMode::OwnRotation;
+    view.mode_ = CoiMode::own_rotation;
     view.own_distance_ = own->distance;
   } else {
     const auto& hold = std::get<RawHoldThenMove<T>>(raw.coi);
     if (hold.segments.empty()) {
       return error_at(ErrorCode::TooFewPoints, "hold-then-move needs at least one segment", Loc{"hold"});
     }
-    view.mode_ = CoiMode::HoldThenMove;
+    view.mode_ = CoiMode::hold_then_move;
     view.segments_.reserve(hold.segments.size());
     for (std::size_t i = 0; i < hold.segments.size(); ++i) {
       const RawHoldSegment<T>& seg = hold.segments[i];
@@ -167,10 +167,10 @@ template <Real T>
 Vec3<T> CameraView<T>::centre_of_interest(const CameraInputs<T>& in) const noexcept {
   INBETWEEN_ASSERT(in.targets.size() == target_names_.size());
   switch (mode_) {
-    case CoiMode::Point:
-    case CoiMode::Object:
+    case CoiMode::point:
+    case CoiMode::object:
       return position(look_, in.targets);
-    case CoiMode::Ahead: {
+    case CoiMode::ahead: {
       INBETWEEN_ASSERT(!in.camera_path.empty());
       const PathView<T>& path = in.camera_path;
       const T L = path.length();
@@ -197,15 +197,15 @@ Vec3<T> CameraView<T>::centre_of_interest(const CameraInputs<T>& in) const noexc
       }
       return in.world_from_path.apply_to_point(sum / T(ahead_count_));
     }
-    case CoiMode::Path: {
+    case CoiMode::path: {
       INBETWEEN_ASSERT(!in.camera_path.empty() && !in.coi_path.empty());
       const T L = in.camera_path.length();
       const T f = L > T(0) && !std::isnan(in.s) ? clamp(in.s / L, T(0), T(1)) : T(0);
       return in.world_from_path.apply_to_point(in.coi_path.point_at_length(f * in.coi_path.length()));
     }
-    case CoiMode::OwnRotation:
+    case CoiMode::own_rotation:
       return in.eye + own_forward(in) * own_distance_;
-    case CoiMode::HoldThenMove: {
+    case CoiMode::hold_then_move: {
       const std::size_t m = segments_.size();
       if (std::isnan(in.frame)) return position(segments_.front().target, in.targets);
       for (std::size_t i = 0; i < m; ++i) {
@@ -247,7 +247,7 @@ template <Real T>
 CameraViewSample<T> CameraView<T>::evaluate(const CameraInputs<T>& in) const noexcept {
   CameraViewSample<T> out;
   out.target = centre_of_interest(in);
-  if (mode_ == CoiMode::OwnRotation) {
+  if (mode_ == CoiMode::own_rotation) {
     const Quat<T> r = own_rotation(in);
     out.pose.eye = in.eye;
     out.pose.right = rotate(r, Vec3<T>{T(1), T(0), T(0)});

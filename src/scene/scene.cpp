@@ -65,12 +65,13 @@ Expected<Track<Vec3d>> build_vec3_channel(const RawVec3Channel& raw) {
   return build_track(raw.keys, raw.before, raw.after);
 }
 
-Expected<QuatTrack<double>> build_quat_keys(const std::vector<QuatKey<double>>& keys, double distance_factor,
+Expected<QuatTrack<double>> build_quat_keys(const std::vector<QuatKey<double>>& keys,
+                                            const std::vector<QuatKeyTangents<double>>& tangents, double distance_factor,
                                             bool time_aware) {
   QuatSplineOptions<double> options;
   options.distance_factor = distance_factor;
   options.time_aware = time_aware;
-  return build_quat_track(keys, options);
+  return build_quat_track(keys, tangents, options);
 }
 
 // Builds one track; errors are relative to the track object.
@@ -90,7 +91,7 @@ Expected<SceneTrack> build_one(const RawVectorTrack& raw) {
 
 Expected<SceneTrack> build_one(const RawQuatTrack& raw) {
   if (auto ok = check_name(raw.name, {"name"}); !ok) return ok.error();
-  auto track = build_quat_keys(raw.keys, raw.distance_factor, raw.time_aware);
+  auto track = build_quat_keys(raw.keys, raw.tangents, raw.distance_factor, raw.time_aware);
   if (!track) return track.error();
   return SceneTrack{SceneQuatTrack{raw.name, std::move(*track)}};
 }
@@ -148,7 +149,7 @@ Expected<TransformTrack<double>> build_local(const RawObject& raw) {
     local.rest.rotation = normalized(*c);
   } else {
     const auto& keyed = std::get<RawQuatKeys>(rotation);
-    auto r = build_quat_keys(keyed.keys, keyed.distance_factor, keyed.time_aware);
+    auto r = build_quat_keys(keyed.keys, keyed.tangents, keyed.distance_factor, keyed.time_aware);
     if (!r) return prepended(r.error(), {"rotation"});
     local.rotation = std::move(*r);
   }
@@ -358,7 +359,8 @@ Expected<Scene> build_scene(const RawScene& raw) {
           motion.speed.track = std::get<SceneScalarTrack>(tracks[it->second.first]).curve;
         }
         if (leg.local_rotation_keys) {
-          auto r = build_quat_keys(leg.local_rotation_keys->keys, leg.local_rotation_keys->distance_factor,
+          auto r = build_quat_keys(leg.local_rotation_keys->keys, leg.local_rotation_keys->tangents,
+                                   leg.local_rotation_keys->distance_factor,
                                    leg.local_rotation_keys->time_aware);
           if (!r) {
             Error e = r.error();
@@ -412,8 +414,8 @@ Expected<Scene> build_scene(const RawScene& raw) {
         auto view = build_camera_view(rc);
         if (!view) return prepended(view.error(), {"objects", i, "camera"});
         if (view->needs_camera_path() && o.path.empty()) {
-          const char* member = view->coi_mode() == CoiMode::Ahead ? "ahead"
-                               : view->coi_mode() == CoiMode::Path ? "coi_path"
+          const char* member = view->coi_mode() == CoiMode::ahead ? "ahead"
+                               : view->coi_mode() == CoiMode::path ? "coi_path"
                                                                     : "up_path";
           return error_at(ErrorCode::InvalidArgument,
                           std::string("\"") + member + "\" needs the camera on a path (give the camera a \"path\")",
@@ -558,11 +560,6 @@ Vec3d to_parent_space(const Transform<double>& world_T_parent, const Vec3d& p) n
 Vec3d get_point(const double* in) noexcept { return {in[0], in[1], in[2]}; }
 
 }  // namespace
-
-template <>
-std::optional<Space> enum_from_string<Space>(std::string_view name) noexcept {
-  return find_enum_name<Space>(enum_names<Space>(), name);
-}
 
 void Scene::sample(double frame, std::span<double> out) const noexcept {
   INBETWEEN_ASSERT(out.size() == columns_.size());

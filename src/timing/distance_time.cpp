@@ -84,7 +84,7 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::from_positions(std::span<co
   const std::size_t n = keys.size();
   std::vector<T> t(n), s(n), m(n);
   for (std::size_t i = 0; i < n; ++i) { t[i] = keys[i].t; s[i] = keys[i].s; }
-  if (how == PositionInterpolation::Linear) {
+  if (how == PositionInterpolation::linear) {
     DistanceTimeCurve c;
     for (std::size_t i = 0; i + 1 < n; ++i) c.seg_.push_back({T(0), T(0), s[i + 1] - s[i], s[i]});
     c.t_ = std::move(t);
@@ -95,7 +95,7 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::from_positions(std::span<co
   m[0] = secant(0);
   m[n - 1] = secant(n - 2);
   for (std::size_t i = 1; i + 1 < n; ++i) {
-    if (how == PositionInterpolation::CatmullRom) {
+    if (how == PositionInterpolation::catmull_rom) {
       m[i] = (s[i + 1] - s[i - 1]) / (t[i + 1] - t[i - 1]);
     } else {
       // Fritsch–Carlson start: mean of the neighbouring secants, 0 at a local extremum.
@@ -103,7 +103,7 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::from_positions(std::span<co
       m[i] = (d0 * d1 > T(0)) ? (d0 + d1) / T(2) : T(0);
     }
   }
-  if (how == PositionInterpolation::MonotoneCubic) {
+  if (how == PositionInterpolation::monotone_cubic) {
     const bool rising = std::is_sorted(s.begin(), s.end());
     if (rising) fritsch_carlson_limit(t, s, m);
   }
@@ -159,7 +159,7 @@ Expected<DistanceTimeCurve<T>> DistanceTimeCurve<T>::from_velocity_curve(std::sp
     if (i + 1 == n) break;
     const T h = keys[i + 1].t - keys[i].t;
     PowerCubic<T> seg;
-    if (fit == VelocityFit::FloatToKeepAverage) {
+    if (fit == VelocityFit::float_to_keep_average) {
       const T v0 = keys[i].v + c, v1 = keys[i + 1].v + c;
       seg = {T(0), h * (v1 - v0) / T(2), h * v0, s_acc};  // ∫ linear velocity
     } else {

@@ -224,7 +224,7 @@ Expected<PiecewiseDistanceCurve<T>> PiecewiseDistanceCurve<T>::from_acceleration
   if (opt.end_distance && !std::isfinite(*opt.end_distance))
     return Error{ErrorCode::NotFinite, "end distance is not finite", "", {std::string("end_distance")}};
 
-  const bool linear = opt.shape == AccelerationShape::Linear;
+  const bool linear = opt.shape == AccelerationShape::linear;
   // Integrates with accelerations scaled by `scale`; returns the curve (no monotone check).
   auto integrate = [&](T scale) {
     PiecewiseDistanceCurve c;

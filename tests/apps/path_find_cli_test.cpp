@@ -51,7 +51,7 @@ TEST(PathFindCli, ExamplePathClearsEveryObstacleAtEverySampledTime) {
   // The curve file reads back, and `curve sample` takes it.
   const auto curve = parse_curve_json(slurp(out), "path.json");
   ASSERT_TRUE(curve) << curve.error().describe();
-  EXPECT_EQ(curve->kind, CurveKind::CatmullRom);
+  EXPECT_EQ(curve->kind, CurveKind::catmull_rom);
   const CliRun sample = run_cli("curve sample '" + out.string() + "' --count 5");
   EXPECT_EQ(sample.exit_code, 0) << sample.err;
   const auto timing = nlohmann::json::parse(r.out);

@@ -48,7 +48,7 @@ using Ranges = std::vector<Interval<double>>;
 TEST(LocalControl, BSplinePointMovesItsFourKnotSpans) {
   std::vector<double> knots;
   for (int k = 0; k <= 13; ++k) knots.push_back(k);
-  const AnyCurve c = any(CurveKind::BSpline, build_bspline(kTen, 3, knots));
+  const AnyCurve c = any(CurveKind::bspline, build_bspline(kTen, 3, knots));
   EXPECT_TRUE(has_local_control(c.kind));
   EXPECT_EQ(authored_point_count(c), 10);
   EXPECT_EQ(influence_ranges(c, 5), (Ranges{{5, 9}}));
@@ -60,7 +60,7 @@ TEST(LocalControl, BSplinePointMovesItsFourKnotSpans) {
 // Closed form: uniform Catmull-Rom, segment k = [k, k + 1]; point i enters the tangents at i − 1,
 // i, i + 1, so it moves segments i − 2 … i + 1: point 4 of 10 moves [2, 6], point 0 [0, 2].
 TEST(LocalControl, CatmullRomPointMovesFourSegments) {
-  const AnyCurve c = any(CurveKind::CatmullRom, build_catmull_rom(kTen));
+  const AnyCurve c = any(CurveKind::catmull_rom, build_catmull_rom(kTen));
   EXPECT_EQ(influence_ranges(c, 4), (Ranges{{2, 6}}));
   EXPECT_EQ(segments_in(c, influence_ranges(c, 4)), (std::vector<int>{2, 3, 4, 5}));
   EXPECT_EQ(influence_ranges(c, 0), (Ranges{{0, 2}}));
@@ -68,9 +68,9 @@ TEST(LocalControl, CatmullRomPointMovesFourSegments) {
 
 // One Bézier curve, a natural spline and a Lagrange polynomial: every point moves everything.
 TEST(LocalControl, GlobalFamiliesMoveTheWholeDomain) {
-  const AnyCurve bezier = any(CurveKind::Bezier, build_bezier(std::vector<Vec3d>(kTen.begin(), kTen.begin() + 4)));
-  const AnyCurve natural = any(CurveKind::Natural, build_natural_spline(kTen));
-  const AnyCurve lagrange = any(CurveKind::Lagrange, build_lagrange(std::vector<Vec3d>(kTen.begin(), kTen.begin() + 5)));
+  const AnyCurve bezier = any(CurveKind::bezier, build_bezier(std::vector<Vec3d>(kTen.begin(), kTen.begin() + 4)));
+  const AnyCurve natural = any(CurveKind::natural, build_natural_spline(kTen));
+  const AnyCurve lagrange = any(CurveKind::lagrange, build_lagrange(std::vector<Vec3d>(kTen.begin(), kTen.begin() + 5)));
   for (const AnyCurve* c : {&bezier, &natural, &lagrange}) {
     SCOPED_TRACE(std::string(curve_kind_name(c->kind)));
     EXPECT_FALSE(has_local_control(c->kind));
@@ -85,20 +85,20 @@ TEST(LocalControl, GlobalFamiliesMoveTheWholeDomain) {
 // Catmull-Rom spline on 8 points: point 0 moves segments 6, 7, 0, 1 = [0, 2] and [6, 8].
 TEST(LocalControl, ClosedCurvesWrapPastTheSeam) {
   const std::vector<Vec3d> six(kTen.begin(), kTen.begin() + 6);
-  const AnyCurve periodic = any(CurveKind::BSpline, build_periodic_bspline(six, 3));
+  const AnyCurve periodic = any(CurveKind::bspline, build_periodic_bspline(six, 3));
   EXPECT_EQ(authored_point_count(periodic), 6);
   EXPECT_EQ(periodic.control_point_count(), 9);
   EXPECT_EQ(influence_ranges(periodic, 1), (Ranges{{3, 5}, {7, 9}}));
   EXPECT_EQ(influence_ranges(periodic, 4), (Ranges{{4, 8}}));
   const std::vector<Vec3d> eight(kTen.begin(), kTen.begin() + 8);
-  const AnyCurve loop = any(CurveKind::CatmullRom, build_catmull_rom(eight, {.closed = true}));
+  const AnyCurve loop = any(CurveKind::catmull_rom, build_catmull_rom(eight, {.closed = true}));
   EXPECT_EQ(influence_ranges(loop, 0), (Ranges{{0, 2}, {6, 8}}));
   EXPECT_EQ(influence_ranges(loop, 4), (Ranges{{2, 6}}));
   EXPECT_EQ(segments_in(loop, influence_ranges(loop, 0)), (std::vector<int>{0, 1, 6, 7}));
 }
 
 TEST(LocalControl, MovingAPointThatDoesNotExistIsAnError) {
-  const AnyCurve c = any(CurveKind::CatmullRom, build_catmull_rom(kTen));
+  const AnyCurve c = any(CurveKind::catmull_rom, build_catmull_rom(kTen));
   for (int i : {-1, 10}) {
     const auto moved = with_control_point(c, i, Vec3d{});
     ASSERT_FALSE(moved.has_value());
@@ -124,20 +124,20 @@ TEST(LocalControl, MovedCurveChangesOnlyInsideTheRanges) {
   std::vector<Vec3d> path(pts.begin(), pts.begin() + 7);  // 3k + 1 = 7
   std::vector<TcbParams<double>> tcb(9, TcbParams<double>{.tension = 0.2, .continuity = -0.3, .bias = 0.4});
   const std::vector<AnyCurve> curves = {
-      any(CurveKind::Bezier, build_bezier(std::vector<Vec3d>(pts.begin(), pts.begin() + 5))),
-      any(CurveKind::BezierPath, build_bezier_path(path)),
-      any(CurveKind::Hermite, build_hermite_spline(pts, tangents, params)),
-      any(CurveKind::CatmullRom, build_catmull_rom(pts)),
-      any(CurveKind::CatmullRom, build_catmull_rom(pts, {.alpha = 0.5})),
-      any(CurveKind::CatmullRom, build_catmull_rom(pts, {.closed = true})),
-      any(CurveKind::Natural, build_natural_spline(pts, params)),
-      any(CurveKind::Natural, build_clamped_spline(pts, tangents[0], tangents[1])),
-      any(CurveKind::KochanekBartels, build_kochanek_bartels(pts, tcb, params)),
-      any(CurveKind::Parabolic, build_parabolic_blend(pts)),
-      any(CurveKind::BSpline, build_bspline(pts, 3)),
-      any(CurveKind::BSpline, build_bspline(pts, 2)),
-      any(CurveKind::BSpline, build_periodic_bspline(pts, 3)),
-      any(CurveKind::Lagrange, build_lagrange(std::vector<Vec3d>(pts.begin(), pts.begin() + 5))),
+      any(CurveKind::bezier, build_bezier(std::vector<Vec3d>(pts.begin(), pts.begin() + 5))),
+      any(CurveKind::bezier_path, build_bezier_path(path)),
+      any(CurveKind::hermite, build_hermite_spline(pts, tangents, params)),
+      any(CurveKind::catmull_rom, build_catmull_rom(pts)),
+      any(CurveKind::catmull_rom, build_catmull_rom(pts, {.alpha = 0.5})),
+      any(CurveKind::catmull_rom, build_catmull_rom(pts, {.closed = true})),
+      any(CurveKind::natural, build_natural_spline(pts, params)),
+      any(CurveKind::natural, build_clamped_spline(pts, tangents[0], tangents[1])),
+      any(CurveKind::kochanek_bartels, build_kochanek_bartels(pts, tcb, params)),
+      any(CurveKind::parabolic, build_parabolic_blend(pts)),
+      any(CurveKind::bspline, build_bspline(pts, 3)),
+      any(CurveKind::bspline, build_bspline(pts, 2)),
+      any(CurveKind::bspline, build_periodic_bspline(pts, 3)),
+      any(CurveKind::lagrange, build_lagrange(std::vector<Vec3d>(pts.begin(), pts.begin() + 5))),
   };
   for (std::size_t ci = 0; ci < curves.size(); ++ci) {
     const AnyCurve& before = curves[ci];

@@ -62,7 +62,7 @@ TEST(FCurveClipBlender, AgreesWithFCurveSampleOnEveryRecordedCase) {
   const auto clip = inbetween::build_fcurve_clip(curves);
   ASSERT_TRUE(clip) << clip.error().describe();
   const float fit_tolerance = inbetween::FCurveClipOptions{}.tolerance;
-  auto ctx = inbetween::make_fcurve_context(*clip);
+  auto ctx = inbetween::make_fcurve_clip_cursor(*clip);
   std::vector<float> out(curves.size());
   std::vector<float> scale(curves.size());
   float first = 1e30f, last = -1e30f;

@@ -426,9 +426,10 @@ TEST(GltfRead, PerspectiveCameraNodesBecomeSceneCamerasViewingAlongTheirRotation
   const std::vector<float> keys{0, 0, 0, 1, 0.5f, 0.5f, 0.5f, 0.5f};
   g.add_channel(0, 1, "rotation", g.add_times(times), g.add_accessor(keys, test::kFloat, "VEC4"), "LINEAR");
   const std::string text = g.gltf_embedded();
-  std::vector<std::string> notes;
-  auto raw = read_gltf(std::as_bytes(std::span<const char>(text.data(), text.size())), "", {.fps = kFps, .notes = &notes});
-  ASSERT_TRUE(raw.has_value()) << raw.error().describe();
+  auto imported = import_gltf(std::as_bytes(std::span<const char>(text.data(), text.size())), "", {.fps = kFps});
+  ASSERT_TRUE(imported.has_value()) << imported.error().describe();
+  const std::vector<std::string>& notes = imported->notes;
+  const RawScene* raw = &imported->scene;
   EXPECT_TRUE(notes.empty()) << notes.front();  // znear/zfar as the exporter writes them: nothing dropped
   ASSERT_TRUE(raw->objects[1].camera.has_value());
   EXPECT_FALSE(raw->objects[0].camera.has_value());
@@ -481,9 +482,10 @@ TEST(GltfRead, CameraNotesAndErrors) {
   g.doc["cameras"] = {{{"type", "perspective"}, {"perspective", {{"yfov", 1.2}, {"znear", 0.01}, {"aspectRatio", 1.5}}}},
                       {{"type", "orthographic"}, {"orthographic", {{"xmag", 2.0}, {"ymag", 2.0}, {"znear", 0.1}, {"zfar", 10.0}}}}};
   const std::string text = g.gltf_embedded();
-  std::vector<std::string> notes;
-  auto raw = read_gltf(std::as_bytes(std::span<const char>(text.data(), text.size())), "", {.notes = &notes});
-  ASSERT_TRUE(raw.has_value()) << raw.error().describe();
+  auto imported = import_gltf(std::as_bytes(std::span<const char>(text.data(), text.size())), "", {});
+  ASSERT_TRUE(imported.has_value()) << imported.error().describe();
+  const std::vector<std::string>& notes = imported->notes;
+  const RawScene* raw = &imported->scene;
   EXPECT_TRUE(raw->objects[0].camera.has_value());
   EXPECT_FALSE(raw->objects[1].camera.has_value());
   ASSERT_EQ(notes.size(), 2u);

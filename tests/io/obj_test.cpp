@@ -173,7 +173,7 @@ TEST(Obj, PathsOnTheBlenderTorus) {
   // never going up on the way.
   auto down = downhill_mesh_path(*mesh, 2);
   ASSERT_TRUE(down);
-  EXPECT_EQ(down->stop, DownhillStop::Minimum);
+  EXPECT_EQ(down->stop, DownhillStop::minimum);
   for (std::size_t i = 1; i < down->points.size(); ++i) EXPECT_LT(down->points[i].y, down->points[i - 1].y);
   EXPECT_NEAR(down->points.back().y, -0.35, 1e-12);
 }

@@ -80,15 +80,15 @@ TEST(SceneSchema, EnumerationsMatchTheReader) {
     return out;
   };
   EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("kind")), names(inbetween::SpeedKind::acceleration_keys));
-  EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("shape")), names(inbetween::AccelerationShape::Linear));
+  EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("shape")), names(inbetween::AccelerationShape::linear));
   EXPECT_EQ(enum_of(defs.at("orientation").at("properties").at("closing")), names(inbetween::RmfClosing::none));
   EXPECT_EQ(enum_of(defs.at("ease").at("properties").at("kind")), names(inbetween::EaseKind::penner));
   EXPECT_EQ(enum_of(defs.at("ease").at("properties").at("curve")), names(inbetween::EasingCurve::elastic));
   EXPECT_EQ(enum_of(defs.at("ease").at("properties").at("direction")), names(inbetween::EasingDirection::in_out));
   EXPECT_EQ(enum_of(defs.at("orientation").at("properties").at("mode")), names(inbetween::OrientationMode::look_at));
   EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("interpolation")),
-            names(inbetween::PositionInterpolation::MonotoneCubic));
-  EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("fit")), names(inbetween::VelocityFit::FixKeysAdjustInterior));
+            names(inbetween::PositionInterpolation::monotone_cubic));
+  EXPECT_EQ(enum_of(defs.at("speed").at("properties").at("fit")), names(inbetween::VelocityFit::fix_keys_adjust_interior));
 }
 
 }  // namespace

@@ -78,14 +78,13 @@ RawScene every_member() {
   q0.frame = 0;
   q0.value = Quatd::from_wxyz(0.5, 0.5, 0.5, 0.5);
   q0.interpolation = QuatInterpolation::gltf_cubic;
-  q0.in_tangent = Quatd::from_wxyz(0.1, 0.2, 0.3, 0.4);
-  q0.out_tangent = Quatd::from_wxyz(-0.1, -0.2, -0.3, -0.4);
   QuatKey<double> q1;
   q1.frame = 3;
   q1.value = Quatd::from_wxyz(0, 1, 0, 0);
   q1.interpolation = QuatInterpolation::squad;
   q1.long_way = true;
   q.keys = {q0, q1};
+  q.tangents = {{Quatd::from_wxyz(0.1, 0.2, 0.3, 0.4), Quatd::from_wxyz(-0.1, -0.2, -0.3, -0.4)}, {}};
   s.tracks.push_back(q);
   RawEulerTrack e;
   e.name = "e";

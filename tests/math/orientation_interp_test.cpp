@@ -51,7 +51,7 @@ TYPED_TEST(OrientationInterp, SlerpContractOverRandomPairsAndTheMuseum) {
   std::vector<test::QuatPairExhibit<T>> pairs = test::museum_quat_pairs<T>();
   for (int n = 0; n < 300; ++n) pairs.push_back({"random", rng.rotation<T>(), rng.rotation<T>()});
   // Nearly identical and nearly antipodal pairs, rotation angle 3·2^-k down to below ε (and the
-  // same with b's sign flipped): with Longest/AsGiven the arc from a to a nearly antipodal b is
+  // same with b's sign flipped): with longest/as_given the arc from a to a nearly antipodal b is
   // almost a half circle of S³, where sin(uθ) is not small and the direction d̂ across a must be
   // accurate.  The form b − (a·b)·a lost it to cancellation (its error is ε/|b + a| relative):
   // unit norm failed here by more than 1e-6 in float in the default build, and with -march=native
@@ -65,14 +65,14 @@ TYPED_TEST(OrientationInterp, SlerpContractOverRandomPairsAndTheMuseum) {
   }
   for (const auto& pair : pairs) {
     SCOPED_TRACE(pair.name);
-    for (const RotationPath path : {RotationPath::Shortest, RotationPath::Longest, RotationPath::AsGiven}) {
+    for (const RotationPath path : {RotationPath::shortest, RotationPath::longest, RotationPath::as_given}) {
       SCOPED_TRACE(int(path));
       const SlerpOptions options{.path = path};
       const Quat<T> b = detail::oriented_end(pair.a, pair.b, path);
       EXPECT_EQ(slerp(pair.a, pair.b, T(0), options), pair.a);  // endpoints exact
       EXPECT_EQ(slerp(pair.a, pair.b, T(1), options), b);
-      if (path == RotationPath::Shortest) EXPECT_GE(dot(pair.a, b), T(0));
-      if (path == RotationPath::Longest) EXPECT_LE(dot(pair.a, b), T(0));
+      if (path == RotationPath::shortest) EXPECT_GE(dot(pair.a, b), T(0));
+      if (path == RotationPath::longest) EXPECT_LE(dot(pair.a, b), T(0));
       // 4-D arc angle between the ends (accurate atan2 form), then the speed along it.
       const T arc = T(2) * std::atan2(norm(b - pair.a), norm(b + pair.a));
       const int steps = 16;
@@ -113,13 +113,13 @@ TYPED_TEST(OrientationInterp, AntipodalAndIdenticalInputsStayFinite) {
     EXPECT_LE(angle_between(nlerp(a, -a, u), a), test::few_ulp<T>);
     // The long way round from a rotation to itself is a full turn (about the body x axis, the
     // documented choice): finite, unit, and at u = ½ a half turn away.
-    const Quat<T> full = slerp(a, a, u, {.path = RotationPath::Longest});
+    const Quat<T> full = slerp(a, a, u, {.path = RotationPath::longest});
     ASSERT_TRUE(is_finite(full));
     EXPECT_NEAR(norm(full), T(1), test::few_ulp<T>);
   }
-  EXPECT_NEAR(angle_between(slerp(a, a, T(0.5), {.path = RotationPath::Longest}), a), pi_v<T>, test::roundtrip_tol<T>);
+  EXPECT_NEAR(angle_between(slerp(a, a, T(0.5), {.path = RotationPath::longest}), a), pi_v<T>, test::roundtrip_tol<T>);
   // nlerp of exactly antipodal quaternions taken as given has a zero blend at ½: documented fallback a.
-  EXPECT_EQ(nlerp(a, -a, T(0.5), {.path = RotationPath::AsGiven}), a);
+  EXPECT_EQ(nlerp(a, -a, T(0.5), {.path = RotationPath::as_given}), a);
 }
 
 TYPED_TEST(OrientationInterp, SlerpErrorAgainstLongDoubleNeedsNoCutOff) {
@@ -178,7 +178,7 @@ TYPED_TEST(OrientationInterp, FastSlerpWithinStatedBound) {
   // double on the inputs normalised in long double.  The rounded inputs' norms differ from 1 by up
   // to about ε of T, and slerp()'s unit-input formula turns that into an error of the same order
   // that depends on how it is written (the bench's max_err_rad uses the same reference).
-  const auto ref = [](const Quat<T>& a, const Quat<T>& b, T u, RotationPath path = RotationPath::Shortest) {
+  const auto ref = [](const Quat<T>& a, const Quat<T>& b, T u, RotationPath path = RotationPath::shortest) {
     return slerp(normalized(a.template cast<L>()), normalized(b.template cast<L>()), L(u), {.path = path});
   };
   const auto check = [&](const Quat<T>& a, const Quat<T>& b, T u) {
@@ -189,7 +189,7 @@ TYPED_TEST(OrientationInterp, FastSlerpWithinStatedBound) {
     // a·b within rounding of 0 (ends a half turn apart): both arcs are shortest, either is right.
     if (std::abs(double(dot(a, b))) <= 4 * double(std::numeric_limits<T>::epsilon()))
       for (const Quat<T>& end : {b, -b})
-        err = std::min(err, double(angle_between(gotl, ref(a, end, u, RotationPath::AsGiven))));
+        err = std::min(err, double(angle_between(gotl, ref(a, end, u, RotationPath::as_given))));
     worst = std::max(worst, err);
     EXPECT_LE(err, double(fast_slerp_max_error_rad<T>)) << "u=" << u << " angle=" << angle_between(a, b);
     // Norm: a unit result within the same bound (no renormalisation inside).
@@ -198,7 +198,7 @@ TYPED_TEST(OrientationInterp, FastSlerpWithinStatedBound) {
     const Quat<T> b_short = dot(a, b) < T(0) ? -b : b;
     const Quat<T> on_arc = fast_slerp_on_arc(a, b_short, fast_slerp_arc(a, b_short), u);
     const double err_arc =
-        double(angle_between(normalized(on_arc.template cast<L>()), ref(a, b_short, u, RotationPath::AsGiven)));
+        double(angle_between(normalized(on_arc.template cast<L>()), ref(a, b_short, u, RotationPath::as_given)));
     EXPECT_LE(err_arc, double(fast_slerp_max_error_rad<T>)) << "on arc, u=" << u;
     worst = std::max(worst, err_arc);
   };

@@ -309,7 +309,7 @@ TEST(MeshPath, DownhillOnATiltedPlaneIsTheFallLine) {
     SCOPED_TRACE("start " + std::to_string(start));
     auto down = downhill_mesh_path(*mesh, start);
     ASSERT_TRUE(down) << down.error().describe();
-    EXPECT_EQ(down->stop, DownhillStop::Boundary);
+    EXPECT_EQ(down->stop, DownhillStop::boundary);
     const Vec3d p0 = mesh->vertex(start);
     for (const Vec3d& p : down->points) {
       EXPECT_LE(norm(cross(Vec3d(p - p0), fall)), 1e-12);  // on the fall line
@@ -408,7 +408,7 @@ TEST(MeshPath, DownhillNeverGoesUpAndFindsTheValley) {
     ASSERT_TRUE(down) << down.error().describe();
     for (std::size_t i = 1; i < down->points.size(); ++i) EXPECT_LT(down->points[i].y, down->points[i - 1].y) << i;
     for (const Vec3d& p : down->points) EXPECT_LE(distance_to_mesh(raw, p), kOnMesh);
-    if (down->stop == DownhillStop::Boundary) {
+    if (down->stop == DownhillStop::boundary) {
       const Vec3d e = down->points.back();
       EXPECT_NEAR(std::max(std::abs(e.x), std::abs(e.z)), 2.0, 1e-12);
     }
@@ -418,7 +418,7 @@ TEST(MeshPath, DownhillNeverGoesUpAndFindsTheValley) {
   const int start = int(std::lround((-1.2 + 2) * 6)) * 25 + int(std::lround((0.3 + 2) * 6));
   auto down = downhill_mesh_path(*mesh, start);
   ASSERT_TRUE(down);
-  EXPECT_EQ(down->stop, DownhillStop::Minimum);
+  EXPECT_EQ(down->stop, DownhillStop::minimum);
   const Vec3d end = down->points.back();
   EXPECT_LE(std::hypot(end.x + std::numbers::pi / 2, end.z), 1.0 / 6);
   // Every mesh point interpolates samples ≥ −A; the end's face has its corners within h + h√2 < 3h

@@ -83,7 +83,7 @@ TEST(PathFinding, EmptyGridOptima) {
   auto g = OccupancyGrid::build(5, 5, std::vector<bool>(25, false));
   ASSERT_TRUE(g);
   // 4 moves: Manhattan distance 4 + 4 = 8.  8 moves: four diagonals, 4√2.
-  auto four = find_grid_path(*g, {0, 0}, {4, 4}, {.moves = GridMoves::Four});
+  auto four = find_grid_path(*g, {0, 0}, {4, 4}, {.moves = GridMoves::four});
   auto eight = find_grid_path(*g, {0, 0}, {4, 4});
   ASSERT_TRUE(four && eight);
   EXPECT_DOUBLE_EQ(four->length, 8.0);
@@ -98,7 +98,7 @@ TEST(PathFinding, WallWithAGap) {
                           "###.#",
                           "....."});
   // Only way down is the gap at x = 3.  4 moves: 3 right, 2 down, 3 left = 8.
-  auto four = find_grid_path(g, {0, 0}, {0, 2}, {.moves = GridMoves::Four});
+  auto four = find_grid_path(g, {0, 0}, {0, 2}, {.moves = GridMoves::four});
   ASSERT_TRUE(four);
   EXPECT_DOUBLE_EQ(four->length, 8.0);
   // 8 moves without corner cutting: both diagonals into and out of the gap pass the blocked cell
@@ -130,7 +130,7 @@ TEST(PathFinding, MatchesBreadthFirstSearchOnRandomGrids) {
     const GridCell s{rng.integer(0, w - 1), rng.integer(0, h - 1)}, t{rng.integer(0, w - 1), rng.integer(0, h - 1)};
     if (g->blocked(s) || g->blocked(t)) continue;
     const int want = bfs_distance(*g, s, t);
-    auto p = find_grid_path(*g, s, t, {.moves = GridMoves::Four});
+    auto p = find_grid_path(*g, s, t, {.moves = GridMoves::four});
     if (want < 0) {
       ASSERT_FALSE(p);
       EXPECT_NE(p.error().message.find("no path"), std::string::npos);
@@ -200,7 +200,7 @@ TEST(PathFinding, SmoothedPathPassesThroughTheWaypoints) {
                           "......#.",
                           "#####.#.",
                           "........"});
-  auto p = find_grid_path(g, {0, 0}, {0, 4}, {.moves = GridMoves::Four});
+  auto p = find_grid_path(g, {0, 0}, {0, 4}, {.moves = GridMoves::four});
   ASSERT_TRUE(p);
   const GridSmoothingOptions<double> opt{.origin = {10, 20}, .cell_size = 0.5};
   const auto way = grid_path_waypoints(*p, opt);

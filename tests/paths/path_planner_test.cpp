@@ -324,7 +324,7 @@ TEST(PathTiming, WaitsForACrossingSphere) {
   const double fps = 24;
   const auto t = time_path(*env, *arc, {.speed = 2, .fps = fps});
   ASSERT_TRUE(t) << t.error().describe();
-  EXPECT_EQ(t->avoidance, Avoidance::Timing);
+  EXPECT_EQ(t->avoidance, Avoidance::timing);
   EXPECT_GT(t->duration, arc->length() / 2 + kRounding);
   EXPECT_GT(t->wait, 0.0);
   EXPECT_DOUBLE_EQ(t->distance(t->duration), arc->length());
@@ -349,7 +349,7 @@ TEST(PathTiming, ConstantSpeedWithoutMovingObstaclesAndErrors) {
   const auto arc = ArcLength<CatmullRomSpline<Vec3d>>::build(s->curve);
   const auto t = time_path(*env, *arc, {.speed = 2});
   ASSERT_TRUE(t);
-  EXPECT_EQ(t->avoidance, Avoidance::None);
+  EXPECT_EQ(t->avoidance, Avoidance::none);
   EXPECT_NEAR(t->duration, 2.5, kRounding);  // length 5 (a 3-4-5 triangle) at speed 2
   EXPECT_EQ(json_pointer(time_path(*env, *arc, {.speed = 0}).error().location), "/speed");
   EXPECT_EQ(json_pointer(time_path(*env, *arc, {.fps = std::nan("")}).error().location), "/fps");
@@ -397,7 +397,7 @@ TEST(FindPath, SteersAroundAHeadOnMoverThatTimingCannotAvoid) {
   EXPECT_EQ(json_pointer(timing_only.error().location), "/obstacles/0");
   auto steered = find_path(*env, ends, {.timing = {.speed = 2, .fps = fps}});
   ASSERT_TRUE(steered) << steered.error().describe();
-  EXPECT_EQ(steered->avoidance, Avoidance::Steering);
+  EXPECT_EQ(steered->avoidance, Avoidance::steering);
   ASSERT_GE(steered->detours.size(), 1u);
   EXPECT_EQ(steered->detours[0].obstacle, 0);
   ASSERT_EQ(steered->ends.via.size(), steered->detours.size());
@@ -411,7 +411,7 @@ TEST(FindPath, UsesTimingWhenWaitingSuffices) {
   ASSERT_TRUE(env);
   auto f = find_path(*env, {{0.5, 5, 5}, {}, {9.5, 5, 5}}, {.timing = {.speed = 2, .fps = 24}});
   ASSERT_TRUE(f) << f.error().describe();
-  EXPECT_EQ(f->avoidance, Avoidance::Timing);
+  EXPECT_EQ(f->avoidance, Avoidance::timing);
   EXPECT_TRUE(f->detours.empty());
   EXPECT_GT(f->timing.wait, 0.0);
   expect_timed_motion_clear(*env, *f, 24);

@@ -98,33 +98,33 @@ TEST(SmoothCubic, ShortInputsUseTheDocumentedFallbacks) {
 
 TEST(KernelWeights, ClosedForms) {
   // Tent r = 1, g = 1 − |x|: w0 = ∫_{−½}^{½} = 3/4, w±1 = ∫_{½}^{1} (1 − x) dx = 1/8.
-  auto t1 = kernel_weights(SmoothingKernel::Tent, 1.0);
+  auto t1 = kernel_weights(SmoothingKernel::tent, 1.0);
   ASSERT_EQ(t1.size(), 3u);
   EXPECT_NEAR(t1[0], 0.125, kTol);
   EXPECT_NEAR(t1[1], 0.75, kTol);
   EXPECT_NEAR(t1[2], 0.125, kTol);
   // Tent r = 2, g = (2 − |x|)/4, tail area beyond |x| = (2 − |x|)²/8: w0 = 1 − 2·(1.5²/8) = 7/16,
   // w±1 = 0.5²·… = 1.5²/8 − 0.5²/8 = 1/4, w±2 = 0.5²/8 = 1/32.
-  auto t2 = kernel_weights(SmoothingKernel::Tent, 2.0);
+  auto t2 = kernel_weights(SmoothingKernel::tent, 2.0);
   ASSERT_EQ(t2.size(), 5u);
   EXPECT_NEAR(t2[2], 7.0 / 16, kTol);
   EXPECT_NEAR(t2[1], 0.25, kTol);
   EXPECT_NEAR(t2[0], 1.0 / 32, kTol);
   // Box r = 1 is Eq. 3.35's ¼, ½, ¼; box r = 1.5 is the three-point moving average.
-  auto b1 = kernel_weights(SmoothingKernel::Box, 1.0);
+  auto b1 = kernel_weights(SmoothingKernel::box, 1.0);
   EXPECT_NEAR(b1[0], 0.25, kTol);
   EXPECT_NEAR(b1[1], 0.5, kTol);
-  auto b15 = kernel_weights(SmoothingKernel::Box, 1.5);
+  auto b15 = kernel_weights(SmoothingKernel::box, 1.5);
   ASSERT_EQ(b15.size(), 3u);
   for (double w : b15) EXPECT_NEAR(w, 1.0 / 3, kTol);
   // r ≤ ½: the identity.
-  EXPECT_EQ(kernel_weights(SmoothingKernel::Gaussian, 0.3), std::vector<double>{1.0});
+  EXPECT_EQ(kernel_weights(SmoothingKernel::gaussian, 0.3), std::vector<double>{1.0});
 }
 
 TEST(KernelWeights, SumToOneAndAreSymmetric) {
   test::Random rng(test::seed_for(7));
   SCOPED_TRACE(rng.trace());
-  for (auto kernel : {SmoothingKernel::Box, SmoothingKernel::Tent, SmoothingKernel::Gaussian}) {
+  for (auto kernel : {SmoothingKernel::box, SmoothingKernel::tent, SmoothingKernel::gaussian}) {
     for (int trial = 0; trial < 50; ++trial) {
       const double r = rng.uniform(0.1, 12.0);
       SCOPED_TRACE(r);
@@ -140,7 +140,7 @@ TEST(KernelWeights, GaussianMatchesMidpointIntegration) {
   // Independent check: integrate exp(−x²/2σ²), σ = r/3, by the midpoint rule with 20000 steps per
   // unit interval (error ~1e-10) and normalise by the mass on [−r, r].
   const double r = 2.0, sigma = r / 3;
-  const auto w = kernel_weights(SmoothingKernel::Gaussian, r);
+  const auto w = kernel_weights(SmoothingKernel::gaussian, r);
   auto integrate = [&](double a, double b) {
     const int n = int(20000 * (b - a));
     double s = 0;
@@ -159,10 +159,10 @@ TEST(KernelWeights, GaussianMatchesMidpointIntegration) {
 TEST(SmoothConvolution, TentOnTheTextsDataSet) {
   // Weights 1/8, 3/4, 1/8 (above); ends extended by repeating: i=0: .2 + 1.2 + .20625 = 1.60625,
   // i=1: .2 + 1.2375 + .2 = 1.6375, …, i=9: .1625 + 1.05 + .175 = 1.3875.
-  auto s = smooth_convolution(kY, {.kernel = SmoothingKernel::Tent, .radius = 1.0});
+  auto s = smooth_convolution(kY, {.kernel = SmoothingKernel::tent, .radius = 1.0});
   ASSERT_TRUE(s);
   expect_values(*s, {1.60625, 1.6375, 1.63125, 1.8125, 2.075, 2.1625, 1.9625, 1.5375, 1.3375, 1.3875}, kTol);
-  auto f = smooth_convolution(kY, {.kernel = SmoothingKernel::Tent, .radius = 1.0, .fix_ends = true});
+  auto f = smooth_convolution(kY, {.kernel = SmoothingKernel::tent, .radius = 1.0, .fix_ends = true});
   ASSERT_TRUE(f);
   EXPECT_EQ(f->front(), 1.6);
   EXPECT_EQ(f->back(), 1.4);
@@ -170,7 +170,7 @@ TEST(SmoothConvolution, TentOnTheTextsDataSet) {
 }
 
 TEST(SmoothConvolution, BoxRadiusOneIsEquation335InTheInterior) {
-  auto box = smooth_convolution(kY, {.kernel = SmoothingKernel::Box, .radius = 1.0});
+  auto box = smooth_convolution(kY, {.kernel = SmoothingKernel::box, .radius = 1.0});
   auto lin = smooth_linear(kY);
   ASSERT_TRUE(box && lin);
   for (std::size_t i = 1; i + 1 < kY.size(); ++i) EXPECT_NEAR((*box)[i], (*lin)[i], kTol) << i;
@@ -180,7 +180,7 @@ TEST(SmoothConvolution, ALineStaysALineAwayFromTheEnds) {
   // A symmetric kernel of area 1 reproduces linear data wherever it does not reach past the ends.
   std::vector<Vec3d> line;
   for (int i = 0; i < 30; ++i) line.push_back(Vec3d{1, -2, 0.5} + Vec3d{0.3, 0.1, -0.7} * double(i));
-  for (auto kernel : {SmoothingKernel::Box, SmoothingKernel::Tent, SmoothingKernel::Gaussian}) {
+  for (auto kernel : {SmoothingKernel::box, SmoothingKernel::tent, SmoothingKernel::gaussian}) {
     auto s = smooth_convolution(line, {.kernel = kernel, .radius = 3.7});
     ASSERT_TRUE(s);
     for (int i = 4; i < 26; ++i) EXPECT_NEAR(distance((*s)[i], line[i]), 0.0, 1e-13) << i;
@@ -198,12 +198,12 @@ TEST(SmoothConvolution, HugeRadiusLumpsTheTailsIntoTheEnds) {
   // Box r = 1e9 over 10 points: every offset beyond ±9 clamps to an end point, so each result is
   // ½·(first + last) = 1.5 up to the interior weights, each 1/(2r) = 5e-10 (19 of them, values
   // ≤ 2.2: the deviation is below 19 · 5e-10 · 2.2 ≈ 2.1e-8).  Nothing of size r is allocated.
-  auto s = smooth_convolution(kY, {.kernel = SmoothingKernel::Box, .radius = 1e9});
+  auto s = smooth_convolution(kY, {.kernel = SmoothingKernel::box, .radius = 1e9});
   ASSERT_TRUE(s);
   for (double v : *s) EXPECT_NEAR(v, 1.5, 2.1e-8);
   // Lumping is exact: radius 20 (K = 20 > 9) agrees with the explicit sum over offsets ±20.
-  const auto w = kernel_weights(SmoothingKernel::Tent, 20.0);
-  auto t = smooth_convolution(kY, {.kernel = SmoothingKernel::Tent, .radius = 20.0});
+  const auto w = kernel_weights(SmoothingKernel::tent, 20.0);
+  auto t = smooth_convolution(kY, {.kernel = SmoothingKernel::tent, .radius = 20.0});
   ASSERT_TRUE(t);
   for (int i = 0; i < 10; ++i) {
     double want = 0;
@@ -228,7 +228,7 @@ TYPED_TEST(SmoothingTyped, HugeRadiusWeightsAndResultStayFinite) {
   std::vector<T> y;
   for (double v : kY) y.push_back(T(v));
   const T mid = (y.front() + y.back()) / T(2);
-  for (auto kernel : {SmoothingKernel::Box, SmoothingKernel::Tent, SmoothingKernel::Gaussian}) {
+  for (auto kernel : {SmoothingKernel::box, SmoothingKernel::tent, SmoothingKernel::gaussian}) {
     for (T r : {std::numeric_limits<T>::max(), std::numeric_limits<T>::max() / T(3), T(1e18)}) {
       SCOPED_TRACE(testing::Message() << "kernel " << int(kernel) << " radius " << r);
       auto s = smooth_convolution(y, {.kernel = kernel, .radius = r});
@@ -265,7 +265,7 @@ TYPED_TEST(SmoothingTyped, MuseumPathsStayFinite) {
   for (const auto& ex : test::museum_paths<T>()) {
     SCOPED_TRACE(ex.name);
     for (const auto& s : {smooth_linear(ex.points), smooth_cubic(ex.points, {.smooth_ends = true}),
-                          smooth_convolution(ex.points, {.kernel = SmoothingKernel::Gaussian, .radius = T(2.5)})}) {
+                          smooth_convolution(ex.points, {.kernel = SmoothingKernel::gaussian, .radius = T(2.5)})}) {
       ASSERT_TRUE(s);
       ASSERT_EQ(s->size(), ex.points.size());
       for (const auto& p : *s) EXPECT_TRUE(is_finite(p));

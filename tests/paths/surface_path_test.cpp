@@ -37,7 +37,7 @@ TEST(SurfacePath, HeadingOnAPlaneIsAStraightLine) {
   auto plane = make_implicit_surface<double>([n0](const Vec3d& p) { return dot(n0, p) - 1.0; },
                                              [n0](const Vec3d&) { return n0; });
   auto path = walk_on_surface(plane, Vec3d{0, 0, 0},
-                              {.mode = SurfaceWalk::Heading, .heading = {1, 0, 0}, .step = 0.25, .max_steps = 20});
+                              {.mode = SurfaceWalk::heading, .heading = {1, 0, 0}, .step = 0.25, .max_steps = 20});
   ASSERT_TRUE(path) << path.error().describe();
   ASSERT_EQ(path->size(), 21u);
   const Vec3d p0 = n0;  // the origin projected onto the plane: n0·(n0) = 1
@@ -53,7 +53,7 @@ TEST(SurfacePath, HeadingOnASphereFollowsAGreatCircle) {
     const Vec3d start = rng.unit_vec3() * (kR * rng.uniform(0.5, 1.5));
     const Vec3d heading = rng.unit_vec3();
     auto path = walk_on_surface(sphere(), start,
-                                {.mode = SurfaceWalk::Heading, .heading = heading, .step = 0.1, .max_steps = 200});
+                                {.mode = SurfaceWalk::heading, .heading = heading, .step = 0.1, .max_steps = 200});
     if (!path) continue;  // heading parallel to the normal: tested below
     const Vec3d p0 = (*path)[0];
     // Great circle: every point stays in the plane through the centre spanned by p0 and the first
@@ -122,7 +122,7 @@ TEST(SurfacePath, BadInputIsNamed) {
   ASSERT_FALSE(b);
   EXPECT_EQ(b.error().where, "step");
   // Heading along the normal at (R, 0, 0): no tangent direction.
-  auto c = walk_on_surface(sphere(), Vec3d{1, 0, 0}, {.mode = SurfaceWalk::Heading, .heading = {1, 0, 0}});
+  auto c = walk_on_surface(sphere(), Vec3d{1, 0, 0}, {.mode = SurfaceWalk::heading, .heading = {1, 0, 0}});
   ASSERT_FALSE(c);
   EXPECT_EQ(c.error().where, "heading");
   // The centre of the sphere has ∇F = 0: projection cannot start there.
@@ -149,7 +149,7 @@ TYPED_TEST(SurfaceTyped, WalksStayOnTheSphere) {
   const T tol = sizeof(T) == 4 ? T(2e-6) : T(1e-12);
   auto s = make_implicit_surface<T>([](const Vec3<T>& p) { return dot(p, p) - T(1); },
                                     [](const Vec3<T>& p) { return p * T(2); });
-  for (auto mode : {SurfaceWalk::Downhill, SurfaceWalk::Heading}) {
+  for (auto mode : {SurfaceWalk::downhill, SurfaceWalk::heading}) {
     auto path = walk_on_surface(s, Vec3<T>{T(0.3), T(0.9), T(-0.2)},
                                 {.mode = mode, .heading = {0, 0, 1}, .step = T(0.05), .max_steps = 300});
     ASSERT_TRUE(path);

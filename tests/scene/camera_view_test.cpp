@@ -95,11 +95,11 @@ TYPED_TEST(CameraViewTyped, LookAtAPointOrAnObjectAimsAtIt) {
   test::Random rng(test::seed_for(81));
   SCOPED_TRACE(rng.trace());
   const CameraView<T> at_point = build_ok(RawCameraView<T>{.coi = RawLookAt<T>{Vec3<T>{1, 2, -3}}});
-  EXPECT_EQ(at_point.coi_mode(), CoiMode::Point);
+  EXPECT_EQ(at_point.coi_mode(), CoiMode::point);
   EXPECT_TRUE(at_point.target_names().empty());
   EXPECT_FALSE(at_point.needs_camera_path());
   const CameraView<T> at_object = build_ok(RawCameraView<T>{.coi = RawLookAt<T>{std::string("ball")}});
-  EXPECT_EQ(at_object.coi_mode(), CoiMode::Object);
+  EXPECT_EQ(at_object.coi_mode(), CoiMode::object);
   ASSERT_EQ(at_object.target_names().size(), 1u);
   EXPECT_EQ(at_object.target_names()[0], "ball");
   for (int k = 0; k < 200; ++k) {
@@ -185,7 +185,7 @@ TYPED_TEST(CameraViewTyped, CoiOnASecondPathAndUpFromAThirdPath) {
   const auto coi_arc = make_arc_length(*build_catmull_rom(c_pts)).value();
   const auto up_arc = make_arc_length(*build_catmull_rom(u_pts)).value();
   const CameraView<T> view = build_ok(RawCameraView<T>{.coi = RawCoiPath{"coi"}, .up_path = "up"});
-  EXPECT_EQ(view.coi_mode(), CoiMode::Path);
+  EXPECT_EQ(view.coi_mode(), CoiMode::path);
   EXPECT_EQ(view.coi_path_name(), "coi");
   EXPECT_EQ(view.up_path_name(), "up");
   EXPECT_TRUE(view.needs_camera_path());
@@ -270,7 +270,7 @@ TYPED_TEST(CameraViewTyped, HoldThenMoveHoldsEasesAndHolds) {
                                                          {.target = std::string("ball"), .hold_until = T(30), .move_frames = T(4)},
                                                          {.target = C, .hold_until = T(40)}}}};
   const CameraView<T> view = build_ok(raw);
-  EXPECT_EQ(view.coi_mode(), CoiMode::HoldThenMove);
+  EXPECT_EQ(view.coi_mode(), CoiMode::hold_then_move);
   ASSERT_EQ(view.target_names().size(), 1u);
   const Vec3<T> targets[] = {ball};
   const Vec3<T> eye{0, 0, 10};
@@ -429,7 +429,7 @@ TYPED_TEST(CameraViewTyped, OwnRotationViewsAlongTheObjectsRotation) {
   SCOPED_TRACE(rng.trace());
   const T distance = T(2.5);
   const CameraView<T> view = build_ok(RawCameraView<T>{.coi = RawOwnRotation<T>{.distance = distance}});
-  EXPECT_EQ(view.coi_mode(), CoiMode::OwnRotation);
+  EXPECT_EQ(view.coi_mode(), CoiMode::own_rotation);
   EXPECT_FALSE(view.needs_camera_path());
   EXPECT_TRUE(view.target_names().empty());
   for (int k = 0; k < 200; ++k) {

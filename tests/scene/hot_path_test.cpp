@@ -39,7 +39,7 @@ RawScene scene_with_paths_and_cameras(std::size_t copies) {
   tilt.curve.keys = {FCurveKey{.frame = 0, .value = 0}, FCurveKey{.frame = 10, .value = 30}};
   raw.tracks.push_back(tilt);
   const auto curve = [](std::vector<Vec3d> pts) {
-    return AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{build_catmull_rom(pts).value()}};
+    return AnyCurve{CurveKind::catmull_rom, 3, AnyCurveVariant{build_catmull_rom(pts).value()}};
   };
   raw.paths.push_back({"p", curve({{-5, 0, 0}, {0, 3, 1}, {5, 0, 0}, {6, 4, -2}})});
   for (std::size_t c = 0; c < copies; ++c) {

@@ -43,7 +43,7 @@ constexpr double kFrameTol = 1e-12;
 AnyCurve catmull_rom(const std::vector<Vec3d>& pts) {
   auto c = build_catmull_rom(pts);
   EXPECT_TRUE(c.has_value());
-  return AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{std::move(c).value()}};
+  return AnyCurve{CurveKind::catmull_rom, 3, AnyCurveVariant{std::move(c).value()}};
 }
 
 // A curve through (−5, 0, 0), (0, 3, 0), (5, 0, 0): the texts' frame-22 path, with an extra bend in z
@@ -490,7 +490,7 @@ TEST(PathMotion, DistanceKeysLinearAndWithSpeedsFollowTheirClosedForms) {
   RawPathMotion raw{.path = path};
   raw.speed = RawSpeed{.kind = SpeedKind::distance_keys,
                        .keys = {{10, 0}, {20, 3}, {40, 7}},
-                       .interpolation = PositionInterpolation::Linear};
+                       .interpolation = PositionInterpolation::linear};
   const PathMotion m = build(raw);
   // Linear: 0.3 per frame on [10, 20], 0.2 per frame on [20, 40].
   EXPECT_NEAR(m.sample(15).distance, 1.5, 1e-15 * 7);
@@ -517,7 +517,7 @@ TEST(PathMotion, VelocityKeysCoverTheDistance) {
   RawPathMotion raw{.path = path};
   // A constant velocity curve over [0, 50] covering [1, 6]: s = 1 + 5·f/50, 0.1 per frame.
   raw.speed = RawSpeed{.kind = SpeedKind::velocity_keys, .from = 1.0, .to = 6.0,
-                       .velocities = {{0, 0.1 * kFps}, {50, 0.1 * kFps}}, .fit = VelocityFit::FloatToKeepAverage};
+                       .velocities = {{0, 0.1 * kFps}, {50, 0.1 * kFps}}, .fit = VelocityFit::float_to_keep_average};
   const PathMotion m = build(raw);
   for (int f = 0; f <= 50; f += 5) {
     EXPECT_NEAR(m.sample(f).distance, 1 + 0.1 * f, 1e-12);
@@ -612,7 +612,7 @@ TEST(PathMotion, AccelerationKeysIntegrateInClosedForm) {
   // unscaled s = t + t³/6 = 1 + 8/6 at t = 2 s; the acceleration part (8/6) scales by
   // k = (4 − 2)/(8/6) = 1.5, so s = t + 1.5·t³/6.
   raw.speed = RawSpeed{.kind = SpeedKind::acceleration_keys, .to = 4.0, .accelerations = {{0, 0.0}, {48, 2.0}},
-                       .shape = AccelerationShape::Linear, .start_speed = 1.0};
+                       .shape = AccelerationShape::linear, .start_speed = 1.0};
   const PathMotion l = build(raw);
   for (int f = 0; f <= 48; f += 4) {
     const double t = f / kFps;
@@ -648,7 +648,7 @@ TEST(PathMotion, ClosedPathsComeBackToTheirStartFrame) {
   }
   auto loop = build_catmull_rom(pts, CatmullRomOptions<double>{.closed = true});
   ASSERT_TRUE(loop);
-  RawPathMotion raw{.path = AnyCurve{CurveKind::CatmullRom, 3, AnyCurveVariant{*loop}}};
+  RawPathMotion raw{.path = AnyCurve{CurveKind::catmull_rom, 3, AnyCurveVariant{*loop}}};
   raw.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 48};
   const auto end_gap = [&](RmfClosing closing) {
     raw.orientation.closing = closing;
@@ -826,7 +826,7 @@ TEST(PathMotion, BadSpecsAreErrorsThatSayWhere) {
   EXPECT_EQ(json_pointer(e.location), "/speed/keys/1/distance");
   // Distances that run backwards name the frames; repair is explicit.
   RawSpeed back{.kind = SpeedKind::distance_keys, .keys = {{0, 0}, {10, 4}, {20, 2}, {30, 6}},
-                .interpolation = PositionInterpolation::CatmullRom};
+                .interpolation = PositionInterpolation::catmull_rom};
   e = err(back);
   EXPECT_EQ(e.code, ErrorCode::NotMonotone);
   EXPECT_EQ(json_pointer(e.location), "/speed/keys");
@@ -898,13 +898,13 @@ TEST(PathMotion, BadSpecsAreErrorsThatSayWhere) {
 TEST(PathMotion, MuseumCurvesBuildAndSampleFinite) {
   std::vector<std::pair<std::string, AnyCurve>> curves;
   for (const auto& ex : test::museum_curve_points<double>()) {
-    if (auto c = build_catmull_rom(ex.points)) curves.push_back({ex.name + " / catmull-rom", AnyCurve{CurveKind::CatmullRom, 3, *c}});
-    if (auto c = build_bezier(ex.points)) curves.push_back({ex.name + " / bezier", AnyCurve{CurveKind::Bezier, 3, *c}});
-    if (auto c = build_natural_spline(ex.points)) curves.push_back({ex.name + " / natural", AnyCurve{CurveKind::Natural, 3, *c}});
-    if (auto c = build_parabolic_blend(ex.points)) curves.push_back({ex.name + " / parabolic", AnyCurve{CurveKind::Parabolic, 3, *c}});
+    if (auto c = build_catmull_rom(ex.points)) curves.push_back({ex.name + " / catmull-rom", AnyCurve{CurveKind::catmull_rom, 3, *c}});
+    if (auto c = build_bezier(ex.points)) curves.push_back({ex.name + " / bezier", AnyCurve{CurveKind::bezier, 3, *c}});
+    if (auto c = build_natural_spline(ex.points)) curves.push_back({ex.name + " / natural", AnyCurve{CurveKind::natural, 3, *c}});
+    if (auto c = build_parabolic_blend(ex.points)) curves.push_back({ex.name + " / parabolic", AnyCurve{CurveKind::parabolic, 3, *c}});
   }
   for (const auto& ex : test::museum_paths<double>()) {
-    if (auto c = build_catmull_rom(ex.points)) curves.push_back({ex.name + " / path", AnyCurve{CurveKind::CatmullRom, 3, *c}});
+    if (auto c = build_catmull_rom(ex.points)) curves.push_back({ex.name + " / path", AnyCurve{CurveKind::catmull_rom, 3, *c}});
   }
   ASSERT_GT(curves.size(), 30u);
   const double inf = std::numeric_limits<double>::infinity();
@@ -946,7 +946,7 @@ TEST(PathMotion, DegeneratePathsHaveDocumentedFallbacks) {
   // whose two points coincide.)
   auto single = build_bezier(std::vector<Vec3d>{{1, 2, 3}, {1, 2, 3}});
   ASSERT_TRUE(single.has_value());
-  for (const AnyCurve& path : {AnyCurve{CurveKind::Bezier, 3, *single}, catmull_rom({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}})}) {
+  for (const AnyCurve& path : {AnyCurve{CurveKind::bezier, 3, *single}, catmull_rom({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}})}) {
     RawPathMotion raw{.path = path};
     raw.speed = RawSpeed{.kind = SpeedKind::ease, .start_frame = 0, .end_frame = 10, .ease = RawEase{.kind = EaseKind::sine}};
     const PathMotion m = build(raw);
@@ -994,7 +994,7 @@ TEST(PathMotion, RandomPathsAndEasesKeepEveryProperty) {
     for (int i = 0; i < n; ++i) pts.push_back(rng.vec3(-10.0, 10.0));
     auto cr = build_catmull_rom(pts, CatmullRomOptions<double>{.alpha = 0.5 * rng.integer(0, 2)});
     ASSERT_TRUE(cr.has_value());
-    const AnyCurve path{CurveKind::CatmullRom, 3, *cr};
+    const AnyCurve path{CurveKind::catmull_rom, 3, *cr};
     const double a = rng.uniform(0.0, 0.5), b = rng.uniform(0.5, 1.0);
     const bool pieces = trial % 2 == 0;
     const RawEase ease = pieces ? RawEase{.kind = EaseKind::sine_pieces, .k1 = a, .k2 = b}

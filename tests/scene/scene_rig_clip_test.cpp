@@ -41,7 +41,7 @@ TEST(SceneRigClip, ObjectsLocalTransformsAgreeWithTheScene) {
   const auto clip = build_scene_rig_clip(*scene);
   ASSERT_TRUE(clip) << clip.error().describe();
   ASSERT_EQ(clip->joints(), 2u);
-  RigContext ctx = make_rig_context(*clip);
+  RigClipCursor ctx = make_rig_clip_cursor(*clip);
   std::vector<JointPose<double>> pose(2);
   for (double f = -3; f < 16; f += 0.37) {
     sample_rig(*clip, f, ctx, std::span<JointPose<double>>(pose));
@@ -59,7 +59,7 @@ TEST(SceneRigClip, ObjectsLocalTransformsAgreeWithTheScene) {
 TEST(SceneRigClip, RefusesAnObjectOnAPathWithThePlace) {
   RawScene raw;
   raw.range = {0, 10};
-  raw.paths.push_back({"p", AnyCurve{CurveKind::CatmullRom, 3,
+  raw.paths.push_back({"p", AnyCurve{CurveKind::catmull_rom, 3,
                                      AnyCurveVariant{build_catmull_rom(std::vector<Vec3d>{{0, 0, 0}, {1, 2, 0}, {3, 0, 1}}).value()}}});
   RawObject still;
   still.name = "still";

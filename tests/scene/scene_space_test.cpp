@@ -37,7 +37,7 @@ double angle_between(const Quatd& a, const Quatd& b) {
 }
 
 AnyCurve bezier_curve(const std::vector<Vec3d>& points) {
-  return AnyCurve{CurveKind::BezierPath, 3, AnyCurveVariant{build_bezier_path(points).value()}};
+  return AnyCurve{CurveKind::bezier_path, 3, AnyCurveVariant{build_bezier_path(points).value()}};
 }
 
 RawVec3Channel vec3_keys(test::Random& rng, double lo, double hi) {

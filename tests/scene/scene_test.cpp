@@ -361,7 +361,7 @@ TEST(BuildScene, ManyNamesAreChecked) {
 // The two Bézier paths of examples/scenes/frame22.json; `shift` moves the second (a leg that does
 // not start where the first ends).
 AnyCurve bezier_path_curve(const std::vector<Vec3d>& points) {
-  return AnyCurve{CurveKind::BezierPath, 3, AnyCurveVariant{build_bezier_path(points).value()}};
+  return AnyCurve{CurveKind::bezier_path, 3, AnyCurveVariant{build_bezier_path(points).value()}};
 }
 std::vector<Vec3d> arc_points() { return {{-5, 0, 0}, {-4, 2, 0}, {-2, 3, 0}, {0, 3, 0}, {2, 3, 0}, {4, 2, 0}, {5, 0, 0}}; }
 std::vector<Vec3d> climb_points(Vec3d shift) {

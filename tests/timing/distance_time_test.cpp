@@ -106,8 +106,8 @@ TEST(DistanceTime, MonotoneRepairKeepsTheKeysAndNeverBacksUp) {
 TEST(DistanceTime, CatmullRomMayOvershootMonotoneCubicDoesNot) {
   // A step-like key set: Catmull-Rom overshoots (backs up after the jump); Fritsch–Carlson does not.
   const std::vector<TimeDistanceKey<double>> keys = {{0, 0}, {0.3, 0}, {0.4, 0.9}, {0.6, 1}, {1, 1}};
-  auto cr = Curve::from_positions(keys, PositionInterpolation::CatmullRom);
-  auto mc = Curve::from_positions(keys, PositionInterpolation::MonotoneCubic);
+  auto cr = Curve::from_positions(keys, PositionInterpolation::catmull_rom);
+  auto mc = Curve::from_positions(keys, PositionInterpolation::monotone_cubic);
   ASSERT_TRUE(cr && mc);
   EXPECT_FALSE(cr->check_monotone());
   EXPECT_TRUE(mc->check_monotone());
@@ -117,7 +117,7 @@ TEST(DistanceTime, CatmullRomMayOvershootMonotoneCubicDoesNot) {
 TEST(DistanceTime, VelocityCurveFloatingKeepsTheAverage) {
   // User velocity keys (area 0.5 over [0, 1]); floating adds 0.5 everywhere to cover distance 1.
   const std::vector<TimeVelocityKey<double>> keys = {{0, 0}, {0.5, 1}, {1, 0}};
-  auto c = Curve::from_velocity_curve(keys, VelocityFit::FloatToKeepAverage);
+  auto c = Curve::from_velocity_curve(keys, VelocityFit::float_to_keep_average);
   ASSERT_TRUE(c);
   EXPECT_NEAR((*c)(1), 1.0, 1e-15);
   EXPECT_NEAR(c->sample(0).velocity, 0.5, 1e-15);  // the keys' velocities moved by +0.5
@@ -128,7 +128,7 @@ TEST(DistanceTime, VelocityCurveFloatingKeepsTheAverage) {
 
 TEST(DistanceTime, VelocityCurveFixedKeysAdjustTheInterior) {
   const std::vector<TimeVelocityKey<double>> keys = {{0, 0}, {0.5, 1}, {1, 0}};
-  auto c = Curve::from_velocity_curve(keys, VelocityFit::FixKeysAdjustInterior);
+  auto c = Curve::from_velocity_curve(keys, VelocityFit::fix_keys_adjust_interior);
   ASSERT_TRUE(c);
   EXPECT_NEAR((*c)(1), 1.0, 1e-15);
   for (const auto& k : keys) EXPECT_NEAR(c->sample(k.t).velocity, k.v, 1e-14) << k.t;
@@ -137,14 +137,14 @@ TEST(DistanceTime, VelocityCurveFixedKeysAdjustTheInterior) {
   EXPECT_NEAR(c->sample(0.25).velocity, 0.5 + 0.75, 1e-14);
   // Two keys at rest: exactly the cubic −2t³ + 3t² (Eq. 3.20).
   const std::vector<TimeVelocityKey<double>> rest = {{0, 0}, {1, 0}};
-  auto cubic = Curve::from_velocity_curve(rest, VelocityFit::FixKeysAdjustInterior);
+  auto cubic = Curve::from_velocity_curve(rest, VelocityFit::fix_keys_adjust_interior);
   ASSERT_TRUE(cubic);
   for (double t = 0; t <= 1; t += 0.125) EXPECT_NEAR((*cubic)(t), CubicEase<double>{}(t), 1e-15);
   // Fixed velocities that already cover more than the distance force a dip below zero (the spikes
   // and negative velocities of Figure 3.19): reported, not hidden.
   // Velocity 4 everywhere covers 4: c = −3, so v = 4 − 18τ(1 − τ) dips to −0.5 mid-interval.
   const std::vector<TimeVelocityKey<double>> fast = {{0, 4}, {0.5, 4}, {1, 4}};
-  auto dip = Curve::from_velocity_curve(fast, VelocityFit::FixKeysAdjustInterior);
+  auto dip = Curve::from_velocity_curve(fast, VelocityFit::fix_keys_adjust_interior);
   ASSERT_TRUE(dip);
   EXPECT_FALSE(dip->check_monotone());
 }
@@ -216,7 +216,7 @@ TYPED_TEST(VelocityKeysTyped, SpeedStaysBetweenNeighbouringKeysOverRandomKeySets
     // Any total the keys can reach without leaving their range: area ± the room (a bit inside it
     // so that float's rounding of the room cannot tip it over).
     const T total = T(area + rng.uniform(-0.999, 0.999) * room);
-    auto c = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::FixKeysAdjustInterior, total);
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::fix_keys_adjust_interior, total);
     ASSERT_TRUE(c) << c.error().describe();
     expect_speed_between_keys(*c, k);
     // The ends: 0 at the first key, exactly the total at the last; each key's speed is kept.
@@ -236,7 +236,7 @@ TYPED_TEST(VelocityKeysTyped, TwoEqualKeysGiveAFlatSpeed) {
   // frames 4, 16, 30, 46 and 24 fps → per frame 0, 1/30, 1/30, 0, covering the whole length 1.
   const T v = T(0.8) / T(24);
   const std::vector<TimeVelocityKey<T>> k = {{4, 0}, {16, v}, {30, v}, {46, 0}};
-  auto c = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::FixKeysAdjustInterior, T(1));
+  auto c = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::fix_keys_adjust_interior, T(1));
   ASSERT_TRUE(c) << c.error().describe();
   expect_speed_between_keys(*c, k);
   // Between frames 16 and 30 the speed is the keys' 1/30 per frame, flat (the old even spread gave
@@ -253,7 +253,7 @@ TYPED_TEST(VelocityKeysTyped, TwoEqualKeysGiveAFlatSpeed) {
   EXPECT_NEAR(double(c->sample(38).velocity), 1.0 / 60 + 1.0 / 280, tol);
   // Beyond the room (total 1.2: missing 4/15 > 7/45) the rest, 1/9, is spread evenly over the 42
   // frames as the texts do: the flat piece gets 6·(1/378)·τ(1 − τ), 1/30 + 1/252 at frame 23.
-  auto over = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::FixKeysAdjustInterior, T(1.2));
+  auto over = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::fix_keys_adjust_interior, T(1.2));
   ASSERT_TRUE(over);
   EXPECT_NEAR(double(over->sample(23).velocity), 1.0 / 30 + 1.0 / 252, tol);
   EXPECT_EQ((*over)(46), T(1.2));
@@ -263,12 +263,12 @@ TYPED_TEST(VelocityKeysTyped, Museum) {
   using T = TypeParam;
   using K = std::vector<TimeVelocityKey<T>>;
   {  // a single key: too few, named
-    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{3, 1}}, VelocityFit::FixKeysAdjustInterior);
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{3, 1}}, VelocityFit::fix_keys_adjust_interior);
     ASSERT_FALSE(c);
     EXPECT_EQ(c.error().code, ErrorCode::TooFewPoints);
   }
   {  // zero speeds and no distance: the object rests, speed exactly 0
-    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {5, 0}, {9, 0}}, VelocityFit::FixKeysAdjustInterior, T(0));
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {5, 0}, {9, 0}}, VelocityFit::fix_keys_adjust_interior, T(0));
     ASSERT_TRUE(c);
     for (T t : {T(0), T(2), T(5), T(7.5), T(9)}) {
       EXPECT_EQ(c->sample(t).s, T(0));
@@ -276,7 +276,7 @@ TYPED_TEST(VelocityKeysTyped, Museum) {
     }
   }
   {  // zero speeds that must cover a distance: no room, the texts' Eq. 3.20 on each interval
-    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {1, 0}}, VelocityFit::FixKeysAdjustInterior, T(1));
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {1, 0}}, VelocityFit::fix_keys_adjust_interior, T(1));
     ASSERT_TRUE(c);
     for (T t = 0; t <= 1; t += T(0.125)) EXPECT_NEAR((*c)(t), CubicEase<T>{}(t), test::roundtrip_tol<T>);
   }
@@ -285,7 +285,7 @@ TYPED_TEST(VelocityKeysTyped, Museum) {
     const K k = {{base, 0}, {base + 24, 2}, {base + 48, 2}, {base + 96, 1}};
     const auto [area, room] = area_and_room(k);
     const T total = T(area + 0.5 * room);
-    auto c = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::FixKeysAdjustInterior, total);
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(k, VelocityFit::fix_keys_adjust_interior, total);
     ASSERT_TRUE(c) << c.error().describe();
     expect_speed_between_keys(*c, k);
     EXPECT_EQ((*c)(base + 96), total);
@@ -293,13 +293,13 @@ TYPED_TEST(VelocityKeysTyped, Museum) {
   }
   {  // finite speeds whose area overflows: an error, never a NaN curve
     const T big = std::numeric_limits<T>::max() / T(4);
-    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, big}, {100, big}}, VelocityFit::FixKeysAdjustInterior);
+    auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, big}, {100, big}}, VelocityFit::fix_keys_adjust_interior);
     ASSERT_FALSE(c);
     EXPECT_EQ(c.error().code, ErrorCode::NotFinite);
   }
   {  // a NaN or infinite key: named
     auto c = DistanceTimeCurve<T>::from_velocity_curve(K{{0, 0}, {1, std::numeric_limits<T>::infinity()}},
-                                                       VelocityFit::FixKeysAdjustInterior);
+                                                       VelocityFit::fix_keys_adjust_interior);
     ASSERT_FALSE(c);
     EXPECT_EQ(c.error().code, ErrorCode::NotFinite);
     EXPECT_EQ(json_pointer(c.error().location), "/1");

@@ -261,7 +261,7 @@ TYPED_TEST(PiecewiseDistanceTyped, AccelerationCurvesIntegrateInClosedForm) {
   auto c = Curve<T>::from_acceleration_curve(constant, {.start_speed = T(0.5), .start_distance = T(1)});
   ASSERT_TRUE(c) << c.error().describe();
   const std::vector<TimeAccelerationKey<T>> linear = {{0, T(2)}, {3, T(-1)}};  // j = −1
-  auto l = Curve<T>::from_acceleration_curve(linear, {.shape = AccelerationShape::Linear, .start_speed = T(4)});
+  auto l = Curve<T>::from_acceleration_curve(linear, {.shape = AccelerationShape::linear, .start_speed = T(4)});
   ASSERT_TRUE(l) << l.error().describe();
   for (int j = 0; j <= 12; ++j) {
     const T t = T(j) / T(4);

@@ -1,6 +1,6 @@
 // The one name table per enumeration (enum_names.hpp): every enumerator has exactly one name,
 // names are distinct, and to_string / enum_from_string are inverse through the table.
-#include "inbetween/tracks/enum_names.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 #include <gtest/gtest.h>
 

@@ -59,7 +59,7 @@ TEST(FCurveClip, AgreesWithFCurveSampleOnRandomCurves) {
   const auto clip = build_fcurve_clip(curves);
   ASSERT_TRUE(clip) << clip.error().describe();
   EXPECT_LE(clip->max_fit_error(), fcurve_runtime_tolerance);
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   std::vector<float> out(curves.size());
   std::vector<float> frames;
   for (float t = -15; t < 60; t += 0.037f) frames.push_back(t);
@@ -92,7 +92,7 @@ TEST(FCurveClip, LoopingPlaybackMatchesAFreshContextBitForBit) {
   for (int i = 0; i < 30; ++i) curves.push_back(random_curve(rng));
   const auto clip = build_fcurve_clip(curves);
   ASSERT_TRUE(clip) << clip.error().describe();
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   std::vector<float> out(curves.size()), fresh_out(curves.size());
   std::vector<float> frames;
   for (int loop = 0; loop < 3; ++loop)
@@ -100,7 +100,7 @@ TEST(FCurveClip, LoopingPlaybackMatchesAFreshContextBitForBit) {
   for (int i = 0; i < 50; ++i) frames.push_back(rng.uniform<float>(-20, 70));  // seeks either way
   for (const float t : frames) {
     sample_fcurves(*clip, t, ctx, std::span<float>(out));
-    auto fresh = make_fcurve_context(*clip);
+    auto fresh = make_fcurve_clip_cursor(*clip);
     sample_fcurves(*clip, t, fresh, std::span<float>(fresh_out));
     for (std::size_t c = 0; c < curves.size(); ++c) EXPECT_EQ(out[c], fresh_out[c]) << "curve " << c << " frame " << t;
   }
@@ -116,7 +116,7 @@ TEST(FCurveClip, AgreesAtBlendersSnapBandEdges) {
   for (int i = 0; i < 40; ++i) curves.push_back(random_curve(rng));
   const auto clip = build_fcurve_clip(curves);
   ASSERT_TRUE(clip) << clip.error().describe();
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   std::vector<float> out(curves.size());
   double worst = 0;
   std::size_t probes = 0;
@@ -181,7 +181,7 @@ TEST(FCurveClip, RigNormalisesTheQuaternion) {
   }
   const auto clip = build_fcurve_rig(curves);
   ASSERT_TRUE(clip);
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   std::vector<JointPose<float>> pose(1);
   sample_fcurve_rig(*clip, 5.0f, ctx, std::span<JointPose<float>>(pose));
   EXPECT_EQ(pose[0].translation.y, 2.0f);
@@ -201,7 +201,7 @@ TEST(FCurveClip, RigChannelsAreTheCurvesInOrder) {
   const auto clip = build_fcurve_rig(curves);
   ASSERT_TRUE(clip) << clip.error().describe();
   ASSERT_EQ(clip->joints(), 3u);
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   std::vector<float> out(curves.size());
   std::vector<JointPose<float>> pose(3);
   for (float t = -12; t < 50; t += 0.53f) {
@@ -266,7 +266,7 @@ struct CycleCheck {
 
 // Samples the clip at every frame in order (the context carries over: forwards, backwards, jumps)
 // and checks every channel against FCurve::sample with fcurve_runtime_agrees; never NaN.
-void check_frames(const FCurveClip& clip, FCurveClip::Context& ctx, const std::vector<FCurve>& curves,
+void check_frames(const FCurveClip& clip, FCurveClipCursor& ctx, const std::vector<FCurve>& curves,
                   const std::vector<float>& frames, CycleCheck& out) {
   std::vector<float> values(curves.size());
   for (const float t : frames) {
@@ -316,7 +316,7 @@ void cycling_agreement(std::uint64_t seed, bool integral) {
   EXPECT_EQ(clip->cycling_channels(), std::size_t(std::count_if(curves.begin(), curves.end(), [](const FCurve& c) {
               return c.cycles()->before != CycleMode::none || c.cycles()->after != CycleMode::none;
             })));
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   CycleCheck check;
   std::vector<float> frames;
   for (float t = -150; t < 200; t += 0.043f) frames.push_back(t);  // forwards over many copies
@@ -355,7 +355,7 @@ TEST(FCurveClipCycles, BlendersRecordedMirrorAndOffsetExample) {
   const std::vector<FCurve> curves{build_fcurve(raw).value()};
   const auto clip = build_fcurve_clip(curves);
   ASSERT_TRUE(clip);
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   float v = 0;
   const float scale = scale_of(curves[0]);  // 10: the keys' value range
   const std::pair<float, float> recorded[] = {{-25.0f, 7.0f}, {-15.0f, 7.0f}, {-5.0f, 5.0f}, {20.0f, 4.0f},
@@ -388,7 +388,7 @@ TEST(FCurveClipCycles, WalkCycleRigAgreesAndNormalises) {
   // each with one local frame and one piece stream for its channels of all joints.
   EXPECT_EQ(clip->cycle_classes(), 2u);
   EXPECT_EQ(clip->pieces(), curves.size() * 6);  // 4 segments (one piece each) + 2 lines: nothing unrolled
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   std::vector<float> out(curves.size());
   std::vector<JointPose<float>> pose(3);
   for (float t = -60; t < 100; t += 0.53f) {
@@ -450,10 +450,10 @@ TEST(FCurveClip, RunsOfChannelsKeyedTogetherChangeNoValue) {
   // Curves keyed together share runs: at most about 3 per joint and key (4 + 4 + 2 lanes with SSE).
   EXPECT_LE(2 * clip->runs(), clip->pieces());
   std::vector<FCurveClip> alone;
-  std::vector<FCurveClip::Context> alone_ctx;
+  std::vector<FCurveClipCursor> alone_ctx;
   for (const FCurve& c : curves) {
     alone.push_back(build_fcurve_clip(std::span<const FCurve>(&c, 1)).value());
-    alone_ctx.push_back(make_fcurve_context(alone.back()));
+    alone_ctx.push_back(make_fcurve_clip_cursor(alone.back()));
   }
   std::vector<float> frames;
   for (int loop = 0; loop < 2; ++loop)
@@ -462,14 +462,14 @@ TEST(FCurveClip, RunsOfChannelsKeyedTogetherChangeNoValue) {
   for (int i = 0; i < 300; ++i) frames.push_back(rng.uniform<float>(-100, 200));  // seeks either way
   for (const float big : {1e4f, 1e7f, 1e7f + 30, 3e38f, INFINITY, -1e6f}) frames.push_back(big);
   frames.push_back(std::numeric_limits<float>::quiet_NaN());
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   std::vector<float> out(curves.size());
   float one = 0;
   std::size_t read_in_place = 0, compared = 0;
   for (const float t : frames) {
     sample_fcurves(*clip, t, ctx, std::span<float>(out));
     read_in_place += std::size_t(std::count_if(ctx.direct.begin(), ctx.direct.end(),
-                                               [](std::uint32_t d) { return d != FCurveClip::Context::no_run; }));
+                                               [](std::uint32_t d) { return d != FCurveClipCursor::no_run; }));
     for (std::size_t c = 0; c < curves.size(); ++c) {
       sample_fcurves(alone[c], t, alone_ctx[c], std::span<float>(&one, 1));
       ASSERT_FALSE(std::isnan(out[c])) << "curve " << c << " frame " << t;

@@ -68,7 +68,7 @@ TEST(HotPath, RigClipSamplingNeverAllocates) {
   const std::vector<QuatTrack<double>> rv(30, *build_quat_track(rk));
   const auto clip = build_rig_clip<double>(tv, rv, tv);
   ASSERT_TRUE(clip);
-  RigContext ctx = make_rig_context(*clip);
+  RigClipCursor ctx = make_rig_clip_cursor(*clip);
   std::vector<JointPose<double>> pose(clip->joints());
   EXPECT_EQ(allocations_in([&] {
               for (double f = -1; f < 9; f += 0.25) sample_rig(*clip, f, ctx, std::span<JointPose<double>>(pose));
@@ -90,7 +90,7 @@ TEST(HotPath, FCurveClipSamplingNeverAllocates) {
   const std::vector<FCurve> curves(20, *build_fcurve(raw));  // two joints of 10 curves
   const auto clip = build_fcurve_rig(curves);
   ASSERT_TRUE(clip);
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   std::vector<float> values(clip->channels());
   std::vector<JointPose<float>> pose(clip->joints());
   EXPECT_EQ(allocations_in([&] {
@@ -119,7 +119,7 @@ TEST(HotPath, CyclingFCurveClipSamplingNeverAllocates) {
   curves[3] = *build_fcurve(raw);
   const auto clip = build_fcurve_rig(curves);
   ASSERT_TRUE(clip);
-  auto ctx = make_fcurve_context(*clip);
+  auto ctx = make_fcurve_clip_cursor(*clip);
   std::vector<float> values(clip->channels());
   std::vector<JointPose<float>> pose(clip->joints());
   EXPECT_EQ(allocations_in([&] {

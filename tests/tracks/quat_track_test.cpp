@@ -73,13 +73,13 @@ TEST(QuatTrack, PassesThroughKeysWithUnitNormInEveryMode) {
   for (auto mode : {QuatInterpolation::step, QuatInterpolation::slerp, QuatInterpolation::bezier,
                     QuatInterpolation::squad, QuatInterpolation::gltf_cubic}) {
     std::vector<QuatKey<double>> keys;
+    std::vector<QuatKeyTangents<double>> tangents;
     for (int i = 0; i < 8; ++i) {
-      auto k = qkey(i * 1.5, rng.rotation() * rng.uniform(0.5, 2.0), mode);  // not unit on input
-      k.in_tangent = Q::from_wxyz(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), 0.1, 0.2);
-      k.out_tangent = k.in_tangent;
-      keys.push_back(k);
+      keys.push_back(qkey(i * 1.5, rng.rotation() * rng.uniform(0.5, 2.0), mode));  // not unit on input
+      const Q t = Q::from_wxyz(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), 0.1, 0.2);
+      tangents.push_back({t, t});
     }
-    auto tr = build_quat_track(keys);
+    auto tr = build_quat_track(keys, tangents);
     ASSERT_TRUE(tr.has_value());
     for (std::size_t i = 0; i < keys.size(); ++i) {
       EXPECT_TRUE(same_rotation(tr->sample(keys[i].frame), normalized(keys[i].value), kAngleTol)) << int(mode);
@@ -227,7 +227,7 @@ TEST(QuatTrack, ControlPointsOnlyWhereUsedChangeNoSample) {
       const double u = j / 16.0;
       const double f = frames[seg] + u * (frames[seg + 1] - frames[seg]);
       const double uu = std::clamp((f - frames[seg]) / (frames[seg + 1] - frames[seg]), 0.0, 1.0);  // as sample() computes it
-      const Q want_slerp = slerp(keys[seg], keys[seg + 1], uu, SlerpOptions{.path = RotationPath::AsGiven});
+      const Q want_slerp = slerp(keys[seg], keys[seg + 1], uu, SlerpOptions{.path = RotationPath::as_given});
       EXPECT_TRUE(same_bits(slerp_only->sample(f), want_slerp)) << "slerp segment " << seg << " u " << u;
       const QuatInterpolation m = mixed_mode(int(seg));
       const Q want = m == QuatInterpolation::bezier  ? all_bezier->sample(f)
@@ -270,7 +270,7 @@ TEST(QuatTrack, SegmentLookupMatchesLinearSearch) {
       std::size_t i = 0;
       while (!(f[i] <= x && x < f[i + 1])) ++i;
       const double u = std::clamp((x - f[i]) / (f[i + 1] - f[i]), 0.0, 1.0);
-      return slerp(q[i], q[i + 1], u, SlerpOptions{.path = RotationPath::AsGiven});
+      return slerp(q[i], q[i + 1], u, SlerpOptions{.path = RotationPath::as_given});
     };
     std::vector<double> probes(f.begin(), f.end());
     for (std::size_t i = 0; i + 1 < f.size(); ++i) {
@@ -297,16 +297,27 @@ TEST(QuatTrack, SlerpSegmentsHaveConstantSpeedOnMuseumPairs) {
   }
 }
 
+// A key is what a motion-capture clip stores per frame and joint: the glTF tangents live beside
+// the keys (QuatKeyTangents), so a key is its frame, quaternion and two flags.
+static_assert(sizeof(QuatKey<double>) == 48, "QuatKey<double>: frame, value, interpolation, long_way");
+static_assert(sizeof(QuatKey<float>) == 24, "QuatKey<float>: frame, value, interpolation, long_way");
+
 TEST(QuatTrack, GltfCubicIsNormalisedHermite) {
   auto a = qkey(0, Q{}, QuatInterpolation::gltf_cubic);
   auto b = qkey(2, Q::from_axis_angle(Vec3d{1, 0, 0}, 1.0), QuatInterpolation::gltf_cubic);
-  a.out_tangent = Q::from_wxyz(0, 0.2, 0, 0);
-  b.in_tangent = Q::from_wxyz(0, 0.1, 0.1, 0);
-  auto tr = build_quat_track(std::vector{a, b});
+  const std::vector<QuatKeyTangents<double>> tangents = {{.out = Q::from_wxyz(0, 0.2, 0, 0)},
+                                                        {.in = Q::from_wxyz(0, 0.1, 0.1, 0)}};
+  auto tr = build_quat_track(std::vector{a, b}, tangents);
   ASSERT_TRUE(tr.has_value());
   // u = ½: h00 = h01 = ½, h10 = ⅛, h11 = −⅛, frame step 2 (glTF's tangent scaling by the interval).
-  const Q expected = normalized(a.value * 0.5 + a.out_tangent * (0.125 * 2) + b.value * 0.5 + b.in_tangent * (-0.125 * 2));
+  const Q expected =
+      normalized(a.value * 0.5 + tangents[0].out * (0.125 * 2) + b.value * 0.5 + tangents[1].in * (-0.125 * 2));
   EXPECT_TRUE(same_rotation(tr->sample(1.0), expected, kAngleTol));
+  // Tangents are none or one per key.
+  auto wrong = build_quat_track(std::vector{a, b}, std::vector{tangents[0]});
+  ASSERT_FALSE(wrong.has_value());
+  EXPECT_EQ(wrong.error().code, ErrorCode::WrongArity);
+  EXPECT_EQ(json_pointer(wrong.error().location), "/tangents");
 }
 
 template <class T>

@@ -42,7 +42,7 @@ TYPED_TEST(RigClipTyped, AgreesWithTheScalarTrackApi) {
     const Rig<T> rig = random_rig<T>(rng, 20);
     const auto clip = build_rig_clip<T>(rig.translations, rig.rotations, rig.scales);
     ASSERT_TRUE(clip) << clip.error().describe();
-    RigContext ctx = make_rig_context(*clip);
+    RigClipCursor ctx = make_rig_clip_cursor(*clip);
     std::vector<JointPose<T>> pose(clip->joints());
     std::vector<T> frames;
     for (T t = -6; t < 40; t += T(0.23)) frames.push_back(t);      // forwards, past both ends

@@ -47,6 +47,7 @@ TEST(ThreeJsGltf, CubicSplineRotationMatchesThreeJs) {
     // Keys with random signs (neighbours with negative dot included: glTF never flips signs) and
     // random tangents; times unevenly spaced.
     std::vector<QuatKey<double>> keys;
+    std::vector<QuatKeyTangents<double>> tangents;
     double t = 0;
     for (int k = 0; k < 6; ++k) {
       QuatKey<double> key;
@@ -57,19 +58,21 @@ TEST(ThreeJsGltf, CubicSplineRotationMatchesThreeJs) {
       key.value = normalized(float_exact(q));
       key.value = float_exact(key.value);
       key.interpolation = QuatInterpolation::gltf_cubic;
-      key.in_tangent = float_exact(Quatd::from_wxyz(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5),
-                                                    rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5)));
-      key.out_tangent = float_exact(Quatd::from_wxyz(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5),
-                                                     rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5)));
+      QuatKeyTangents<double> tangent;
+      tangent.in = float_exact(Quatd::from_wxyz(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5),
+                                                rng.uniform(-0.5, 0.5)));
+      tangent.out = float_exact(Quatd::from_wxyz(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5),
+                                                 rng.uniform(-0.5, 0.5)));
       keys.push_back(key);
+      tangents.push_back(tangent);
       t += rng.uniform(0.5, 2.0);
     }
     nlohmann::json req;
-    for (const auto& k : keys) {
-      req["times"].push_back(k.frame);
-      req["keys"].push_back(wxyz(k.value));
-      req["in_tangents"].push_back(wxyz(k.in_tangent));
-      req["out_tangents"].push_back(wxyz(k.out_tangent));
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      req["times"].push_back(keys[i].frame);
+      req["keys"].push_back(wxyz(keys[i].value));
+      req["in_tangents"].push_back(wxyz(tangents[i].in));
+      req["out_tangents"].push_back(wxyz(tangents[i].out));
     }
     std::vector<double> samples;
     for (int i = 1; i < 60; ++i) samples.push_back(keys.back().frame * double(i) / 60.0);
@@ -84,7 +87,7 @@ TEST(ThreeJsGltf, CubicSplineRotationMatchesThreeJs) {
     const auto three = nlohmann::json::parse(test::slurp(out));
     ASSERT_EQ(three.size(), samples.size());
 
-    auto track = build_quat_track(keys);
+    auto track = build_quat_track(keys, tangents);
     ASSERT_TRUE(track.has_value()) << track.error().describe();
     double worst = 0;
     for (std::size_t i = 0; i < samples.size(); ++i) {

@@ -106,7 +106,7 @@ void BM_InbetweenRigClip(benchmark::State& state) {
   for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
   const auto clip = build_rig_clip<T>(tv, rv, sv).value();
   const double end = rig_end(rig);
-  RigContext ctx = make_rig_context(clip);
+  RigClipCursor ctx = make_rig_clip_cursor(clip);
   std::vector<JointPose<T>> pose(clip.joints());
   double frame = 0;
   for (auto _ : state) {

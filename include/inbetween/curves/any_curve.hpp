@@ -4,6 +4,8 @@
 /// SegmentedCurve and ControlledCurve and generic code (arc length, frames, path motion) takes it.
 /// Curve files (inbetween/io/curve_file.hpp) read and write it; the scene puts objects on it.
 
+#include <span>
+#include <array>
 #include <string_view>
 #include <variant>
 
@@ -16,21 +18,40 @@
 #include "inbetween/curves/kochanek_bartels.hpp"
 #include "inbetween/curves/lagrange.hpp"
 #include "inbetween/curves/parabolic_blend.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
 /// The curve families (the curve-file JSON "type" strings in brackets).
 enum class CurveKind {
-  Bezier,           ///< "bezier": one Bézier curve of degree n − 1
-  BezierPath,       ///< "bezier-path": composite cubic Bézier
-  Hermite,          ///< "hermite": points and tangents
-  CatmullRom,       ///< "catmull-rom": alpha, tension, closed
-  Natural,          ///< "natural": C² spline (clamped when end tangents are given)
-  KochanekBartels,  ///< "kochanek-bartels": tension, continuity, bias per key
-  Parabolic,        ///< "parabolic": parabolic blending
-  BSpline,          ///< "bspline": degree, knots (default clamped uniform), periodic
-  Lagrange,         ///< "lagrange": params (default 0, 1, …)
+  bezier,           ///< "bezier": one Bézier curve of degree n − 1
+  bezier_path,      ///< "bezier-path": composite cubic Bézier
+  hermite,          ///< "hermite": points and tangents
+  catmull_rom,      ///< "catmull-rom": alpha, tension, closed
+  natural,          ///< "natural": C² spline (clamped when end tangents are given)
+  kochanek_bartels,  ///< "kochanek-bartels": tension, continuity, bias per key
+  parabolic,        ///< "parabolic": parabolic blending
+  bspline,          ///< "bspline": degree, knots (default clamped uniform), periodic
+  lagrange,         ///< "lagrange": params (default 0, 1, …)
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Bezier [[deprecated("use CurveKind::bezier")]] = bezier,
+  BezierPath [[deprecated("use CurveKind::bezier_path")]] = bezier_path,
+  Hermite [[deprecated("use CurveKind::hermite")]] = hermite,
+  CatmullRom [[deprecated("use CurveKind::catmull_rom")]] = catmull_rom,
+  Natural [[deprecated("use CurveKind::natural")]] = natural,
+  KochanekBartels [[deprecated("use CurveKind::kochanek_bartels")]] = kochanek_bartels,
+  Parabolic [[deprecated("use CurveKind::parabolic")]] = parabolic,
+  BSpline [[deprecated("use CurveKind::bspline")]] = bspline,
+  Lagrange [[deprecated("use CurveKind::lagrange")]] = lagrange,
 };
+
+/// File names of the CurveKind enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 9> curve_kind_names = {"bezier", "bezier-path", "hermite", "catmull-rom", "natural", "kochanek-bartels", "parabolic", "bspline", "lagrange"};
+/// The name table of CurveKind (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<CurveKind>() noexcept {
+  return curve_kind_names;
+}
 
 /// The JSON "type" string of a kind.
 std::string_view curve_kind_name(CurveKind kind) noexcept;
@@ -49,7 +70,7 @@ struct AnyCurve {
   using point_type = Vec3d;    ///< points are 3-D (lower dimensions padded with zeros)
   using scalar_type = double;  ///< the scalar of the points and parameters
 
-  CurveKind kind = CurveKind::Bezier;  ///< the family
+  CurveKind kind = CurveKind::bezier;  ///< the family
   int dimension = 3;                   ///< 1, 2 or 3: components written back and printed
   AnyCurveVariant curve{};             ///< the built curve (padded points)
 

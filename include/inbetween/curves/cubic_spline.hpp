@@ -24,9 +24,13 @@ namespace inbetween {
 
 /// How a C² cubic spline ends.
 enum class CubicSplineEnd {
-  Natural,  ///< zero second derivative at both ends
-  Clamped,  ///< given first derivatives dP/dt at both ends
-  Closed,   ///< periodic: the curve returns to the first point, C² there too
+  natural,  ///< zero second derivative at both ends
+  clamped,  ///< given first derivatives dP/dt at both ends
+  closed,   ///< periodic: the curve returns to the first point, C² there too
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Natural [[deprecated("use CubicSplineEnd::natural")]] = natural,
+  Clamped [[deprecated("use CubicSplineEnd::clamped")]] = clamped,
+  Closed [[deprecated("use CubicSplineEnd::closed")]] = closed,
 };
 
 /// A C² interpolating cubic spline, domain [0, n − 1].  Every control point influences the whole
@@ -46,13 +50,13 @@ class CubicSpline : public PiecewiseCubic<P> {
   static Expected<CubicSpline> build(std::span<const P> points, CubicSplineEnd end,
                                      const P& start_tangent = P{}, const P& end_tangent = P{},
                                      std::span<const T> params = {}) {
-    const char* family = end == CubicSplineEnd::Natural ? "natural" : end == CubicSplineEnd::Clamped ? "clamped" : "closed natural";
-    if (auto ok = detail::check_points(points, end == CubicSplineEnd::Closed ? 3 : 2, family); !ok) return ok.error();
-    if (end == CubicSplineEnd::Closed) return build_closed(points, params);
+    const char* family = end == CubicSplineEnd::natural ? "natural" : end == CubicSplineEnd::clamped ? "clamped" : "closed natural";
+    if (auto ok = detail::check_points(points, end == CubicSplineEnd::closed ? 3 : 2, family); !ok) return ok.error();
+    if (end == CubicSplineEnd::closed) return build_closed(points, params);
     auto tp = detail::check_params(params, points.size(), family);
     if (!tp) return tp.error();
     const std::vector<T>& t = *tp;
-    if (end == CubicSplineEnd::Clamped) {
+    if (end == CubicSplineEnd::clamped) {
       if (!is_finite(start_tangent)) return Error{ErrorCode::NotFinite, "start tangent is not finite", "", {"start_tangent"}};
       if (!is_finite(end_tangent)) return Error{ErrorCode::NotFinite, "end tangent is not finite", "", {"end_tangent"}};
     }
@@ -62,7 +66,7 @@ class CubicSpline : public PiecewiseCubic<P> {
     std::vector<T> sub(n, T(1)), diag(n, T(4)), sup(n, T(1));
     std::vector<P> rhs(n);
     for (int i = 1; i + 1 < n; ++i) interior_row(points, t, i - 1, i, i + 1, sub[i], diag[i], sup[i], rhs[i]);
-    if (end == CubicSplineEnd::Natural) {
+    if (end == CubicSplineEnd::natural) {
       diag[0] = T(2), sup[0] = T(1), rhs[0] = (points[1] - points[0]) * T(3) / (t[1] - t[0]);
       sub[n - 1] = T(1), diag[n - 1] = T(2), rhs[n - 1] = (points[n - 1] - points[n - 2]) * T(3) / (t[n - 1] - t[n - 2]);
     } else {
@@ -100,7 +104,7 @@ class CubicSpline : public PiecewiseCubic<P> {
   /// The parameters t_i of the points (n + 1 for a closed spline: the last is where it closes).
   std::span<const T> params() const noexcept { return this->breaks_; }
   /// True for the closed (periodic) spline.
-  bool closed() const noexcept { return end_ == CubicSplineEnd::Closed; }
+  bool closed() const noexcept { return end_ == CubicSplineEnd::closed; }
 
   /// The solved tangents dP/dt at the points.
   std::span<const P> tangents() const noexcept { return tangents_; }
@@ -185,7 +189,7 @@ class CubicSpline : public PiecewiseCubic<P> {
     for (int i = 0; i < n; ++i) d[i] = x[i] - vx * (z[i] / (S(1) + vz));
 
     CubicSpline s;
-    s.end_ = CubicSplineEnd::Closed;
+    s.end_ = CubicSplineEnd::closed;
     s.breaks_ = t;
     s.segments_.clear();
     for (int i = 0; i < n; ++i) {
@@ -201,46 +205,46 @@ class CubicSpline : public PiecewiseCubic<P> {
   }
 
   std::vector<P> tangents_{P{}};
-  CubicSplineEnd end_ = CubicSplineEnd::Natural;
+  CubicSplineEnd end_ = CubicSplineEnd::natural;
 };
 
 /// Natural C² spline through the points (zero second derivative at the ends), at `params`
 /// (empty: 0, 1, …).
 template <Point P>
 Expected<CubicSpline<P>> build_natural_spline(std::span<const P> points, std::span<const scalar_of<P>> params = {}) {
-  return CubicSpline<P>::build(points, CubicSplineEnd::Natural, P{}, P{}, params);
+  return CubicSpline<P>::build(points, CubicSplineEnd::natural, P{}, P{}, params);
 }
 /// Overload for vectors.
 template <Point P>
 Expected<CubicSpline<P>> build_natural_spline(const std::vector<P>& points,
                                               const std::vector<scalar_of<P>>& params = {}) {
-  return CubicSpline<P>::build(points, CubicSplineEnd::Natural, P{}, P{}, params);
+  return CubicSpline<P>::build(points, CubicSplineEnd::natural, P{}, P{}, params);
 }
 
 /// Closed (periodic C²) spline through the points and back to the first; `params` has n + 1
 /// values, the last being where the curve returns to P_0 (empty: 0, 1, …, n).
 template <Point P>
 Expected<CubicSpline<P>> build_closed_spline(std::span<const P> points, std::span<const scalar_of<P>> params = {}) {
-  return CubicSpline<P>::build(points, CubicSplineEnd::Closed, P{}, P{}, params);
+  return CubicSpline<P>::build(points, CubicSplineEnd::closed, P{}, P{}, params);
 }
 /// Overload for vectors.
 template <Point P>
 Expected<CubicSpline<P>> build_closed_spline(const std::vector<P>& points,
                                              const std::vector<scalar_of<P>>& params = {}) {
-  return CubicSpline<P>::build(points, CubicSplineEnd::Closed, P{}, P{}, params);
+  return CubicSpline<P>::build(points, CubicSplineEnd::closed, P{}, P{}, params);
 }
 
 /// Clamped C² spline through the points with end tangents dP/dt given, at `params` (empty: 0, 1, …).
 template <Point P>
 Expected<CubicSpline<P>> build_clamped_spline(std::span<const P> points, const P& start_tangent,
                                               const P& end_tangent, std::span<const scalar_of<P>> params = {}) {
-  return CubicSpline<P>::build(points, CubicSplineEnd::Clamped, start_tangent, end_tangent, params);
+  return CubicSpline<P>::build(points, CubicSplineEnd::clamped, start_tangent, end_tangent, params);
 }
 /// Overload for vectors.
 template <Point P>
 Expected<CubicSpline<P>> build_clamped_spline(const std::vector<P>& points, const P& start_tangent,
                                               const P& end_tangent, const std::vector<scalar_of<P>>& params = {}) {
-  return CubicSpline<P>::build(points, CubicSplineEnd::Clamped, start_tangent, end_tangent, params);
+  return CubicSpline<P>::build(points, CubicSplineEnd::clamped, start_tangent, end_tangent, params);
 }
 
 }  // namespace inbetween

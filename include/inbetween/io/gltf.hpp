@@ -39,11 +39,28 @@ struct GltfReadOptions {
   std::string animation;
   /// Frames per second: glTF keys are in seconds, the scene in frames (frame = time · fps); finite, > 0.
   double fps = 24;
-  /// When not null, the reader appends one line per thing it imports approximately or not at all
-  /// (an orthographic camera; a camera's znear, zfar or aspectRatio, which a scene camera does not
-  /// keep); the commands print them as `note:` lines.
+  /// Deprecated, kept for one release: import_gltf() / import_gltf_file() return the notes (as
+  /// export_gltf() does); read_gltf() and read_gltf_file() still append them here when it is set.
+  /// (Not marked [[deprecated]]: GCC would then warn wherever the options are default-constructed.)
   std::vector<std::string>* notes = nullptr;
 };
+
+/// What import_gltf() made: the scene and the notes on what it imported approximately or not at
+/// all (an orthographic camera; a camera's znear, zfar or aspectRatio, which a scene camera does
+/// not keep), one line each; the commands print them as `note:` lines.  The reader's counterpart
+/// of GltfExport.
+struct GltfImport {
+  RawScene scene;                  ///< the file as a raw scene (see read_gltf_file())
+  std::vector<std::string> notes;  ///< one line each, for `note:` output
+};
+
+/// Reads a `.gltf` or `.glb` file and returns the raw scene with the reader's notes; errors as
+/// read_gltf_file().
+[[nodiscard]] Expected<GltfImport> import_gltf_file(const std::filesystem::path& file, const GltfReadOptions& options = {});
+
+/// import_gltf_file() for bytes in memory (see read_gltf()).
+[[nodiscard]] Expected<GltfImport> import_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
+                                               const GltfReadOptions& options = {});
 
 /// Reads a `.gltf` or `.glb` file (told apart by the glb magic "glTF", not by the extension) and
 /// the selected animation into a RawScene: objects = nodes in index order, weights tracks first,
@@ -57,7 +74,8 @@ struct GltfReadOptions {
 [[nodiscard]] Expected<RawScene> read_gltf_file(const std::filesystem::path& file, const GltfReadOptions& options = {});
 
 /// The same as read_gltf_file() for bytes in memory (a .glb, or .gltf JSON text); relative
-/// buffer URIs are resolved against `base_dir` (empty: external buffers are an error).
+/// buffer URIs are resolved against `base_dir` (empty: external buffers are an error).  The
+/// scene of import_gltf(), without its notes.
 [[nodiscard]] Expected<RawScene> read_gltf(std::span<const std::byte> bytes, const std::filesystem::path& base_dir,
                                            const GltfReadOptions& options = {});
 

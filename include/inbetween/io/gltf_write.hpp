@@ -81,9 +81,11 @@ struct GltfExport {
   std::vector<std::string> notes;           ///< what the file cannot carry (named tracks, …)
 };
 
-/// Exports `scene` (built from `raw`, which gives the authored keys and their kinds).  Errors:
-/// InvalidArgument for options ({"tolerance"}, {"substeps"}, {"camera_znear"}, {"camera_zfar"},
-/// {"camera_aspect"}), Unsupported when the scene has no objects or a joint's bind-pose world
+/// Exports `scene`, which must have been built from `raw` (build_scene(raw)): `raw` gives the
+/// authored keys and their kinds, `scene` everything else.  Errors: InvalidArgument for options
+/// ({"tolerance"}, {"substeps"}, {"camera_znear"}, {"camera_zfar"}, {"camera_aspect"}) and for a
+/// pair that was not built one from the other (other objects, names or keyed channels:
+/// {"objects"}, {"objects", i, "name"}, {"objects", i, "translation"|"rotation"|"scale"}), Unsupported when the scene has no objects or a joint's bind-pose world
 /// matrix has no inverse ({"skins", k, "joints", j}), and the refitter's errors prefixed with
 /// {"objects", i, channel}.  What glTF's float cannot hold is refused, never written as infinity:
 /// a range lasting more than 3.4e38 s or over kMaxGltfExportGridPoints ({"range"}); a key whose

@@ -27,14 +27,18 @@ namespace inbetween {
 
 /// Which of the two arcs between the rotations a quaternion interpolation follows.
 enum class RotationPath {
-  Shortest,  ///< flip b to −b when a·b < 0: the rotation turns by at most 180° (the default)
-  Longest,   ///< flip b to −b when a·b > 0: the same end rotations reached the long way round
-  AsGiven,   ///< no flip: the great arc between the quaternions exactly as given on S³
+  shortest,  ///< flip b to −b when a·b < 0: the rotation turns by at most 180° (the default)
+  longest,   ///< flip b to −b when a·b > 0: the same end rotations reached the long way round
+  as_given,  ///< no flip: the great arc between the quaternions exactly as given on S³
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Shortest [[deprecated("use RotationPath::shortest")]] = shortest,
+  Longest [[deprecated("use RotationPath::longest")]] = longest,
+  AsGiven [[deprecated("use RotationPath::as_given")]] = as_given,
 };
 
 /// Options of nlerp() and slerp().
 struct SlerpOptions {
-  RotationPath path = RotationPath::Shortest;  ///< which arc to follow
+  RotationPath path = RotationPath::shortest;  ///< which arc to follow
 };
 
 /// Element-wise linear blend (1 − u)·A + u·B of two matrices.  Shown only as the texts' warning:
@@ -87,15 +91,15 @@ namespace detail {
 template <Real T>
 Quat<T> oriented_end(const Quat<T>& a, const Quat<T>& b, RotationPath path) noexcept {
   const T d = dot(a, b);
-  if (path == RotationPath::Shortest && d < T(0)) return -b;
-  if (path == RotationPath::Longest && d > T(0)) return -b;
+  if (path == RotationPath::shortest && d < T(0)) return -b;
+  if (path == RotationPath::longest && d > T(0)) return -b;
   return b;
 }
 }  // namespace detail
 
 /// Normalised linear blend of unit quaternions: follows the same arc as slerp but with uneven
 /// angular speed (fastest in the middle).  Returns a at u = 0 and the oriented b (b or −b) at u = 1
-/// exactly.  A zero blend (antipodal inputs with RotationPath::AsGiven at u = ½) gives a.
+/// exactly.  A zero blend (antipodal inputs with RotationPath::as_given at u = ½) gives a.
 template <Real T>
 Quat<T> nlerp(const Quat<T>& a, const Quat<T>& b_in, T u, const SlerpOptions& options = {}) noexcept {
   const Quat<T> b = detail::oriented_end(a, b_in, options.path);
@@ -118,7 +122,7 @@ Quat<T> nlerp(const Quat<T>& a, const Quat<T>& b_in, T u, const SlerpOptions& op
 /// -march=native the compiler's fused multiply-adds turned exactly antipodal inputs into a d̂ = ±a
 /// and results of norm 0.79 down to 1e-17 (OrientationInterp.SlerpContractOverRandomPairsAndTheMuseum
 /// under the bench-native preset).  No division by sin θ and hence no small-angle cut-off.  Only d = 0 is special: for identical
-/// inputs the result is a; for exactly antipodal inputs under Longest/AsGiven (no unique arc) the arc
+/// inputs the result is a; for exactly antipodal inputs under longest/as_given (no unique arc) the arc
 /// through a·i (a full turn about the body x axis) is taken — both exact zeros under any
 /// floating-point contraction (e = 0 exactly).  Returns a at u = 0 and the oriented b at u = 1
 /// exactly; unit norm within a few ulp; never NaN for finite unit inputs.

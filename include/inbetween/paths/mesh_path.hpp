@@ -53,15 +53,18 @@ inline constexpr T kMeshWalkTolerance = T(1024) * std::numeric_limits<T>::epsilo
 
 /// Why a downhill walk stopped.
 enum class DownhillStop {
-  Minimum,   ///< no way down: a vertex or valley edge with no lower neighbour, or a level face
-  Boundary,  ///< the walk left the mesh across a boundary edge (the last point is on it)
+  minimum,   ///< no way down: a vertex or valley edge with no lower neighbour, or a level face
+  boundary,  ///< the walk left the mesh across a boundary edge (the last point is on it)
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Minimum [[deprecated("use DownhillStop::minimum")]] = minimum,
+  Boundary [[deprecated("use DownhillStop::boundary")]] = boundary,
 };
 
 /// A downhill path and why it ended.
 template <Real T>
 struct DownhillPath {
   std::vector<Vec3<T>> points;              ///< from the start vertex, heights strictly decreasing
-  DownhillStop stop = DownhillStop::Minimum; ///< why it ended
+  DownhillStop stop = DownhillStop::minimum; ///< why it ended
 };
 
 /// Total length of a polyline (0 for fewer than two points).
@@ -133,15 +136,19 @@ struct MeshSpot {
 
 /// The result of crossing a face from an edge point along a direction.
 enum class CrossKind {
-  Back,    ///< the direction does not enter the face
-  Edge,    ///< leaves through an edge
-  Vertex,  ///< leaves through a corner
+  back,    ///< the direction does not enter the face
+  edge,    ///< leaves through an edge
+  vertex,  ///< leaves through a corner
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Back [[deprecated("use CrossKind::back")]] = back,
+  Edge [[deprecated("use CrossKind::edge")]] = edge,
+  Vertex [[deprecated("use CrossKind::vertex")]] = vertex,
 };
 
 /// Where a straight walk across one face leaves it.
 template <Real T>
 struct FaceCross {
-  CrossKind kind = CrossKind::Back;  ///< back out, through an edge, or through a corner
+  CrossKind kind = CrossKind::back;  ///< back out, through an edge, or through a corner
   int a = -1, b = -1;  ///< exit edge (Edge), or a = the vertex (Vertex)
   T w{};               ///< weight of b on the exit edge
 };
@@ -167,18 +174,18 @@ FaceCross<T> cross_face_from_edge(const TriangleMesh<T>& mesh, int f, int a, int
   const T t = std::min(ta, tb);
   // Exit weights, renormalised on the exit edge.
   T lc = std::clamp(t * dc, T(0), T(1));
-  if (!std::isfinite(t) || lc >= T(1) - tol) return {CrossKind::Vertex, c, -1, T(0)};
+  if (!std::isfinite(t) || lc >= T(1) - tol) return {CrossKind::vertex, c, -1, T(0)};
   if (ta <= tb) {  // λa reaches 0 first: exit through edge (b, c)
     const T lbx = std::clamp(lb + t * db, T(0), T(1));
-    if (std::abs(ta - tb) <= tol * t) return {CrossKind::Vertex, c, -1, T(0)};
+    if (std::abs(ta - tb) <= tol * t) return {CrossKind::vertex, c, -1, T(0)};
     lc = T(1) - lbx;
-    if (lc <= tol) return {CrossKind::Vertex, b, -1, T(0)};
-    return {CrossKind::Edge, b, c, lc};
+    if (lc <= tol) return {CrossKind::vertex, b, -1, T(0)};
+    return {CrossKind::edge, b, c, lc};
   }
   const T lax = std::clamp(la + t * da, T(0), T(1));
   lc = T(1) - lax;
-  if (lc <= tol) return {CrossKind::Vertex, a, -1, T(0)};
-  return {CrossKind::Edge, a, c, lc};
+  if (lc <= tol) return {CrossKind::vertex, a, -1, T(0)};
+  return {CrossKind::edge, a, c, lc};
 }
 
 /// Leaving vertex v through face f along d: Back when d is outside the face's corner at v (within
@@ -194,9 +201,9 @@ FaceCross<T> cross_face_from_vertex(const TriangleMesh<T>& mesh, int f, int v, c
   const T size = std::max(std::abs(al), std::abs(be));
   if (!(sum > T(0)) || al < -tol * size || be < -tol * size) return {};
   const T wb = std::clamp(be / sum, T(0), T(1));
-  if (wb <= tol) return {CrossKind::Vertex, a, -1, T(0)};
-  if (wb >= T(1) - tol) return {CrossKind::Vertex, b, -1, T(0)};
-  return {CrossKind::Edge, a, b, wb};
+  if (wb <= tol) return {CrossKind::vertex, a, -1, T(0)};
+  if (wb >= T(1) - tol) return {CrossKind::vertex, b, -1, T(0)};
+  return {CrossKind::edge, a, b, wb};
 }
 
 /// d with its component along face f's normal removed.
@@ -370,13 +377,13 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
         if (face_seen[std::size_t(f)]) continue;
         const V d = detail::on_plane_of(mesh, f, to_goal);
         const auto cr = detail::cross_face_from_vertex(mesh, f, v, d);
-        if (cr.kind == detail::CrossKind::Back) continue;
+        if (cr.kind == detail::CrossKind::back) continue;
         const T c = dot(normalized(d, V{}), normalized(to_goal, V{}));
         if (c > best_cos) best_cos = c, best_face = f, best_cross = cr;
       }
       if (best_face >= 0) {
         face_seen[std::size_t(best_face)] = 1;
-        if (best_cross.kind == detail::CrossKind::Vertex) {
+        if (best_cross.kind == detail::CrossKind::vertex) {
           if (auto ok = go_vertex(best_cross.a); !ok) return ok.error();
         } else {
           out.push_back(lerp(mesh.vertex(best_cross.a), mesh.vertex(best_cross.b), best_cross.w));
@@ -412,14 +419,14 @@ Expected<std::vector<Vec3<T>>> greedy_mesh_path(const TriangleMesh<T>& mesh, int
       cr = detail::cross_face_from_edge(mesh, f, spot.a, spot.b, T(spot.w),
                                         detail::on_plane_of(mesh, f, V(target - q)));
     }
-    if (cr.kind == detail::CrossKind::Back) {
+    if (cr.kind == detail::CrossKind::back) {
       // Boundary, or a crease: follow the edge to its end nearer the goal.
       const int end = distance(mesh.vertex(spot.a), target) <= distance(mesh.vertex(spot.b), target) ? spot.a : spot.b;
       if (auto ok = go_vertex(end); !ok) return ok.error();
       continue;
     }
     face_seen[std::size_t(f)] = 1;
-    if (cr.kind == detail::CrossKind::Vertex) {
+    if (cr.kind == detail::CrossKind::vertex) {
       if (auto ok = go_vertex(cr.a); !ok) return ok.error();
     } else {
       out.push_back(lerp(mesh.vertex(cr.a), mesh.vertex(cr.b), cr.w));
@@ -455,7 +462,7 @@ Expected<DownhillPath<T>> downhill_mesh_path(const TriangleMesh<T>& mesh, int st
   const V u = normalized(up, V{});
   if (!is_finite(up) || squared_norm(u) == T(0))
     return Error{ErrorCode::InvalidArgument, "up must be a non-zero finite vector", "up"};
-  DownhillPath<T> out{{mesh.vertex(start)}, DownhillStop::Minimum};
+  DownhillPath<T> out{{mesh.vertex(start)}, DownhillStop::minimum};
   const auto height = [&](const V& p) { return dot(p, u); };
   const auto downhill = [&](int f) {  // D = −up + n (n · up)
     const V& n = mesh.face_normal(f);
@@ -476,7 +483,7 @@ Expected<DownhillPath<T>> downhill_mesh_path(const TriangleMesh<T>& mesh, int st
       const int v = spot.vertex;
       const V pv = mesh.vertex(v);
       if (v != start && mesh.on_boundary(v)) {  // reached the boundary (at a vertex)
-        out.stop = DownhillStop::Boundary;
+        out.stop = DownhillStop::boundary;
         return out;
       }
       // Steepest way down: a face whose corner at v holds its D, or an edge to a lower neighbour;
@@ -488,7 +495,7 @@ Expected<DownhillPath<T>> downhill_mesh_path(const TriangleMesh<T>& mesh, int st
         const V d = downhill(f);
         if (!(norm(d) > kLevel)) continue;
         const auto cr = detail::cross_face_from_vertex(mesh, f, v, d);
-        if (cr.kind == detail::CrossKind::Back) continue;
+        if (cr.kind == detail::CrossKind::back) continue;
         const T slope = -dot(normalized(d, V{}), u);
         if (slope > best_slope) best_slope = slope, best_face = f, best_cross = cr;
       }
@@ -497,7 +504,7 @@ Expected<DownhillPath<T>> downhill_mesh_path(const TriangleMesh<T>& mesh, int st
         if (slope > best_slope) best_slope = slope, best_face = -1, best_vertex = nb;
       }
       if (best_face < 0 && best_vertex < 0) return out;  // a minimum
-      if (best_face < 0 || best_cross.kind == detail::CrossKind::Vertex) {
+      if (best_face < 0 || best_cross.kind == detail::CrossKind::vertex) {
         const int next = best_face < 0 ? best_vertex : best_cross.a;
         if (!push(mesh.vertex(next))) return out;
         spot = {.vertex = next};
@@ -509,20 +516,20 @@ Expected<DownhillPath<T>> downhill_mesh_path(const TriangleMesh<T>& mesh, int st
     }
     const int f = mesh.face_across_edge(spot.from, spot.a, spot.b);
     if (f < 0) {
-      out.stop = DownhillStop::Boundary;
+      out.stop = DownhillStop::boundary;
       return out;
     }
     const V d = downhill(f);
     detail::FaceCross<T> cr{};
     if (norm(d) > kLevel) cr = detail::cross_face_from_edge(mesh, f, spot.a, spot.b, T(spot.w), d);
-    if (cr.kind == detail::CrossKind::Back) {
+    if (cr.kind == detail::CrossKind::back) {
       // A valley along the edge (or a level face beyond): down the edge to its lower end.
       const int low = height(mesh.vertex(spot.a)) <= height(mesh.vertex(spot.b)) ? spot.a : spot.b;
       if (!push(mesh.vertex(low))) return out;
       spot = {.vertex = low};
       continue;
     }
-    if (cr.kind == detail::CrossKind::Vertex) {
+    if (cr.kind == detail::CrossKind::vertex) {
       if (!push(mesh.vertex(cr.a))) return out;
       spot = {.vertex = cr.a};
     } else {

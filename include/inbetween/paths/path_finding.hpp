@@ -3,8 +3,8 @@
 /// growth for a moving sphere ("increasing the size of the obstacles by the size of the
 /// approximating sphere"), and the found polyline turned into a smooth curve.
 ///
-/// Grid: cells (x, y) with 0 ≤ x < width, 0 ≤ y < height; a move goes to one of the 4 (GridMoves::Four)
-/// or 8 (GridMoves::Eight) neighbours, costing 1 straight and √2 diagonally.  A diagonal move may
+/// Grid: cells (x, y) with 0 ≤ x < width, 0 ≤ y < height; a move goes to one of the 4 (GridMoves::four)
+/// or 8 (GridMoves::eight) neighbours, costing 1 straight and √2 diagonally.  A diagonal move may
 /// not squeeze between two blocked cells; unless `cut_corners` is set it may not pass any blocked
 /// corner cell either.  The heuristic (Manhattan for 4 moves, octile for 8) never overestimates,
 /// so the path found is a shortest one; ties are broken deterministically.
@@ -67,13 +67,16 @@ class OccupancyGrid {
 
 /// Neighbourhood of a move.
 enum class GridMoves {
-  Four,   ///< up, down, left, right (cost 1)
-  Eight,  ///< also the diagonals (cost √2)
+  four,   ///< up, down, left, right (cost 1)
+  eight,  ///< also the diagonals (cost √2)
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Four [[deprecated("use GridMoves::four")]] = four,
+  Eight [[deprecated("use GridMoves::eight")]] = eight,
 };
 
 /// Options of find_grid_path().
 struct GridPathOptions {
-  GridMoves moves = GridMoves::Eight;  ///< neighbourhood
+  GridMoves moves = GridMoves::eight;  ///< neighbourhood
   bool cut_corners = false;            ///< allow a diagonal past one blocked corner cell
 };
 

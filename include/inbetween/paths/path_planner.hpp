@@ -28,6 +28,8 @@
 ///   fewer and smaller turns; lattice_length stays the path's length.  Shortcuts keep both
 ///   turns they change checked; the next leg starts with the direction the last one arrived in.
 
+#include <string_view>
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
@@ -39,6 +41,7 @@
 #include "inbetween/math/quat.hpp"
 #include "inbetween/paths/environment.hpp"
 #include "inbetween/timing/distance_time.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -112,10 +115,22 @@ Expected<SmoothPath> smooth_planned_path(const Environment& env, const PlannedPo
 
 /// How moving obstacles were avoided.
 enum class Avoidance {
-  None,      ///< no moving obstacle: constant speed
-  Timing,    ///< the speed along the path: constant, with waits where a moving sphere crosses
-  Steering,  ///< detours in front of or behind movers (find_path), then the timing as above
+  none,      ///< no moving obstacle: constant speed
+  timing,    ///< the speed along the path: constant, with waits where a moving sphere crosses
+  steering,  ///< detours in front of or behind movers (find_path), then the timing as above
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  None [[deprecated("use Avoidance::none")]] = none,
+  Timing [[deprecated("use Avoidance::timing")]] = timing,
+  Steering [[deprecated("use Avoidance::steering")]] = steering,
 };
+
+/// File names of the Avoidance enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 3> avoidance_names = {"none", "timing", "steering"};
+/// The name table of Avoidance (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<Avoidance>() noexcept {
+  return avoidance_names;
+}
 
 /// The JSON name of an Avoidance ("none", "timing", "steering").
 std::string_view avoidance_name(Avoidance a) noexcept;
@@ -132,7 +147,7 @@ struct PathTimingOptions {
 struct PathTiming {
   DistanceTimeCurve<double> distance;   ///< s(t), t ∈ [0, duration], piecewise linear (Linear keys)
   std::vector<TimeDistanceKey<double>> keys;  ///< its keys
-  Avoidance avoidance = Avoidance::None;       ///< what was used
+  Avoidance avoidance = Avoidance::none;       ///< what was used
   double duration = 0;                         ///< seconds
   double wait = 0;                             ///< seconds spent standing still
   double clearance_slack = 0;                  ///< the extra clearance demanded at samples (see below)
@@ -204,7 +219,7 @@ struct FoundPath {
   SmoothPath smooth;                         ///< the checked spline
   ArcLength<CatmullRomSpline<Vec3d>> arc;    ///< arc length of smooth.curve
   PathTiming timing;                         ///< s(t) along it
-  Avoidance avoidance = Avoidance::None;     ///< none, timing, or steering (when detours were added)
+  Avoidance avoidance = Avoidance::none;     ///< none, timing, or steering (when detours were added)
   std::vector<Detour> detours;               ///< in the order they were added
   PathEnds ends;                             ///< the ends with the detour points among the via points
   std::optional<CapsuleMotion> capsule;      ///< a capsule mover's motion (the timing's keys wait while it turns)

@@ -26,6 +26,9 @@
 /// twist that closes the frame).  s is measured by 8-point Gauss–Legendre
 /// quadrature of |P'| between the samples.
 
+#include <string_view>
+#include <span>
+#include <array>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -36,6 +39,7 @@
 #include "inbetween/math/expected.hpp"
 #include "inbetween/paths/frenet_frames.hpp"
 #include "inbetween/paths/path_frame.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -45,6 +49,16 @@ enum class RmfClosing {
   distribute,  ///< always distribute it; an error when the curve is not closed
   none,        ///< the plain RMF: the end frame may differ from the start frame by the closing angle
 };
+
+/// File names of the RmfClosing enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 3> rmf_closing_names = {"automatic", "distribute", "none"};
+/// The name table of RmfClosing (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<RmfClosing>() noexcept {
+  return rmf_closing_names;
+}
+/// The file name of v, from the table above (enum_from_string<RmfClosing> parses it back).
+[[nodiscard]] inline std::string_view to_string(RmfClosing v) noexcept { return enum_name(v); }
 
 /// The relative tolerance for "closed": |P(end) − P(start)| ≤ tol·max(1, extent of the curve) and
 /// |T̂(end) − T̂(start)| ≤ tol, with tol = √eps (1.5e-8 in double, 3.5e-4 in float): far above the

@@ -111,15 +111,19 @@ Expected<std::vector<P>> smooth_cubic(std::span<const P> points, const CubicSmoo
 
 /// Convolution kernels of Fig. 3.44, each of area 1 on its support [−r, r].
 enum class SmoothingKernel {
-  Box,       ///< g(x) = 1/(2r)
-  Tent,      ///< g(x) = (r − |x|)/r²
-  Gaussian,  ///< exp(−x²/2σ²) with σ = r/3, truncated at ±r and rescaled to area 1
+  box,       ///< g(x) = 1/(2r)
+  tent,      ///< g(x) = (r − |x|)/r²
+  gaussian,  ///< exp(−x²/2σ²) with σ = r/3, truncated at ±r and rescaled to area 1
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Box [[deprecated("use SmoothingKernel::box")]] = box,
+  Tent [[deprecated("use SmoothingKernel::tent")]] = tent,
+  Gaussian [[deprecated("use SmoothingKernel::gaussian")]] = gaussian,
 };
 
 /// Options of smooth_convolution().
 template <Real T>
 struct ConvolutionOptions {
-  SmoothingKernel kernel = SmoothingKernel::Tent;  ///< kernel shape
+  SmoothingKernel kernel = SmoothingKernel::tent;  ///< kernel shape
   T radius = T(1);       ///< r > 0, half-width of the support in sample spacings
   bool fix_ends = false; ///< keep the first and last points (animation constraints)
 };
@@ -133,13 +137,13 @@ T kernel_integral(SmoothingKernel kernel, T radius, T x) noexcept {
   switch (kernel) {
     // Written in x/r and d/r so that a radius near the type's maximum does not overflow (r², 2r,
     // x + r) into inf/inf = NaN or a zero scale.
-    case SmoothingKernel::Box: return x / radius / T(2) + T(0.5);
-    case SmoothingKernel::Tent: {
+    case SmoothingKernel::box: return x / radius / T(2) + T(0.5);
+    case SmoothingKernel::tent: {
       const T d = (radius - std::abs(x)) / radius;  // the tail beyond |x| has area d²/2 (d in units of r)
       const T tail = d * d / T(2);
       return x < T(0) ? tail : T(1) - tail;
     }
-    case SmoothingKernel::Gaussian: {
+    case SmoothingKernel::gaussian: {
       const T scale = T(3) / std::sqrt(T(2)) / radius;  // 1/(σ√2) with σ = r/3
       const T total = std::erf(T(3) / std::sqrt(T(2)));  // mass on [−r, r] before rescaling
       return (std::erf(x * scale) + total) / (T(2) * total);

@@ -116,14 +116,17 @@ Vec3<T> downhill_direction(const Vec3<T>& n, const Vec3<T>& up = {T(0), T(1), T(
 
 /// How walk_on_surface chooses its direction.
 enum class SurfaceWalk {
-  Downhill,  ///< steepest descent with respect to `up`
-  Heading,   ///< straight ahead from `heading` (a discrete geodesic)
+  downhill,  ///< steepest descent with respect to `up`
+  heading,   ///< straight ahead from `heading` (a discrete geodesic)
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Downhill [[deprecated("use SurfaceWalk::downhill")]] = downhill,
+  Heading [[deprecated("use SurfaceWalk::heading")]] = heading,
 };
 
 /// Options of walk_on_surface().
 template <Real T>
 struct SurfaceWalkOptions {
-  SurfaceWalk mode = SurfaceWalk::Downhill;  ///< direction rule
+  SurfaceWalk mode = SurfaceWalk::downhill;  ///< direction rule
   Vec3<T> heading{T(1), T(0), T(0)};         ///< initial direction for Heading (projected on the tangent plane)
   Vec3<T> up{T(0), T(1), T(0)};              ///< global up for Downhill
   T step = T(0.1);                           ///< > 0, distance moved per step before projection
@@ -149,14 +152,14 @@ Expected<std::vector<Vec3<typename S::scalar_type>>> walk_on_surface(
     return Error{ErrorCode::InvalidArgument, "max_steps must be >= 0, got " + std::to_string(options.max_steps),
                  "max_steps"};
   const V up = normalized(options.up, V{});
-  if (options.mode == SurfaceWalk::Downhill && squared_norm(up) == T(0))
+  if (options.mode == SurfaceWalk::downhill && squared_norm(up) == T(0))
     return Error{ErrorCode::InvalidArgument, "up must be a non-zero finite vector", "up"};
   std::vector<V> path{project_to_surface(surface, start, options.projection)};
   const V g0 = surface.gradient(path[0]);
   if (!(squared_norm(g0) > T(0)) || !is_finite(g0))
     return Error{ErrorCode::InvalidArgument, "the surface gradient is zero or not finite at the start", "start"};
   V dir{};
-  if (options.mode == SurfaceWalk::Heading) {
+  if (options.mode == SurfaceWalk::heading) {
     const V n = normalized(g0, V{});
     const V h = options.heading - n * dot(options.heading, n);
     if (!is_finite(options.heading) || !(norm(h) > T(1e-9) * norm(options.heading)))
@@ -167,7 +170,7 @@ Expected<std::vector<Vec3<typename S::scalar_type>>> walk_on_surface(
   for (int k = 0; k < options.max_steps; ++k) {
     const V p = path.back();
     const V n = surface_normal(surface, p, up);
-    if (options.mode == SurfaceWalk::Downhill) {
+    if (options.mode == SurfaceWalk::downhill) {
       dir = downhill_direction(n, up);
       if (squared_norm(dir) == T(0)) break;  // level spot
     } else {
@@ -175,8 +178,8 @@ Expected<std::vector<Vec3<typename S::scalar_type>>> walk_on_surface(
     }
     const V next = project_to_surface(surface, p + dir * options.step, options.projection);
     if (!is_finite(next)) break;
-    if (options.mode == SurfaceWalk::Downhill && !(dot(next - p, up) < T(0))) break;  // no descent
-    if (options.mode == SurfaceWalk::Heading) dir = normalized(V(next - p), dir);
+    if (options.mode == SurfaceWalk::downhill && !(dot(next - p, up) < T(0))) break;  // no descent
+    if (options.mode == SurfaceWalk::heading) dir = normalized(V(next - p), dir);
     path.push_back(next);
   }
   return path;

@@ -253,12 +253,19 @@ struct CameraViewSample {
 
 /// The COI mode of a built view.
 enum class CoiMode {
-  Point,         ///< look_at a fixed point
-  Object,        ///< look_at an object
-  Ahead,         ///< ahead on the camera's own path
-  Path,          ///< on a second path
-  HoldThenMove,  ///< hold, then move, between targets
-  OwnRotation,   ///< the camera object's own rotation is the view (a glTF camera node)
+  point,         ///< look_at a fixed point
+  object,        ///< look_at an object
+  ahead,         ///< ahead on the camera's own path
+  path,          ///< on a second path
+  hold_then_move,  ///< hold, then move, between targets
+  own_rotation,  ///< the camera object's own rotation is the view (a glTF camera node)
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Point [[deprecated("use CoiMode::point")]] = point,
+  Object [[deprecated("use CoiMode::object")]] = object,
+  Ahead [[deprecated("use CoiMode::ahead")]] = ahead,
+  Path [[deprecated("use CoiMode::path")]] = path,
+  HoldThenMove [[deprecated("use CoiMode::hold_then_move")]] = hold_then_move,
+  OwnRotation [[deprecated("use CoiMode::own_rotation")]] = own_rotation,
 };
 
 template <Real T>
@@ -291,7 +298,7 @@ class CameraView {
   /// True when evaluate() needs CameraInputs::camera_path and s (ahead, coi_path, up_path): the
   /// scene reports an error for a camera that is not on a path.
   [[nodiscard]] bool needs_camera_path() const noexcept {
-    return mode_ == CoiMode::Ahead || mode_ == CoiMode::Path || !up_path_name_.empty();
+    return mode_ == CoiMode::ahead || mode_ == CoiMode::path || !up_path_name_.empty();
   }
   /// Name of the COI path (mode Path), else empty.
   [[nodiscard]] const std::string& coi_path_name() const noexcept { return coi_path_name_; }
@@ -327,7 +334,7 @@ class CameraView {
 
   T yfov_rad_ = T(0);
   T tilt_rad_ = T(0);
-  CoiMode mode_ = CoiMode::Point;
+  CoiMode mode_ = CoiMode::point;
   Target look_{};                    // Point, Object
   T ahead_distance_ = T(0);          // Ahead
   int ahead_count_ = 1;

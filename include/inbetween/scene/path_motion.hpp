@@ -13,6 +13,7 @@
 /// local rotation.  Conventions (glTF): the object's front is +Z and its up +Y; docs/scene-paths.md
 /// has the table.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -34,6 +35,7 @@
 #include "inbetween/timing/piecewise_distance.hpp"
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -49,6 +51,16 @@ enum class EaseKind : std::uint8_t {
   cubic_bezier,           ///< CSS cubic-bezier(x1, y1, x2, y2)
   penner,                 ///< a Penner easing (curve × direction), as Blender evaluates it
 };
+
+/// File names of the EaseKind enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 7> ease_kind_names = {"linear", "sine", "sine_pieces", "cubic", "constant_acceleration", "cubic_bezier", "penner"};
+/// The name table of EaseKind (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<EaseKind>() noexcept {
+  return ease_kind_names;
+}
+/// The file name of v, from the table above (enum_from_string<EaseKind> parses it back).
+[[nodiscard]] inline std::string_view to_string(EaseKind v) noexcept { return enum_name(v); }
 
 /// A normalised ease S(t): [0, 1] → [0, 1] (scene file: speed.ease).  Only the members of `kind`
 /// are read.
@@ -100,6 +112,16 @@ enum class SpeedKind : std::uint8_t {
   acceleration_keys,  ///< an acceleration–time curve integrated twice from a start speed and distance
 };
 
+/// File names of the SpeedKind enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 6> speed_kind_names = {"ease", "distance_keys", "velocity_keys", "track", "constraints", "acceleration_keys"};
+/// The name table of SpeedKind (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<SpeedKind>() noexcept {
+  return speed_kind_names;
+}
+/// The file name of v, from the table above (enum_from_string<SpeedKind> parses it back).
+[[nodiscard]] inline std::string_view to_string(SpeedKind v) noexcept { return enum_name(v); }
+
 /// A distance–time key (scene file: speed.keys[i]).
 struct RawDistanceKey {
   double frame = 0;     ///< animation frame
@@ -141,16 +163,16 @@ struct RawSpeed {
   std::vector<RawDistanceKey> keys;   ///< distance_keys: ≥ 2 keys, frames strictly increasing
   /// distance_keys without speeds: how the keys are joined (MonotoneCubic never backs up when the
   /// key distances do not decrease).
-  PositionInterpolation interpolation = PositionInterpolation::MonotoneCubic;
+  PositionInterpolation interpolation = PositionInterpolation::monotone_cubic;
   std::vector<RawVelocityKey> velocities;  ///< velocity_keys: ≥ 2 keys, frames strictly increasing
   /// velocity_keys: how the curve is adjusted so that it covers exactly [from, to].
-  VelocityFit fit = VelocityFit::FixKeysAdjustInterior;
+  VelocityFit fit = VelocityFit::fix_keys_adjust_interior;
   std::optional<FCurve> track;  ///< track: the distance as a scalar F-curve (the scene resolves names)
   /// acceleration_keys: ≥ 2 keys, frames strictly increasing.  The start distance is `from`
   /// (default 0); with `to` every acceleration is scaled by one factor so the motion ends there.
   std::vector<RawAccelerationKey> accelerations;
   /// acceleration_keys: constant on [frame_i, frame_{i+1}) (Figure 3.16) or linear between keys.
-  AccelerationShape shape = AccelerationShape::Constant;
+  AccelerationShape shape = AccelerationShape::constant;
   /// acceleration_keys: the speed at the first key, length units (or fractions) per second, ≥ 0.
   double start_speed = 0;
   /// distance_keys and velocity_keys: when the distance would run backwards, replace the curve by
@@ -166,6 +188,16 @@ enum class OrientationMode : std::uint8_t {
   up,                   ///< front along the tangent, up = the fixed up vector made perpendicular
   look_at,              ///< front towards a point, up = the fixed up vector made perpendicular
 };
+
+/// File names of the OrientationMode enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 4> orientation_mode_names = {"rotation_minimizing", "frenet", "up", "look_at"};
+/// The name table of OrientationMode (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<OrientationMode>() noexcept {
+  return orientation_mode_names;
+}
+/// The file name of v, from the table above (enum_from_string<OrientationMode> parses it back).
+[[nodiscard]] inline std::string_view to_string(OrientationMode v) noexcept { return enum_name(v); }
 
 /// Banking into turns (scene file: orientation.banking; paths/banking.hpp): a roll about the front
 /// axis by β = atan(gain · lateral curvature), clamped to ±max_bank_rad.
@@ -327,16 +359,5 @@ class PathMotion {
 ///   ({"orientation", "closing"}).
 [[nodiscard]] Expected<PathMotion> build_path_motion(const RawPathMotion& raw, double fps);
 
-/// The scene-file name of each enumerator ("constant_acceleration", "distance_keys",
-/// "rotation_minimizing", …); enum_from_string<E>(name) (tracks/fcurve.hpp) parses them back.
-[[nodiscard]] std::string_view to_string(EaseKind v) noexcept;
-[[nodiscard]] std::string_view to_string(SpeedKind v) noexcept;        ///< "ease", "distance_keys", "velocity_keys", "track", "constraints", "acceleration_keys"
-[[nodiscard]] std::string_view to_string(OrientationMode v) noexcept;  ///< "rotation_minimizing", "frenet", "up", "look_at"
-[[nodiscard]] std::string_view to_string(EasingCurve v) noexcept;      ///< "sine", "quad", …, "elastic"
-[[nodiscard]] std::string_view to_string(EasingDirection v) noexcept;  ///< "in", "out", "in_out"
-[[nodiscard]] std::string_view to_string(PositionInterpolation v) noexcept;  ///< "linear", "catmull_rom", "monotone_cubic"
-[[nodiscard]] std::string_view to_string(AccelerationShape v) noexcept;  ///< "constant", "linear"
-[[nodiscard]] std::string_view to_string(RmfClosing v) noexcept;  ///< "automatic", "distribute", "none"
-[[nodiscard]] std::string_view to_string(VelocityFit v) noexcept;  ///< "float_to_keep_average", "fix_keys_adjust_interior"
 
 }  // namespace inbetween

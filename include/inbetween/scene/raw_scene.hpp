@@ -61,6 +61,7 @@ struct RawVectorTrack {
 /// channel of objects).  Values and tangents are [w, x, y, z] in the file.
 struct RawQuatKeys {
   std::vector<QuatKey<double>> keys;          ///< ≥ 1 key, frames strictly increasing, non-zero values
+  std::vector<QuatKeyTangents<double>> tangents;  ///< none (all zero) or one per key: glTF cubic tangents
   double distance_factor = 1.0 / 3.0;         ///< k of Eq. 3.30, in (0, 1]
   bool time_aware = true;                     ///< see QuatSplineOptions::time_aware
 };
@@ -69,6 +70,7 @@ struct RawQuatKeys {
 struct RawQuatTrack {
   std::string name;        ///< column prefix (non-empty)
   std::vector<QuatKey<double>> keys;   ///< ≥ 1 key, frames strictly increasing, non-zero values
+  std::vector<QuatKeyTangents<double>> tangents;  ///< none (all zero) or one per key: glTF cubic tangents
   double distance_factor = 1.0 / 3.0;  ///< k of Eq. 3.30, in (0, 1]
   bool time_aware = true;              ///< see QuatSplineOptions::time_aware
 };

@@ -22,7 +22,7 @@
 #include "inbetween/tracks/euler_track.hpp"
 #include "inbetween/tracks/fcurve.hpp"
 #include "inbetween/tracks/quat_track.hpp"
-#include "inbetween/tracks/enum_names.hpp"
+#include "inbetween/math/enum_names.hpp"
 #include "inbetween/tracks/track.hpp"
 #include "inbetween/tracks/transform_track.hpp"
 
@@ -36,7 +36,7 @@ enum class Space {
 
 /// File and command-line names of the Space enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 2> space_names = {"world", "local"};
-/// The name table of Space (see enum_names.hpp).
+/// The name table of Space (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<Space>() noexcept {
   return space_names;

@@ -4,6 +4,8 @@
 /// or from a user velocity-time curve (both ways the texts describe); a check that reports where
 /// the object would back up (negative velocity), and a monotone repair (Fritsch–Carlson).
 
+#include <string_view>
+#include <array>
 #include <optional>
 #include <span>
 #include <vector>
@@ -12,6 +14,7 @@
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/scalar.hpp"
 #include "inbetween/timing/ease.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -39,21 +42,48 @@ struct TimeVelocityKey {
 
 /// How ⟨t_i, s_i⟩ keys are joined.
 enum class PositionInterpolation {
-  Linear,         ///< straight lines: continuous position, velocity jumps at keys (Figure 3.21 top)
-  CatmullRom,     ///< C¹ cubic with key velocity (s_{i+1} − s_{i−1})/(t_{i+1} − t_{i−1}); may overshoot
-  MonotoneCubic,  ///< C¹ cubic with Fritsch–Carlson velocities: never backs up if the s_i do not
+  linear,         ///< straight lines: continuous position, velocity jumps at keys (Figure 3.21 top)
+  catmull_rom,    ///< C¹ cubic with key velocity (s_{i+1} − s_{i−1})/(t_{i+1} − t_{i−1}); may overshoot
+  monotone_cubic,  ///< C¹ cubic with Fritsch–Carlson velocities: never backs up if the s_i do not
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Linear [[deprecated("use PositionInterpolation::linear")]] = linear,
+  CatmullRom [[deprecated("use PositionInterpolation::catmull_rom")]] = catmull_rom,
+  MonotoneCubic [[deprecated("use PositionInterpolation::monotone_cubic")]] = monotone_cubic,
 };
+
+/// File names of the PositionInterpolation enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 3> position_interpolation_names = {"linear", "catmull_rom", "monotone_cubic"};
+/// The name table of PositionInterpolation (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<PositionInterpolation>() noexcept {
+  return position_interpolation_names;
+}
+/// The file name of v, from the table above (enum_from_string<PositionInterpolation> parses it back).
+[[nodiscard]] inline std::string_view to_string(PositionInterpolation v) noexcept { return enum_name(v); }
 
 /// How a user velocity-time curve is made to cover the total distance (texts 004 §3.2.4).
 enum class VelocityFit {
-  FloatToKeepAverage,  ///< shift the whole curve up or down by a constant (keys' velocities change)
+  float_to_keep_average,  ///< shift the whole curve up or down by a constant (keys' velocities change)
   /// Keep the keys' velocities; add a bump b_i·6τ(1 − τ) inside interval i.  The bumps first use
   /// the room each interval has between its two keys' speeds (|6b_i| ≤ |Δv_i|, shared in
   /// proportion), so the speed never leaves [min, max] of an interval's keys and two equal keys
   /// give a flat speed; only distance beyond all that room is spread evenly over time (the texts'
   /// c·6τ(1 − τ), e.g. Eq. 3.20 from two keys at rest), and there the speed leaves the keys' range.
-  FixKeysAdjustInterior,
+  fix_keys_adjust_interior,
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  FloatToKeepAverage [[deprecated("use VelocityFit::float_to_keep_average")]] = float_to_keep_average,
+  FixKeysAdjustInterior [[deprecated("use VelocityFit::fix_keys_adjust_interior")]] = fix_keys_adjust_interior,
 };
+
+/// File names of the VelocityFit enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 2> velocity_fit_names = {"float_to_keep_average", "fix_keys_adjust_interior"};
+/// The name table of VelocityFit (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<VelocityFit>() noexcept {
+  return velocity_fit_names;
+}
+/// The file name of v, from the table above (enum_from_string<VelocityFit> parses it back).
+[[nodiscard]] inline std::string_view to_string(VelocityFit v) noexcept { return enum_name(v); }
 
 /// Where a distance-time function runs backwards: the first interval of negative velocity.
 template <Real T>
@@ -72,7 +102,7 @@ class DistanceTimeCurve {
  public:
   /// From ⟨t_i, s_i⟩ (≥ 2 keys, t strictly increasing, all finite).  Errors name the key.
   static Expected<DistanceTimeCurve> from_positions(std::span<const TimeDistanceKey<T>> keys,
-                                                    PositionInterpolation how = PositionInterpolation::Linear);
+                                                    PositionInterpolation how = PositionInterpolation::linear);
   /// From ⟨t_i, s_i, v_i⟩: the C¹ cubic Hermite through every key with the given velocities.
   static Expected<DistanceTimeCurve> from_constraints(std::span<const TimeDistanceVelocityKey<T>> keys);
   /// From a piecewise-linear velocity-time curve: s(t_0) = 0 and s(t_n) = total_distance, the

@@ -11,12 +11,16 @@
 /// by 2⁻¹⁰·change), and elastic blends its amplitude in near the end where it would otherwise
 /// start with a jump (see PennerParams::amplitude).  docs/tracks.md ("Penner easing") gives each form.
 
+#include <string_view>
+#include <span>
+#include <array>
 #include <cmath>
 #include <algorithm>
 #include <cstdint>
 #include <limits>
 
 #include "inbetween/math/scalar.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -34,12 +38,32 @@ enum class EasingCurve : std::uint8_t {
   elastic,  ///< a damped sine oscillation (PennerParams::amplitude, PennerParams::period)
 };
 
+/// File names of the EasingCurve enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 10> easing_curve_names = {"sine", "quad", "cubic", "quart", "quint", "expo", "circ", "back", "bounce", "elastic"};
+/// The name table of EasingCurve (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<EasingCurve>() noexcept {
+  return easing_curve_names;
+}
+/// The file name of v, from the table above (enum_from_string<EasingCurve> parses it back).
+[[nodiscard]] inline std::string_view to_string(EasingCurve v) noexcept { return enum_name(v); }
+
 /// Which end of the segment the easing acts on.
 enum class EasingDirection : std::uint8_t {
   in,      ///< slow start: the curve as named
   out,     ///< slow end: the curve mirrored through the segment centre
   in_out,  ///< the "in" curve on the first half and the "out" curve on the second
 };
+
+/// File names of the EasingDirection enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 3> easing_direction_names = {"in", "out", "in_out"};
+/// The name table of EasingDirection (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<EasingDirection>() noexcept {
+  return easing_direction_names;
+}
+/// The file name of v, from the table above (enum_from_string<EasingDirection> parses it back).
+[[nodiscard]] inline std::string_view to_string(EasingDirection v) noexcept { return enum_name(v); }
 
 /// Blender's "auto" easing: ease out for back, bounce and elastic, ease in for the others.
 constexpr EasingDirection automatic_direction(EasingCurve curve) noexcept {

@@ -17,6 +17,7 @@
 /// quadratics or cubics).  Because integration loses the total distance (the texts' remark under
 /// Figure 3.18), an optional end distance scales every acceleration by one factor to reach it.
 
+#include <string_view>
 #include <array>
 #include <limits>
 #include <optional>
@@ -27,6 +28,7 @@
 #include "inbetween/math/scalar.hpp"
 #include "inbetween/timing/distance_time.hpp"
 #include "inbetween/timing/ease.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -49,14 +51,27 @@ struct TimeAccelerationKey {
 
 /// How an acceleration–time curve runs between its keys.
 enum class AccelerationShape {
-  Constant,  ///< a = a_i on [t_i, t_{i+1}) (Figure 3.16); the last key's value is not used
-  Linear,    ///< a goes linearly from a_i to a_{i+1}
+  constant,  ///< a = a_i on [t_i, t_{i+1}) (Figure 3.16); the last key's value is not used
+  linear,    ///< a goes linearly from a_i to a_{i+1}
+  /// Deprecated PascalCase spellings, kept for one release (docs/conventions.md, "Enumerators").
+  Constant [[deprecated("use AccelerationShape::constant")]] = constant,
+  Linear [[deprecated("use AccelerationShape::linear")]] = linear,
 };
+
+/// File names of the AccelerationShape enumerators, in declaration order.
+inline constexpr std::array<std::string_view, 2> acceleration_shape_names = {"constant", "linear"};
+/// The name table of AccelerationShape (math/enum_names.hpp).
+template <>
+constexpr std::span<const std::string_view> enum_names<AccelerationShape>() noexcept {
+  return acceleration_shape_names;
+}
+/// The file name of v, from the table above (enum_from_string<AccelerationShape> parses it back).
+[[nodiscard]] inline std::string_view to_string(AccelerationShape v) noexcept { return enum_name(v); }
 
 /// Options of PiecewiseDistanceCurve::from_acceleration_curve.
 template <Real T>
 struct AccelerationIntegration {
-  AccelerationShape shape = AccelerationShape::Constant;  ///< how the keys are joined
+  AccelerationShape shape = AccelerationShape::constant;  ///< how the keys are joined
   T start_speed{};     ///< v(t_0), ≥ 0
   T start_distance{};  ///< s(t_0)
   /// When given, every acceleration is multiplied by one factor k so that s(t_n) equals it

@@ -16,7 +16,7 @@
 
 #include "inbetween/math/euler.hpp"
 #include "inbetween/math/expected.hpp"
-#include "inbetween/tracks/enum_names.hpp"
+#include "inbetween/math/enum_names.hpp"
 #include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
 
@@ -30,7 +30,7 @@ enum class EulerTrackMode : std::uint8_t {
 
 /// File and command-line names of the EulerTrackMode enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 2> euler_track_mode_names = {"angles", "quaternion"};
-/// The name table of EulerTrackMode (see enum_names.hpp).
+/// The name table of EulerTrackMode (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<EulerTrackMode>() noexcept {
   return euler_track_mode_names;

@@ -19,7 +19,7 @@
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/vec.hpp"
 #include "inbetween/timing/penner.hpp"
-#include "inbetween/tracks/enum_names.hpp"
+#include "inbetween/math/enum_names.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace inbetween {
@@ -35,7 +35,7 @@ enum class Interpolation : std::uint8_t {
 /// File and command-line names of the Interpolation enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 13> interpolation_names = {
     "constant", "linear", "bezier", "back", "bounce", "circ", "cubic", "elastic", "expo", "quad", "quart", "quint", "sine"};
-/// The name table of Interpolation (see enum_names.hpp).
+/// The name table of Interpolation (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<Interpolation>() noexcept {
   return interpolation_names;
@@ -46,7 +46,7 @@ enum class KeyEasing : std::uint8_t { automatic, ease_in, ease_out, ease_in_out 
 
 /// File and command-line names of the KeyEasing enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 4> key_easing_names = {"auto", "ease_in", "ease_out", "ease_in_out"};
-/// The name table of KeyEasing (see enum_names.hpp).
+/// The name table of KeyEasing (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<KeyEasing>() noexcept {
   return key_easing_names;
@@ -63,7 +63,7 @@ enum class HandleType : std::uint8_t {
 
 /// File and command-line names of the HandleType enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 5> handle_type_names = {"free", "aligned", "vector", "auto", "auto_clamped"};
-/// The name table of HandleType (see enum_names.hpp).
+/// The name table of HandleType (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<HandleType>() noexcept {
   return handle_type_names;
@@ -77,7 +77,7 @@ enum class Extrapolation : std::uint8_t {
 
 /// File and command-line names of the Extrapolation enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 2> extrapolation_names = {"constant", "linear"};
-/// The name table of Extrapolation (see enum_names.hpp).
+/// The name table of Extrapolation (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<Extrapolation>() noexcept {
   return extrapolation_names;
@@ -91,7 +91,7 @@ enum class AutoSmoothing : std::uint8_t {
 
 /// File and command-line names of the AutoSmoothing enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 2> auto_smoothing_names = {"none", "cont_accel"};
-/// The name table of AutoSmoothing (see enum_names.hpp).
+/// The name table of AutoSmoothing (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<AutoSmoothing>() noexcept {
   return auto_smoothing_names;
@@ -107,7 +107,7 @@ enum class CycleMode : std::uint8_t {
 
 /// File and command-line names of the CycleMode enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 4> cycle_mode_names = {"none", "repeat", "repeat_offset", "mirror"};
-/// The name table of CycleMode (see enum_names.hpp).
+/// The name table of CycleMode (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<CycleMode>() noexcept {
   return cycle_mode_names;
@@ -263,6 +263,6 @@ class FCurve {
 [[nodiscard]] std::string_view to_string(AutoSmoothing v) noexcept;  ///< "none", "cont_accel"
 [[nodiscard]] std::string_view to_string(CycleMode v) noexcept;      ///< "none", "repeat", …
 
-// enum_from_string<Enum>(name), the inverse of to_string(), is declared in enum_names.hpp.
+// enum_from_string<Enum>(name), the inverse of to_string(), is defined in math/enum_names.hpp.
 
 }  // namespace inbetween

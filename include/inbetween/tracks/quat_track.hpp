@@ -27,7 +27,7 @@
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/orientation_interp.hpp"
 #include "inbetween/math/quat.hpp"
-#include "inbetween/tracks/enum_names.hpp"
+#include "inbetween/math/enum_names.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace inbetween {
@@ -43,21 +43,30 @@ enum class QuatInterpolation : std::uint8_t {
 
 /// File and command-line names of the QuatInterpolation enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 5> quat_interpolation_names = {"step", "slerp", "bezier", "squad", "gltf_cubic"};
-/// The name table of QuatInterpolation (see enum_names.hpp).
+/// The name table of QuatInterpolation (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<QuatInterpolation>() noexcept {
   return quat_interpolation_names;
 }
 
-/// One authored orientation key.
+/// One authored orientation key (48 bytes in double: a motion-capture clip has one per frame and
+/// joint, so the glTF tangents that only gltf_cubic keys read live beside the keys, in
+/// QuatKeyTangents).
 template <Real T>
 struct QuatKey {
   T frame{};                                                ///< time in frames
   Quat<T> value{};                                          ///< orientation (normalised when built)
   QuatInterpolation interpolation = QuatInterpolation::slerp;  ///< of the segment to the right
   bool long_way = false;  ///< the segment arriving at this key takes the long way round
-  Quat<T> in_tangent = Quat<T>::from_wxyz(0, 0, 0, 0);   ///< glTF in-tangent (per frame), gltf_cubic only
-  Quat<T> out_tangent = Quat<T>::from_wxyz(0, 0, 0, 0);  ///< glTF out-tangent (per frame), gltf_cubic only
+};
+
+/// The glTF CUBICSPLINE tangents of one key, per frame (read by gltf_cubic segments only): a
+/// track's tangents are either none (all zero) or one per key, in the keys' order.
+template <Real T>
+struct QuatKeyTangents {
+  Quat<T> in = Quat<T>::from_wxyz(0, 0, 0, 0);   ///< in-tangent, arriving at the key
+  Quat<T> out = Quat<T>::from_wxyz(0, 0, 0, 0);  ///< out-tangent, leaving the key
+  friend bool operator==(const QuatKeyTangents&, const QuatKeyTangents&) = default;
 };
 
 /// Options of the Bézier quaternion spline.
@@ -77,7 +86,7 @@ namespace quat_track_detail {
 /// by the math module's slerp (constant speed, accurate for tiny angles, never NaN).
 template <Real T>
 Quat<T> slerp_unit(const Quat<T>& a, const Quat<T>& b, T u) noexcept {
-  return slerp(a, b, u, SlerpOptions{.path = RotationPath::AsGiven});
+  return slerp(a, b, u, SlerpOptions{.path = RotationPath::as_given});
 }
 
 /// (a + b)/|a + b|: slerp at ½ without trigonometry (the text's bisect); a or b if they cancel.
@@ -168,7 +177,8 @@ class QuatTrack {
 
  private:
   template <Real U>
-  friend Expected<QuatTrack<U>> build_quat_track(std::span<const QuatKey<U>> keys, const QuatSplineOptions<U>& options);
+  friend Expected<QuatTrack<U>> build_quat_track(std::span<const QuatKey<U>> keys, std::span<const QuatKeyTangents<U>> tangents,
+                                                 const QuatSplineOptions<U>& options);
 
   QuatTrack() = default;  // only build_quat_track() makes tracks: ≥ 1 key
   Quat<T> sample(T frame, TrackCursor& cursor, bool use_cursor) const noexcept;
@@ -182,26 +192,51 @@ class QuatTrack {
   std::vector<QuatInterpolation> mode_;
 };
 
-/// Validates (≥ 1 key; finite frames strictly increasing; finite, non-zero quaternions and
-/// tangents; distance factor in (0, 1]) and builds a quaternion track.  Error locations:
-/// {"keys", i, member} ("frame", "value", "in_tangent", "out_tangent"), {"keys"} when there is no
-/// key, {"distance_factor"} for the option.
+/// Validates (≥ 1 key; finite frames strictly increasing; finite, non-zero quaternions; finite
+/// tangents, none or one per key; distance factor in (0, 1]) and builds a quaternion track.
+/// `tangents` empty means every key's are zero.  Error locations: {"keys", i, member} ("frame",
+/// "value", "in_tangent", "out_tangent": the scene file keeps the tangents in the key), {"keys"}
+/// when there is no key, {"tangents"} when their count is neither 0 nor the keys', and
+/// {"distance_factor"} for the option.
 template <Real T>
 [[nodiscard]] Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys,
+                                                      std::span<const QuatKeyTangents<T>> tangents,
                                                       const QuatSplineOptions<T>& options = {});
 
-/// Convenience overload for a vector of keys.
+/// Keys without tangents (none is gltf_cubic, or its tangents are zero).
+template <Real T>
+[[nodiscard]] Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys,
+                                                      const QuatSplineOptions<T>& options = {}) {
+  return build_quat_track(keys, std::span<const QuatKeyTangents<T>>(), options);
+}
+
+/// Convenience overload for a vector of keys (and, optionally, their tangents).
 template <Real T>
 [[nodiscard]] Expected<QuatTrack<T>> build_quat_track(const std::vector<QuatKey<T>>& keys,
                                                       const QuatSplineOptions<T>& options = {}) {
-  return build_quat_track(std::span<const QuatKey<T>>(keys), options);
+  return build_quat_track(std::span<const QuatKey<T>>(keys), std::span<const QuatKeyTangents<T>>(), options);
+}
+
+/// Convenience overload for vectors of keys and their tangents.
+template <Real T>
+[[nodiscard]] Expected<QuatTrack<T>> build_quat_track(const std::vector<QuatKey<T>>& keys,
+                                                      const std::vector<QuatKeyTangents<T>>& tangents,
+                                                      const QuatSplineOptions<T>& options = {}) {
+  return build_quat_track(std::span<const QuatKey<T>>(keys), std::span<const QuatKeyTangents<T>>(tangents), options);
 }
 
 // ============================================================================ implementation
 template <Real T>
-Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const QuatSplineOptions<T>& options) {
+Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, std::span<const QuatKeyTangents<T>> tangents,
+                                        const QuatSplineOptions<T>& options) {
   using namespace quat_track_detail;
   if (keys.empty()) return Error{ErrorCode::TooFewPoints, "a track needs at least one key", "", {"keys"}};
+  if (!tangents.empty() && tangents.size() != keys.size()) {
+    return Error{ErrorCode::WrongArity,
+                 std::to_string(tangents.size()) + " tangent pairs for " + std::to_string(keys.size()) +
+                     " keys (none, or one per key)",
+                 "", {"tangents"}};
+  }
   if (!(options.distance_factor > T(0) && options.distance_factor <= T(1))) {
     return Error{ErrorCode::InvalidArgument, "must be in (0, 1]", "", {"distance_factor"}};
   }
@@ -232,8 +267,9 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const 
     const auto& k = keys[i];
     if (!std::isfinite(k.frame)) return fail(ErrorCode::NotFinite, "frame is not finite", {"keys", i, "frame"});
     if (!is_finite(k.value)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "value"});
-    if (!is_finite(k.in_tangent)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "in_tangent"});
-    if (!is_finite(k.out_tangent)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "out_tangent"});
+    const QuatKeyTangents<T> t = tangents.empty() ? QuatKeyTangents<T>{} : tangents[i];
+    if (!is_finite(t.in)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "in_tangent"});
+    if (!is_finite(t.out)) return fail(ErrorCode::NotFinite, "quaternion or tangent is not finite", {"keys", i, "out_tangent"});
     const T len = norm(k.value);
     if (!(len > T(0))) return fail(ErrorCode::InvalidArgument, "zero quaternion is not a rotation", {"keys", i, "value"});
     if (i > 0 && !(k.frame > keys[i - 1].frame)) {
@@ -251,8 +287,8 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, const 
     }
     tr.keys_[i] = q * sign;
     if (any_cubic) {
-      tr.tin_[i] = k.in_tangent * sign;
-      tr.tout_[i] = k.out_tangent * sign;
+      tr.tin_[i] = t.in * sign;
+      tr.tout_[i] = t.out * sign;
     }
     tr.sign_[i] = sign;
     tr.length_[i] = len;

@@ -27,7 +27,7 @@
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/math/vec.hpp"
-#include "inbetween/tracks/enum_names.hpp"
+#include "inbetween/math/enum_names.hpp"
 
 namespace inbetween {
 
@@ -46,7 +46,7 @@ enum class TangentKind : std::uint8_t {
 /// File and command-line names of the TangentKind enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 8> tangent_kind_names = {
     "hermite", "catmull_rom", "kochanek_bartels", "flat", "linear", "clamped", "plateau", "stepped"};
-/// The name table of TangentKind (see enum_names.hpp).
+/// The name table of TangentKind (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<TangentKind>() noexcept {
   return tangent_kind_names;
@@ -68,7 +68,7 @@ enum class TrackExtend : std::uint8_t {
 
 /// File and command-line names of the TrackExtend enumerators, in declaration order.
 inline constexpr std::array<std::string_view, 5> track_extend_names = {"constant", "linear", "cycle", "cycle_offset", "oscillate"};
-/// The name table of TrackExtend (see enum_names.hpp).
+/// The name table of TrackExtend (math/enum_names.hpp).
 template <>
 constexpr std::span<const std::string_view> enum_names<TrackExtend>() noexcept {
   return track_extend_names;

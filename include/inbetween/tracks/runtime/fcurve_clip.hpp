@@ -4,9 +4,9 @@
 /// of degree 9 in the piece's parameter u = (frame − origin)·2/length ∈ [−1, 1] reproduces
 /// FCurve::sample (Blender's root-finding evaluation) to a tolerance checked at build time, so
 /// sampling runs no root finder: one polynomial per channel, evaluated native_simd<float>::size()
-/// channels at a time from a cache kept in the context, with the pieces in a time-sorted stream
+/// channels at a time from a cache kept in the cursor, with the pieces in a time-sorted stream
 /// (the RigClip machinery, rig_clip.hpp).  A piece is 16 floats (lo and hi kept apart from the
-/// other 14); the context caches the 14 per channel.  Pieces of channels that share their key
+/// other 14); the cursor caches the 14 per channel.  Pieces of channels that share their key
 /// frames (a rig's joint: its ten curves keyed together) are stored as runs in SIMD-register order:
 /// a run that fills a SIMD group is read where it is in the clip (no copy into the cache), a
 /// shorter one is copied lane-wise.
@@ -30,14 +30,14 @@
 /// float and in its order of operations (the code FCurve::sample runs, fcurve_detail::decide_cycles).
 /// The fold is an affine map valid on a window of frames (one cycle copy: local = base ±
 /// ((frame − end key) − n·period) + wrap, exact there with n·period stored as two floats, plus the
-/// copy's value offset), found at the copy's boundary and kept in the context.  Cycling channels
+/// copy's value offset), found at the copy's boundary and kept in the cursor.  Cycling channels
 /// with the same end-key frames and Cycles settings form a cycle class (a character's walk cycle:
 /// all its curves) with one local frame and one piece stream in local time, consumed as the main
 /// stream is; the SIMD loop applies the class's map to each of its channels (identical float
 /// operations, so the same local frame) and adds the channel's offset.  Frames where Blender's
 /// float arithmetic is irregular (a cycle boundary exactly, a float cycle number that rounds to an
 /// integer, 2^23 cycles and beyond) get a one-frame window whose map is decide_cycles' own answer:
-/// exact, slower (a scalar fold per sample).  Memory: no copies (the context holds 9 floats per
+/// exact, slower (a scalar fold per sample).  Memory: no copies (the cursor holds 9 floats per
 /// channel and 16 per class).  docs/runtime.md has the design and the measured cost.
 /// Cycle-aware auto handles (Blender recomputes the end keys' handles as if the curve wrapped) are
 /// already in the built FCurve's keys, so the pieces include them.
@@ -94,6 +94,34 @@ inline constexpr float fcurve_runtime_tolerance = 2e-5f;
   return std::abs(double(value) - double(reference)) <= double(fcurve_runtime_tolerance) * double(scale) + ulp;
 }
 
+/// The caller-owned state of one playback stream of an FCurveClip (make it with
+/// make_fcurve_clip_cursor): the channels' current pieces and their cache.  Was FCurveClip::Context.
+struct FCurveClipCursor {
+  std::vector<std::uint32_t> segment;  ///< per channel: current piece in the channel
+  std::vector<float> cache;            ///< padded channels × FCurveClip::cached_fields, in SIMD-register order
+  std::vector<float> values;           ///< per channel (curve c, for a rig too): the last sampled value
+  /// Per channel, field-major (fold[k·stride + c]), its cycle class's fold in force: k = 0, 1 the
+  /// window [lo, hi] of frames it is valid on, 2 end key, 3 and 4 n·period (cycle number times
+  /// period) as a sum of two floats, 5 sign ±1, 6 base, 7 wrap (0 or the period), 8 the channel's
+  /// value offset: local = base + sign·(((frame − end) − nd_hi) − nd_lo) + wrap.  Channels
+  /// without cycles: the identity on (−∞, +∞).
+  std::vector<float> fold;
+  /// Per cycle class, 16 floats: its fold (fields 0–7 as in `fold`), 8 the last local frame,
+  /// 9 the lo of the next piece of its stream (+∞ past the last).
+  std::vector<float> class_fold;
+  std::vector<std::size_t> class_next;  ///< per cycle class: first piece of its stream not yet consumed
+  std::vector<std::uint8_t> folding;   ///< per SIMD group of channels: 1 if one of them cycles
+  /// Per SIMD group of channels: the first stream piece of the run of the clip's main stream the
+  /// group's channels read in place (a run that fills the group), or no_run: the group's part of
+  /// `cache` holds their pieces.
+  std::vector<std::uint32_t> direct;
+  /// A `direct` entry for a group read from `cache`.
+  static constexpr std::uint32_t no_run = std::numeric_limits<std::uint32_t>::max();
+  std::size_t stride = 0;              ///< padded channel count (a multiple of 16)
+  std::size_t next = 0;                ///< first stream piece not yet consumed
+  float time = -std::numeric_limits<float>::infinity();  ///< last sampled frame (clamped)
+};
+
 /// A compiled, immutable set of F-curves (build it with build_fcurve_clip or build_fcurve_rig).
 class FCurveClip {
  public:
@@ -130,44 +158,20 @@ class FCurveClip {
   /// frames: u is −1 for frame ≤ the first, +1 for frame ≥ the second; ∓∞ for no band), then
   /// c0 … c9 of the polynomial in u = (frame − origin)·2/length.
   static constexpr std::size_t block = 6 + degree + 1;
-  /// Floats of a piece the context's cache holds: the block without lo and hi (the sampling loop
+  /// Floats of a piece the cursor's cache holds: the block without lo and hi (the sampling loop
   /// reads only these; the stream and the searches read lo and hi from the clip).
   static constexpr std::size_t cached_fields = block - 2;
 
-  /// The channels' cursors and cache for one playback stream (make it with make_fcurve_context).
-  struct Context {
-    std::vector<std::uint32_t> segment;  ///< per channel: current piece in the channel
-    std::vector<float> cache;            ///< padded channels × cached_fields, in SIMD-register order
-    std::vector<float> values;           ///< per channel (curve c, for a rig too): the last sampled value
-    /// Per channel, field-major (fold[k·stride + c]), its cycle class's fold in force: k = 0, 1 the
-    /// window [lo, hi] of frames it is valid on, 2 end key, 3 and 4 n·period (cycle number times
-    /// period) as a sum of two floats, 5 sign ±1, 6 base, 7 wrap (0 or the period), 8 the channel's
-    /// value offset: local = base + sign·(((frame − end) − nd_hi) − nd_lo) + wrap.  Channels
-    /// without cycles: the identity on (−∞, +∞).
-    std::vector<float> fold;
-    /// Per cycle class, 16 floats: its fold (fields 0–7 as in `fold`), 8 the last local frame,
-    /// 9 the lo of the next piece of its stream (+∞ past the last).
-    std::vector<float> class_fold;
-    std::vector<std::size_t> class_next;  ///< per cycle class: first piece of its stream not yet consumed
-    std::vector<std::uint8_t> folding;   ///< per SIMD group of channels: 1 if one of them cycles
-    /// Per SIMD group of channels: the first stream piece of the run of the clip's main stream the
-    /// group's channels read in place (a run that fills the group), or no_run: the group's part of
-    /// `cache` holds their pieces.
-    std::vector<std::uint32_t> direct;
-    /// A `direct` entry for a group read from `cache`.
-    static constexpr std::uint32_t no_run = std::numeric_limits<std::uint32_t>::max();
-    std::size_t stride = 0;              ///< padded channel count (a multiple of 16)
-    std::size_t next = 0;                ///< first stream piece not yet consumed
-    float time = -std::numeric_limits<float>::infinity();  ///< last sampled frame (clamped)
-  };
+  /// Deprecated name of FCurveClipCursor, kept for one release (docs/conventions.md, "Playback state").
+  using Context [[deprecated("use FCurveClipCursor")]] = FCurveClipCursor;
 
  private:
   friend Expected<FCurveClip> build_fcurve_clip(std::span<const FCurve>, FCurveClipOptions);
   friend Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve>, FCurveClipOptions);
-  friend Context make_fcurve_context(const FCurveClip&);
-  friend void evaluate_channels(const FCurveClip&, float, Context&) noexcept;
-  friend void sample_fcurves(const FCurveClip&, float, Context&, std::span<float>) noexcept;
-  friend void sample_fcurve_rig(const FCurveClip&, float, Context&, std::span<JointPose<float>>) noexcept;
+  friend FCurveClipCursor make_fcurve_clip_cursor(const FCurveClip&);
+  friend void evaluate_channels(const FCurveClip&, float, FCurveClipCursor&) noexcept;
+  friend void sample_fcurves(const FCurveClip&, float, FCurveClipCursor&, std::span<float>) noexcept;
+  friend void sample_fcurve_rig(const FCurveClip&, float, FCurveClipCursor&, std::span<JointPose<float>>) noexcept;
   friend struct FCurveClipAccess;  // the cycle fold in fcurve_clip.cpp
   FCurveClip() = default;
 
@@ -176,7 +180,7 @@ class FCurveClip {
   // consecutive within one SIMD group (a joint's curves keyed together) are one run, stored
   // field-major (field k of the run's piece i at data[first·cached_fields + k·size + i]), so
   // handing a run over is a copy of whole lanes — or, for a run that fills a SIMD group, none:
-  // the group reads the run where it is (Context::direct).  A single piece is a run of 1.
+  // the group reads the run where it is (FCurveClipCursor::direct).  A single piece is a run of 1.
   struct Channels {
     std::vector<std::uint32_t> begin, count, where, owner, local;
     std::vector<float> data;    // while compiling: block floats per piece; then cached_fields, in runs
@@ -211,18 +215,23 @@ class FCurveClip {
 /// 10 (InvalidArgument).
 [[nodiscard]] Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClipOptions options = {});
 
-/// A context before the clip's start.
-[[nodiscard]] FCurveClip::Context make_fcurve_context(const FCurveClip& clip);
+/// A cursor before the clip's start.
+[[nodiscard]] FCurveClipCursor make_fcurve_clip_cursor(const FCurveClip& clip);
+
+/// Deprecated name of make_fcurve_clip_cursor, kept for one release.
+[[deprecated("use make_fcurve_clip_cursor")]] [[nodiscard]] inline FCurveClipCursor make_fcurve_context(const FCurveClip& clip) {
+  return make_fcurve_clip_cursor(clip);
+}
 
 /// Fills out[c] with channel c at `frame` (out.size() == clip.channels()).  Any frame is valid (NaN
 /// gives each curve's first key value as FCurve::sample does, ±inf acts as the largest finite float;
 /// cycling curves as FCurve::sample cycles them, at any distance from the keys); noexcept, no allocation.
-void sample_fcurves(const FCurveClip& clip, float frame, FCurveClip::Context& context, std::span<float> out) noexcept;
+void sample_fcurves(const FCurveClip& clip, float frame, FCurveClipCursor& cursor, std::span<float> out) noexcept;
 
 /// Fills every joint's pose at `frame` (clip from build_fcurve_rig, out.size() == clip.joints()):
 /// translation from location, the normalised rotation quaternion (identity when all four curves
 /// read 0), scale.  noexcept, no allocation.
-void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClip::Context& context,
+void sample_fcurve_rig(const FCurveClip& clip, float frame, FCurveClipCursor& cursor,
                        std::span<JointPose<float>> out) noexcept;
 
 }  // namespace inbetween

@@ -5,7 +5,7 @@
 /// per key interval, a constant segment after the last key — and each segment is stored as one
 /// 16-scalar block (its frame interval, its parameter origin and 1/length, and its coefficients:
 /// Vec3 segments in power form in the local parameter u, rotation segments as the two keys with
-/// the arc's Ω² and 1/sinc(Ω) precomputed).  A RigContext<T> keeps, per channel, the current
+/// the arc's Ω² and 1/sinc(Ω) precomputed).  A RigClipCursor<T> keeps, per channel, the current
 /// segment and a copy of its block in structure-of-arrays order (one array per field over all
 /// joints, ozz-animation's "decompressed keys" cache); sample_rig() refreshes only the channels
 /// whose segment changed and then evaluates all joints with SIMD: float with
@@ -73,25 +73,26 @@ inline constexpr T rig_runtime_rotation_tolerance = T(2) * rig_slerp_series_erro
 template <Real T>
 class RigClip;
 template <Real T>
-struct RigContext;
+struct RigClipCursor;
 
-/// Joints per group of a RigContext's cache: one 64-byte line of a field (16 floats, 8 doubles),
+/// Joints per group of a RigClipCursor's cache: one 64-byte line of a field (16 floats, 8 doubles),
 /// the widest register (AVX-512) a sampling kernel loads at once, whatever the build's flags.
 template <Real T>
 inline constexpr std::size_t rig_group = 64 / sizeof(T);
 
 namespace rig_detail {
 template <Real T>
-T refresh(const RigClip<T>& clip, T frame, RigContext<T>& context) noexcept;
+T refresh(const RigClip<T>& clip, T frame, RigClipCursor<T>& cursor) noexcept;
 }  // namespace rig_detail
 
-/// One playback stream of a RigClip (make it with make_rig_context): per channel its current
+/// The caller-owned state of one playback stream of a RigClip (make it with make_rig_clip_cursor;
+/// was RigClipCursor): per channel its current
 /// segment, and a copy of that segment's block in SIMD-register order (groups of rig_group<T>
 /// joints, field by field: ozz-animation's "decompressed keys" cache);
 /// per channel kind the position in the clip's time-sorted block stream.  Reusable, copyable;
 /// one per character instance that plays the clip.
 template <Real T>
-struct RigContext {
+struct RigClipCursor {
   std::vector<std::uint32_t> segment;  ///< per channel (T of all joints, then R, then S): segment index in its channel
   std::vector<T> cache;                ///< 3 kinds × padded joints × 16 fields (filled by sample_rig)
   std::size_t stride = 0;              ///< padded joint count (a multiple of 16)
@@ -117,9 +118,9 @@ class RigClip {
   friend Expected<RigClip<U>> build_rig_clip(std::span<const Track<Vec3<U>>>, std::span<const QuatTrack<U>>,
                                              std::span<const Track<Vec3<U>>>);
   template <Real U>
-  friend U rig_detail::refresh(const RigClip<U>&, U, RigContext<U>&) noexcept;
+  friend U rig_detail::refresh(const RigClip<U>&, U, RigClipCursor<U>&) noexcept;
   template <Real U>
-  friend RigContext<U> make_rig_context(const RigClip<U>&);
+  friend RigClipCursor<U> make_rig_clip_cursor(const RigClip<U>&);
 
   RigClip() = default;
 
@@ -138,14 +139,24 @@ class RigClip {
   std::array<Channels, 3> kind_;
 };
 
-/// A context before the clip's start (the first sample_rig fills every channel's cache).
+/// A cursor before the clip's start (the first sample_rig fills every channel's cache).
 template <Real T>
-RigContext<T> make_rig_context(const RigClip<T>& clip) {
-  RigContext<T> ctx;
+RigClipCursor<T> make_rig_clip_cursor(const RigClip<T>& clip) {
+  RigClipCursor<T> ctx;
   ctx.stride = (clip.joints() + 15) / 16 * 16;
   ctx.segment.assign(3 * clip.joints(), 0);
   ctx.cache.assign(3 * RigClip<T>::block * ctx.stride, T(0));
   return ctx;
+}
+
+/// Deprecated names of RigClipCursor and make_rig_clip_cursor, kept for one release
+/// (docs/conventions.md, "Playback state").
+template <Real T>
+using RigContext [[deprecated("use RigClipCursor")]] = RigClipCursor<T>;
+/// Deprecated name of make_rig_clip_cursor, kept for one release.
+template <Real T>
+[[deprecated("use make_rig_clip_cursor")]] [[nodiscard]] RigClipCursor<T> make_rig_context(const RigClip<T>& clip) {
+  return make_rig_clip_cursor(clip);
 }
 
 namespace rig_detail {
@@ -413,32 +424,32 @@ struct HwyStaticLanes {
 // sample_rig's first half: clamps frame to a finite value (NaN → −max; returned) and brings every
 // channel's cached segment to it.
 template <Real T>
-T refresh(const RigClip<T>& clip, T frame, RigContext<T>& context) noexcept {
+T refresh(const RigClip<T>& clip, T frame, RigClipCursor<T>& cursor) noexcept {
   constexpr std::size_t B = RigClip<T>::block, G = rig_group<T>;
   const std::size_t J = clip.joints_;
-  const std::size_t S = context.stride;
+  const std::size_t S = cursor.stride;
   static_assert(16 % G == 0, "the padded joint count is a multiple of 16");
-  INBETWEEN_ASSERT(context.segment.size() == 3 * J && context.cache.size() == 3 * B * S);
+  INBETWEEN_ASSERT(cursor.segment.size() == 3 * J && cursor.cache.size() == 3 * B * S);
   // A finite frame keeps u = (frame − origin)·0 finite on the constant end segments.
   const T big = std::numeric_limits<T>::max();
   frame = frame > -big ? (frame < big ? frame : big) : -big;  // NaN → −big
   for (std::size_t kind = 0; kind < 3; ++kind) {
-    advance<T, G, B>(clip.kind_[kind], J, frame, context.time, context.next[kind], context.segment.data() + kind * J,
-                     context.cache.data() + kind * B * S);
+    advance<T, G, B>(clip.kind_[kind], J, frame, cursor.time, cursor.next[kind], cursor.segment.data() + kind * J,
+                     cursor.cache.data() + kind * B * S);
   }
-  context.time = frame;
+  cursor.time = frame;
   return frame;
 }
 
 // sample_rig's second half: evaluates the refreshed cache at the (finite) frame group by group
 // with `lanes` (StdSimdLanes or a benchmark's kernel) and writes the AoS poses.
 template <Real T, class Lanes>
-void evaluate(const RigContext<T>& context, T frame, std::span<JointPose<T>> out, const Lanes& lanes) noexcept {
+void evaluate(const RigClipCursor<T>& cursor, T frame, std::span<JointPose<T>> out, const Lanes& lanes) noexcept {
   constexpr std::size_t B = RigClip<T>::block, G = rig_group<T>;
   const std::size_t J = out.size();
-  const std::size_t S = context.stride;
-  INBETWEEN_ASSERT(J <= S && context.cache.size() == 3 * B * S);
-  const T* tc = context.cache.data();
+  const std::size_t S = cursor.stride;
+  INBETWEEN_ASSERT(J <= S && cursor.cache.size() == 3 * B * S);
+  const T* tc = cursor.cache.data();
   const T* rc = tc + B * S;
   const T* sc = rc + B * S;
   for (std::size_t j0 = 0; j0 < J; j0 += G) {
@@ -523,22 +534,22 @@ Expected<RigClip<T>> build_rig_clip(const std::vector<Track<Vec3<T>>>& translati
                            std::span<const Track<Vec3<T>>>(scales));
 }
 
-/// Samples every joint at `frame` into out (out.size() must equal clip.joints(), context made for
-/// this clip by make_rig_context), advancing the context.  Outside a channel's keys its end value
+/// Samples every joint at `frame` into out (out.size() must equal clip.joints(), cursor made for
+/// this clip by make_rig_clip_cursor), advancing the cursor.  Outside a channel's keys its end value
 /// is held; NaN reads as −∞ (the first value), ±∞ as the end values.  noexcept, no allocation.
 template <Real T>
-void sample_rig(const RigClip<T>& clip, T frame, RigContext<T>& context, std::span<JointPose<T>> out) noexcept {
+void sample_rig(const RigClip<T>& clip, T frame, RigClipCursor<T>& cursor, std::span<JointPose<T>> out) noexcept {
   INBETWEEN_ASSERT(out.size() == clip.joints());
-  frame = rig_detail::refresh(clip, frame, context);
+  frame = rig_detail::refresh(clip, frame, cursor);
   // Which SIMD (docs/runtime.md, measured per character): when the build's flags give double only
   // 2 lanes (SSE2, the default), Highway's dynamic dispatch to AVX-512/AVX2 at run time (1.3–1.9×
   // std::experimental::simd there); with AVX or wider flags std::experimental::simd, inlined (the
   // out-of-line Highway call per group then lost up to 20 %).  Float stays std::experimental::simd
   // (Highway gained 1.1–1.3× in the default build: the float kernel is bound by its stores).
   if constexpr (std::is_same_v<T, double> && rig_detail::stdx::native_simd<double>::size() < 4)
-    rig_detail::evaluate(context, frame, out, rig_detail::HwyDynamicLanes<T>{});
+    rig_detail::evaluate(cursor, frame, out, rig_detail::HwyDynamicLanes<T>{});
   else
-    rig_detail::evaluate(context, frame, out, rig_detail::StdSimdLanes<T>{});
+    rig_detail::evaluate(cursor, frame, out, rig_detail::StdSimdLanes<T>{});
 }
 
 }  // namespace inbetween
