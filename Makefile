@@ -14,11 +14,13 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 # FBX, Collada, … (docs/assimp.md); assimp-testmodels: its test files (FBX, Collada, CMU BVH clips)
 # that the assimp and BVH tests read, and the CMU
 # motion-capture clips (models/BVH/) that `make demo` shows and the BVH bench reads (tests/data/bvh/README.md).
+# python3-distributed, python3-dask: the batch on Dask (python/inbetween/batch.py, docs/batch.md) and
+# its test (python.batch) and bench.
 DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev \
         nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev gltfpack libeigen3-dev libglm-dev libboost-dev \
         python3 python3-scipy python3-jsonschema clang libclang-rt-dev esbuild chromium \
         pybind11-dev python3-dev python3-pytest python3-numpy libhwy-dev libxsimd-dev \
-        libassimp-dev assimp-testmodels
+        libassimp-dev assimp-testmodels python3-distributed python3-dask
 
 .PHONY: all deps configure build test demo screenshots bench bench-ozz asan fuzz clean
 
@@ -95,10 +97,14 @@ screenshots: build
 # Runs every bench program (3 interleaved repetitions, medians) and writes the generated section of
 # bench/RESULTS.md (tools/bench/write_results.py; the hand-written analysis below it stays).
 BENCH_MIN_TIME ?= 0.1
+# Then the batch on Dask (issue 25, bench/batch_bench.py): 2 workers against 1 on 200 scenes and the
+# overhead per job against the tool; it prints its table (the figures go to RESULTS.md's notes by hand).
+BATCH_PYTHON ?= $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
 bench: build
 	cmake --build --preset $(PRESET) -j $(JOBS) --target inbetween_benchmarks
 	python3 tools/bench/write_results.py --build-dir $(BUILD) --min-time $(BENCH_MIN_TIME) \
 	  --command "make bench PRESET=$(PRESET)"
+	PYTHONPATH=$(BUILD)/python $(BATCH_PYTHON) bench/batch_bench.py --cli $(BUILD)/inbetween
 
 # ozz-animation's SamplingJob against RigClip on the same clip (issue 12).  ozz is not packaged in
 # Debian: give its source tree (git clone https://github.com/guillaumeblanc/ozz-animation); it is

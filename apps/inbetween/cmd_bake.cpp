@@ -155,8 +155,8 @@ const RegisterCommand kBake{{"bake", 40, [](CLI::App& root) {
                   "frame = time · fps (default: glTF 24, BVH 1 / Frame Time, assimp the file's ticks per second)")
       ->check(finite_positive_number());
   cmd->add_option("--format", opt->format, "Output format")->check(CLI::IsMember({"csv", "json"}));
-  cmd->add_option("-o,--output", opt->output,
-                  "Output file (default: standard output); a regular file is replaced whole or not at all");
+  output_file(cmd->add_option("-o,--output", opt->output,
+                  "Output file (default: standard output); a regular file is replaced whole or not at all"));
   cmd->add_option("--progress", opt->progress,
                   "Progress bar on standard error: auto (when it is a terminal), always, never")
       ->check(CLI::IsMember({"auto", "always", "never"}));

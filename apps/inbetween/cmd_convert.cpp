@@ -42,19 +42,19 @@ bool ends_with(const std::string& s, const std::string& tail) {
 }
 
 void print_report(const GltfExport& out) {
-  for (const std::string& note : out.notes) std::cerr << "note: " << note << '\n';
+  for (const std::string& note : out.notes) tool_err() << "note: " << note << '\n';
   for (const GltfChannelReport& c : out.channels) {
     char line[512];
     std::snprintf(line, sizeof line, "%s.%s: %s, %zu keys -> %zu, max error %.3g%s", c.object.c_str(), c.path.c_str(),
                   c.interpolation.c_str(), c.keys_before, c.keys_after, c.max_error, c.path == "rotation" ? " rad" : "");
-    std::cerr << line;
+    tool_err() << line;
     if (c.refitted) {
       std::snprintf(line, sizeof line, " (refitted: %s; tolerance %.3g)", c.reason.c_str(), c.tolerance);
-      std::cerr << line;
+      tool_err() << line;
     } else {
-      std::cerr << " (keys kept)";
+      tool_err() << " (keys kept)";
     }
-    std::cerr << '\n';
+    tool_err() << '\n';
   }
 }
 
@@ -75,7 +75,7 @@ void run_convert(const ConvertOptions& opt) {
     if (!out) throw CommandError{opt.input.path + ": " + out.error().describe()};
     write_output(opt.output, out->text);
     if (!opt.quiet)
-      for (const std::string& note : out->notes) std::cerr << "note: " << note << '\n';
+      for (const std::string& note : out->notes) tool_err() << "note: " << note << '\n';
     return;
   }
   if (to_json) {
@@ -104,7 +104,7 @@ const RegisterCommand kConvert{{"convert", 45, [](CLI::App& root) {
   add_input_options(cmd, opt->input, "input",
                     "Scene file (docs/scene-format.md; - for standard input), glTF 2.0 (.gltf, .glb), BVH (.bvh) or a "
                     "file assimp reads (.fbx, .dae, …)");
-  cmd->add_option("output", opt->output, "Output: .gltf or .glb (export), .bvh (BVH motion) or .json (scene file)")->required();
+  output_file(cmd->add_option("output", opt->output, "Output: .gltf or .glb (export), .bvh (BVH motion) or .json (scene file)"))->required();
   cmd->add_option("--fps", opt->input.fps,
                   "glTF, BVH, assimp input: frames per second, frame = time · fps (default: the format's own)")
       ->check(finite_positive_number());

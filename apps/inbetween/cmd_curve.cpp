@@ -640,7 +640,7 @@ void setup_curve(CLI::App& root) {
       "info", "Kind, domain, segments, length, continuity at every joint; with --point, what moving a point changes");
   auto info_file = std::make_shared<std::string>();
   auto info_point = std::make_shared<std::optional<int>>();
-  info->add_option("file", *info_file, "curve file (JSON)")->required();
+  input_file(info->add_option("file", *info_file, "curve file (JSON)"))->required();
   info->add_option("--point", *info_point,
                    "control point I (0-based, as in the file's points): the parameter range, segments and share of "
                    "the length that moving it changes (local or global control)");
@@ -652,7 +652,7 @@ void setup_curve(CLI::App& root) {
 
   auto* sample = curve->add_subcommand("sample", "Write CSV u,x[,y[,z]] at sample parameters");
   auto opts = std::make_shared<SampleOptions>();
-  sample->add_option("file", opts->file, "curve file (JSON)")->required();
+  input_file(sample->add_option("file", opts->file, "curve file (JSON)"))->required();
   sample->add_option("--count,-n", opts->count, "number of samples (2 .. 1000000)")->capture_default_str();
   std::vector<std::string> names;
   std::string help = "sample spacing:";
@@ -662,14 +662,14 @@ void setup_curve(CLI::App& root) {
   }
   help += ".";
   sample->add_option("--by", opts->by, help)->check(CLI::IsMember(names))->capture_default_str();
-  sample->add_option("-o,--output", opts->output, "output file ('-' = standard output)")->capture_default_str();
+  output_file(sample->add_option("-o,--output", opts->output, "output file ('-' = standard output)"))->capture_default_str();
   sample->callback([opts] { run_sample(*opts); });
 
   auto* plot = curve->add_subcommand(
       "plot", "Draw curves as SVG with axes: curve, control polygon, samples; several files in one panel; --move for local vs global control");
   auto popt = std::make_shared<PlotCommandOptions>();
-  plot->add_option("file", popt->files, "curve files (JSON); several are drawn over each other")->required();
-  plot->add_option("-o,--output", popt->output, "SVG file to write")->required();
+  input_file(plot->add_option("file", popt->files, "curve files (JSON); several are drawn over each other"))->required();
+  output_file(plot->add_option("-o,--output", popt->output, "SVG file to write"))->required();
   plot->add_option("--count,-n", popt->samples, "number of sample dots at equal u per curve (2 .. 10000)")
       ->capture_default_str();
   plot->add_option("--move", popt->move,

@@ -109,14 +109,14 @@ void setup(CLI::App& root) {
       "Find a collision-free path among 3-D obstacles for a sphere or a capsule that turns along its path (Parent, "
       "Computer Animation, section 3.4.5) and its timing");
   auto args = std::make_shared<Args>();
-  find->add_option("ENV", args->input, "environment file (JSON, docs/paths.md); - for stdin")->required();
-  find->add_option("-o,--output", args->output, "output curve file (catmull-rom, readable by `curve sample`)")
+  input_file(find->add_option("ENV", args->input, "environment file (JSON, docs/paths.md); - for stdin"))->required();
+  output_file(find->add_option("-o,--output", args->output, "output curve file (catmull-rom, readable by `curve sample`)"))
       ->required();
-  find->add_option("--timing", args->timing, "where the timing JSON goes (default: standard output)")
+  output_file(find->add_option("--timing", args->timing, "where the timing JSON goes (default: standard output)"))
       ->capture_default_str();
-  find->add_option("--poses", args->poses,
+  output_file(find->add_option("--poses", args->poses,
                    "capsule mover: CSV t,x,y,z,qw,qx,qy,qz of the centre and the rotation (local +x = the capsule's axis) "
-                   "at every frame (fps of the environment file) and the end");
+                   "at every frame (fps of the environment file) and the end"));
   find->add_flag("--no-steering", args->no_steering,
                  "avoid moving spheres by the timing only (no detours in front of or behind them)");
   find->callback([args] {

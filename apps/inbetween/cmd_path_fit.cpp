@@ -60,12 +60,12 @@ void setup(CLI::App& root) {
     int control_points = 0;
   };
   auto args = std::make_shared<Args>();
-  fit->add_option("FILE", args->input, "CSV file of rows t,x[,y[,z]] (a header line is allowed); - for stdin")
+  input_file(fit->add_option("FILE", args->input, "CSV file of rows t,x[,y[,z]] (a header line is allowed); - for stdin"))
       ->required();
   fit->add_option("--degree", args->degree, "B-spline degree K (1..15)")->capture_default_str();
   fit->add_option("--control-points", args->control_points,
                   "number of control points M (degree+1..rows); default: one per row, which interpolates");
-  fit->add_option("-o,--output", args->output, "output curve file (default: standard output)");
+  output_file(fit->add_option("-o,--output", args->output, "output curve file (default: standard output)"));
   fit->callback([args] {
     const CsvTable csv = read_csv_table(read_input(args->input), args->input, 2, 4, "t,x[,y[,z]]");
     const std::size_t dim = csv.rows.front().size() - 1;

@@ -99,7 +99,7 @@ void setup(CLI::App& root) {
   path->require_subcommand(1);
   auto* smooth = path->add_subcommand("smooth", "Smooth CSV rows as an ordered list of points (Parent, Computer Animation, section 3.4.3)");
   auto args = std::make_shared<Args>();
-  smooth->add_option("FILE", args->input, "CSV of rows with 1 to 4 numbers (a header line is allowed); - for stdin")
+  input_file(smooth->add_option("FILE", args->input, "CSV of rows with 1 to 4 numbers (a header line is allowed); - for stdin"))
       ->required();
   smooth->add_option("--method", args->method, "linear (Eq. 3.35), cubic (Eqs. 3.36-3.38), box, tent, gaussian, bspline")
       ->check(CLI::IsMember({"linear", "cubic", "box", "tent", "gaussian", "bspline"}))
@@ -113,7 +113,7 @@ void setup(CLI::App& root) {
   smooth->add_flag("--function", args->function, "the first column is x of y = f(x) data: copy it, smooth the rest");
   smooth->add_option("--resample", args->resample,
                      "first resample to N rows (>= 2, fewer or more) equally spaced in arc length along the polyline");
-  smooth->add_option("-o,--output", args->output, "output CSV (default: standard output)");
+  output_file(smooth->add_option("-o,--output", args->output, "output CSV (default: standard output)"));
   smooth->callback([args] {
     CsvTable t = read_csv_table(read_input(args->input), args->input, 1, 4, "x[,y[,z[,w]]]");
     const std::size_t first = args->function ? 1 : 0;

@@ -177,8 +177,8 @@ void setup(CLI::App& root) {
       "A path on a triangle mesh (OBJ) or a named surface (JSON: plane, sphere, torus, height_field, bezier_patch), as CSV "
       "rows (Parent, Computer Animation, section 3.4.4)");
   auto args = std::make_shared<Args>();
-  surface->add_option("FILE", args->input,
-                      "OBJ mesh (v, vn, f lines; polygons are triangulated) or surface file (JSON, docs/paths.md); - for stdin")
+  input_file(surface->add_option("FILE", args->input,
+                      "OBJ mesh (v, vn, f lines; polygons are triangulated) or surface file (JSON, docs/paths.md); - for stdin"))
       ->required();
   auto* from = surface->add_option(
       "--from", args->from,
@@ -207,9 +207,9 @@ void setup(CLI::App& root) {
                     ->capture_default_str();
   auto* max_steps = surface->add_option("--max-steps", args->max_steps, "surface file, downhill: steps at most")
                         ->capture_default_str();
-  surface->add_option("-o,--output", args->output, "output CSV (default: standard output)");
-  surface->add_option("--curve", args->curve,
-                      "also write a curve file (centripetal catmull-rom through the points, readable by `curve sample`)");
+  output_file(surface->add_option("-o,--output", args->output, "output CSV (default: standard output)"));
+  output_file(surface->add_option("--curve", args->curve,
+                      "also write a curve file (centripetal catmull-rom through the points, readable by `curve sample`)"));
   surface->callback([args, from, to, method, downhill, count, step, max_steps] {
     // --method downhill --from … is --downhill ….
     const bool by_method = args->method == "downhill";

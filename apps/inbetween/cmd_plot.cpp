@@ -56,15 +56,15 @@ void run_plot(const PlotCommandOptions& opt) {
     const std::string where = e.location.empty() ? opt.input.path : e.place();
     throw CommandError{where + ": " + e.message};
   }
-  std::cout << "wrote " << report->files.size() << " plots and index.html to " << report->dir.string() << " ("
+  tool_out() << "wrote " << report->files.size() << " plots and index.html to " << report->dir.string() << " ("
             << report->frame_count << " frames from " << format_number(report->frame_start) << " every "
             << format_number(report->frame_step) << ")\n";
   if (report->left_out > 0) {
-    std::cerr << "note: " << report->left_out << " more plots left out: a plot folder holds at most 1000 pages of tracks, "
+    tool_err() << "note: " << report->left_out << " more plots left out: a plot folder holds at most 1000 pages of tracks, "
                  "objects and paths (index.html says which)\n";
   }
   if (report->trajectory_roots_skipped > 0) {
-    std::cout << "note: " << report->trajectory_roots_skipped << " more moving roots have no trajectory plot (at most "
+    tool_out() << "note: " << report->trajectory_roots_skipped << " more moving roots have no trajectory plot (at most "
               << kMaxDefaultTrajectories << " by default); name them with --object\n";
   }
 }
@@ -76,7 +76,7 @@ const RegisterCommand kPlot{{"plot", 45, [](CLI::App& root) {
   add_input_options(cmd, opt->input, "scene",
                     "Scene file (docs/scene-format.md; - for standard input), glTF 2.0 (.gltf, .glb; docs/gltf.md), "
                     "BVH (.bvh) or a file assimp reads (.fbx, .dae, …)");
-  cmd->add_option("-o,--output", opt->output, "Output folder (written whole or not at all; see docs/plots.md)")->required();
+  output_file(cmd->add_option("-o,--output", opt->output, "Output folder (written whole or not at all; see docs/plots.md)"))->required();
   cmd->add_option("--frames", opt->frames,
                   "A:B[:STEP] frame axis and sample step (default: the range and keys padded by 10 %, at most 480 steps)");
   cmd->add_option("--fps", opt->input.fps,

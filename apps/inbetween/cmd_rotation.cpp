@@ -58,7 +58,7 @@ void run_convert(const ConvertArgs& args) {
     out << '\n';
     if (end == input.size()) break;
   }
-  for (const auto& w : warnings) std::cerr << "inbetween: warning: " << w << "\n";
+  for (const auto& w : warnings) tool_err() << "inbetween: warning: " << w << "\n";
   write_output("-", out.str());
 }
 

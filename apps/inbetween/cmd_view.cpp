@@ -40,7 +40,7 @@ const RegisterCommand kView{{"view", 45, [](CLI::App& root) {
   add_input_options(cmd, opt->input, "scene",
                     "Scene file (docs/scene-format.md; - for standard input), glTF 2.0 (.gltf, .glb), BVH (.bvh) or "
                     "a file assimp reads (.fbx, .dae, …)");
-  cmd->add_option("-o,--output", opt->output, "The HTML file to write (replaced whole or not at all)")->required();
+  output_file(cmd->add_option("-o,--output", opt->output, "The HTML file to write (replaced whole or not at all)"))->required();
   cmd->add_option("--frames", opt->frames,
                   "A:B[:STEP] frames to bake into the page (default: the scene's range, step 1; at most 20000 frames)");
   cmd->add_option("--fps", opt->input.fps, "glTF, BVH, assimp input: frame = time · fps (default: the format's own)")

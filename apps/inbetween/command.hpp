@@ -57,6 +57,21 @@ struct RegisterDemo {
   explicit RegisterDemo(DemoSection section) { demo_registry().push_back(std::move(section)); }
 };
 
+/// The tool's standard output: std::cout, or the buffer of an in-process run (run.hpp).  Commands
+/// write their text here, never to std::cout directly.
+std::ostream& tool_out();
+
+/// The tool's standard error (notes, warnings): std::cerr, or the buffer of an in-process run.
+std::ostream& tool_err();
+
+/// Marks `option`'s value as a file (or folder) the command reads: in an in-process run a relative
+/// path resolves against the run's base folder, and the batch knows it as an input (docs/batch.md).
+/// "-" (standard input) stays as it is.  Returns `option`.
+CLI::Option* input_file(CLI::Option* option);
+
+/// Marks `option`'s value as a file (or folder) the command writes, likewise (an output).
+CLI::Option* output_file(CLI::Option* option);
+
 /// Writes `content` to `path` whole or not at all through an OutputFile (output.hpp: a unique
 /// temporary file renamed onto a regular target, special files and standard output ("-" or "")
 /// written directly).  Throws CommandError naming the file and the reason on failure.

@@ -16,7 +16,7 @@ std::string scene_file_error(const std::string& path, const Error& e) { return d
 }  // namespace
 
 void add_input_options(CLI::App* cmd, InputArgs& args, const std::string& name, const std::string& what) {
-  cmd->add_option(name, args.path, what)->required();
+  input_file(cmd->add_option(name, args.path, what))->required();
   cmd->add_option("--animation", args.animation,
                   "glTF and assimp input: the animation's NAME or INDEX (default: the first)");
   cmd->add_option("--scale", args.scale, "BVH and assimp input: factor on every length (default 1: the file's units)")
@@ -53,7 +53,7 @@ RawScene load_raw(const InputArgs& args) {
   std::vector<std::string> notes;
   options.notes = &notes;
   auto raw = read_input_file(args.path, options);
-  for (const std::string& note : notes) std::cerr << "note: " << args.path << ": " << note << '\n';
+  for (const std::string& note : notes) tool_err() << "note: " << args.path << ": " << note << '\n';
   if (!raw) {
     throw CommandError{describe_in(raw.error(), args.path)};
   }

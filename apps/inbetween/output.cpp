@@ -4,15 +4,22 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <sys/random.h>
+
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <ostream>
 #include <system_error>
 
 #include "command.hpp"
+#include "run.hpp"
 
 namespace inbetween::cli {
 namespace {
@@ -23,6 +30,35 @@ constexpr std::size_t kFlushBytes = std::size_t(1) << 18;
 constexpr int kMaxLinkHops = 40;
 // Longest part of the target's name copied into the temporary's name (NAME_MAX is 255).
 constexpr std::size_t kMaxNameInTemp = 200;
+// Fresh temporary names tried before giving up (each taken name is an EEXIST).
+constexpr int kNameAttempts = 100;
+// The characters of a temporary name's random suffix (as mkstemp's).
+constexpr char kNameCharacters[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+constexpr std::size_t kSuffixLength = 6;
+
+// True when an open descriptor can be linked into a folder through /proc/self/fd (the way to name
+// an O_TMPFILE file without CAP_DAC_READ_SEARCH); false without /proc.
+bool proc_fd_links() {
+  static const bool available = ::access("/proc/self/fd", X_OK) == 0;
+  return available;
+}
+
+// kSuffixLength random name characters (getrandom, thread-safe; the clock and a counter if it fails).
+std::string random_suffix() {
+  unsigned char bytes[kSuffixLength] = {};
+  if (::getrandom(bytes, sizeof bytes, GRND_NONBLOCK) != ssize_t(sizeof bytes)) {
+    static std::atomic<unsigned> counter{0};
+    auto x = std::uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()) ^
+             (std::uint64_t(::getpid()) << 32) ^ (std::uint64_t(counter.fetch_add(1)) * 0x9E3779B97F4A7C15ull);
+    for (unsigned char& b : bytes) {
+      b = static_cast<unsigned char>(x);
+      x = (x >> 8) | (x << 56);
+    }
+  }
+  std::string suffix(kSuffixLength, 'X');
+  for (std::size_t i = 0; i < kSuffixLength; ++i) suffix[i] = kNameCharacters[bytes[i] % (sizeof kNameCharacters - 1)];
+  return suffix;
+}
 
 std::string reason(int error_number) { return std::generic_category().message(error_number); }
 
@@ -99,10 +135,14 @@ void unguard_temp() {
 
 OutputFile::OutputFile(const std::string& path) : path_(path) {
   if (path.empty() || path == "-") {
+    path_ = "standard output";
+    if (RunCapture* capture = current_capture()) {
+      capture_ = &capture->out;  // an in-process run: its captured standard output
+      return;
+    }
     std::cout.flush();  // anything written through iostreams comes first
     std::fflush(stdout);
     fd_ = STDOUT_FILENO;
-    path_ = "standard output";
     return;
   }
   int error_number = 0;
@@ -122,30 +162,41 @@ OutputFile::OutputFile(const std::string& path) : path_(path) {
     return;
   }
 
-  // A regular file or a new one: a unique temporary file beside the target, renamed at commit().
+  // A regular file or a new one: an unnamed file in the target's folder (O_TMPFILE), linked at
+  // commit(), so that nothing of it is left when the process is killed; where the file system has
+  // no O_TMPFILE (NFS), a named temporary beside the target.  Either is created with mode 0666 less
+  // the umask (the kernel applies it; the umask is never set, another thread may be creating files).
   const auto slash = target_.rfind('/');
-  const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : target_.substr(0, slash);
-  const std::string base = target_.substr(slash == std::string::npos ? 0 : slash + 1).substr(0, kMaxNameInTemp);
-  std::string pattern = folder + "/." + base + ".inbetween-XXXXXX";
-  fd_ = ::mkostemp(pattern.data(), O_CLOEXEC);  // O_CREAT | O_EXCL with a fresh name
-  if (fd_ < 0) throw CommandError{path_ + ": cannot open for writing: " + reason(errno)};
-  owns_fd_ = true;
-  temp_ = pattern;
-  guard_temp(temp_);
-  // mkstemp makes the file 0600; give it the mode the target has, or that a new file gets.
-  mode_t mode = 0;
-  if (exists) {
-    mode = st.st_mode & 0777;
-  } else {
-    const mode_t mask = ::umask(0);
-    ::umask(mask);
-    mode = 0666 & ~mask;
+  folder_ = slash == std::string::npos ? "." : slash == 0 ? "/" : target_.substr(0, slash);
+  if (proc_fd_links()) {
+    fd_ = ::open(folder_.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+    if (fd_ < 0 && errno != EOPNOTSUPP && errno != EISDIR && errno != EINVAL) {
+      throw CommandError{path_ + ": cannot open for writing: " + reason(errno)};
+    }
   }
-  if (::fchmod(fd_, mode) != 0) fail("cannot set the file mode", errno);
+  if (fd_ >= 0) {
+    unnamed_ = true;
+  } else {
+    fd_ = create_temporary();
+    if (fd_ < 0) throw CommandError{path_ + ": cannot open for writing: " + reason(errno)};
+    // The tool removes a named temporary when interrupted (Ctrl-C); an in-process run installs no
+    // signal handler (the batch sweeps temporaries of a killed worker instead, docs/batch.md).
+    if (current_capture() == nullptr) guard_temp(temp_);
+  }
+  owns_fd_ = true;
+  if (exists && ::fchmod(fd_, st.st_mode & 0777) != 0) fail("cannot set the file mode", errno);  // the replaced file's
 }
 
 OutputFile::~OutputFile() {
   if (committed_) return;
+  if (capture_ != nullptr) {
+    capture_->write(buffer_.data(), std::streamsize(buffer_.size()));
+    return;
+  }
+  if (unnamed_) {  // nothing has a name: closing frees it
+    if (fd_ >= 0) ::close(fd_);
+    return;
+  }
   if (temp_.empty()) {
     if (fd_ >= 0 && !buffer_.empty()) (void)write_all(fd_, buffer_.data(), buffer_.size());
     if (owns_fd_ && fd_ >= 0) ::close(fd_);
@@ -170,6 +221,11 @@ void OutputFile::fail(const std::string& what, int error_number) {
 
 void OutputFile::flush() {
   if (buffer_.empty()) return;
+  if (capture_ != nullptr) {
+    capture_->write(buffer_.data(), std::streamsize(buffer_.size()));
+    buffer_.clear();
+    return;
+  }
   if (const int e = write_all(fd_, buffer_.data(), buffer_.size())) fail("write failed", e);
   buffer_.clear();
 }
@@ -182,6 +238,8 @@ void OutputFile::write(std::string_view text) {
   flush();
   if (text.size() < kFlushBytes) {
     buffer_ += text;
+  } else if (capture_ != nullptr) {
+    capture_->write(text.data(), std::streamsize(text.size()));
   } else if (const int e = write_all(fd_, text.data(), text.size())) {
     fail("write failed", e);
   }
@@ -189,7 +247,35 @@ void OutputFile::write(std::string_view text) {
 
 void OutputFile::commit() {
   flush();
-  if (!temp_.empty()) {
+  if (unnamed_) {
+    // Data on disk before a name points at it: a crash leaves the old file or the new one.
+    if (::fsync(fd_) != 0) fail("write failed", errno);
+    const std::string self = "/proc/self/fd/" + std::to_string(fd_);
+    // A new target gets the file's name in one step; an existing one is replaced by renaming a
+    // temporary name onto it (linkat does not replace).  Only between that link and the rename
+    // does the file have a temporary name, which the batch's sweep removes if the process is
+    // killed right then.
+    int linked = ::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, target_.c_str(), AT_SYMLINK_FOLLOW);
+    if (linked != 0 && errno != EEXIST) fail("cannot replace the file", errno);
+    if (linked != 0) {
+      for (int attempt = 0; attempt < kNameAttempts; ++attempt) {
+        temp_ = temporary_name();
+        linked = ::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, temp_.c_str(), AT_SYMLINK_FOLLOW);
+        if (linked == 0 || errno != EEXIST) break;
+      }
+      if (linked != 0) {
+        const int e = errno;
+        temp_.clear();
+        fail("cannot replace the file", e);
+      }
+      if (::rename(temp_.c_str(), target_.c_str()) != 0) fail("cannot replace the file", errno);
+      temp_.clear();
+    }
+    const int fd = fd_;
+    fd_ = -1;
+    unnamed_ = false;
+    if (::close(fd) != 0) fail("write failed", errno);
+  } else if (!temp_.empty()) {
     // Data on disk before the name points at it: a crash leaves the old file or the new one.
     if (::fsync(fd_) != 0) fail("write failed", errno);
     const int fd = fd_;
@@ -203,6 +289,26 @@ void OutputFile::commit() {
     if (::close(fd) != 0) fail("write failed", errno);
   }
   committed_ = true;
+}
+
+std::string OutputFile::temporary_name() const {
+  const auto slash = target_.rfind('/');
+  const std::string base = target_.substr(slash == std::string::npos ? 0 : slash + 1).substr(0, kMaxNameInTemp);
+  return folder_ + "/." + base + ".inbetween-" + random_suffix();
+}
+
+int OutputFile::create_temporary() {
+  for (int attempt = 0; attempt < kNameAttempts; ++attempt) {
+    std::string name = temporary_name();
+    const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOCTTY, 0666);
+    if (fd >= 0) {
+      temp_ = std::move(name);
+      return fd;
+    }
+    if (errno != EEXIST) return -1;
+  }
+  errno = EEXIST;
+  return -1;
 }
 
 void write_output(const std::string& path, const std::string& content) {

@@ -2,13 +2,19 @@
 // Where a command's output goes (`-o FILE`, or standard output).  Shared by every command of the
 // tool: whole outputs go through write_output(), streamed ones (`bake`) through OutputFile.
 //
-// A regular file (or a path that does not exist yet) is written to a unique temporary file in the
-// target's folder (mkstemp: O_EXCL, never an existing file) and renamed onto the target by
-// commit(), so the target is replaced whole or not at all.  A symbolic link is followed to its
+// A regular file (or a path that does not exist yet) is written to an unnamed file in the target's
+// folder (O_TMPFILE) that commit() links under the target's name (a new target) or under a unique
+// temporary name renamed onto the target (an existing one), so the target is replaced whole or not
+// at all, and a process killed while writing (SIGKILL) leaves nothing behind.  Where the file system
+// has no O_TMPFILE (NFS), a unique named temporary ".<name>.inbetween-XXXXXX" (O_EXCL, never an
+// existing file) is written and renamed instead; the tool removes it on SIGINT, SIGTERM and SIGHUP,
+// the batch (docs/batch.md) sweeps those of a killed worker.  In an in-process run (run.hpp)
+// standard output is the run's captured buffer and no signal handler is installed.  A symbolic link is followed to its
 // final target, which is replaced there: the link stays a link.  A FIFO, terminal or other device
 // is written directly (it cannot be replaced, and a reader may be waiting on it).  Every failure
 // is a CommandError naming the file and the system's reason (errno text).
 
+#include <iosfwd>
 #include <string>
 #include <string_view>
 
@@ -39,20 +45,28 @@ class OutputFile {
 
   /// True when the output is not a temporary file (standard output or a special file): what was
   /// written cannot be taken back on an error.
-  [[nodiscard]] bool direct() const noexcept { return temp_.empty(); }
+  [[nodiscard]] bool direct() const noexcept { return temp_.empty() && !unnamed_; }
 
  private:
   /// Writes the buffer out (throws through fail()).
   void flush();
   /// Closes, removes the temporary file and throws CommandError "<path>: <what>: <errno text>".
   [[noreturn]] void fail(const std::string& what, int error_number);
+  /// A fresh name "<folder>/.<name>.inbetween-XXXXXX" beside the target (random suffix).
+  [[nodiscard]] std::string temporary_name() const;
+  /// Creates a named temporary (O_EXCL, mode 0666 less the umask) and sets temp_; the descriptor,
+  /// or -1 with errno set.
+  int create_temporary();
 
   std::string path_;    ///< as given, for messages
   std::string target_;  ///< the file renamed onto (symbolic links resolved)
-  std::string temp_;    ///< the temporary file, or empty when writing directly
+  std::string folder_;  ///< the target's folder
+  std::string temp_;    ///< the named temporary file (or the unnamed file's temporary name while it is renamed)
   int fd_ = -1;            ///< the descriptor written (1 for standard output)
   bool owns_fd_ = false;   ///< true when fd_ is closed by this object
   bool committed_ = false; ///< commit() done or failure handled: nothing left for the destructor
+  bool unnamed_ = false;   ///< fd_ is an unnamed O_TMPFILE file, linked by commit()
+  std::ostream* capture_ = nullptr;  ///< an in-process run's standard output, written instead of fd_
   std::string buffer_;     ///< text not yet written, less than kFlushBytes
 };
 

@@ -2,6 +2,7 @@
 #include "plot_svg.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cctype>
 #include <cmath>
@@ -19,9 +20,10 @@ constexpr const char* kFont = "sans-serif";
 constexpr const char* kAxisColour = "#333333";
 constexpr const char* kGridColour = "#e4e4e4";
 
-// A panel's clip-path id: unique within the process, so unique within every document.
+// A panel's clip-path id: unique within the process, so unique within every document (atomic:
+// in-process runs may draw in several threads at once, run.hpp).
 int next_clip_id() {
-  static int id = 0;
+  static std::atomic<int> id{0};
   return ++id;
 }
 

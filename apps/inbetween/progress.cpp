@@ -1,5 +1,7 @@
 #include "progress.hpp"
 
+#include "run.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -34,7 +36,9 @@ ProgressMode parse_progress_mode(const std::string& text) {
 
 ProgressBar::ProgressBar(std::string label, std::uint64_t total, std::string unit, ProgressMode mode)
     : label_(std::move(label)), unit_(std::move(unit)), total_(total), mode_(mode) {
-  enabled_ = mode == ProgressMode::always || (mode == ProgressMode::automatic && ::isatty(STDERR_FILENO) == 1);
+  // Never in an in-process run (run.hpp): the process's standard error is not the run's.
+  enabled_ = current_capture() == nullptr &&
+             (mode == ProgressMode::always || (mode == ProgressMode::automatic && ::isatty(STDERR_FILENO) == 1));
   start_ = Clock::now();
   next_ = start_ + kFirstDraw;
   if (enabled_ && mode_ == ProgressMode::always) draw(0);

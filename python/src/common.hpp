@@ -86,5 +86,7 @@ void bind_curves(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_paths(py::module_& m);
 void bind_clip(py::module_& m);
+/// _run_cli (cli/run_cli.cpp), only where the tool is built (INBETWEEN_PYTHON_CLI).
+void bind_cli(py::module_& m);
 
 }  // namespace inbetween::python

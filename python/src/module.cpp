@@ -37,4 +37,7 @@ PYBIND11_MODULE(_inbetween, m) {
   bind_scene(m);
   bind_paths(m);
   bind_clip(m);
+#ifdef INBETWEEN_PYTHON_CLI
+  bind_cli(m);
+#endif
 }
