@@ -1,7 +1,6 @@
 #pragma once
-// Private to src/io: the pieces of the scene reader shared by its two files — scene.cpp (the
-// document, tracks and version-1 objects) and scene_v2.cpp (version 2: paths, objects' path legs,
-// cameras).  JSON-shape helpers that build errors with structured locations; nothing here checks
+// Private to src/io: the JSON-shape helpers of the scene file's reader (src/io/scene_file.hpp lists
+// its parts, one per concept), building errors with structured locations; nothing here checks
 // values (build_scene() does).
 #include <nlohmann/json.hpp>
 
@@ -199,18 +198,68 @@ inline Expected<const json*> key_array(const json& j, const Loc& loc, std::initi
   return &*keys;
 }
 
-/// Keys and options of a quaternion track object (values and tangents as [w, x, y, z]); scene.cpp.
-Expected<RawQuatKeys> read_quat_keys(const json& j, const Loc& loc);
+// A member that must be a JSON object when present; nullptr when absent.
+inline Expected<const json*> object_member(const json& obj, const Loc& loc, std::string_view name,
+                                    std::initializer_list<std::string_view> allowed) {
+  auto it = obj.find(std::string(name));
+  if (it == obj.end()) return static_cast<const json*>(nullptr);
+  const Loc p = at(loc, std::string(name));
+  if (!it->is_object()) return error_at(ErrorCode::invalid_argument, "expected an object, found " + type_name(*it), p);
+  if (auto ok = only_members(*it, p, allowed); !ok) return ok.error();
+  return &*it;
+}
 
-/// "paths" of the document (version 2; the version check is the caller's); scene_v2.cpp.
-Expected<void> read_paths(const json& root, const Context& cx, RawScene& scene);
-// Version 2: the document's "skins" into scene.skins (shape only; build_scene checks the joints).
-Expected<void> read_skins(const json& root, RawScene& scene);
+// A string member ("" when absent).
+inline Expected<std::string> string_member(const json& obj, const Loc& loc, std::string_view name) {
+  auto it = obj.find(std::string(name));
+  if (it == obj.end()) return std::string();
+  if (!it->is_string()) {
+    return error_at(ErrorCode::invalid_argument, "expected a string, found " + type_name(*it), at(loc, std::string(name)));
+  }
+  return it->get<std::string>();
+}
 
-/// An object's version-2 members "path" and "camera" (an error under version 1); scene_v2.cpp.
-Expected<void> read_path_and_camera(const json& oj, const Loc& p, const Context& cx, RawObject& object);
+// An optional number member.
+inline Expected<std::optional<double>> optional_number(const json& obj, const Loc& loc, std::string_view name) {
+  if (!obj.contains(std::string(name))) return std::optional<double>{};
+  auto v = number_member(obj, loc, name, std::nullopt);
+  if (!v) return v.error();
+  return std::optional<double>{*v};
+}
 
-/// "\"<member>\" is a version-2 member" when `obj` has `member` and the file is version 1.
-Expected<void> needs_version_2(const json& obj, const Loc& loc, const Context& cx, std::string_view member);
+// An array member whose elements are objects with only `allowed` members.
+inline Expected<const json*> object_array(const json& obj, const Loc& loc, std::string_view name,
+                                   std::initializer_list<std::string_view> allowed) {
+  auto it = obj.find(std::string(name));
+  const Loc p = at(loc, std::string(name));
+  if (it == obj.end()) return error_at(ErrorCode::invalid_argument, "missing required member \"" + std::string(name) + "\"", p);
+  if (!it->is_array()) return error_at(ErrorCode::invalid_argument, "\"" + std::string(name) + "\" must be an array", p);
+  for (std::size_t i = 0; i < it->size(); ++i) {
+    const json& e = (*it)[i];
+    if (!e.is_object()) return error_at(ErrorCode::invalid_argument, "expected an object, found " + type_name(e), at(p, i));
+    if (auto ok = only_members(e, at(p, i), allowed); !ok) return ok.error();
+  }
+  return &*it;
+}
+
+// A [x, y, z] member.
+inline Expected<Vec3d> vec3_member(const json& obj, const Loc& loc, std::string_view name, Vec3d fallback) {
+  if (!obj.contains(std::string(name))) return fallback;
+  auto v = vector_member(obj, loc, name, 3, true);
+  if (!v) return v.error();
+  return xyz(*v);
+}
+
+// A target: [x, y, z] or an object name.
+inline Expected<RawTarget<double>> read_target(const json& obj, const Loc& loc, std::string_view name) {
+  auto it = obj.find(std::string(name));
+  const Loc p = at(loc, std::string(name));
+  if (it == obj.end()) return error_at(ErrorCode::invalid_argument, "missing required member \"" + std::string(name) + "\"", p);
+  if (it->is_string()) return RawTarget<double>{it->get<std::string>()};
+  if (!it->is_array()) return error_at(ErrorCode::invalid_argument, "expected [x, y, z] or an object name", p);
+  auto v = vector_member(obj, loc, name, 3, true);
+  if (!v) return v.error();
+  return RawTarget<double>{xyz(*v)};
+}
 
 }  // namespace inbetween::io_detail

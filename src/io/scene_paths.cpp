@@ -1,6 +1,7 @@
-// Reads the version-2 members of the scene format (docs/scene-format.md): "paths", and an object's
-// "path" (legs with speed and orientation) and "camera".  Shape only, as the rest of the reader:
-// names are resolved and values checked by build_scene().
+// The scene file's paths (src/io/scene_file.hpp lists the parts), version 2: the document's
+// "paths" (a curve inline, from a curve file or on a mesh surface) and the legs of an object's
+// "path" — curve, speed (ease, distance–time, velocity, constraints) and orientation — each read
+// and written side by side.
 #include <array>
 #include <cerrno>
 #include <cmath>
@@ -8,8 +9,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <system_error>
 #include <string>
+#include <system_error>
+#include <tuple>
 #include <utility>
 #include <variant>
 
@@ -20,69 +22,11 @@
 #include "inbetween/io/read_file.hpp"
 #include "inbetween/math/format.hpp"
 #include "inbetween/paths/mesh_path.hpp"
-#include "scene_json.hpp"
+#include "scene_file.hpp"
 
 namespace inbetween::io_detail {
 
 namespace {
-
-
-
-// The scene-file names of an enumeration, from its one name table (to_string).
-template <class Enum, std::size_t N>
-const std::array<std::string_view, N>& names_of() {
-  static const std::array<std::string_view, N> names = [] {
-    std::array<std::string_view, N> out{};
-    for (std::size_t i = 0; i < N; ++i) out[i] = to_string(static_cast<Enum>(i));
-    return out;
-  }();
-  return names;
-}
-
-
-// A member that must be a JSON object when present; nullptr when absent.
-Expected<const json*> object_member(const json& obj, const Loc& loc, std::string_view name,
-                                    std::initializer_list<std::string_view> allowed) {
-  auto it = obj.find(std::string(name));
-  if (it == obj.end()) return static_cast<const json*>(nullptr);
-  const Loc p = at(loc, std::string(name));
-  if (!it->is_object()) return error_at(ErrorCode::invalid_argument, "expected an object, found " + type_name(*it), p);
-  if (auto ok = only_members(*it, p, allowed); !ok) return ok.error();
-  return &*it;
-}
-
-// A string member ("" when absent).
-Expected<std::string> string_member(const json& obj, const Loc& loc, std::string_view name) {
-  auto it = obj.find(std::string(name));
-  if (it == obj.end()) return std::string();
-  if (!it->is_string()) {
-    return error_at(ErrorCode::invalid_argument, "expected a string, found " + type_name(*it), at(loc, std::string(name)));
-  }
-  return it->get<std::string>();
-}
-
-// An optional number member.
-Expected<std::optional<double>> optional_number(const json& obj, const Loc& loc, std::string_view name) {
-  if (!obj.contains(std::string(name))) return std::optional<double>{};
-  auto v = number_member(obj, loc, name, std::nullopt);
-  if (!v) return v.error();
-  return std::optional<double>{*v};
-}
-
-// An array member whose elements are objects with only `allowed` members.
-Expected<const json*> object_array(const json& obj, const Loc& loc, std::string_view name,
-                                   std::initializer_list<std::string_view> allowed) {
-  auto it = obj.find(std::string(name));
-  const Loc p = at(loc, std::string(name));
-  if (it == obj.end()) return error_at(ErrorCode::invalid_argument, "missing required member \"" + std::string(name) + "\"", p);
-  if (!it->is_array()) return error_at(ErrorCode::invalid_argument, "\"" + std::string(name) + "\" must be an array", p);
-  for (std::size_t i = 0; i < it->size(); ++i) {
-    const json& e = (*it)[i];
-    if (!e.is_object()) return error_at(ErrorCode::invalid_argument, "expected an object, found " + type_name(e), at(p, i));
-    if (auto ok = only_members(e, at(p, i), allowed); !ok) return ok.error();
-  }
-  return &*it;
-}
 
 // A curve file named in a scene, relative to the scene's folder.  Its own errors keep their place
 // in the included file after its name: "climb.json:/points/3: expected 3 numbers".
@@ -209,29 +153,9 @@ Expected<std::variant<std::string, AnyCurve>> read_curve_ref(const json& obj, co
   return std::variant<std::string, AnyCurve>{std::move(*curve)};
 }
 
-// A [x, y, z] member.
-Expected<Vec3d> vec3_member(const json& obj, const Loc& loc, std::string_view name, Vec3d fallback) {
-  if (!obj.contains(std::string(name))) return fallback;
-  auto v = vector_member(obj, loc, name, 3, true);
-  if (!v) return v.error();
-  return xyz(*v);
-}
-
-// A target: [x, y, z] or an object name.
-Expected<RawTarget<double>> read_target(const json& obj, const Loc& loc, std::string_view name) {
-  auto it = obj.find(std::string(name));
-  const Loc p = at(loc, std::string(name));
-  if (it == obj.end()) return error_at(ErrorCode::invalid_argument, "missing required member \"" + std::string(name) + "\"", p);
-  if (it->is_string()) return RawTarget<double>{it->get<std::string>()};
-  if (!it->is_array()) return error_at(ErrorCode::invalid_argument, "expected [x, y, z] or an object name", p);
-  auto v = vector_member(obj, loc, name, 3, true);
-  if (!v) return v.error();
-  return RawTarget<double>{xyz(*v)};
-}
-
 Expected<RawEase> read_ease(const json& e, const Loc& loc) {
   RawEase ease;
-  auto kind = name_member(e, loc, "kind", EaseKind::linear, names_of<EaseKind, 7>());
+  auto kind = name_member(e, loc, "kind", EaseKind::linear, enum_names<EaseKind>());
   if (!kind) return kind.error();
   ease.kind = *kind;
   for (auto [name, target] : {std::pair<std::string_view, std::optional<double>*>{"k1", &ease.k1},
@@ -248,10 +172,10 @@ Expected<RawEase> read_ease(const json& e, const Loc& loc) {
     if (!v) return v.error();
     *target = *v;
   }
-  auto curve = name_member(e, loc, "curve", EasingCurve::sine, names_of<EasingCurve, 10>());
+  auto curve = name_member(e, loc, "curve", EasingCurve::sine, enum_names<EasingCurve>());
   if (!curve) return curve.error();
   ease.curve = *curve;
-  auto direction = name_member(e, loc, "direction", EasingDirection::in_out, names_of<EasingDirection, 3>());
+  auto direction = name_member(e, loc, "direction", EasingDirection::in_out, enum_names<EasingDirection>());
   if (!direction) return direction.error();
   ease.direction = *direction;
   auto params = object_member(e, loc, "params", {"back", "amplitude", "period"});
@@ -270,7 +194,7 @@ Expected<RawEase> read_ease(const json& e, const Loc& loc) {
 
 Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
   RawSpeed& sp = leg.speed;
-  auto kind = name_member(sj, loc, "kind", SpeedKind::ease, names_of<SpeedKind, 6>());
+  auto kind = name_member(sj, loc, "kind", SpeedKind::ease, enum_names<SpeedKind>());
   if (!kind) return kind.error();
   sp.kind = *kind;
   if (sp.kind == SpeedKind::ease) {
@@ -325,7 +249,7 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
     }
   }
   auto interpolation =
-      name_member(sj, loc, "interpolation", PositionInterpolation::monotone_cubic, names_of<PositionInterpolation, 3>());
+      name_member(sj, loc, "interpolation", PositionInterpolation::monotone_cubic, enum_names<PositionInterpolation>());
   if (!interpolation) return interpolation.error();
   sp.interpolation = *interpolation;
   if (sp.kind == SpeedKind::velocity_keys) {
@@ -341,7 +265,7 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
       sp.velocities.push_back(RawVelocityKey{*frame, *speed});
     }
   }
-  auto fit = name_member(sj, loc, "fit", VelocityFit::fix_keys_adjust_interior, names_of<VelocityFit, 2>());
+  auto fit = name_member(sj, loc, "fit", VelocityFit::fix_keys_adjust_interior, enum_names<VelocityFit>());
   if (!fit) return fit.error();
   sp.fit = *fit;
   if (sp.kind == SpeedKind::acceleration_keys) {
@@ -356,7 +280,7 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
       if (!acceleration) return acceleration.error();
       sp.accelerations.push_back(RawAccelerationKey{*frame, *acceleration});
     }
-    auto shape = name_member(sj, loc, "shape", AccelerationShape::constant, names_of<AccelerationShape, 2>());
+    auto shape = name_member(sj, loc, "shape", AccelerationShape::constant, enum_names<AccelerationShape>());
     if (!shape) return shape.error();
     sp.shape = *shape;
     auto start_speed = number_member(sj, loc, "start_speed", 0.0);
@@ -376,7 +300,7 @@ Expected<void> read_speed(const json& sj, const Loc& loc, RawPathLeg& leg) {
 
 Expected<void> read_orientation(const json& oj, const Loc& loc, RawPathLeg& leg) {
   RawOrientation& o = leg.orientation;
-  auto mode = name_member(oj, loc, "mode", OrientationMode::rotation_minimizing, names_of<OrientationMode, 4>());
+  auto mode = name_member(oj, loc, "mode", OrientationMode::rotation_minimizing, enum_names<OrientationMode>());
   if (!mode) return mode.error();
   o.mode = *mode;
   auto up = vec3_member(oj, loc, "up", o.up);
@@ -388,7 +312,7 @@ Expected<void> read_orientation(const json& oj, const Loc& loc, RawPathLeg& leg)
     if (const auto* name = std::get_if<std::string>(&*target)) leg.look_at_object = *name;
     else o.look_at = std::get<Vec3d>(*target);
   }
-  auto closing = name_member(oj, loc, "closing", RmfClosing::automatic, names_of<RmfClosing, 3>());
+  auto closing = name_member(oj, loc, "closing", RmfClosing::automatic, enum_names<RmfClosing>());
   if (!closing) return closing.error();
   o.closing = *closing;
   auto banking = object_member(oj, loc, "banking", {"gain", "max_bank_rad", "lean_out"});
@@ -422,6 +346,8 @@ Expected<void> read_orientation(const json& oj, const Loc& loc, RawPathLeg& leg)
   return {};
 }
 
+}  // namespace
+
 Expected<RawPathLeg> read_leg(const json& lj, const Loc& loc, const Context& cx) {
   if (!lj.is_object()) return error_at(ErrorCode::invalid_argument, "a path leg must be an object, found " + type_name(lj), loc);
   if (auto ok = only_members(lj, loc, {"curve", "file", "surface", "speed", "orientation"}); !ok) return ok.error();
@@ -442,91 +368,6 @@ Expected<RawPathLeg> read_leg(const json& lj, const Loc& loc, const Context& cx)
   }
   return leg;
 }
-
-Expected<RawCameraViewd> read_camera(const json& cj, const Loc& loc) {
-  RawCameraViewd cam;
-  auto yfov = number_member(cj, loc, "yfov_deg", cam.yfov_deg);
-  if (!yfov) return yfov.error();
-  cam.yfov_deg = *yfov;
-  int modes = 0;
-  for (const char* m : {"look_at", "ahead", "coi_path", "hold", "own_rotation"}) modes += cj.contains(m) ? 1 : 0;
-  if (modes != 1) {
-    return error_at(ErrorCode::invalid_argument,
-                    "a camera needs exactly one of \"look_at\", \"ahead\", \"coi_path\", \"hold\", \"own_rotation\" (got " +
-                        std::to_string(modes) + ")",
-                    loc);
-  }
-  if (cj.contains("look_at")) {
-    auto target = read_target(cj, loc, "look_at");
-    if (!target) return target.error();
-    cam.coi = RawLookAt<double>{*target};
-  } else if (cj.contains("ahead")) {
-    auto ahead = object_member(cj, loc, "ahead", {"distance", "count", "spread"});
-    if (!ahead) return ahead.error();
-    const Loc ap = at(loc, "ahead");
-    RawLookAhead<double> a;
-    auto distance = number_member(**ahead, ap, "distance", std::nullopt);
-    if (!distance) return distance.error();
-    auto count = number_member(**ahead, ap, "count", 1.0);
-    if (!count) return count.error();
-    if (std::floor(*count) != *count || std::abs(*count) > 1e6) {
-      return error_at(ErrorCode::invalid_argument, "expected a whole number of points (1 to 10^6)", at(ap, "count"));
-    }
-    auto spread = number_member(**ahead, ap, "spread", 0.0);
-    if (!spread) return spread.error();
-    a.distance = *distance;
-    a.count = int(*count);
-    a.spread = *spread;
-    cam.coi = a;
-  } else if (cj.contains("own_rotation")) {
-    auto own = object_member(cj, loc, "own_rotation", {"distance"});
-    if (!own) return own.error();
-    RawOwnRotation<double> r;
-    auto distance = number_member(**own, at(loc, "own_rotation"), "distance", r.distance);
-    if (!distance) return distance.error();
-    r.distance = *distance;
-    cam.coi = r;
-  } else if (cj.contains("coi_path")) {
-    auto path = string_member(cj, loc, "coi_path");
-    if (!path) return path.error();
-    cam.coi = RawCoiPath{*path};
-  } else {
-    auto hold = object_array(cj, loc, "hold", {"target", "hold_until", "move_frames"});
-    if (!hold) return hold.error();
-    RawHoldThenMove<double> h;
-    for (std::size_t i = 0; i < (*hold)->size(); ++i) {
-      const json& sj = (**hold)[i];
-      const Loc p = at(at(loc, "hold"), i);
-      RawHoldSegment<double> seg;
-      auto target = read_target(sj, p, "target");
-      if (!target) return target.error();
-      auto until = number_member(sj, p, "hold_until", std::nullopt);
-      if (!until) return until.error();
-      auto move = number_member(sj, p, "move_frames", 0.0);
-      if (!move) return move.error();
-      seg.target = *target;
-      seg.hold_until = *until;
-      seg.move_frames = *move;
-      h.segments.push_back(seg);
-    }
-    cam.coi = std::move(h);
-  }
-  auto up = vec3_member(cj, loc, "up", cam.up);
-  if (!up) return up.error();
-  cam.up = *up;
-  auto up_path = string_member(cj, loc, "up_path");
-  if (!up_path) return up_path.error();
-  cam.up_path = *up_path;
-  auto tilt = number_member(cj, loc, "tilt_deg", 0.0);
-  if (!tilt) return tilt.error();
-  cam.tilt_deg = *tilt;
-  auto tilt_track = string_member(cj, loc, "tilt_track");
-  if (!tilt_track) return tilt_track.error();
-  cam.tilt_track = *tilt_track;
-  return cam;
-}
-
-}  // namespace
 
 Expected<void> needs_version_2(const json& obj, const Loc& loc, const Context& cx, std::string_view member) {
   if (cx.version >= 2 || !obj.contains(std::string(member))) return {};
@@ -558,70 +399,145 @@ Expected<void> read_paths(const json& root, const Context& cx, RawScene& scene) 
   return {};
 }
 
-Expected<void> read_skins(const json& root, RawScene& scene) {
-  auto ss = root.find("skins");
-  if (ss == root.end()) return {};
-  if (!ss->is_array()) return error_at(ErrorCode::invalid_argument, "\"skins\" must be an array", {"skins"});
-  for (std::size_t i = 0; i < ss->size(); ++i) {
-    const json& sj = (*ss)[i];
-    const Loc p{"skins", i};
-    if (!sj.is_object()) return error_at(ErrorCode::invalid_argument, "a skin must be an object, found " + type_name(sj), p);
-    if (auto ok = only_members(sj, p, {"name", "joints"}); !ok) return ok.error();
-    RawSkin skin;
-    if (auto name = sj.find("name"); name != sj.end()) {
-      if (!name->is_string()) return error_at(ErrorCode::invalid_argument, "\"name\" must be a string", at(p, "name"));
-      skin.name = name->get<std::string>();
-    }
-    auto joints = sj.find("joints");
-    if (joints == sj.end() || !joints->is_array()) {
-      return error_at(ErrorCode::invalid_argument, "a skin needs \"joints\": an array of object names", at(p, "joints"));
-    }
-    for (std::size_t j = 0; j < joints->size(); ++j) {
-      const json& name = (*joints)[j];
-      if (!name.is_string()) {
-        return error_at(ErrorCode::invalid_argument, "a joint is an object name (a string), found " + type_name(name),
-                        at(at(p, "joints"), j));
-      }
-      skin.joints.push_back(name.get<std::string>());
-    }
-    scene.skins.push_back(std::move(skin));
-  }
-  return {};
+// ------------------------------------------------------------------ writing
+// A curve as its curve-file object (io/curve_file.hpp's writer, the one curve writer).
+ojson SceneWriter::curve(const AnyCurve& c) { return ojson::parse(write_curve_json(c)); }
+
+ojson SceneWriter::target(const RawTarget<double>& t, const Loc& loc) {
+  if (const auto* name = std::get_if<std::string>(&t)) return *name;
+  return vec3(std::get<Vec3d>(t), loc);
 }
 
-Expected<void> read_path_and_camera(const json& oj, const Loc& p, const Context& cx, RawObject& object) {
-  for (std::string_view member : {"path", "camera"}) {
-    if (auto ok = needs_version_2(oj, p, cx, member); !ok) return ok.error();
+ojson SceneWriter::ease(const RawEase& e, const Loc& loc) {
+  const RawEase d;
+  ojson j = ojson::object();
+  j["kind"] = std::string(to_string(e.kind));
+  for (auto [name, v] : {std::pair<const char*, const std::optional<double>*>{"k1", &e.k1}, {"k2", &e.k2}, {"t1", &e.t1},
+                         {"t2", &e.t2}, {"v0", &e.v0}, {"accel_frames", &e.accel_frames}, {"decel_frames", &e.decel_frames},
+                         {"acceleration", &e.acceleration}, {"deceleration", &e.deceleration}}) {
+    if (*v) j[name] = number(**v, at(loc, name));
   }
-  if (auto pj = oj.find("path"); pj != oj.end()) {
-    const Loc pp = at(p, "path");
-    if (pj->is_array()) {
-      object.path_is_array = true;
-      if (pj->empty()) return error_at(ErrorCode::too_few_points, "a path needs at least one leg", pp);
-      for (std::size_t k = 0; k < pj->size(); ++k) {
-        auto leg = read_leg((*pj)[k], at(pp, k), cx);
-        if (!leg) return leg.error();
-        object.path.push_back(std::move(*leg));
-      }
-    } else {
-      auto leg = read_leg(*pj, pp, cx);
-      if (!leg) return leg.error();
-      object.path.push_back(std::move(*leg));
+  for (auto [name, v, dv] : {std::tuple<const char*, double, double>{"x1", e.x1, d.x1}, {"y1", e.y1, d.y1}, {"x2", e.x2, d.x2},
+                             {"y2", e.y2, d.y2}}) {
+    if (v != dv) j[name] = number(v, at(loc, name));
+  }
+  if (e.curve != d.curve) j["curve"] = std::string(to_string(e.curve));
+  if (e.direction != d.direction) j["direction"] = std::string(to_string(e.direction));
+  if (e.params.back != d.params.back || e.params.amplitude != d.params.amplitude || e.params.period != d.params.period) {
+    const auto pl = at(loc, "params");
+    ojson pj = ojson::object();
+    pj["back"] = number(e.params.back, at(pl, "back"));
+    pj["amplitude"] = number(e.params.amplitude, at(pl, "amplitude"));
+    pj["period"] = number(e.params.period, at(pl, "period"));
+    j["params"] = std::move(pj);
+  }
+  return j;
+}
+
+ojson SceneWriter::speed(const RawPathLeg& leg, const Loc& loc) {
+  const RawSpeed& s = leg.speed;
+  const RawSpeed d;
+  ojson j = ojson::object();
+  j["kind"] = std::string(to_string(s.kind));
+  if (s.kind == SpeedKind::ease) {
+    j["start_frame"] = number(s.start_frame, at(loc, "start_frame"));
+    j["end_frame"] = number(s.end_frame, at(loc, "end_frame"));
+  }
+  if (s.from) j["from"] = number(*s.from, at(loc, "from"));
+  if (s.to) j["to"] = number(*s.to, at(loc, "to"));
+  if (s.fraction) j["fraction"] = true;
+  if (s.repair) j["repair"] = true;
+  if (s.kind == SpeedKind::ease) j["ease"] = ease(s.ease, at(loc, "ease"));
+  if (s.kind == SpeedKind::distance_keys || s.kind == SpeedKind::constraints) {
+    ojson keys = ojson::array();
+    for (std::size_t i = 0; i < s.keys.size(); ++i) {
+      const auto kl = at(at(loc, "keys"), i);
+      ojson kj = ojson::object();
+      kj["frame"] = number(s.keys[i].frame, at(kl, "frame"));
+      kj["distance"] = number(s.keys[i].distance, at(kl, "distance"));
+      if (s.keys[i].speed) kj["speed"] = number(*s.keys[i].speed, at(kl, "speed"));
+      // Read for both kinds; the builder refuses it on distance_keys.
+      if (s.keys[i].acceleration) kj["acceleration"] = number(*s.keys[i].acceleration, at(kl, "acceleration"));
+      keys.push_back(std::move(kj));
     }
+    j["keys"] = std::move(keys);
   }
-  if (auto cj = oj.find("camera"); cj != oj.end()) {
-    const Loc cp = at(p, "camera");
-    if (!cj->is_object()) return error_at(ErrorCode::invalid_argument, "expected an object, found " + type_name(*cj), cp);
-    if (auto ok = only_members(*cj, cp, {"yfov_deg", "look_at", "ahead", "coi_path", "hold", "own_rotation", "up", "up_path",
-                                         "tilt_deg", "tilt_track"});
-        !ok) {
-      return ok.error();
+  if (s.interpolation != d.interpolation) j["interpolation"] = std::string(to_string(s.interpolation));
+  if (s.kind == SpeedKind::velocity_keys) {
+    ojson keys = ojson::array();
+    for (std::size_t i = 0; i < s.velocities.size(); ++i) {
+      const auto kl = at(at(loc, "velocities"), i);
+      ojson kj = ojson::object();
+      kj["frame"] = number(s.velocities[i].frame, at(kl, "frame"));
+      kj["speed"] = number(s.velocities[i].speed, at(kl, "speed"));
+      keys.push_back(std::move(kj));
     }
-    auto camera = read_camera(*cj, cp);
-    if (!camera) return camera.error();
-    object.camera = std::move(*camera);
+    j["velocities"] = std::move(keys);
   }
-  return {};
+  if (s.fit != d.fit) j["fit"] = std::string(to_string(s.fit));
+  if (s.kind == SpeedKind::acceleration_keys) {
+    ojson keys = ojson::array();
+    for (std::size_t i = 0; i < s.accelerations.size(); ++i) {
+      const auto kl = at(at(loc, "accelerations"), i);
+      ojson kj = ojson::object();
+      kj["frame"] = number(s.accelerations[i].frame, at(kl, "frame"));
+      kj["acceleration"] = number(s.accelerations[i].acceleration, at(kl, "acceleration"));
+      keys.push_back(std::move(kj));
+    }
+    j["accelerations"] = std::move(keys);
+    if (s.shape != d.shape) j["shape"] = std::string(to_string(s.shape));
+    if (s.start_speed != d.start_speed) j["start_speed"] = number(s.start_speed, at(loc, "start_speed"));
+  }
+  if (s.kind == SpeedKind::track) j["track"] = leg.speed_track;
+  return j;
+}
+
+// The leg's "orientation" object; empty when every member has its default.
+ojson SceneWriter::orientation(const RawPathLeg& leg, const Loc& loc) {
+  const RawOrientation& o = leg.orientation;
+  ojson j = ojson::object();
+  if (o.mode != OrientationMode::rotation_minimizing) j["mode"] = std::string(to_string(o.mode));
+  if (o.up != Vec3d{0, 1, 0}) j["up"] = vec3(o.up, at(loc, "up"));
+  if (!leg.look_at_object.empty()) {
+    j["look_at"] = leg.look_at_object;
+  } else if (o.look_at != Vec3d{}) {
+    j["look_at"] = vec3(o.look_at, at(loc, "look_at"));
+  }
+  if (o.banking) {
+    const auto bl = at(loc, "banking");
+    ojson bj = ojson::object();
+    bj["gain"] = number(o.banking->gain, at(bl, "gain"));
+    bj["max_bank_rad"] = number(o.banking->max_bank_rad, at(bl, "max_bank_rad"));
+    if (o.banking->lean_out) bj["lean_out"] = true;
+    j["banking"] = std::move(bj);
+  }
+  if (o.closing != RmfClosing::automatic) j["closing"] = std::string(to_string(o.closing));
+  if (leg.local_rotation_keys) {
+    ojson rj = ojson::object();
+    const RawQuatKeys& keys = *leg.local_rotation_keys;
+    quat_keys(rj, keys.keys, keys.tangents, keys.distance_factor, keys.time_aware, at(loc, "local_rotation"));
+    j["local_rotation"] = std::move(rj);
+  } else if (!(o.local_rotation == Quatd{})) {
+    j["local_rotation"] = quat(o.local_rotation, at(loc, "local_rotation"));
+  }
+  return j;
+}
+
+ojson SceneWriter::leg(const RawPathLeg& leg, const Loc& loc) {
+  ojson j = ojson::object();
+  if (const auto* name = std::get_if<std::string>(&leg.curve)) j["curve"] = *name;
+  else j["curve"] = curve(std::get<AnyCurve>(leg.curve));
+  j["speed"] = speed(leg, at(loc, "speed"));
+  ojson o = orientation(leg, at(loc, "orientation"));
+  if (!o.empty()) j["orientation"] = std::move(o);
+  return j;
+}
+
+ojson SceneWriter::path(const RawScenePath& p) {
+  ojson j = ojson::object();
+  j["name"] = p.name;
+  j["curve"] = curve(p.curve);
+  return j;
 }
 
 }  // namespace inbetween::io_detail
