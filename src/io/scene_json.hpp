@@ -200,7 +200,7 @@ inline Expected<const json*> key_array(const json& j, const Loc& loc, std::initi
 
 // A member that must be a JSON object when present; nullptr when absent.
 inline Expected<const json*> object_member(const json& obj, const Loc& loc, std::string_view name,
-                                    std::initializer_list<std::string_view> allowed) {
+                                           std::initializer_list<std::string_view> allowed) {
   auto it = obj.find(std::string(name));
   if (it == obj.end()) return static_cast<const json*>(nullptr);
   const Loc p = at(loc, std::string(name));
@@ -229,7 +229,7 @@ inline Expected<std::optional<double>> optional_number(const json& obj, const Lo
 
 // An array member whose elements are objects with only `allowed` members.
 inline Expected<const json*> object_array(const json& obj, const Loc& loc, std::string_view name,
-                                   std::initializer_list<std::string_view> allowed) {
+                                          std::initializer_list<std::string_view> allowed) {
   auto it = obj.find(std::string(name));
   const Loc p = at(loc, std::string(name));
   if (it == obj.end()) return error_at(ErrorCode::invalid_argument, "missing required member \"" + std::string(name) + "\"", p);
