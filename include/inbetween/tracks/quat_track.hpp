@@ -266,9 +266,14 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, std::s
     const auto& k = keys[i];
     if (!std::isfinite(k.frame)) return fail(ErrorCode::not_finite, "frame is not finite", {"keys", i, "frame"});
     if (!is_finite(k.value)) return fail(ErrorCode::not_finite, "quaternion or tangent is not finite", {"keys", i, "value"});
-    const QuatKeyTangents<T> t = tangents.empty() ? QuatKeyTangents<T>{} : tangents[i];
-    if (!is_finite(t.in)) return fail(ErrorCode::not_finite, "quaternion or tangent is not finite", {"keys", i, "in_tangent"});
-    if (!is_finite(t.out)) return fail(ErrorCode::not_finite, "quaternion or tangent is not finite", {"keys", i, "out_tangent"});
+    if (!tangents.empty()) {  // none: all zero (a motion-capture clip's keys are checked without them)
+      if (!is_finite(tangents[i].in)) {
+        return fail(ErrorCode::not_finite, "quaternion or tangent is not finite", {"keys", i, "in_tangent"});
+      }
+      if (!is_finite(tangents[i].out)) {
+        return fail(ErrorCode::not_finite, "quaternion or tangent is not finite", {"keys", i, "out_tangent"});
+      }
+    }
     const T len = norm(k.value);
     if (!(len > T(0))) return fail(ErrorCode::invalid_argument, "zero quaternion is not a rotation", {"keys", i, "value"});
     if (i > 0 && !(k.frame > keys[i - 1].frame)) {
@@ -286,6 +291,7 @@ Expected<QuatTrack<T>> build_quat_track(std::span<const QuatKey<T>> keys, std::s
     }
     tr.keys_[i] = q * sign;
     if (any_cubic) {
+      const QuatKeyTangents<T> t = tangents.empty() ? QuatKeyTangents<T>{} : tangents[i];
       tr.tin_[i] = t.in * sign;
       tr.tout_[i] = t.out * sign;
     }
