@@ -32,6 +32,7 @@ command-line entry exits 0 when every job succeeded (or was skipped) and 2 when 
 from __future__ import annotations
 
 import argparse
+import concurrent.futures
 import datetime
 import json
 import os
@@ -205,13 +206,16 @@ def _sweep(outputs):
     """Removes the tool's temporaries (".<name>.inbetween-XXXXXX") of these outputs: those a worker
     killed between linking and renaming its file, or writing where O_TMPFILE is missing, left."""
     swept = []
+    listings = {}  # one listing per folder: a batch writes many outputs into few folders
     for out in sorted(set(outputs)):
         folder, name = os.path.split(out)
         prefix = "." + os.fsencode(name)[:_MAX_NAME_IN_TEMP].decode(errors="surrogateescape") + ".inbetween-"
-        try:
-            entries = os.listdir(folder or ".")
-        except OSError:
-            continue
+        if folder not in listings:
+            try:
+                listings[folder] = os.listdir(folder or ".")
+            except OSError:
+                listings[folder] = []
+        entries = listings[folder]
         for e in entries:
             if e.startswith(prefix) and len(e) == len(prefix) + 6 and _TEMP_SUFFIX.search(e):
                 path = os.path.join(folder, e)
@@ -288,7 +292,10 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
     started = datetime.datetime.now(datetime.timezone.utc)
     t0 = time.perf_counter()
 
-    entries = [_plan(i, job, base_dir) for i, job in enumerate(jobs)]
+    # Planning parses every job with the tool (~0.2 ms each) before the first one can run: in as
+    # many threads as cores (the binding releases the GIL), it is not the batch's serial tail.
+    with concurrent.futures.ThreadPoolExecutor(max(1, min(len(jobs), os.cpu_count() or 1))) as pool:
+        entries = list(pool.map(lambda ij: _plan(ij[0], ij[1], base_dir), enumerate(jobs)))
     writers = {}
     for e in entries:  # two jobs writing one file would race: the later one fails
         if e["status"] != "pending":
@@ -335,12 +342,13 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
             bar.update(done, failed, force=True)
             per_task = jobs_per_task or _jobs_per_task(len(to_run), max(n_workers, 1))
             token = f"{os.getpid()}-{int(time.time() * 1e6)}"
-            futures = {}
-            for start in range(0, len(to_run), per_task):
-                chunk = to_run[start:start + per_task]
-                f = client.submit(run_jobs, [e["args"] for e in chunk], base_dir,
-                                  key=f"inbetween-jobs-{chunk[0]['index']}-{token}", pure=False, retries=RETRIES)
-                futures[f] = chunk
+            chunks = [to_run[start:start + per_task] for start in range(0, len(to_run), per_task)]
+            # One map call, not a submit per task: each submit call has the client read the calling
+            # code (inspect.getsource, ~5 ms), which ran serially before any job started.
+            submitted = client.map(run_jobs, [[e["args"] for e in chunk] for chunk in chunks], base_dir=base_dir,
+                                   key=[f"inbetween-jobs-{chunk[0]['index']}-{token}" for chunk in chunks],
+                                   pure=False, retries=RETRIES)
+            futures = dict(zip(submitted, chunks))
             for f in as_completed(list(futures)):
                 chunk = futures[f]
                 try:
