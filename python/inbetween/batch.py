@@ -53,8 +53,10 @@ RETRIES = 1
 #: it reports the job failed (KilledWorker); the local cluster sets it, an existing scheduler keeps
 #: its own ``distributed.scheduler.allowed-failures`` (Dask's default is the same 3).
 ALLOWED_FAILURES = 3
-#: Jobs per Dask task (``jobs_per_task`` unset): every worker gets at least this many tasks …
-TASKS_PER_WORKER = 16
+#: Jobs per Dask task (``jobs_per_task`` unset): guided self-scheduling — each task takes the jobs
+#: still unassigned divided by this many per worker, so tasks shrink towards the end and the
+#: workers finish together …
+TASKS_PER_WORKER = 2
 #: … of at most this many jobs each (a killed worker's task is rerun whole: outputs already
 #: written are written again, the same bytes).
 MAX_JOBS_PER_TASK = 32
@@ -154,11 +156,22 @@ def run_jobs(jobs, base_dir):
     return [run_job(args, base_dir) for args in jobs]
 
 
-def _jobs_per_task(n_jobs, n_workers):
-    """Jobs per Dask task: 1 for small batches; for large ones enough that each task is a few
-    jobs (Dask's per-task cost, about a millisecond, against jobs of ~10 ms) while every worker
-    still gets at least TASKS_PER_WORKER tasks to balance the load; at most MAX_JOBS_PER_TASK."""
-    return max(1, min(MAX_JOBS_PER_TASK, n_jobs // (n_workers * TASKS_PER_WORKER)))
+def _chunks(jobs, n_workers, jobs_per_task=None):
+    """The jobs cut into Dask tasks, in order.  `jobs_per_task` given: tasks of that many jobs.
+    Unset: guided self-scheduling — a task takes ceil(unassigned / (TASKS_PER_WORKER × workers))
+    jobs, at least 1 and at most MAX_JOBS_PER_TASK: few, large tasks first (Dask's per-task cost
+    of 1–3 ms against jobs of a few ms), single jobs last, so no worker waits long on the other's
+    last task."""
+    chunks, start = [], 0
+    while start < len(jobs):
+        if jobs_per_task:
+            size = jobs_per_task
+        else:
+            size = -(-(len(jobs) - start) // (TASKS_PER_WORKER * max(1, n_workers)))
+            size = max(1, min(MAX_JOBS_PER_TASK, size))
+        chunks.append(jobs[start:start + size])
+        start += size
+    return chunks
 
 
 def _command_of(args):
@@ -280,7 +293,7 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
     cores) runs the jobs and is closed at the end.  `client`: a distributed.Client to use instead of
     either.  `force`: run the jobs whose outputs are up to date too.  `progress`: "auto" (a bar on a
     terminal), "always" or "never".  `jobs_per_task`: jobs sent to a worker as one Dask task (default:
-    1 for small batches, more for large ones, see _jobs_per_task).  Raises ManifestError for a manifest that cannot be read; jobs
+    tasks that shrink towards the end, see _chunks).  Raises ManifestError for a manifest that cannot be read; jobs
     that fail are in the summary ("status": "failed"), never raised."""
     import dask
     from distributed import Client, LocalCluster, as_completed
@@ -340,13 +353,13 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
             except Exception:  # noqa: BLE001 (an older scheduler: report the default)
                 pass
             bar.update(done, failed, force=True)
-            per_task = jobs_per_task or _jobs_per_task(len(to_run), max(n_workers, 1))
             token = f"{os.getpid()}-{int(time.time() * 1e6)}"
-            chunks = [to_run[start:start + per_task] for start in range(0, len(to_run), per_task)]
+            chunks = _chunks(to_run, n_workers, jobs_per_task)
+            per_task = max(len(chunk) for chunk in chunks)
             # One map call, not a submit per task: each submit call has the client read the calling
             # code (inspect.getsource, ~5 ms), which ran serially before any job started.
             submitted = client.map(run_jobs, [[e["args"] for e in chunk] for chunk in chunks], base_dir=base_dir,
-                                   key=[f"inbetween-jobs-{chunk[0]['index']}-{token}" for chunk in chunks],
+                                   key=[f"inbetween-jobs-{chunk[0]['index']:09d}-{token}" for chunk in chunks],
                                    pure=False, retries=RETRIES)
             futures = dict(zip(submitted, chunks))
             for f in as_completed(list(futures)):
@@ -407,8 +420,8 @@ def main(argv=None) -> int:
                                                "--scheduler: wait until this many workers are connected")
     p.add_argument("--summary", help="write the summary (JSON, docs/batch-summary.schema.json) to this file")
     p.add_argument("--force", action="store_true", help="run the jobs whose outputs are newer than their inputs too")
-    p.add_argument("--jobs-per-task", type=int, help="jobs sent to a worker as one Dask task (default: 1 for small "
-                                                     "batches, up to 32 for large ones)")
+    p.add_argument("--jobs-per-task", type=int, help="jobs sent to a worker as one Dask task (default: the unassigned "
+                                                     "jobs / (2 x workers), 1 to 32: tasks shrink towards the end)")
     p.add_argument("--progress", choices=("auto", "always", "never"), default="auto",
                    help="progress bar on standard error: auto (when it is a terminal), always, never")
     a = p.parse_args(argv)

@@ -340,3 +340,21 @@ def test_a_worker_killed_mid_write_loses_nothing(tmp_path, source_dir):
     for i, args in enumerate(jobs):
         assert (tmp_path / args[-1]).read_bytes() == refs[i % variants], args
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == sorted(pathlib.Path(a[-1]).name for a in jobs)
+
+
+def test_tasks_shrink_towards_the_end_and_keep_every_job_once_in_order():
+    """Guided self-scheduling (batch._chunks): the jobs in order, each once; task sizes never grow,
+    stay within 1..MAX_JOBS_PER_TASK, start at unassigned / (TASKS_PER_WORKER × workers) and end at
+    single jobs; a fixed jobs_per_task cuts equal tasks."""
+    for n_jobs in (1, 2, 7, 50, 200, 1000):
+        for workers in (1, 2, 8):
+            chunks = batch._chunks(list(range(n_jobs)), workers)
+            assert [j for c in chunks for j in c] == list(range(n_jobs))
+            sizes = [len(c) for c in chunks]
+            assert sizes == sorted(sizes, reverse=True), sizes
+            assert 1 <= min(sizes) and max(sizes) <= batch.MAX_JOBS_PER_TASK
+            first = -(-n_jobs // (batch.TASKS_PER_WORKER * workers))
+            assert sizes[0] == max(1, min(batch.MAX_JOBS_PER_TASK, first))
+            assert sizes[-1] == 1
+    assert [len(c) for c in batch._chunks(list(range(7)), 2, jobs_per_task=3)] == [3, 3, 1]
+    assert batch._chunks([], 2) == []
