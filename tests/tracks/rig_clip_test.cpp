@@ -35,8 +35,8 @@ TYPED_TEST(RigClipTyped, AgreesWithTheScalarTrackApi) {
   using T = TypeParam;
   test::Random rng(test::seed_for(1203));
   SCOPED_TRACE(rng.trace());
-  // Double runs Highway's dynamic dispatch: the best target of this CPU in trials 0–2, at most AVX2
-  // (a machine without AVX-512) in trials 3–5.  Float's kernel does not dispatch.
+  // The default SSE2 build runs Highway's dynamic dispatch: the best target of this CPU in trials
+  // 0–2, at most AVX2 (a machine without AVX-512) in trials 3–5.
   for (int trial = 0; trial < 6; ++trial) {
     rig_detail::hwy_limit_to_avx2(trial >= 3);
     const Rig<T> rig = random_rig<T>(rng, 20);
@@ -65,11 +65,81 @@ TYPED_TEST(RigClipTyped, AgreesWithTheScalarTrackApi) {
     }
     if (trial == 0 || trial == 3)
       std::cout << "[ measured ] RigClip vs per-track API (" << (sizeof(T) == 4 ? "float" : "double")
-                << (sizeof(T) == 8 && rig_detail::stdx::native_simd<double>::size() < 4
+                << (rig_detail::stdx::native_simd<T>::size() * sizeof(T) < 32
                         ? std::string(", Highway ") + rig_detail::hwy_dynamic_target()
                         : std::string())
                 << "): Vec3 " << worst_vec << " of the magnitude, rotation " << worst_rot << " rad\n";
     rig_detail::hwy_limit_to_avx2(false);
+  }
+}
+
+// The compact forms (issue 24): a rig of linear and stepped Vec3 keys, step/slerp rotations and
+// constant channels (equal keys) keeps the 8-field Vec3 cache layout, its constant channels cost
+// the same whatever their key count, and it agrees with the scalar API as the general rigs do,
+// played forwards (stream records), backwards and with jumps (records found per channel).
+TYPED_TEST(RigClipTyped, LinesStepsAndConstantChannelsTakeTheCompactForms) {
+  using T = TypeParam;
+  test::Random rng(test::seed_for(2424));
+  SCOPED_TRACE(rng.trace());
+  const auto make = [&](int keys, bool all_constant) {
+    Rig<T> rig;
+    for (int j = 0; j < 21; ++j) {
+      std::vector<TrackKey<Vec3<T>>> tk, sk;
+      std::vector<QuatKey<T>> rk;
+      T f = rng.uniform<T>(T(-3), T(3));
+      const Quat<T> fixed = rng.rotation<T>();
+      const bool constant_t = all_constant || j % 4 == 0, constant_s = all_constant || j % 2 == 0;
+      const bool constant_r = all_constant || j % 3 == 0;
+      for (int k = 0; k < keys; ++k) {
+        TrackKey<Vec3<T>> t;
+        t.frame = f;
+        t.value = constant_t ? Vec3<T>{T(1), T(-2), T(0.5)} : rng.vec3<T>(T(-5), T(5));
+        t.tangent = rng.integer(0, 5) == 0 ? TangentKind::stepped : TangentKind::linear;
+        tk.push_back(t);
+        TrackKey<Vec3<T>> s = t;
+        s.value = constant_s ? Vec3<T>{T(1), T(1), T(1)} : rng.vec3<T>(T(0.5), T(2));
+        sk.push_back(s);
+        QuatKey<T> r;
+        r.frame = f;
+        r.value = constant_r ? fixed : rng.rotation<T>();
+        r.interpolation = rng.integer(0, 3) == 0 ? QuatInterpolation::step : QuatInterpolation::slerp;
+        rk.push_back(r);
+        f += rng.uniform<T>(T(0.2), T(3));
+      }
+      rig.translations.push_back(*build_track(tk));
+      rig.scales.push_back(*build_track(sk));
+      rig.rotations.push_back(*build_quat_track(rk));
+    }
+    return rig;
+  };
+  // Constant channels: one record each, whatever the key count.
+  const Rig<T> few = make(3, true), many = make(40, true);
+  const auto few_clip = build_rig_clip<T>(few.translations, few.rotations, few.scales);
+  const auto many_clip = build_rig_clip<T>(many.translations, many.rotations, many.scales);
+  ASSERT_TRUE(few_clip && many_clip);
+  EXPECT_EQ(few_clip->bytes(), many_clip->bytes());
+
+  const Rig<T> rig = make(12, false);
+  const auto clip = build_rig_clip<T>(rig.translations, rig.rotations, rig.scales);
+  ASSERT_TRUE(clip) << clip.error().describe();
+  RigClipCursor ctx = make_rig_clip_cursor(*clip);
+  EXPECT_EQ(ctx.vec_fields, rig_detail::vec_fields_line);  // no cubic segment: c2, c3 not cached
+  std::vector<JointPose<T>> pose(clip->joints());
+  std::vector<T> frames;
+  for (T t = -6; t < 40; t += T(0.23)) frames.push_back(t);
+  for (T t = 38; t > -6; t -= T(0.71)) frames.push_back(t);
+  for (int i = 0; i < 100; ++i) frames.push_back(rng.uniform<T>(T(-8), T(45)));
+  for (const T frame : frames) {
+    sample_rig(*clip, frame, ctx, std::span<JointPose<T>>(pose));
+    for (std::size_t j = 0; j < pose.size(); ++j) {
+      EXPECT_LE(max_abs(pose[j].translation - rig.translations[j].sample(frame)),
+                rig_runtime_vec_tolerance<T> * magnitude(rig.translations[j]))
+          << "joint " << j << " frame " << frame;
+      EXPECT_LE(max_abs(pose[j].scale - rig.scales[j].sample(frame)), rig_runtime_vec_tolerance<T> * magnitude(rig.scales[j]))
+          << "joint " << j << " frame " << frame;
+      EXPECT_LE(angle_between(pose[j].rotation, rig.rotations[j].sample(frame)), rig_runtime_rotation_tolerance<T>)
+          << "joint " << j << " frame " << frame;
+    }
   }
 }
 

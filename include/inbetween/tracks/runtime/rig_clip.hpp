@@ -107,7 +107,7 @@ inline constexpr std::uint32_t rec_channel = (1u << 30) - 1;
 // float: 24 bytes (Vec3), 36 (rotation) against the 64 of a full block.
 template <Real T, std::size_t N>
 struct Record {
-  T lo, hi;
+  T lo, inv_length;  // inv_length: key records' 1/(hi − lo); hi is the channel's next record's lo
   std::uint32_t owner;
   T v[N];
 };
@@ -119,7 +119,8 @@ struct Stream {
   std::vector<std::uint32_t> begin, count;  // per channel
   std::vector<std::uint32_t> where;         // per (channel, segment): record position
   std::vector<Record<T, N>> records;        // stream order
-  std::vector<T> full;                      // the full records' blocks, RigClip::block scalars each
+  std::vector<T> full;                      // the full records' blocks (rig_detail::apply)
+  bool cubic = false;                       // Vec3: some segment is not a line (its blocks keep c2, c3)
   [[nodiscard]] std::size_t bytes() const noexcept {
     return (begin.size() + count.size() + where.size()) * sizeof(std::uint32_t) + records.size() * sizeof(Record<T, N>) +
            full.size() * sizeof(T);
@@ -230,15 +231,16 @@ inline V sinc_series(V x2) noexcept {
 // Appends a record to a kind's stream (channel by channel while building; finish_records sorts).
 template <Real T, std::size_t N>
 void push_record(Stream<T, N>& ch, T lo, T hi, std::uint32_t form, std::uint32_t channel, std::initializer_list<T> v) {
-  Record<T, N> r{lo, hi, form | channel, {}};
+  Record<T, N> r{lo, form == rec_key ? T(1) / (hi - lo) : T(0), form | channel, {}};
   std::copy(v.begin(), v.end(), r.v);
   ch.records.push_back(r);
 }
 
-// Appends a full record and its block (lo, 1/length, then the coefficients: rig_detail::apply's fields).
+// Appends a full record and its block: lo, 1/length, then the coefficients (rig_detail::apply's
+// fields) and, Vec3, the end key.
 template <Real T, std::size_t N>
-void push_full(Stream<T, N>& ch, std::uint32_t channel, T lo, T hi, T inv_length, std::initializer_list<T> coef) {
-  Record<T, N> r{lo, hi, rec_full | channel, {}};
+void push_full(Stream<T, N>& ch, std::uint32_t channel, T lo, T inv_length, std::initializer_list<T> coef) {
+  Record<T, N> r{lo, T(0), rec_full | channel, {}};
   const auto index = std::uint32_t(ch.full.size() / (2 + coef.size()));
   std::memcpy(r.v, &index, sizeof index);
   ch.records.push_back(r);
@@ -248,10 +250,12 @@ void push_full(Stream<T, N>& ch, std::uint32_t channel, T lo, T hi, T inv_length
 }
 
 // Compiles one Vec3 track into the kind's records; Unsupported for extend modes other than constant.
-// A constant channel (one key, or equal values and zero tangents) is one hold over (−∞, +∞); a
-// segment is a key record when it is a line (its power form's c2 and c3 are rounding residue:
-// |c2| + |c3| ≤ 8ε·(|p0| + |p1| + |m0| + |m1|) per axis, so the line stays within a few ulp of the
-// cubic) that starts where the previous record ended, else a full block.
+// A constant channel (one key, or equal values and zero tangents) is one hold over (lowest, +∞); a
+// stepped segment a hold; a line (its power form's c2 and c3 are rounding residue: |c2| + |c3| ≤
+// 8ε·(|p0| + |p1| + |m0| + |m1|) per axis, so the line stays within a few ulp of the cubic) a key
+// record when it starts where the previous record ended, else (after a step) a full block
+// c0 = p0, c1 = p1 − p0, c2 = c3 = 0; any other segment a full block of its power form.  Full
+// blocks end with the end key p1 (a following key record starts there).
 template <Real T>
 Expected<bool> add_vec(Stream<T, 3>& ch, const Track<Vec3<T>>& tr, std::size_t joint, const char* kind) {
   if (tr.extend_before() != TrackExtend::constant || tr.extend_after() != TrackExtend::constant) {
@@ -279,30 +283,32 @@ Expected<bool> add_vec(Stream<T, 3>& ch, const Track<Vec3<T>>& tr, std::size_t j
   }
   hold(lowest, f[0], v[0]);
   Vec3<T> last = v[0];
-  bool have_last = true;
   const T eps8 = T(8) * std::numeric_limits<T>::epsilon();
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const T h = f[i + 1] - f[i];
     if (tr.stepped(i)) {
       hold(f[i], f[i + 1], v[i]);
       last = v[i];
-      have_last = true;
       continue;
     }
     // Hermite p0, p1, m0 = out_i·h, m1 = in_{i+1}·h to power form.
     const Vec3<T> p0 = v[i], p1 = v[i + 1], m0 = out[i] * h, m1 = in[i + 1] * h;
     const Vec3<T> c2 = (p1 - p0) * T(3) - m0 * T(2) - m1, c3 = (p0 - p1) * T(2) + m0 + m1;
-    bool line = have_last && last == p0;
+    bool line = true;
     for (int a = 0; a < 3 && line; ++a)
       line = std::abs(c2[a]) + std::abs(c3[a]) <= eps8 * (std::abs(p0[a]) + std::abs(p1[a]) + std::abs(m0[a]) + std::abs(m1[a]));
-    if (line) {
+    if (line && last == p0) {
       push_record<T, 3>(ch, f[i], f[i + 1], rec_key, c, {p1.x, p1.y, p1.z});
-      last = p1;
+    } else if (line) {
+      const Vec3<T> d = p1 - p0;
+      push_full<T, 3>(ch, c, f[i], T(1) / h,
+                      {p0.x, p0.y, p0.z, d.x, d.y, d.z, T(0), T(0), T(0), T(0), T(0), T(0), p1.x, p1.y, p1.z});
     } else {
-      push_full<T, 3>(ch, c, f[i], f[i + 1], T(1) / h,
-                      {p0.x, p0.y, p0.z, m0.x, m0.y, m0.z, c2.x, c2.y, c2.z, c3.x, c3.y, c3.z});
-      have_last = false;
+      push_full<T, 3>(ch, c, f[i], T(1) / h,
+                      {p0.x, p0.y, p0.z, m0.x, m0.y, m0.z, c2.x, c2.y, c2.z, c3.x, c3.y, c3.z, p1.x, p1.y, p1.z});
+      ch.cubic = true;
     }
+    last = p1;
   }
   hold(f[n - 1], inf_t, v[n - 1]);
   ch.count.push_back(std::uint32_t(ch.records.size() - first));
@@ -383,7 +389,9 @@ template <Real T, std::size_t N>
 std::uint32_t find_record(const Record<T, N>* records, const std::uint32_t* where, std::uint32_t count, T frame,
                           std::uint32_t cursor) noexcept {
   const auto lo_of = [&](std::uint32_t k) { return records[where[k]].lo; };
-  const auto hi_of = [&](std::uint32_t k) { return records[where[k]].hi; };
+  const auto hi_of = [&](std::uint32_t k) {
+    return k + 1 < count ? records[where[k + 1]].lo : std::numeric_limits<T>::infinity();
+  };
   std::uint32_t k = std::min(cursor, count - 1);
   for (int step = 0; step < 2; ++step) {
     if (frame >= hi_of(k) && k + 1 < count) ++k;
@@ -405,14 +413,14 @@ std::uint32_t find_record(const Record<T, N>* records, const std::uint32_t* wher
 // last: c0 = p0, c1 = p1 − p0 (c2 = c3 = 0 in the cubic layout), last = p1; rotation: q0 = the
 // cached q1 (the previous segment's end key), q1, Ω², 1/sinc Ω.  hold: 1/length 0 (u = 0): Vec3
 // c0 = v (the other coefficients are multiplied by u = 0); rotation q0 = q1 = v, Ω² = 0, 1/sinc = 1
-// (weights 1 and 0).  full: the block (a rotation's q1 is the end key a key record starts from; a
-// Vec3 full record is never followed by a key record).
+// (weights 1 and 0).  full: the block's F fields (a rotation's q1 is the end key a key record
+// starts from; a Vec3 block's end key follows its fields and becomes last).
 template <Real T, std::size_t G, std::size_t N, std::size_t F>
 [[gnu::always_inline]] inline void apply(const Record<T, N>& r, const T* full, T* col, T* last) noexcept {
   const std::uint32_t form = r.owner & ~rec_channel;
   if (form == rec_key) {
     col[0] = r.lo;
-    col[G] = T(1) / (r.hi - r.lo);
+    col[G] = r.inv_length;
     if constexpr (N == 3) {
       for (std::size_t a = 0; a < 3; ++a) {
         col[(2 + a) * G] = last[a];
@@ -441,8 +449,9 @@ template <Real T, std::size_t G, std::size_t N, std::size_t F>
   } else {
     std::uint32_t index;
     std::memcpy(&index, r.v, sizeof index);
-    const T* src = full + std::size_t(index) * F;
+    const T* src = full + std::size_t(index) * (N == 3 ? F + 3 : F);
     for (std::size_t f = 0; f < F; ++f) col[f * G] = src[f];
+    if constexpr (N == 3) std::copy_n(src + F, 3, last);
   }
 }
 
@@ -473,8 +482,9 @@ inline void advance(const Stream<T, N>& ch, std::size_t joints, T frame, T previ
   for (std::size_t j = 0; j < joints; ++j) {
     const std::uint32_t* where = ch.where.data() + ch.begin[j];
     if (segment[j] < ch.count[j]) {
-      const Record<T, N>& now = records[where[segment[j]]];
-      if (frame >= now.lo && frame < now.hi) continue;  // the cached segment still holds frame
+      const std::uint32_t s = segment[j];
+      const T hi = s + 1 < ch.count[j] ? records[where[s + 1]].lo : std::numeric_limits<T>::infinity();
+      if (frame >= records[where[s]].lo && frame < hi) continue;  // the cached segment still holds frame
     }
     T* col = cache + (j / G) * F * G + j % G;
     const std::uint32_t k = find_record<T, N>(records, where, ch.count[j], frame, segment[j]);
@@ -735,7 +745,7 @@ Expected<RigClip<T>> build_rig_clip(std::span<const Track<Vec3<T>>> translations
       if (same(last, a)) {
         rig_detail::push_record<T, 6>(ch, f[i], f[i + 1], rec_key, c, {b.x, b.y, b.z, b.w, T(omega * omega), T(inv_sinc)});
       } else {  // after a step segment: the slerp starts at a key the previous record does not end on
-        rig_detail::push_full<T, 6>(ch, c, f[i], f[i + 1], T(1) / (f[i + 1] - f[i]),
+        rig_detail::push_full<T, 6>(ch, c, f[i], T(1) / (f[i + 1] - f[i]),
                                     {a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w, T(omega * omega), T(inv_sinc)});
       }
       last = b;
@@ -743,7 +753,18 @@ Expected<RigClip<T>> build_rig_clip(std::span<const Track<Vec3<T>>> translations
     hold(f[n - 1], inf_t, k[n - 1]);
     ch.count.push_back(std::uint32_t(ch.records.size() - first));
   }
-  clip.cubic_ = !clip.translations_.full.empty() || !clip.scales_.full.empty();
+  clip.cubic_ = clip.translations_.cubic || clip.scales_.cubic;
+  if (!clip.cubic_) {  // lines only: drop every Vec3 block's c2 and c3 (rig_detail::vec_fields_line)
+    for (auto* ch : {&clip.translations_, &clip.scales_}) {
+      constexpr std::size_t from = rig_detail::vec_fields_cubic + 3, to = rig_detail::vec_fields_line + 3;
+      std::vector<T> full;
+      for (std::size_t b = 0; b < ch->full.size(); b += from) {
+        full.insert(full.end(), ch->full.begin() + std::ptrdiff_t(b), ch->full.begin() + std::ptrdiff_t(b + 8));
+        full.insert(full.end(), ch->full.begin() + std::ptrdiff_t(b + 14), ch->full.begin() + std::ptrdiff_t(b + 17));
+      }
+      ch->full = std::move(full);
+    }
+  }
   rig_detail::finish_records(clip.translations_);
   rig_detail::finish_records(clip.rotations_);
   rig_detail::finish_records(clip.scales_);
