@@ -87,43 +87,53 @@ T refresh(const RigClip<T>& clip, T frame, RigClipCursor<T>& cursor) noexcept;
 
 // Cache fields per channel (field f of joint j at its kind's cache + (j / G)·fields·G + f·G + j % G):
 // Vec3 lo (the u origin), 1/length, c0.xyz, c1.xyz and, when the clip has cubic segments
-// (vec_fields_cubic), c2.xyz, c3.xyz of ((c3·u + c2)·u + c1)·u + c0; rotations lo, 1/length,
+// (vec_fields_cubic), c2.xyz, c3.xyz of ((c3·u + c2)·u + c1)·u + c0, then the segment's end key
+// p1.xyz (where a following key record starts; the lanes do not read it); rotations lo, 1/length,
 // q0.xyzw, q1.xyzw, Ω², 1/sinc(Ω).  A full record's block holds the same fields.
-inline constexpr std::size_t vec_fields_line = 8;
-inline constexpr std::size_t vec_fields_cubic = 14;
+inline constexpr std::size_t vec_fields_line = 11;
+inline constexpr std::size_t vec_fields_cubic = 17;
 inline constexpr std::size_t rot_fields = 12;
 
 // Form of a stream record (the top two bits of Record::owner; the low 30 bits are the channel).
 inline constexpr std::uint32_t rec_key = 0;           // from the channel's previous end key to v
 inline constexpr std::uint32_t rec_hold = 1u << 30;   // the constant v
-inline constexpr std::uint32_t rec_full = 2u << 30;   // a 16-scalar block of Stream::full
+inline constexpr std::uint32_t rec_full = 2u << 30;   // a block of Stream::full
 inline constexpr std::uint32_t rec_channel = (1u << 30) - 1;
+// Stream::where of a segment in a dense group: this bit and the group's index.
+inline constexpr std::uint32_t in_dense = 1u << 31;
 
-// One segment of one channel in a kind's time-sorted stream: its frame interval [lo, hi), its
-// channel and form, and N scalars.  Vec3 (N = 3): key — the end key's value (the segment is the
-// line from the channel's previous end key: its power form c0 = p0, c1 = p1 − p0); hold — the
-// value.  Rotation (N = 6): key — the end key xyzw, Ω² and 1/sinc(Ω) of the slerp from the previous
-// end key; hold — the key xyzw.  full: v[0]'s first 4 bytes are the block's index in Stream::full.
-// float: 24 bytes (Vec3), 36 (rotation) against the 64 of a full block.
+// One segment of one channel in a kind's time-sorted stream: its start lo (its end is the start of
+// the channel's next segment), for key records 1/length, its channel and form, and N scalars.
+// Vec3 (N = 3): key — the end key's value (the segment is the line from the channel's previous end
+// key p0: its power form c0 = p0, c1 = p1 − p0); hold — the value.  Rotation (N = 6): key — the
+// end key xyzw, Ω² and 1/sinc(Ω) of the slerp from the previous end key; hold — the key xyzw.
+// full: v[0]'s first 4 bytes are the block's index in Stream::full.  float: 24 bytes (Vec3), 36
+// (rotation).
 template <Real T, std::size_t N>
 struct Record {
-  T lo, inv_length;  // inv_length: key records' 1/(hi − lo); hi is the channel's next record's lo
+  T lo, inv_length;
   std::uint32_t owner;
   T v[N];
 };
 
-// One channel kind of a RigClip: every record of every channel, sorted by lo (then channel), the
-// order forward playback needs them in; channel c's segment k is records[where[begin[c] + k]].
+// One channel kind of a RigClip.  Segments that start on a frame where every channel of the kind
+// starts a key record of the same length (a sampled clip: BVH, baked glTF) form a dense group:
+// lo, 1/length and the N scalars of every channel, field by field (N·J scalars: 12 bytes per
+// float Vec3 channel, 24 per rotation; no channel, no form).  Every other segment is a record of
+// the general stream.  Both are sorted by lo, the order forward playback needs them in; channel c's
+// segment k is where[begin[c] + k]: a position in records, or in_dense | its dense group.
 template <Real T, std::size_t N>
 struct Stream {
   std::vector<std::uint32_t> begin, count;  // per channel
-  std::vector<std::uint32_t> where;         // per (channel, segment): record position
-  std::vector<Record<T, N>> records;        // stream order
+  std::vector<std::uint32_t> where;         // per (channel, segment)
+  std::vector<Record<T, N>> records;        // general stream order
+  std::vector<T> dense_lo, dense_inv;       // per dense group
+  std::vector<T> dense_v;                   // per dense group N·J scalars: v[a] of channel c at a·J + c
   std::vector<T> full;                      // the full records' blocks (rig_detail::apply)
   bool cubic = false;                       // Vec3: some segment is not a line (its blocks keep c2, c3)
   [[nodiscard]] std::size_t bytes() const noexcept {
     return (begin.size() + count.size() + where.size()) * sizeof(std::uint32_t) + records.size() * sizeof(Record<T, N>) +
-           full.size() * sizeof(T);
+           (dense_lo.size() + dense_inv.size() + dense_v.size() + full.size()) * sizeof(T);
   }
 };
 }  // namespace rig_detail
@@ -140,8 +150,8 @@ struct RigClipCursor {
   std::vector<T> cache;                ///< T, R, S fields × padded joints (filled by sample_rig; rig_detail::apply)
   std::size_t stride = 0;              ///< padded joint count (a multiple of 16)
   std::size_t vec_fields = 8;          ///< cache fields per Vec3 channel: 8 (lines only), 14 (cubic segments too)
-  std::vector<T> last;                 ///< per T and S channel, 4 scalars: its current segment's end key
-  std::array<std::size_t, 3> next{};   ///< per kind: first stream record not yet consumed (its lo > time)
+  std::array<std::size_t, 3> next{};   ///< per kind: first general record not yet consumed (its lo > time)
+  std::array<std::size_t, 3> next_dense{};  ///< per kind: first dense group not yet consumed
   T time = -std::numeric_limits<T>::infinity();  ///< frame of the last sample (clamped; −∞ before the first)
 };
 
@@ -188,7 +198,6 @@ RigClipCursor<T> make_rig_clip_cursor(const RigClip<T>& clip) {
   ctx.segment.assign(3 * clip.joints(), ~std::uint32_t(0));  // none yet: the first record consumed is 0
   ctx.vec_fields = clip.cubic_ ? rig_detail::vec_fields_cubic : rig_detail::vec_fields_line;
   ctx.cache.assign((2 * ctx.vec_fields + rig_detail::rot_fields) * ctx.stride, T(0));
-  ctx.last.assign(2 * 4 * clip.joints(), T(0));
   return ctx;
 }
 
@@ -315,21 +324,44 @@ Expected<bool> add_vec(Stream<T, 3>& ch, const Track<Vec3<T>>& tr, std::size_t j
   return true;
 }
 
-// Sorts a kind's records (pushed channel by channel) into stream order and fills where.
+// Sorts a kind's records (pushed channel by channel) into stream order, moves the frames where
+// every channel starts a key record of one length into dense groups, and fills where.
 template <Real T, std::size_t N>
 void finish_records(Stream<T, N>& ch) {
-  const std::size_t n = ch.records.size();
+  const std::size_t n = ch.records.size(), J = ch.begin.size();
   std::vector<std::uint32_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = std::uint32_t(i);
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     const Record<T, N>&ra = ch.records[a], &rb = ch.records[b];
     return ra.lo < rb.lo || (ra.lo == rb.lo && (ra.owner & rec_channel) < (rb.owner & rec_channel));
   });
-  std::vector<Record<T, N>> records(n);
+  std::vector<Record<T, N>> records;
   ch.where.assign(n, 0);
-  for (std::size_t p = 0; p < n; ++p) {
-    records[p] = ch.records[order[p]];
-    ch.where[order[p]] = std::uint32_t(p);  // channel c's segment k was pushed at begin[c] + k
+  for (std::size_t p = 0; p < n;) {
+    std::size_t e = p + 1;
+    while (e < n && ch.records[order[e]].lo == ch.records[order[p]].lo) ++e;
+    bool dense = e - p == J;  // sorted by channel: channels 0 … J − 1 in order
+    for (std::size_t q = p; q < e && dense; ++q) {
+      const Record<T, N>& r = ch.records[order[q]];
+      dense = (r.owner & ~rec_channel) == rec_key && r.inv_length == ch.records[order[p]].inv_length;
+    }
+    if (dense) {
+      const auto d = std::uint32_t(ch.dense_lo.size());
+      ch.dense_lo.push_back(ch.records[order[p]].lo);
+      ch.dense_inv.push_back(ch.records[order[p]].inv_length);
+      ch.dense_v.resize(ch.dense_v.size() + N * J);
+      T* v = ch.dense_v.data() + std::size_t(d) * N * J;
+      for (std::size_t c = 0; c < J; ++c) {
+        for (std::size_t a = 0; a < N; ++a) v[a * J + c] = ch.records[order[p + c]].v[a];
+        ch.where[order[p + c]] = in_dense | d;  // channel c's segment k was pushed at begin[c] + k
+      }
+    } else {
+      for (std::size_t q = p; q < e; ++q) {
+        ch.where[order[q]] = std::uint32_t(records.size());
+        records.push_back(ch.records[order[q]]);
+      }
+    }
+    p = e;
   }
   ch.records = std::move(records);
 }
@@ -382,125 +414,195 @@ std::uint32_t find_segment(const T* data, const std::uint32_t* where, std::uint3
   return lo;
 }
 
-// Segment of a channel (its k-th record at records[where[k]]) whose [lo, hi) holds `frame`,
-// starting from the cursor: a short walk when playback moves a segment or two, a binary search
-// otherwise.  The segments tile (−∞, +∞), so one always answers.
+// One segment as the refresh reads it: start, 1/length, form, its N scalars (v[a·stride]).
+template <Real T>
+struct SegmentView {
+  T lo, inv_length;
+  std::uint32_t form;
+  const T* v;
+  std::size_t stride;
+};
+
+// Channel c's segment k.
 template <Real T, std::size_t N>
-std::uint32_t find_record(const Record<T, N>* records, const std::uint32_t* where, std::uint32_t count, T frame,
-                          std::uint32_t cursor) noexcept {
-  const auto lo_of = [&](std::uint32_t k) { return records[where[k]].lo; };
-  const auto hi_of = [&](std::uint32_t k) {
-    return k + 1 < count ? records[where[k + 1]].lo : std::numeric_limits<T>::infinity();
-  };
+SegmentView<T> segment_view(const Stream<T, N>& ch, std::size_t c, std::uint32_t k) noexcept {
+  const std::uint32_t w = ch.where[ch.begin[c] + k];
+  if (w & in_dense) {
+    const std::size_t d = w & ~in_dense, J = ch.begin.size();
+    return {ch.dense_lo[d], ch.dense_inv[d], rec_key, ch.dense_v.data() + d * N * J + c, J};
+  }
+  const Record<T, N>& r = ch.records[w];
+  return {r.lo, r.inv_length, r.owner & ~rec_channel, r.v, 1};
+}
+
+// Start of channel c's segment k, +∞ past its last.
+template <Real T, std::size_t N>
+T segment_lo(const Stream<T, N>& ch, std::size_t c, std::uint32_t k) noexcept {
+  if (k >= ch.count[c]) return std::numeric_limits<T>::infinity();
+  const std::uint32_t w = ch.where[ch.begin[c] + k];
+  return (w & in_dense) ? ch.dense_lo[w & ~in_dense] : ch.records[w].lo;
+}
+
+// Segment of channel c whose [lo, hi) holds `frame`, starting from the cursor: a short walk when
+// playback moves a segment or two, a binary search otherwise.  The segments tile (lowest, +∞),
+// and frame is finite, so one always answers.
+template <Real T, std::size_t N>
+std::uint32_t find_record(const Stream<T, N>& ch, std::size_t c, T frame, std::uint32_t cursor) noexcept {
+  const std::uint32_t count = ch.count[c];
   std::uint32_t k = std::min(cursor, count - 1);
   for (int step = 0; step < 2; ++step) {
-    if (frame >= hi_of(k) && k + 1 < count) ++k;
-    else if (frame < lo_of(k) && k > 0) --k;
+    if (frame >= segment_lo(ch, c, k + 1) && k + 1 < count) ++k;
+    else if (frame < segment_lo(ch, c, k) && k > 0) --k;
   }
-  if (frame >= lo_of(k) && frame < hi_of(k)) return k;
+  if (frame >= segment_lo(ch, c, k) && frame < segment_lo(ch, c, k + 1)) return k;
   std::uint32_t lo = 0, hi = count - 1;  // last segment with lo ≤ frame
   while (lo < hi) {
     const std::uint32_t mid = (lo + hi + 1) / 2;
-    if (lo_of(mid) <= frame) lo = mid;
+    if (segment_lo(ch, c, mid) <= frame) lo = mid;
     else hi = mid - 1;
   }
   return lo;
 }
 
-
-// Writes record r into its channel's cache column col (field f at col[f·G]); F fields per channel.
-// key: lo, 1/(hi − lo) (as build computes it for a full block) and, Vec3, from the channel's end key
-// last: c0 = p0, c1 = p1 − p0 (c2 = c3 = 0 in the cubic layout), last = p1; rotation: q0 = the
-// cached q1 (the previous segment's end key), q1, Ω², 1/sinc Ω.  hold: 1/length 0 (u = 0): Vec3
-// c0 = v (the other coefficients are multiplied by u = 0); rotation q0 = q1 = v, Ω² = 0, 1/sinc = 1
-// (weights 1 and 0).  full: the block's F fields (a rotation's q1 is the end key a key record
-// starts from; a Vec3 block's end key follows its fields and becomes last).
+// Writes segment s into its channel's cache column col (field f at col[f·G]); F fields per channel.
+// key: lo, 1/length and, Vec3, from the cached end key p1: c0 = p1, c1 = v − p1 (c2 = c3 = 0 in the
+// cubic layout), p1 = v; rotation: q0 = the cached q1 (the previous segment's end key), q1 = v, Ω²,
+// 1/sinc Ω.  hold: 1/length 0 (u = 0): Vec3 c0 = p1 = v (the other coefficients are multiplied by
+// u = 0); rotation q0 = q1 = v, Ω² = 0, 1/sinc = 1 (weights 1 and 0).  full: the block's F fields.
 template <Real T, std::size_t G, std::size_t N, std::size_t F>
-[[gnu::always_inline]] inline void apply(const Record<T, N>& r, const T* full, T* col, T* last) noexcept {
-  const std::uint32_t form = r.owner & ~rec_channel;
-  if (form == rec_key) {
-    col[0] = r.lo;
-    col[G] = r.inv_length;
+[[gnu::always_inline]] inline void apply(const SegmentView<T>& s, const T* full, T* col) noexcept {
+  const T* v = s.v;
+  const std::size_t st = s.stride;
+  if (s.form == rec_key) {
+    col[0] = s.lo;
+    col[G] = s.inv_length;
     if constexpr (N == 3) {
       for (std::size_t a = 0; a < 3; ++a) {
-        col[(2 + a) * G] = last[a];
-        col[(5 + a) * G] = r.v[a] - last[a];
+        const T p = col[(F - 3 + a) * G];
+        col[(2 + a) * G] = p;
+        col[(5 + a) * G] = v[a * st] - p;
         if constexpr (F == vec_fields_cubic) col[(8 + a) * G] = col[(11 + a) * G] = T(0);
-        last[a] = r.v[a];
+        col[(F - 3 + a) * G] = v[a * st];
       }
     } else {
       for (std::size_t a = 0; a < 4; ++a) {
         col[(2 + a) * G] = col[(6 + a) * G];
-        col[(6 + a) * G] = r.v[a];
+        col[(6 + a) * G] = v[a * st];
       }
-      col[10 * G] = r.v[4];
-      col[11 * G] = r.v[5];
+      col[10 * G] = v[4 * st];
+      col[11 * G] = v[5 * st];
     }
-  } else if (form == rec_hold) {
-    col[0] = r.lo;
+  } else if (s.form == rec_hold) {
+    col[0] = s.lo;
     col[G] = T(0);
     if constexpr (N == 3) {
-      for (std::size_t a = 0; a < 3; ++a) col[(2 + a) * G] = last[a] = r.v[a];
+      for (std::size_t a = 0; a < 3; ++a) col[(2 + a) * G] = col[(F - 3 + a) * G] = v[a];
     } else {
-      for (std::size_t a = 0; a < 4; ++a) col[(2 + a) * G] = col[(6 + a) * G] = r.v[a];
+      for (std::size_t a = 0; a < 4; ++a) col[(2 + a) * G] = col[(6 + a) * G] = v[a];
       col[10 * G] = T(0);
       col[11 * G] = T(1);
     }
   } else {
     std::uint32_t index;
-    std::memcpy(&index, r.v, sizeof index);
-    const T* src = full + std::size_t(index) * (N == 3 ? F + 3 : F);
+    std::memcpy(&index, v, sizeof index);
+    const T* src = full + std::size_t(index) * F;
     for (std::size_t f = 0; f < F; ++f) col[f * G] = src[f];
-    if constexpr (N == 3) std::copy_n(src + F, 3, last);
   }
 }
 
-// Brings one kind's cache (F fields per channel) to `frame`.  Forward playback consumes the
-// stream's next records (those whose lo ≤ frame, in time order: each is its channel's next
-// segment); backward playback, or a forward jump past more records than 16 per channel, finds
-// each stale channel's segment from its cursor (a key record's start by applying its channel's
-// previous record first) and repositions the stream.
+// A dense group d: every channel's key record at once, field by field over cache groups of G
+// joints (contiguous in the cache and in dense_v: loops the compiler vectorises).
+template <Real T, std::size_t G, std::size_t N, std::size_t F>
+inline void apply_dense(const Stream<T, N>& ch, std::size_t d, T* cache) noexcept {
+  const std::size_t J = ch.begin.size();
+  const T lo = ch.dense_lo[d], inv = ch.dense_inv[d];
+  const T* v = ch.dense_v.data() + d * N * J;
+  for (std::size_t j0 = 0; j0 < J; j0 += G) {
+    T* g = cache + j0 * F;  // group j0 / G
+    const T* gv = v + j0;
+    const std::size_t n = std::min(G, J - j0);
+    for (std::size_t i = 0; i < n; ++i) g[i] = lo;
+    for (std::size_t i = 0; i < n; ++i) g[G + i] = inv;
+    if constexpr (N == 3) {
+      for (std::size_t a = 0; a < 3; ++a) {
+        T* c0 = g + (2 + a) * G;
+        T* c1 = g + (5 + a) * G;
+        T* p1 = g + (F - 3 + a) * G;
+        const T* va = gv + a * J;
+        for (std::size_t i = 0; i < n; ++i) {
+          const T p = p1[i];
+          c0[i] = p;
+          c1[i] = va[i] - p;
+          p1[i] = va[i];
+        }
+        if constexpr (F == vec_fields_cubic) {
+          for (std::size_t i = 0; i < n; ++i) g[(8 + a) * G + i] = T(0);
+          for (std::size_t i = 0; i < n; ++i) g[(11 + a) * G + i] = T(0);
+        }
+      }
+    } else {
+      for (std::size_t a = 0; a < 4; ++a) {
+        T* q0 = g + (2 + a) * G;
+        T* q1 = g + (6 + a) * G;
+        const T* va = gv + a * J;
+        for (std::size_t i = 0; i < n; ++i) q0[i] = q1[i];
+        for (std::size_t i = 0; i < n; ++i) q1[i] = va[i];
+      }
+      for (std::size_t i = 0; i < n; ++i) g[10 * G + i] = gv[4 * J + i];
+      for (std::size_t i = 0; i < n; ++i) g[11 * G + i] = gv[5 * J + i];
+    }
+  }
+}
+
+// Brings one kind's cache (F fields per channel) to `frame`.  Forward playback consumes the next
+// dense groups and general records whose lo ≤ frame, in time order (each is its channel's next
+// segment); backward playback, or a forward jump past more than 16 segments per channel, finds
+// each stale channel's segment from its cursor (a key record's start by applying the channel's
+// previous segment first) and repositions both streams.
 template <Real T, std::size_t G, std::size_t N, std::size_t F>
 inline void advance(const Stream<T, N>& ch, std::size_t joints, T frame, T previous, std::size_t& next,
-                    std::uint32_t* segment, T* cache, T* last) noexcept {
+                    std::size_t& next_dense, std::uint32_t* segment, T* cache) noexcept {
   const Record<T, N>* records = ch.records.data();
   const T* full = ch.full.data();
-  const std::size_t n = ch.records.size();
+  const std::size_t n = ch.records.size(), nd = ch.dense_lo.size();
+  const T inf = std::numeric_limits<T>::infinity();
   if (frame >= previous) {
-    const std::size_t limit = std::min(n, next + 16 * joints);
-    std::size_t p = next;
-    for (; p < limit && records[p].lo <= frame; ++p) {
-      const std::uint32_t c = records[p].owner & rec_channel;
-      ++segment[c];
-      apply<T, G, N, F>(records[p], full, cache + (c / G) * F * G + c % G, last + 4 * std::size_t(c));
+    std::size_t budget = 16 * joints;
+    std::size_t p = next, d = next_dense;
+    for (;;) {
+      const T lg = p < n ? records[p].lo : inf, ld = d < nd ? ch.dense_lo[d] : inf;
+      if (std::min(lg, ld) > frame || budget < joints) break;
+      if (ld <= lg) {
+        apply_dense<T, G, N, F>(ch, d, cache);
+        for (std::size_t c = 0; c < joints; ++c) ++segment[c];
+        ++d;
+        budget -= joints;
+      } else {
+        const std::uint32_t c = records[p].owner & rec_channel;
+        ++segment[c];
+        apply<T, G, N, F>({records[p].lo, records[p].inv_length, records[p].owner & ~rec_channel, records[p].v, 1}, full,
+                          cache + (c / G) * F * G + c % G);
+        ++p;
+        --budget;
+      }
     }
-    if (p == n || records[p].lo > frame) {
-      next = p;
-      return;
-    }
+    next = p;
+    next_dense = d;
+    if (std::min(p < n ? records[p].lo : inf, d < nd ? ch.dense_lo[d] : inf) > frame) return;
   }
   for (std::size_t j = 0; j < joints; ++j) {
-    const std::uint32_t* where = ch.where.data() + ch.begin[j];
-    if (segment[j] < ch.count[j]) {
-      const std::uint32_t s = segment[j];
-      const T hi = s + 1 < ch.count[j] ? records[where[s + 1]].lo : std::numeric_limits<T>::infinity();
-      if (frame >= records[where[s]].lo && frame < hi) continue;  // the cached segment still holds frame
-    }
+    const std::uint32_t s = segment[j];
+    if (s < ch.count[j] && frame >= segment_lo(ch, j, s) && frame < segment_lo(ch, j, s + 1)) continue;  // still holds
     T* col = cache + (j / G) * F * G + j % G;
-    const std::uint32_t k = find_record<T, N>(records, where, ch.count[j], frame, segment[j]);
+    const std::uint32_t k = find_record(ch, j, frame, s);
     segment[j] = k;
-    const Record<T, N>& r = records[where[k]];
-    if ((r.owner & ~rec_channel) == rec_key) apply<T, G, N, F>(records[where[k - 1]], full, col, last + 4 * j);
-    apply<T, G, N, F>(r, full, col, last + 4 * j);
+    const SegmentView<T> view = segment_view(ch, j, k);
+    if (view.form == rec_key) apply<T, G, N, F>(segment_view(ch, j, k - 1), full, col);
+    apply<T, G, N, F>(view, full, col);
   }
-  // First record whose lo > frame.
-  std::size_t lo = 0, hi = n;
-  while (lo < hi) {
-    const std::size_t mid = (lo + hi) / 2;
-    if (records[mid].lo <= frame) lo = mid + 1;
-    else hi = mid;
-  }
-  next = lo;
+  // First general record and first dense group whose lo > frame.
+  next = std::size_t(std::upper_bound(records, records + n, frame, [](T f, const Record<T, N>& r) { return f < r.lo; }) - records);
+  next_dense = std::size_t(std::upper_bound(ch.dense_lo.begin(), ch.dense_lo.end(), frame) - ch.dense_lo.begin());
 }
 // SIMD helpers over V::size() joints' cached fields (field f at c + f·G, G joints per group).
 template <class V>
@@ -614,25 +716,25 @@ T refresh(const RigClip<T>& clip, T frame, RigClipCursor<T>& cursor) noexcept {
   const std::size_t Fv = cursor.vec_fields;
   static_assert(16 % G == 0, "the padded joint count is a multiple of 16");
   INBETWEEN_ASSERT(cursor.segment.size() == 3 * J && cursor.cache.size() == (2 * Fv + rot_fields) * S &&
-                   cursor.last.size() == 8 * J && Fv == (clip.cubic_ ? vec_fields_cubic : vec_fields_line));
+                   Fv == (clip.cubic_ ? vec_fields_cubic : vec_fields_line));
   // A finite frame keeps u = (frame − lo)·0 finite on the constant end segments.
   const T big = std::numeric_limits<T>::max();
   frame = frame > -big ? (frame < big ? frame : big) : -big;  // NaN → −big
   T* tc = cursor.cache.data();
   T* rc = tc + Fv * S;
   T* sc = rc + rot_fields * S;
-  T* last = cursor.last.data();
   std::uint32_t* segment = cursor.segment.data();
   const T prev = cursor.time;
   auto& next = cursor.next;
+  auto& dense = cursor.next_dense;
   if (clip.cubic_) {
-    advance<T, G, 3, vec_fields_cubic>(clip.translations_, J, frame, prev, next[0], segment, tc, last);
-    advance<T, G, 3, vec_fields_cubic>(clip.scales_, J, frame, prev, next[2], segment + 2 * J, sc, last + 4 * J);
+    advance<T, G, 3, vec_fields_cubic>(clip.translations_, J, frame, prev, next[0], dense[0], segment, tc);
+    advance<T, G, 3, vec_fields_cubic>(clip.scales_, J, frame, prev, next[2], dense[2], segment + 2 * J, sc);
   } else {
-    advance<T, G, 3, vec_fields_line>(clip.translations_, J, frame, prev, next[0], segment, tc, last);
-    advance<T, G, 3, vec_fields_line>(clip.scales_, J, frame, prev, next[2], segment + 2 * J, sc, last + 4 * J);
+    advance<T, G, 3, vec_fields_line>(clip.translations_, J, frame, prev, next[0], dense[0], segment, tc);
+    advance<T, G, 3, vec_fields_line>(clip.scales_, J, frame, prev, next[2], dense[2], segment + 2 * J, sc);
   }
-  advance<T, G, 6, rot_fields>(clip.rotations_, J, frame, prev, next[1], segment + J, rc, last);  // last unused
+  advance<T, G, 6, rot_fields>(clip.rotations_, J, frame, prev, next[1], dense[1], segment + J, rc);
   cursor.time = frame;
   return frame;
 }
@@ -756,7 +858,7 @@ Expected<RigClip<T>> build_rig_clip(std::span<const Track<Vec3<T>>> translations
   clip.cubic_ = clip.translations_.cubic || clip.scales_.cubic;
   if (!clip.cubic_) {  // lines only: drop every Vec3 block's c2 and c3 (rig_detail::vec_fields_line)
     for (auto* ch : {&clip.translations_, &clip.scales_}) {
-      constexpr std::size_t from = rig_detail::vec_fields_cubic + 3, to = rig_detail::vec_fields_line + 3;
+      constexpr std::size_t from = rig_detail::vec_fields_cubic;  // lo, 1/length, c0, c1, [c2, c3,] p1
       std::vector<T> full;
       for (std::size_t b = 0; b < ch->full.size(); b += from) {
         full.insert(full.end(), ch->full.begin() + std::ptrdiff_t(b), ch->full.begin() + std::ptrdiff_t(b + 8));
