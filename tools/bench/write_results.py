@@ -326,6 +326,45 @@ def ozz_section(ozz: Results | None) -> list[str]:
                      "ozz / ours double", "target ≥ 1× (float)", "max rotation error ozz / float / double",
                      "max translation error ozz / float / double"], rows) + [""])
 
+
+OZZ_LONG_TARGET = 1.5  # issue 24: at least 1.5× ozz's SamplingJob on the long clip, 64 and 1024 joints
+
+
+def fmt_mb(n: float | None) -> str:
+    return "?" if n is None else f"{n / 1e6:.2f} MB"
+
+
+def ozz_long_section(ozz: Results | None) -> list[str]:
+    """The long clip of issue 24 (10 s at 31 keys/s) from `make bench-ozz`'s JSON: time and bytes."""
+    if ozz is None:
+        return []
+    rows = []
+    for step, step_label in OZZ_STEPS:
+        for j in OZZ_TARGET_SIZES:
+            names = (f"BM_OzzLongClip/{j}/{step}", f"BM_RigClipLong<float>/{j}/{step}", f"BM_RigClipLong<double>/{j}/{step}")
+            oz, fl, db = (ozz.time(n) for n in names)
+            if oz is None and fl is None and db is None:
+                continue
+            q = ratio(oz, fl)
+            size = " / ".join(fmt_mb(ozz.counter(n, "bytes")) for n in names)
+            rot = " / ".join(fmt_num(ozz.counter(n, "max_drot_rad")) for n in names)
+            dt = " / ".join(fmt_num(ozz.counter(n, "max_dt")) for n in names)
+            rows.append([f"{j} joints, {step_label} key interval per call", fmt_time(oz), fmt_time(fl), fmt_time(db),
+                         fmt_num(q), fmt_num(ratio(oz, db)), verdict(q, OZZ_LONG_TARGET, True), size, rot, dt])
+    if not rows:
+        return []
+    intro = ("The long clip of issue 24, same run and binary: 10 s at 31 keys/s, 310 keys per channel on the "
+             "same frames for every joint (`make_rig(joints, rig_long_keys_per_channel, true)` in "
+             "`bench/rig_fixture.hpp`; a sampled clip, as BVH or baked glTF).  At 1024 joints neither clip fits in "
+             "L2.  Bytes: ozz's `Animation::size()` (16-bit quantised keys) and `RigClip::bytes()` "
+             "(exact float / double keys, docs/runtime.md \"The stream\").  Target: ozz / ours float ≥ "
+             f"{OZZ_LONG_TARGET:g}× at 64 and 1024 joints and both steps.")
+    return (["#### The long clip (10 s at 31 keys/s)", "", intro, ""]
+            + table(["rig, step", "ozz SamplingJob", "ours float", "ours double", "ozz / ours float",
+                     "ozz / ours double", f"target ≥ {OZZ_LONG_TARGET:g}× (float)", "bytes ozz / float / double",
+                     "max rotation error ozz / float / double", "max translation error ozz / float / double"], rows)
+            + [""])
+
 def bvh_section(r: Results, three: Results | str | None) -> list[str]:
     """inbetween's BM_BvhReadBakeWorld against three.js (bvh_threejs.mjs); `three` is its Results or why not run."""
     title = "### Reading and baking a BVH clip in world space: inbetween vs three.js (`inbetween_bench_io`, `bvh_threejs.mjs`)"
@@ -494,6 +533,7 @@ def render(r: Results, command: str, when: str, load: str, build_dir: Path | Non
     lines += machine_lines(r, command, when, load, build_dir)
     lines += slerp_section(r) + arclength_section(r) + curves_section(r) + rig_section(r)
     lines += ozz_section(ozz)
+    lines += ozz_long_section(ozz)
     lines += rig_simd_section(r)
     lines += bvh_section(r, threejs)
     lines.append(END)

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -35,6 +36,10 @@
 #include <type_traits>
 #include <vector>
 #include <experimental/simd>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#include <xmmintrin.h>
+#endif
 
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/expected.hpp"
@@ -565,12 +570,12 @@ inline void advance(const Stream<T, N>& ch, std::size_t joints, T frame, T previ
   const Record<T, N>* records = ch.records.data();
   const T* full = ch.full.data();
   const std::size_t n = ch.records.size(), nd = ch.dense_lo.size();
-  const T inf = std::numeric_limits<T>::infinity();
+  const T past = std::numeric_limits<T>::infinity();
   if (frame >= previous) {
     std::size_t budget = 16 * joints;
     std::size_t p = next, d = next_dense;
     for (;;) {
-      const T lg = p < n ? records[p].lo : inf, ld = d < nd ? ch.dense_lo[d] : inf;
+      const T lg = p < n ? records[p].lo : past, ld = d < nd ? ch.dense_lo[d] : past;
       if (std::min(lg, ld) > frame || budget < joints) break;
       if (ld <= lg) {
         apply_dense<T, G, N, F>(ch, d, cache);
@@ -588,7 +593,7 @@ inline void advance(const Stream<T, N>& ch, std::size_t joints, T frame, T previ
     }
     next = p;
     next_dense = d;
-    if (std::min(p < n ? records[p].lo : inf, d < nd ? ch.dense_lo[d] : inf) > frame) return;
+    if (std::min(p < n ? records[p].lo : past, d < nd ? ch.dense_lo[d] : past) > frame) return;
   }
   for (std::size_t j = 0; j < joints; ++j) {
     const std::uint32_t s = segment[j];
@@ -739,6 +744,59 @@ T refresh(const RigClip<T>& clip, T frame, RigClipCursor<T>& cursor) noexcept {
   return frame;
 }
 
+// Writes n joints' results (res[0..2] translation xyz, res[3..6] rotation xyzw, res[7..9] scale xyz,
+// rig_group<T> joints per row) as JointPose structs: with SSE, 4×4 (float) or 2×2 (double)
+// transposes and whole-register stores (the 10 scalars of a pose are translation xyz, rotation
+// wxyz, scale xyz in memory), joint by joint otherwise and for a tail.
+template <Real T>
+[[gnu::always_inline]] inline void write_poses(const T (*res)[rig_group<T>], std::size_t n, JointPose<T>* out) noexcept {
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  static_assert(std::is_standard_layout_v<JointPose<T>> && sizeof(JointPose<T>) == 10 * sizeof(T) &&
+                    offsetof(JointPose<T>, rotation) == 3 * sizeof(T) && offsetof(JointPose<T>, scale) == 7 * sizeof(T),
+                "JointPose is 10 packed scalars: translation, rotation (w first), scale");
+  if constexpr (std::is_same_v<T, float>) {
+    for (; i + 4 <= n; i += 4) {
+      float* o = &out[i].translation.x;
+      __m128 a = _mm_load_ps(res[0] + i), b = _mm_load_ps(res[1] + i), c = _mm_load_ps(res[2] + i), d = _mm_load_ps(res[6] + i);
+      _MM_TRANSPOSE4_PS(a, b, c, d);  // joint k: t.x t.y t.z r.w
+      __m128 e = _mm_load_ps(res[3] + i), f = _mm_load_ps(res[4] + i), g = _mm_load_ps(res[5] + i), h = _mm_load_ps(res[7] + i);
+      _MM_TRANSPOSE4_PS(e, f, g, h);  // joint k: r.x r.y r.z s.x
+      const __m128 sy = _mm_load_ps(res[8] + i), sz = _mm_load_ps(res[9] + i);
+      const __m128 lo = _mm_unpacklo_ps(sy, sz), hi = _mm_unpackhi_ps(sy, sz);  // s.y s.z of joints 0, 1 | 2, 3
+      _mm_storeu_ps(o, a);
+      _mm_storeu_ps(o + 4, e);
+      _mm_storel_pi(reinterpret_cast<__m64*>(o + 8), lo);
+      _mm_storeu_ps(o + 10, b);
+      _mm_storeu_ps(o + 14, f);
+      _mm_storeh_pi(reinterpret_cast<__m64*>(o + 18), lo);
+      _mm_storeu_ps(o + 20, c);
+      _mm_storeu_ps(o + 24, g);
+      _mm_storel_pi(reinterpret_cast<__m64*>(o + 28), hi);
+      _mm_storeu_ps(o + 30, d);
+      _mm_storeu_ps(o + 34, h);
+      _mm_storeh_pi(reinterpret_cast<__m64*>(o + 38), hi);
+    }
+  } else {
+    constexpr int rows[10] = {0, 1, 2, 6, 3, 4, 5, 7, 8, 9};  // memory order of a pose's scalars
+    for (; i + 2 <= n; i += 2) {
+      double* o = &out[i].translation.x;
+      for (int k = 0; k < 10; k += 2) {
+        const __m128d x = _mm_load_pd(res[rows[k]] + i), y = _mm_load_pd(res[rows[k + 1]] + i);
+        _mm_storeu_pd(o + k, _mm_unpacklo_pd(x, y));
+        _mm_storeu_pd(o + 10 + k, _mm_unpackhi_pd(x, y));
+      }
+    }
+  }
+#endif
+  for (; i < n; ++i) {
+    JointPose<T>& p = out[i];
+    p.translation = Vec3<T>{res[0][i], res[1][i], res[2][i]};
+    p.rotation = Quat<T>::from_xyzw(res[3][i], res[4][i], res[5][i], res[6][i]);
+    p.scale = Vec3<T>{res[7][i], res[8][i], res[9][i]};
+  }
+}
+
 // sample_rig's second half: evaluates the refreshed cache at the (finite) frame group by group
 // with `lanes` (StdSimdLanes or a benchmark's kernel) and writes the AoS poses.  A kernel that
 // takes no layout argument (a benchmark's that reads nothing) is called without it.
@@ -760,12 +818,7 @@ void evaluate_layout(const RigClipCursor<T>& cursor, T frame, std::span<JointPos
       lanes(tc + j0 * Fv, rc + j0 * rot_fields, sc + j0 * Fv, frame, n, res, std::bool_constant<Cubic>{});
     else
       lanes(tc + j0 * Fv, rc + j0 * rot_fields, sc + j0 * Fv, frame, n, res);
-    for (std::size_t i = 0; i < n; ++i) {
-      JointPose<T>& p = out[j0 + i];
-      p.translation = Vec3<T>{res[0][i], res[1][i], res[2][i]};
-      p.rotation = Quat<T>::from_xyzw(res[3][i], res[4][i], res[5][i], res[6][i]);
-      p.scale = Vec3<T>{res[7][i], res[8][i], res[9][i]};
-    }
+    write_poses<T>(res, n, out.data() + j0);
   }
 }
 template <Real T, class Lanes>
