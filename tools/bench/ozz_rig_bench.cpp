@@ -1,8 +1,9 @@
-// Issue 12: inbetween's RigClip against ozz-animation's SamplingJob on the same clip, in one
-// binary.  Not part of the CMake build (ozz is not packaged by Debian): `make bench-ozz
-// OZZ_SRC=/path/to/ozz-animation` (tools/bench/bench_ozz.sh) builds ozz out of tree under build/ozz,
-// compiles this file against it, runs it with JSON output, and tools/bench/write_results.py puts
-// the table into bench/RESULTS.md.  The clip is bench/rig_fixture.hpp's, as in bench/tracks_bench.cpp.
+// Issues 12 and 24: inbetween's RigClip against ozz-animation's SamplingJob on the same clips, in
+// one binary: the 30-key rig of bench/ and the long clip (10 s at 31 keys/s), with bytes.  Not part
+// of the CMake build (ozz is not packaged by Debian): `make bench-ozz OZZ_SRC=/path/to/ozz-animation`
+// (tools/bench/bench_ozz.sh) builds ozz out of tree under build/ozz, compiles this file against it,
+// runs it with JSON output, and tools/bench/write_results.py puts the tables into bench/RESULTS.md.
+// The clips are bench/rig_fixture.hpp's, as in bench/tracks_bench.cpp and bench/rig_bench.cpp.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>

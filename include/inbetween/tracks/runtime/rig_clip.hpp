@@ -1,20 +1,23 @@
 #pragma once
-/// The tracks runtime (issue 12, "compile once, sample many channels per call"): a RigClip is an
-/// immutable clip compiled from per-joint translation, rotation and scale tracks.  Every channel is
-/// cut into segments that tile the whole frame line — a constant segment before the first key, one
-/// per key interval, a constant segment after the last key — and each segment is stored as one
-/// 16-scalar block (its frame interval, its parameter origin and 1/length, and its coefficients:
-/// Vec3 segments in power form in the local parameter u, rotation segments as the two keys with
-/// the arc's Ω² and 1/sinc(Ω) precomputed).  A RigClipCursor<T> keeps, per channel, the current
-/// segment and a copy of its block in structure-of-arrays order (one array per field over all
-/// joints, ozz-animation's "decompressed keys" cache); sample_rig() refreshes only the channels
-/// whose segment changed and then evaluates all joints with SIMD: float with
-/// std::experimental::native_simd (4 per SSE2 register, 8 with AVX, 16 with AVX-512), double too
-/// when the flags give it 4 lanes or more, else (the default SSE2 build) with Highway's run-time
-/// dispatch (8 per AVX-512 register, 4 with AVX2); docs/runtime.md, "Which SIMD", has the
-/// measurements behind that split.  Rotations are exact slerp
-/// weights from an even polynomial: sin(uΩ)/sin(Ω) = u·sinc(uΩ)/sinc(Ω) with sinc's Taylor series
-/// in (uΩ)², Ω ≤ π/2 (no trigonometry, no root, no division, no normalisation per sample).
+/// The tracks runtime (issue 12, "compile once, sample many channels per call"; compact layout,
+/// issue 24): a RigClip is an immutable clip compiled from per-joint translation, rotation and
+/// scale tracks.  Every channel is cut into segments that tile the whole frame line — a constant
+/// segment before the first key, one per key interval, a constant segment after the last key —
+/// and the segments of all channels are one time-sorted stream per kind (ozz-animation's key
+/// stream), each in the smallest exact form: a key record (a line or slerp that starts at the
+/// channel's previous end key stores only its end key, 1/length and, rotations, Ω² and 1/sinc Ω),
+/// a hold (a constant segment; a constant channel is one hold for the whole clip), a full block
+/// (cubic segments: power form), and dense groups (a frame where every channel of the kind starts
+/// a key record of one length: the end keys field by field, 12 bytes per float Vec3 channel, 24
+/// per rotation).  A RigClipCursor<T> keeps, per channel, the current segment's fields in
+/// structure-of-arrays order (ozz-animation's "decompressed keys" cache); sample_rig() applies the
+/// records and groups the frame reached and then evaluates all joints with SIMD: Highway's
+/// run-time dispatch in the default SSE2 build (16 floats / 8 doubles per AVX-512 register, 8 / 4
+/// with AVX2), std::experimental::native_simd, inlined, when the flags give a wider register;
+/// docs/runtime.md, "The stream" and "Which SIMD", has the layout and the measurements.  Rotations
+/// are exact slerp weights from an even polynomial: sin(uΩ)/sin(Ω) = u·sinc(uΩ)/sinc(Ω) with sinc's
+/// Taylor series in (uΩ)², Ω ≤ π/2 (no trigonometry, no root, no division, no normalisation per
+/// sample).
 ///
 /// Supported input (anything else is refused by build_rig_clip with Unsupported and the place):
 /// Track<Vec3<T>> of every tangent kind (linear, Hermite, Catmull-Rom, TCB, flat, clamped, plateau,
@@ -113,7 +116,7 @@ inline constexpr std::uint32_t in_dense = 1u << 31;
 // key p0: its power form c0 = p0, c1 = p1 − p0); hold — the value.  Rotation (N = 6): key — the
 // end key xyzw, Ω² and 1/sinc(Ω) of the slerp from the previous end key; hold — the key xyzw.
 // full: v[0]'s first 4 bytes are the block's index in Stream::full.  float: 24 bytes (Vec3), 36
-// (rotation).
+// (rotation), against the 64 of a segment block before issue 24.
 template <Real T, std::size_t N>
 struct Record {
   T lo, inv_length;
@@ -143,18 +146,17 @@ struct Stream {
 };
 }  // namespace rig_detail
 
-/// The caller-owned state of one playback stream of a RigClip (make it with make_rig_clip_cursor;
-/// was RigClipCursor): per channel its current
-/// segment, and a copy of that segment's block in SIMD-register order (groups of rig_group<T>
-/// joints, field by field: ozz-animation's "decompressed keys" cache);
-/// per channel kind the position in the clip's time-sorted block stream.  Reusable, copyable;
-/// one per character instance that plays the clip.
+/// The caller-owned state of one playback stream of a RigClip (make it with make_rig_clip_cursor):
+/// per channel its current segment and that segment's fields in SIMD-register order (groups of
+/// rig_group<T> joints, field by field: ozz-animation's "decompressed keys" cache), per channel
+/// kind the position in the clip's time-sorted record stream and dense groups.  Reusable,
+/// copyable; one per character instance that plays the clip.
 template <Real T>
 struct RigClipCursor {
   std::vector<std::uint32_t> segment;  ///< per channel (T of all joints, then R, then S): segment index in its channel
   std::vector<T> cache;                ///< T, R, S fields × padded joints (filled by sample_rig; rig_detail::apply)
   std::size_t stride = 0;              ///< padded joint count (a multiple of 16)
-  std::size_t vec_fields = 8;          ///< cache fields per Vec3 channel: 8 (lines only), 14 (cubic segments too)
+  std::size_t vec_fields = 11;         ///< cache fields per Vec3 channel: 11 (lines only), 17 (cubic segments too)
   std::array<std::size_t, 3> next{};   ///< per kind: first general record not yet consumed (its lo > time)
   std::array<std::size_t, 3> next_dense{};  ///< per kind: first dense group not yet consumed
   T time = -std::numeric_limits<T>::infinity();  ///< frame of the last sample (clamped; −∞ before the first)
@@ -172,10 +174,10 @@ class RigClip {
     return translations_.bytes() + rotations_.bytes() + scales_.bytes();
   }
 
-  /// Scalars per segment block (a cursor's cache per channel, a full record's block): lo, hi (the frame interval [lo, hi) the segment answers), origin,
-  /// 1/length (u = (frame − origin)·inv_length, clamped to [0, 1]; 0 for the constant end
-  /// segments) and 12 coefficients: Vec3 c0.xyz, c1.xyz, c2.xyz, c3.xyz of
-  /// ((c3·u + c2)·u + c1)·u + c0; rotations q0.xyzw, q1.xyzw, Ω², 1/sinc(Ω), 0, 0.
+  /// Scalars per segment block of the layout before issue 24 (one 16-scalar block per segment), kept
+  /// for source compatibility: the clip now holds compact records (rig_detail::Record, dense
+  /// groups) and a cursor caches rig_detail::vec_fields_line / vec_fields_cubic fields per Vec3
+  /// channel and rig_detail::rot_fields per rotation.
   static constexpr std::size_t block = 16;
 
  private:
