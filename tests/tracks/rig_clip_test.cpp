@@ -83,8 +83,11 @@ TYPED_TEST(RigClipTyped, LinesStepsAndConstantChannelsTakeTheCompactForms) {
   using T = TypeParam;
   test::Random rng(test::seed_for(2424));
   SCOPED_TRACE(rng.trace());
-  // shift0: joint 0's keys a quarter frame later (no frame is shared by every joint any more).
-  const auto make = [](test::Random& rng, int keys, bool all_constant, bool shared_frames, bool shift0 = false) {
+  // shift0: joint 0's keys a quarter frame later (no frame is shared by every joint any more);
+  // cubic0: joint 0's translation Catmull-Rom (the clip takes the cubic cache layout) and no
+  // stepped scale (the scales' dense groups then clear c2 and c3).
+  const auto make = [](test::Random& rng, int keys, bool all_constant, bool shared_frames, bool shift0 = false,
+                       bool cubic0 = false) {
     Rig<T> rig;
     for (int j = 0; j < 21; ++j) {
       std::vector<TrackKey<Vec3<T>>> tk, sk;
@@ -101,9 +104,10 @@ TYPED_TEST(RigClipTyped, LinesStepsAndConstantChannelsTakeTheCompactForms) {
         t.frame = f;
         t.value = constant_t ? Vec3<T>{T(1), T(-2), T(0.5)} : rng.vec3<T>(T(-5), T(5));
         t.tangent = !shared_frames && rng.integer(0, 5) == 0 ? TangentKind::stepped : TangentKind::linear;
+        if (cubic0 && j == 0) t.tangent = TangentKind::catmull_rom;
         tk.push_back(t);
         TrackKey<Vec3<T>> s = t;
-        s.tangent = rng.integer(0, 5) == 0 ? TangentKind::stepped : TangentKind::linear;
+        s.tangent = rng.integer(0, 5) == 0 && !cubic0 ? TangentKind::stepped : TangentKind::linear;
         s.value = constant_s ? Vec3<T>{T(1), T(1), T(1)} : rng.vec3<T>(T(0.5), T(2));
         sk.push_back(s);
         QuatKey<T> r;
@@ -126,22 +130,24 @@ TYPED_TEST(RigClipTyped, LinesStepsAndConstantChannelsTakeTheCompactForms) {
   ASSERT_TRUE(few_clip && many_clip);
   EXPECT_EQ(few_clip->bytes(), many_clip->bytes());
 
-  for (const bool shared : {false, true}) {
-  SCOPED_TRACE(shared ? "shared key frames" : "own key frames");
+  for (const int variant : {0, 1, 2}) {
+  const bool shared = variant > 0, cubic = variant == 2;
+  SCOPED_TRACE(shared ? (cubic ? "shared key frames, one cubic channel" : "shared key frames") : "own key frames");
   test::Random rig_rng = rng;  // the same draws for the shifted copy below
-  const Rig<T> rig = make(rng, 12, false, shared);
+  const Rig<T> rig = make(rng, 12, false, shared, false, cubic);
   const auto clip = build_rig_clip<T>(rig.translations, rig.rotations, rig.scales);
   ASSERT_TRUE(clip) << clip.error().describe();
   if (shared) {
     // Dense groups hold a key in N scalars, a general record in N + 2 and a channel: the same rig
     // with one joint off the shared frames (no dense group) is larger.
-    const Rig<T> off = make(rig_rng, 12, false, true, true);
+    const Rig<T> off = make(rig_rng, 12, false, true, true, cubic);
     const auto off_clip = build_rig_clip<T>(off.translations, off.rotations, off.scales);
     ASSERT_TRUE(off_clip);
     EXPECT_LT(clip->bytes(), off_clip->bytes());
   }
   RigClipCursor ctx = make_rig_clip_cursor(*clip);
-  EXPECT_EQ(ctx.vec_fields, rig_detail::vec_fields_line);  // no cubic segment: c2, c3 not cached
+  // Only a cubic segment makes the cursors cache c2 and c3.
+  EXPECT_EQ(ctx.vec_fields, cubic ? rig_detail::vec_fields_cubic : rig_detail::vec_fields_line);
   std::vector<JointPose<T>> pose(clip->joints());
   std::vector<T> frames;
   for (T t = -6; t < 40; t += T(0.23)) frames.push_back(t);
