@@ -14,7 +14,8 @@
 /// records and groups the frame reached and then evaluates all joints with SIMD: Highway's
 /// run-time dispatch in the default SSE2 build (16 floats / 8 doubles per AVX-512 register, 8 / 4
 /// with AVX2), std::experimental::native_simd, inlined, when the flags give a wider register;
-/// docs/runtime.md, "The stream" and "Which SIMD", has the layout and the measurements.  Rotations
+/// docs/runtime.md ("RigClip", "Which SIMD", "The long clip against ozz-animation") has the layout
+/// and the measurements.  Rotations
 /// are exact slerp weights from an even polynomial: sin(uΩ)/sin(Ω) = u·sinc(uΩ)/sinc(Ω) with sinc's
 /// Taylor series in (uΩ)², Ω ≤ π/2 (no trigonometry, no root, no division, no normalisation per
 /// sample).
