@@ -21,34 +21,38 @@ namespace inbetween::bench_rig {
 /// default, AVX-512 with -march=native here).
 template <Real T>
 struct XsimdLanes {
-  void operator()(const T* tc, const T* rc, const T* sc, T frame, std::size_t n,
-                  T (*res)[rig_group<T>]) const noexcept {
+  template <bool Cubic>
+  void operator()(const T* tc, const T* rc, const T* sc, T frame, std::size_t n, T (*res)[rig_group<T>],
+                  std::bool_constant<Cubic>) const noexcept {
     using V = xsimd::batch<T>;
     constexpr std::size_t W = V::size, G = rig_group<T>;
     static_assert(G % W == 0, "a cache group holds whole registers");
     const V f(frame), zero(T(0)), one(T(1));
     const auto ld = [](const T* p) noexcept { return V::load_unaligned(p); };
-    const auto param = [&](const T* c) noexcept { return xsimd::max(zero, xsimd::min((f - ld(c + 2 * G)) * ld(c + 3 * G), one)); };
-    const auto cubic = [&](const T* c, std::size_t axis, V u) noexcept {
-      return ((ld(c + (13 + axis) * G) * u + ld(c + (10 + axis) * G)) * u + ld(c + (7 + axis) * G)) * u + ld(c + (4 + axis) * G);
+    const auto param = [&](const T* c) noexcept { return xsimd::max(zero, xsimd::min((f - ld(c)) * ld(c + G), one)); };
+    const auto axis_of = [&](const T* c, std::size_t axis, V u) noexcept {
+      if constexpr (Cubic)
+        return ((ld(c + (11 + axis) * G) * u + ld(c + (8 + axis) * G)) * u + ld(c + (5 + axis) * G)) * u + ld(c + (2 + axis) * G);
+      else
+        return ld(c + (5 + axis) * G) * u + ld(c + (2 + axis) * G);
     };
     for (std::size_t s = 0; s < n; s += W) {
       {
         const V u = param(tc + s);
-        for (std::size_t axis = 0; axis < 3; ++axis) cubic(tc + s, axis, u).store_aligned(res[axis] + s);
+        for (std::size_t axis = 0; axis < 3; ++axis) axis_of(tc + s, axis, u).store_aligned(res[axis] + s);
       }
       {
         const V u = param(sc + s);
-        for (std::size_t axis = 0; axis < 3; ++axis) cubic(sc + s, axis, u).store_aligned(res[7 + axis] + s);
+        for (std::size_t axis = 0; axis < 3; ++axis) axis_of(sc + s, axis, u).store_aligned(res[7 + axis] + s);
       }
       {
         const V u = param(rc + s);
         const V v = one - u;
-        const V omega2 = ld(rc + s + 12 * G), k = ld(rc + s + 13 * G);
+        const V omega2 = ld(rc + s + 10 * G), k = ld(rc + s + 11 * G);
         const V w0 = v * rig_detail::sinc_series<T>(v * v * omega2) * k;
         const V w1 = u * rig_detail::sinc_series<T>(u * u * omega2) * k;
         for (std::size_t c = 0; c < 4; ++c)
-          (w0 * ld(rc + s + (4 + c) * G) + w1 * ld(rc + s + (8 + c) * G)).store_aligned(res[3 + c] + s);
+          (w0 * ld(rc + s + (2 + c) * G) + w1 * ld(rc + s + (6 + c) * G)).store_aligned(res[3 + c] + s);
       }
     }
   }

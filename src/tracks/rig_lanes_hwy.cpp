@@ -43,24 +43,27 @@ HWY_INLINE V Sinc(D d, V x2) {
   }
 }
 
-// u = clamp((frame − origin)·inv_length, 0, 1) of the group's joints s … s + N − 1.
+// u = clamp((frame − lo)·inv_length, 0, 1) of the group's joints s … s + N − 1.
 template <class D, class V, class T>
 HWY_INLINE V Param(D d, const T* HWY_RESTRICT c, std::size_t s, V f) {
   constexpr std::size_t G = rig_group<T>;
-  return hn::Max(hn::Zero(d), hn::Min(hn::Mul(hn::Sub(f, hn::LoadU(d, c + 2 * G + s)), hn::LoadU(d, c + 3 * G + s)),
-                                      hn::Set(d, T(1))));
+  return hn::Max(hn::Zero(d), hn::Min(hn::Mul(hn::Sub(f, hn::LoadU(d, c + s)), hn::LoadU(d, c + G + s)), hn::Set(d, T(1))));
 }
 
-// ((c3·u + c2)·u + c1)·u + c0 for one axis.
-template <class D, class V, class T>
-HWY_INLINE V Cubic(D d, const T* HWY_RESTRICT c, std::size_t s, std::size_t axis, V u) {
+// One axis of a Vec3 channel: c1·u + c0, or ((c3·u + c2)·u + c1)·u + c0 (Cubic).
+template <bool Cubic, class D, class V, class T>
+HWY_INLINE V VecAxis(D d, const T* HWY_RESTRICT c, std::size_t s, std::size_t axis, V u) {
   constexpr std::size_t G = rig_group<T>;
-  V r = hn::Add(hn::Mul(hn::LoadU(d, c + (13 + axis) * G + s), u), hn::LoadU(d, c + (10 + axis) * G + s));
-  r = hn::Add(hn::Mul(r, u), hn::LoadU(d, c + (7 + axis) * G + s));
-  return hn::Add(hn::Mul(r, u), hn::LoadU(d, c + (4 + axis) * G + s));
+  if constexpr (Cubic) {
+    V r = hn::Add(hn::Mul(hn::LoadU(d, c + (11 + axis) * G + s), u), hn::LoadU(d, c + (8 + axis) * G + s));
+    r = hn::Add(hn::Mul(r, u), hn::LoadU(d, c + (5 + axis) * G + s));
+    return hn::Add(hn::Mul(r, u), hn::LoadU(d, c + (2 + axis) * G + s));
+  } else {
+    return hn::Add(hn::Mul(hn::LoadU(d, c + (5 + axis) * G + s), u), hn::LoadU(d, c + (2 + axis) * G + s));
+  }
 }
 
-template <class T>
+template <bool Cubic, class T>
 HWY_INLINE void Lanes(const T* HWY_RESTRICT tc, const T* HWY_RESTRICT rc, const T* HWY_RESTRICT sc, T frame,
                       std::size_t n, T* HWY_RESTRICT res) {
   constexpr std::size_t G = rig_group<T>;
@@ -71,30 +74,37 @@ HWY_INLINE void Lanes(const T* HWY_RESTRICT tc, const T* HWY_RESTRICT rc, const 
   for (std::size_t s = 0; s < n; s += N) {
     {
       const auto u = Param(d, tc, s, f);
-      for (std::size_t axis = 0; axis < 3; ++axis) hn::Store(Cubic(d, tc, s, axis, u), d, res + axis * G + s);
+      for (std::size_t axis = 0; axis < 3; ++axis) hn::Store(VecAxis<Cubic>(d, tc, s, axis, u), d, res + axis * G + s);
     }
     {
       const auto u = Param(d, sc, s, f);
-      for (std::size_t axis = 0; axis < 3; ++axis) hn::Store(Cubic(d, sc, s, axis, u), d, res + (7 + axis) * G + s);
+      for (std::size_t axis = 0; axis < 3; ++axis)
+        hn::Store(VecAxis<Cubic>(d, sc, s, axis, u), d, res + (7 + axis) * G + s);
     }
     {
       const auto u = Param(d, rc, s, f);
       const auto v = hn::Sub(one, u);
-      const auto omega2 = hn::LoadU(d, rc + 12 * G + s), k = hn::LoadU(d, rc + 13 * G + s);
+      const auto omega2 = hn::LoadU(d, rc + 10 * G + s), k = hn::LoadU(d, rc + 11 * G + s);
       const auto w0 = hn::Mul(hn::Mul(v, Sinc(d, hn::Mul(hn::Mul(v, v), omega2))), k);
       const auto w1 = hn::Mul(hn::Mul(u, Sinc(d, hn::Mul(hn::Mul(u, u), omega2))), k);
       for (std::size_t c = 0; c < 4; ++c)
-        hn::Store(hn::Add(hn::Mul(w0, hn::LoadU(d, rc + (4 + c) * G + s)), hn::Mul(w1, hn::LoadU(d, rc + (8 + c) * G + s))),
+        hn::Store(hn::Add(hn::Mul(w0, hn::LoadU(d, rc + (2 + c) * G + s)), hn::Mul(w1, hn::LoadU(d, rc + (6 + c) * G + s))),
                   d, res + (3 + c) * G + s);
     }
   }
 }
 
-void LanesF32(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) {
-  Lanes<float>(tc, rc, sc, frame, n, res);
+void LanesF32Line(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) {
+  Lanes<false, float>(tc, rc, sc, frame, n, res);
 }
-void LanesF64(const double* tc, const double* rc, const double* sc, double frame, std::size_t n, double* res) {
-  Lanes<double>(tc, rc, sc, frame, n, res);
+void LanesF32Cubic(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) {
+  Lanes<true, float>(tc, rc, sc, frame, n, res);
+}
+void LanesF64Line(const double* tc, const double* rc, const double* sc, double frame, std::size_t n, double* res) {
+  Lanes<false, double>(tc, rc, sc, frame, n, res);
+}
+void LanesF64Cubic(const double* tc, const double* rc, const double* sc, double frame, std::size_t n, double* res) {
+  Lanes<true, double>(tc, rc, sc, frame, n, res);
 }
 std::int64_t Target() { return HWY_TARGET; }
 
@@ -104,23 +114,31 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace inbetween::rig_detail {
-HWY_EXPORT(LanesF32);
-HWY_EXPORT(LanesF64);
+HWY_EXPORT(LanesF32Line);
+HWY_EXPORT(LanesF32Cubic);
+HWY_EXPORT(LanesF64Line);
+HWY_EXPORT(LanesF64Cubic);
 HWY_EXPORT(Target);
 
-void hwy_lanes_static(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) noexcept {
-  HWY_STATIC_DISPATCH(LanesF32)(tc, rc, sc, frame, n, res);
+void hwy_lanes_static(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res,
+                      bool cubic) noexcept {
+  if (cubic) HWY_STATIC_DISPATCH(LanesF32Cubic)(tc, rc, sc, frame, n, res);
+  else HWY_STATIC_DISPATCH(LanesF32Line)(tc, rc, sc, frame, n, res);
 }
 void hwy_lanes_static(const double* tc, const double* rc, const double* sc, double frame, std::size_t n,
-                      double* res) noexcept {
-  HWY_STATIC_DISPATCH(LanesF64)(tc, rc, sc, frame, n, res);
+                      double* res, bool cubic) noexcept {
+  if (cubic) HWY_STATIC_DISPATCH(LanesF64Cubic)(tc, rc, sc, frame, n, res);
+  else HWY_STATIC_DISPATCH(LanesF64Line)(tc, rc, sc, frame, n, res);
 }
-void hwy_lanes_dynamic(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res) noexcept {
-  HWY_DYNAMIC_DISPATCH(LanesF32)(tc, rc, sc, frame, n, res);
+void hwy_lanes_dynamic(const float* tc, const float* rc, const float* sc, float frame, std::size_t n, float* res,
+                       bool cubic) noexcept {
+  if (cubic) HWY_DYNAMIC_DISPATCH(LanesF32Cubic)(tc, rc, sc, frame, n, res);
+  else HWY_DYNAMIC_DISPATCH(LanesF32Line)(tc, rc, sc, frame, n, res);
 }
 void hwy_lanes_dynamic(const double* tc, const double* rc, const double* sc, double frame, std::size_t n,
-                       double* res) noexcept {
-  HWY_DYNAMIC_DISPATCH(LanesF64)(tc, rc, sc, frame, n, res);
+                       double* res, bool cubic) noexcept {
+  if (cubic) HWY_DYNAMIC_DISPATCH(LanesF64Cubic)(tc, rc, sc, frame, n, res);
+  else HWY_DYNAMIC_DISPATCH(LanesF64Line)(tc, rc, sc, frame, n, res);
 }
 const char* hwy_static_target() { return hwy::TargetName(HWY_STATIC_TARGET); }
 const char* hwy_dynamic_target() { return hwy::TargetName(HWY_DYNAMIC_DISPATCH(Target)()); }

@@ -338,6 +338,26 @@ class Ozz(unittest.TestCase):
         self.assertEqual(row(render(load_docs(), ozz), "64 joints, ⅛ key interval per call")[6],
                          "missed (0.5× < 1×)")
 
+    def test_long_clip_table_issue_24(self):
+        """The long clip's rows (issue 24): ratio ozz / ours float against 1.5×, both sides' bytes."""
+        ozz = load_ozz()
+        ours = {(64, 2): 300.0, (1024, 2): 6000.0, (64, 8): 200.0, (1024, 8): 5000.0}
+        for (j, step), t in ours.items():
+            for name, ns, size in ((f"BM_OzzLongClip/{j}/{step}", 1.6 * t if j == 1024 and step == 8 else 2 * t, 9.5e6),
+                                   (f"BM_RigClipLong<float>/{j}/{step}", t, 19.2e6),
+                                   (f"BM_RigClipLong<double>/{j}/{step}", 2 * t, 34.6e6)):
+                ozz["benchmarks"].append({"run_name": name, "name": name + "_median", "aggregate_name": "median",
+                                          "run_type": "aggregate", "cpu_time": ns, "real_time": ns, "time_unit": "ns",
+                                          "bytes": size, "max_dt": 1e-5, "max_drot_rad": 1e-5})
+        text = render(load_docs(), ozz)
+        self.assertIn("#### The long clip (10 s at 31 keys/s)", text)
+        r = row(text, "long clip, 1024 joints, ½ key interval per call")
+        self.assertEqual((r[4], r[6], r[7]), ("2", "met", "9.50 MB / 19.20 MB / 34.60 MB"))
+        self.assertEqual(row(text, "long clip, 1024 joints, ⅛ key interval per call")[4:7:2], ["1.6", "met"])
+        ozz["benchmarks"][-3]["cpu_time"] = 1.4 * 5000.0  # ozz only 1.4× ours at 1024 joints, ⅛
+        self.assertEqual(row(render(load_docs(), ozz), "long clip, 1024 joints, ⅛ key interval per call")[6],
+                         "missed (1.4× < 1.5×)")
+
     def test_main_adds_the_table_only_when_the_json_exists(self):
         with tempfile.TemporaryDirectory() as d:
             results = Path(d) / "RESULTS.md"

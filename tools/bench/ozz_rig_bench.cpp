@@ -1,8 +1,9 @@
-// Issue 12: inbetween's RigClip against ozz-animation's SamplingJob on the same clip, in one
-// binary.  Not part of the CMake build (ozz is not packaged by Debian): `make bench-ozz
-// OZZ_SRC=/path/to/ozz-animation` (tools/bench/bench_ozz.sh) builds ozz out of tree under build/ozz,
-// compiles this file against it, runs it with JSON output, and tools/bench/write_results.py puts
-// the table into bench/RESULTS.md.  The clip is bench/rig_fixture.hpp's, as in bench/tracks_bench.cpp.
+// Issues 12 and 24: inbetween's RigClip against ozz-animation's SamplingJob on the same clips, in
+// one binary: the 30-key rig of bench/ and the long clip (10 s at 31 keys/s), with bytes.  Not part
+// of the CMake build (ozz is not packaged by Debian): `make bench-ozz OZZ_SRC=/path/to/ozz-animation`
+// (tools/bench/bench_ozz.sh) builds ozz out of tree under build/ozz, compiles this file against it,
+// runs it with JSON output, and tools/bench/write_results.py puts the tables into bench/RESULTS.md.
+// The clips are bench/rig_fixture.hpp's, as in bench/tracks_bench.cpp and bench/rig_bench.cpp.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -47,8 +48,10 @@ ozz::unique_ptr<ozz::animation::Animation> make_ozz(const std::vector<RigJoint<f
   return builder(raw);
 }
 
-void BM_OzzSamplingJob(benchmark::State& state) {
-  const auto rig = make_rig<float>(int(state.range(0)));
+// ozz's SamplingJob playing the rig of state.range(0) joints and `keys` keys per channel forwards,
+// 1/state.range(1) key interval per call; counters: accuracy, bytes (Animation::size()).
+void play_ozz(benchmark::State& state, int keys) {
+  const auto rig = make_rig<float>(int(state.range(0)), keys, keys != inbetween_bench::rig_keys_per_channel);
   const auto anim = make_ozz(rig);
   const double duration = rig_duration(rig), end = rig_end(rig);
   ozz::animation::SamplingJob::Context ctx(anim->num_tracks());
@@ -67,7 +70,7 @@ void BM_OzzSamplingJob(benchmark::State& state) {
     if (frame > end) frame = 0;
   }
   // Accuracy against the per-track API in double at 200 frames: max |Δtranslation|, rotation angle.
-  const auto ref = make_rig<double>(int(state.range(0)));
+  const auto ref = make_rig<double>(int(state.range(0)), keys, keys != inbetween_bench::rig_keys_per_channel);
   double worst_t = 0, worst_r = 0;
   for (int i = 0; i < 200; ++i) {
     const double f = end * i / 199.0;
@@ -96,11 +99,13 @@ void BM_OzzSamplingJob(benchmark::State& state) {
   }
   state.counters["max_dt"] = worst_t;
   state.counters["max_drot_rad"] = worst_r;
+  state.counters["bytes"] = double(anim->size());
 }
 
+// sample_rig playing the same rig (T's rounding of its keys) the same way; bytes: RigClip::bytes().
 template <class T>
-void BM_InbetweenRigClip(benchmark::State& state) {
-  const auto rig = make_rig<T>(int(state.range(0)));
+void play_rig_clip(benchmark::State& state, int keys) {
+  const auto rig = make_rig<T>(int(state.range(0)), keys, keys != inbetween_bench::rig_keys_per_channel);
   std::vector<Track<Vec3<T>>> tv, sv;
   std::vector<QuatTrack<T>> rv;
   for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
@@ -116,7 +121,7 @@ void BM_InbetweenRigClip(benchmark::State& state) {
     frame += 1.0 / double(state.range(1));
     if (frame > end) frame = 0;
   }
-  const auto ref = make_rig<double>(int(state.range(0)));
+  const auto ref = make_rig<double>(int(state.range(0)), keys, keys != inbetween_bench::rig_keys_per_channel);
   double worst_t = 0, worst_r = 0;
   for (int i = 0; i < 200; ++i) {
     const double f = end * i / 199.0;
@@ -133,6 +138,20 @@ void BM_InbetweenRigClip(benchmark::State& state) {
   }
   state.counters["max_dt"] = worst_t;
   state.counters["max_drot_rad"] = worst_r;
+  state.counters["bytes"] = double(clip.bytes());
+}
+
+// The 30-key rig of bench/ (issue 12) and the long clip of issue 24 (10 s at 31 keys/s: 310 keys
+// per channel on the integer frames, rig_fixture.hpp; at 1 024 joints larger than L2 on both sides).
+void BM_OzzSamplingJob(benchmark::State& state) { play_ozz(state, inbetween_bench::rig_keys_per_channel); }
+template <class T>
+void BM_InbetweenRigClip(benchmark::State& state) {
+  play_rig_clip<T>(state, inbetween_bench::rig_keys_per_channel);
+}
+void BM_OzzLongClip(benchmark::State& state) { play_ozz(state, inbetween_bench::rig_long_keys_per_channel); }
+template <class T>
+void BM_RigClipLong(benchmark::State& state) {
+  play_rig_clip<T>(state, inbetween_bench::rig_long_keys_per_channel);
 }
 
 // Args: joints, calls per key interval (2: half a frame per call as bench/tracks_bench.cpp; 8: an
@@ -141,4 +160,8 @@ void BM_InbetweenRigClip(benchmark::State& state) {
 BENCHMARK(BM_OzzSamplingJob) RIG_ARGS;
 BENCHMARK(BM_InbetweenRigClip<float>) RIG_ARGS;
 BENCHMARK(BM_InbetweenRigClip<double>) RIG_ARGS;
+#define RIG_LONG_ARGS ->ArgsProduct({{64, 1024}, {2, 8}})
+BENCHMARK(BM_OzzLongClip) RIG_LONG_ARGS;
+BENCHMARK(BM_RigClipLong<float>) RIG_LONG_ARGS;
+BENCHMARK(BM_RigClipLong<double>) RIG_LONG_ARGS;
 BENCHMARK_MAIN();

@@ -284,7 +284,31 @@ def rig_section(r: Results) -> list[str]:
              "of the linear-key rig time (ratio = F-curve / linear).", ""]
             + table(["rig", "F-curve runtime", "linear runtime", "ratio", "target ≤ 3×",
                      "per-curve FCurve::sample", "per-curve / runtime", "max_fit_error"], rows) + [""])
-    return out
+    return out + rig_long_section(r)
+
+
+def rig_long_section(r: Results) -> list[str]:
+    """The long clip of issue 24 in tree (`inbetween_bench_rig`, BM_RigLongClip): time and bytes."""
+    rows = []
+    for scalar in ("float", "double"):
+        for step, step_label in OZZ_STEPS:
+            for j in OZZ_TARGET_SIZES:
+                name = f"BM_RigLongClip<{scalar}>/{j}/{step}"
+                t = r.time(name)
+                if t is None:
+                    continue
+                rows.append([f"long clip, {j} joints, {scalar}, {step_label} key interval per call", fmt_time(t),
+                             fmt_mb(r.counter(name, "bytes")), fmt_num(r.counter(name, "bytes_per_key")),
+                             fmt_mb(r.counter(name, "raw_bytes"))])
+    if not rows:
+        return []
+    return (["### The long clip (`inbetween_bench_rig`, `BM_RigLongClip`)", "",
+             "Issue 24: 10 s at 31 keys/s, 310 keys per channel on the same frames for every joint (a sampled "
+             "clip), played forwards.  Bytes: `RigClip::bytes()`, per joint and key, and the keys as raw "
+             "floats (10 values and a frame per joint and key).  ozz-animation on the same clip: "
+             "`make bench-ozz` (\"The long clip\" below).", ""]
+            + table(["clip, scalar, step", "time per character", "bytes", "bytes per joint and key",
+                     "raw keys"], rows) + [""])
 
 
 def ozz_section(ozz: Results | None) -> list[str]:
@@ -324,7 +348,47 @@ def ozz_section(ozz: Results | None) -> list[str]:
     return ([title, "", intro, ""]
             + table(["rig, step", "ozz SamplingJob", "ours float", "ours double", "ozz / ours float",
                      "ozz / ours double", "target ≥ 1× (float)", "max rotation error ozz / float / double",
-                     "max translation error ozz / float / double"], rows) + [""])
+                     "max translation error ozz / float / double"], rows) + [""] + ozz_long_section(ozz))
+
+
+OZZ_LONG_TARGET = 1.5  # issue 24: at least 1.5× ozz's SamplingJob on the long clip, 64 and 1024 joints
+
+
+def fmt_mb(n: float | None) -> str:
+    return "?" if n is None else f"{n / 1e6:.2f} MB"
+
+
+def ozz_long_section(ozz: Results | None) -> list[str]:
+    """The long clip of issue 24 (10 s at 31 keys/s) from `make bench-ozz`'s JSON: time and bytes."""
+    if ozz is None:
+        return []
+    rows = []
+    for step, step_label in OZZ_STEPS:
+        for j in OZZ_TARGET_SIZES:
+            names = (f"BM_OzzLongClip/{j}/{step}", f"BM_RigClipLong<float>/{j}/{step}", f"BM_RigClipLong<double>/{j}/{step}")
+            oz, fl, db = (ozz.time(n) for n in names)
+            if oz is None and fl is None and db is None:
+                continue
+            q = ratio(oz, fl)
+            size = " / ".join(fmt_mb(ozz.counter(n, "bytes")) for n in names)
+            rot = " / ".join(fmt_num(ozz.counter(n, "max_drot_rad")) for n in names)
+            dt = " / ".join(fmt_num(ozz.counter(n, "max_dt")) for n in names)
+            rows.append([f"long clip, {j} joints, {step_label} key interval per call", fmt_time(oz), fmt_time(fl),
+                         fmt_time(db), fmt_num(q), fmt_num(ratio(oz, db)), verdict(q, OZZ_LONG_TARGET, True), size,
+                         rot, dt])
+    if not rows:
+        return []
+    intro = ("The long clip of issue 24, same run and binary: 10 s at 31 keys/s, 310 keys per channel on the "
+             "same frames for every joint (`make_rig(joints, rig_long_keys_per_channel, true)` in "
+             "`bench/rig_fixture.hpp`; a sampled clip, as BVH or baked glTF).  At 1024 joints neither clip fits in "
+             "L2.  Bytes: ozz's `Animation::size()` (16-bit quantised keys) and `RigClip::bytes()` "
+             "(exact float / double keys, docs/runtime.md, \"RigClip\").  Target: ozz / ours float ≥ "
+             f"{OZZ_LONG_TARGET:g}× at 64 and 1024 joints and both steps.")
+    return (["#### The long clip (10 s at 31 keys/s)", "", intro, ""]
+            + table(["rig, step", "ozz SamplingJob", "ours float", "ours double", "ozz / ours float",
+                     "ozz / ours double", f"target ≥ {OZZ_LONG_TARGET:g}× (float)", "bytes ozz / float / double",
+                     "max rotation error ozz / float / double", "max translation error ozz / float / double"], rows)
+            + [""])
 
 def bvh_section(r: Results, three: Results | str | None) -> list[str]:
     """inbetween's BM_BvhReadBakeWorld against three.js (bvh_threejs.mjs); `three` is its Results or why not run."""
