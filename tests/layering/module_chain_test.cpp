@@ -62,7 +62,7 @@ const std::vector<ThirdParty>& third_party_table() {
 bool is_system_header(std::string_view name) {
   static const std::vector<std::string_view> kSystem = {
       "assert.h", "errno.h", "fcntl.h", "signal.h", "spawn.h", "stdio.h", "stdlib.h", "string.h",
-      "termios.h", "unistd.h", "emmintrin.h", "immintrin.h", "sys/"};
+      "termios.h", "unistd.h", "xmmintrin.h", "emmintrin.h", "immintrin.h", "sys/"};
   return std::any_of(kSystem.begin(), kSystem.end(),
                      [&](std::string_view s) { return s.ends_with('/') ? name.starts_with(s) : name == s; });
 }
