@@ -559,6 +559,9 @@ Expected<CompressedClip> compress_clip(const SampledClip& clip, const CompressOp
     return Error{ErrorCode::invalid_argument, "shell distance must be finite and ≥ 0", {Parameter{"shell"}}};
   INBETWEEN_ASSERT(clip.poses.size() == clip.frames * clip.joints() && clip.names.size() == clip.joints());
   if (clip.joints() == 0 || clip.frames == 0) return Error{ErrorCode::unsupported, "the clip has no joints or no frames"};
+  if (!(std::abs(clip.first_frame) + double(clip.frames) < 9007199254740992.0))
+    return Error{ErrorCode::unsupported, "first frame " + std::to_string(clip.first_frame) +
+                                             ": beyond 2^53 whole frames are no longer distinct"};
   for (std::size_t i = 0; i < clip.poses.size(); ++i) {
     const JointPose<double>& p = clip.poses[i];
     const double s = p.translation.x + p.translation.y + p.translation.z + p.rotation.w + p.rotation.x + p.rotation.y +

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <set>
+#include <string_view>
 
 #include "inbetween/math/assert.hpp"
 
@@ -252,6 +254,8 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
   IBC_TRY(stream_offset, r.uint(4, "stream offset"));
   IBC_TRY(stream_size, r.uint(4, "stream size"));
   IBC_TRY(first_frame, r.f64("first frame"));
+  if (std::abs(first_frame) + double(frames) >= 9007199254740992.0)
+    return r.fail(36, "first frame: |first| + frames reaches 2^53, where whole frames are no longer distinct");
   IBC_TRY(frame_rate, r.f64("frame rate"));
   if (!(frame_rate > 0)) return r.fail(44, "frame rate: not > 0");
   IBC_TRY(error_bound, r.f32("error bound"));
@@ -285,10 +289,15 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
   if (names_offset != r.at)
     return r.fail(20, "names offset: " + std::to_string(names_offset) + ", expected " + std::to_string(r.at));
   clip.names_.resize(joints);
+  std::set<std::string_view> seen;
   for (std::size_t j = 0; j < joints; ++j) {
+    const std::size_t at = r.at;
     IBC_TRY(n, r.uint(2, "name length"));
+    if (n == 0) return r.fail(at, "name of joint " + std::to_string(j) + ": empty");
     if (!r.has(n)) return r.fail(r.at, "name of joint " + std::to_string(j) + ": the file ends (truncated)");
     clip.names_[j].assign(reinterpret_cast<const char*>(bytes.data() + r.at), n);
+    if (!seen.insert(std::string_view(reinterpret_cast<const char*>(bytes.data() + r.at), n)).second)
+      return r.fail(at, "name of joint " + std::to_string(j) + ": '" + clip.names_[j] + "' names an earlier joint too");
     r.at += n;
   }
   if (tracks_offset != r.at)
@@ -341,7 +350,9 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
       t.spacing = std::uint32_t(spacing);
       IBC_TRY(bit_offset, r.uint(4, "bit offset"));
       t.bit_offset = bit_offset;
-      t.controls = std::uint32_t(compressed_segments(piece_frames, spacing) + degree);
+      const std::uint64_t controls = compressed_segments(piece_frames, spacing) + degree;
+      if (controls >= (std::uint64_t(1) << 31)) return r.fail(track_at + 6, "spacing: 2^31 control points or more");
+      t.controls = std::uint32_t(controls);
       // Walk the superblocks and blocks: headers and offsets inside the stream, widths ≤ bits.
       t.first_block = std::uint32_t(clip.blocks_.size());
       t.first_superblock = std::uint32_t(clip.superblocks_.size());

@@ -149,6 +149,13 @@ TEST(CompressedClip, NamedFieldsInErrors) {
   bad = bytes;
   bad[4] = 9;
   EXPECT_EQ(load_compressed_clip(bad).error().describe(), "byte 4: version: 9, this build reads version 1");
+  auto parts = sample_parts();
+  parts.names = {"root", "root"};  // the RawScene of a clip needs unique names
+  EXPECT_NE(load_compressed_clip(write_compressed_clip(parts)).error().describe().find("names an earlier joint"),
+            std::string::npos);
+  parts = sample_parts();
+  parts.first_frame = 1e17;  // whole frames no longer distinct
+  EXPECT_EQ(load_compressed_clip(write_compressed_clip(parts)).error().place(), "byte 36");
   bad = bytes;
   bad.push_back(0);
   EXPECT_NE(load_compressed_clip(bad).error().describe().find("file size"), std::string::npos);
