@@ -14,16 +14,19 @@
 /// Then each additive layer a with w = clean(weight_a)·clean(mask_a[j]) (a delta pose, see
 /// additive_delta): t += w·Δt;  q = q · normalise((1 − w)·1 + w·Δq⁺) (Δq⁺: Δq with w ≥ 0);
 /// s ⊙= 1 + w·(Δs − 1).
-/// The kernel is one pass over all layers per group of native_simd<T>::size() joints, the
-/// accumulators in registers (ozz-animation's BlendingJob makes a pass per layer, one for the rest
-/// pose and one to normalise).
+/// The kernel is one pass over the joints with every layer per joint, the accumulators in
+/// registers (ozz-animation's BlendingJob makes a pass per layer, one for the rest pose and one to
+/// normalise), on the JointPose records as they are (no transposition): a joint's ten scalars are
+/// three 4-lane loads, the hemisphere test a 4-lane dot product (docs/blending.md, "Speed").
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <limits>
 #include <span>
-#include <experimental/simd>
 
 #include "inbetween/math/assert.hpp"
 #include "inbetween/math/quat.hpp"
@@ -53,6 +56,9 @@ struct AdditiveLayer {
   T weight = T(1);                      ///< 0 = no effect, 1 = the full delta; NaN and negatives count as 0
   std::span<const T> mask{};            ///< per-joint factor; empty = 1 everywhere; NaN/negative → 0
 };
+
+/// Most BlendLayers one blend_poses call takes (asserted; nest calls for more).
+inline constexpr std::size_t blend_max_layers = 16;
 
 /// Options of blend_poses.
 template <Real T>
@@ -84,174 +90,106 @@ void additive_delta(std::span<const JointPose<T>> pose, std::span<const JointPos
 }
 
 namespace blend_detail {
-namespace stdx = std::experimental;
-
-template <Real T>
-using V = stdx::native_simd<T>;
 
 // NaN and negatives → 0, capped at blend_weight_max.
 template <Real T>
-inline T clean(T w) noexcept {
+[[gnu::always_inline]] inline T clean(T w) noexcept {
   return w > T(0) ? std::min(w, blend_weight_max<T>) : T(0);
 }
-template <class Vt, Real T>
-inline Vt clean(Vt w) noexcept {
-  Vt r(T(0));
-  where(w > Vt(T(0)), r) = stdx::min(w, Vt(blend_weight_max<T>));
-  return r;
-}
 
-// One field of G consecutive joints (indices past `last` repeat `last`).
-template <Real T, class F>
-inline V<T> gather(const JointPose<T>* p, std::size_t j0, std::size_t last, F field) noexcept {
-  return V<T>([&](auto i) { return field(p[std::min(j0 + std::size_t(i), last)]); });
-}
-
+// Four lanes of T (a GCC/Clang vector: SSE for float, two SSE registers for double unless AVX).
 template <Real T>
-inline V<T> load_mask(std::span<const T> mask, std::size_t j0, std::size_t n) noexcept {
-  if (mask.empty()) return V<T>(T(1));
-  if (n == V<T>::size()) return clean<V<T>, T>(V<T>(mask.data() + j0, stdx::element_aligned));
-  return clean<V<T>, T>(V<T>([&](auto i) { return mask[std::min(j0 + std::size_t(i), j0 + n - 1)]; }));
+using V4 [[gnu::vector_size(4 * sizeof(T))]] = T;
+template <Real T>
+using I4 [[gnu::vector_size(4 * sizeof(T))]] = std::conditional_t<sizeof(T) == 4, std::int32_t, std::int64_t>;
+
+// A JointPose is ten consecutive T: translation 0–2, rotation (w x y z) 3–6, scale 7–9.  Three
+// unaligned 4-lane loads at 0, 3 and 6 cover it (lane 3 of the first and lane 0 of the third are
+// the rotation's w and z, ignored there).
+template <Real T>
+[[gnu::always_inline]] inline V4<T> load4(const T* p) noexcept {
+  V4<T> v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
 }
-
-// The ten fields of a pose group, structure of arrays.
 template <Real T>
-struct Soa {
-  V<T> tx, ty, tz, qw, qx, qy, qz, sx, sy, sz;
-};
-
-template <Real T>
-inline Soa<T> load(const JointPose<T>* p, std::size_t j0, std::size_t last) noexcept {
-  return {gather(p, j0, last, [](const JointPose<T>& a) { return a.translation.x; }),
-          gather(p, j0, last, [](const JointPose<T>& a) { return a.translation.y; }),
-          gather(p, j0, last, [](const JointPose<T>& a) { return a.translation.z; }),
-          gather(p, j0, last, [](const JointPose<T>& a) { return a.rotation.w; }),
-          gather(p, j0, last, [](const JointPose<T>& a) { return a.rotation.x; }),
-          gather(p, j0, last, [](const JointPose<T>& a) { return a.rotation.y; }),
-          gather(p, j0, last, [](const JointPose<T>& a) { return a.rotation.z; }),
-          gather(p, j0, last, [](const JointPose<T>& a) { return a.scale.x; }),
-          gather(p, j0, last, [](const JointPose<T>& a) { return a.scale.y; }),
-          gather(p, j0, last, [](const JointPose<T>& a) { return a.scale.z; })};
+[[gnu::always_inline]] inline void store4(T* p, V4<T> v) noexcept {
+  std::memcpy(p, &v, sizeof v);
 }
-
-// acc += w·x, the rotation with x's sign flipped where it is off the hemisphere of ref.
+// The sum of the four lanes, in every lane.
 template <Real T>
-inline void accumulate(Soa<T>& acc, const Soa<T>& x, V<T> w, const V<T>& rw, const V<T>& rx, const V<T>& ry,
-                       const V<T>& rz) noexcept {
-  acc.tx += w * x.tx;
-  acc.ty += w * x.ty;
-  acc.tz += w * x.tz;
-  acc.sx += w * x.sx;
-  acc.sy += w * x.sy;
-  acc.sz += w * x.sz;
-  V<T> wq = w;
-  const V<T> d = rw * x.qw + rx * x.qx + ry * x.qy + rz * x.qz;
-  where(d < V<T>(T(0)), wq) = -w;
-  acc.qw += wq * x.qw;
-  acc.qx += wq * x.qx;
-  acc.qy += wq * x.qy;
-  acc.qz += wq * x.qz;
+[[gnu::always_inline]] inline V4<T> hsum(V4<T> v) noexcept {
+  v += __builtin_shufflevector(v, v, 1, 0, 3, 2);
+  return v + __builtin_shufflevector(v, v, 2, 3, 0, 1);
+}
+// w with the sign of d flipped in (copysign-like: w ≥ 0, so w·sign(d) with sign(−0) = −).
+template <Real T>
+[[gnu::always_inline]] inline V4<T> signed_by(V4<T> w, V4<T> d) noexcept {
+  using S = std::conditional_t<sizeof(T) == 4, std::int32_t, std::int64_t>;
+  const I4<T> sign = I4<T>{} + std::numeric_limits<S>::min();
+  return reinterpret_cast<V4<T>>(reinterpret_cast<I4<T>>(w) ^ (reinterpret_cast<I4<T>>(d) & sign));
 }
 
 template <Real T>
-void blend_group(std::span<const BlendLayer<T>> layers, std::span<const AdditiveLayer<T>> additive,
-                 std::span<const JointPose<T>> rest, JointPose<T>* out, std::size_t j0, std::size_t n,
-                 T threshold) noexcept {
-  using W = V<T>;
-  const std::size_t last = j0 + n - 1;
-  const W zero(T(0));
-  const Soa<T> r = load(rest.data(), j0, last);
-  // The hemisphere: layer 0's rotation (the rest pose's when there is no layer).
-  W hw = r.qw, hx = r.qx, hy = r.qy, hz = r.qz;
-  if (!layers.empty()) {
-    const JointPose<T>* p0 = layers[0].pose.data();
-    hw = gather(p0, j0, last, [](const JointPose<T>& a) { return a.rotation.w; });
-    hx = gather(p0, j0, last, [](const JointPose<T>& a) { return a.rotation.x; });
-    hy = gather(p0, j0, last, [](const JointPose<T>& a) { return a.rotation.y; });
-    hz = gather(p0, j0, last, [](const JointPose<T>& a) { return a.rotation.z; });
+inline const T* fields(const JointPose<T>& p) noexcept {
+  return &p.translation.x;
+}
+template <Real T>
+inline T* fields(JointPose<T>& p) noexcept {
+  return &p.translation.x;
+}
+
+// One joint: every layer, the rest pose, the normalisation and the additive layers, in registers.
+template <Real T>
+[[gnu::always_inline]] inline void blend_joint(std::span<const BlendLayer<T>> layers, const T* clean_weight,
+                                               std::span<const AdditiveLayer<T>> additive,
+                                               const JointPose<T>& rest, JointPose<T>& out, std::size_t j,
+                                               T threshold) noexcept {
+  using W = V4<T>;
+  const T* r = fields(rest);
+  const W h = load4<T>(layers.empty() ? r + 3 : fields(layers[0].pose[j]) + 3);  // the hemisphere
+  W at{}, aq{}, as{}, sum{};
+  for (std::size_t l = 0; l < layers.size(); ++l) {
+    const BlendLayer<T>& layer = layers[l];
+    const T w = layer.mask.empty() ? clean_weight[l] : clean_weight[l] * clean(layer.mask[j]);
+    const W wv = W{} + w;
+    const T* x = fields(layer.pose[j]);
+    const W q = load4<T>(x + 3);
+    sum += wv;
+    at += wv * load4<T>(x);
+    as += wv * load4<T>(x + 6);
+    aq += signed_by<T>(wv, hsum<T>(q * h)) * q;
   }
-  Soa<T> acc{zero, zero, zero, zero, zero, zero, zero, zero, zero, zero};
-  W sum = zero;
-  for (const BlendLayer<T>& layer : layers) {
-    const W w = W(clean(layer.weight)) * load_mask(layer.mask, j0, n);
-    sum += w;
-    accumulate(acc, load(layer.pose.data(), j0, last), w, hw, hx, hy, hz);
+  const bool none = sum[0] == T(0);
+  if (sum[0] < threshold) {
+    const W wv = W{} + (threshold - sum[0]);
+    const W q = load4<T>(r + 3);
+    at += wv * load4<T>(r);
+    as += wv * load4<T>(r + 6);
+    aq += signed_by<T>(wv, hsum<T>(q * h)) * q;
+    sum = W{} + threshold;
   }
-  const W th(threshold);
-  const W rest_w = stdx::max(th - sum, zero);
-  const auto none = sum == zero;  // no layer weight at all: the rest pose exactly (no rounding)
-  if (stdx::any_of(rest_w > zero)) {
-    accumulate(acc, r, rest_w, hw, hx, hy, hz);
-    sum = stdx::max(sum, th);
-  }
-  const W inv = W(T(1)) / sum;
-  Soa<T> o;
-  o.tx = acc.tx * inv;
-  o.ty = acc.ty * inv;
-  o.tz = acc.tz * inv;
-  o.sx = acc.sx * inv;
-  o.sy = acc.sy * inv;
-  o.sz = acc.sz * inv;
-  const W n2 = acc.qw * acc.qw + acc.qx * acc.qx + acc.qy * acc.qy + acc.qz * acc.qz;
-  // Σ w σ q has length ≥ W·(smallest dot with the hemisphere) and can vanish only for rotations a
-  // half turn apart; below this the rest rotation is written instead.
-  const auto degenerate = n2 < W(T(64) * std::numeric_limits<T>::min());
-  const W rn = W(T(1)) / stdx::sqrt(stdx::max(n2, W(std::numeric_limits<T>::min())));
-  o.qw = acc.qw * rn;
-  o.qx = acc.qx * rn;
-  o.qy = acc.qy * rn;
-  o.qz = acc.qz * rn;
-  if (stdx::any_of(degenerate)) {
-    where(degenerate, o.qw) = r.qw;
-    where(degenerate, o.qx) = r.qx;
-    where(degenerate, o.qy) = r.qy;
-    where(degenerate, o.qz) = r.qz;
-  }
-  if (stdx::any_of(none)) {
-    where(none, o.tx) = r.tx;
-    where(none, o.ty) = r.ty;
-    where(none, o.tz) = r.tz;
-    where(none, o.qw) = r.qw;
-    where(none, o.qx) = r.qx;
-    where(none, o.qy) = r.qy;
-    where(none, o.qz) = r.qz;
-    where(none, o.sx) = r.sx;
-    where(none, o.sy) = r.sy;
-    where(none, o.sz) = r.sz;
+  const W inv = W{} + T(1) / sum[0];
+  const W n2 = hsum<T>(aq * aq);
+  T* o = fields(out);
+  if (none) {
+    out = rest;
+  } else {
+    store4<T>(o, at * inv);
+    store4<T>(o + 6, as * inv);
+    // Σ w σ q can vanish only for rotations a half turn apart: then the rest rotation.
+    if (n2[0] >= T(64) * std::numeric_limits<T>::min()) store4<T>(o + 3, aq * (W{} + T(1) / std::sqrt(n2[0])));
+    else store4<T>(o + 3, load4<T>(r + 3));
   }
   for (const AdditiveLayer<T>& layer : additive) {
-    const W w = W(clean(layer.weight)) * load_mask(layer.mask, j0, n);
-    const Soa<T> d = load(layer.delta.data(), j0, last);
-    o.tx += w * d.tx;
-    o.ty += w * d.ty;
-    o.tz += w * d.tz;
-    const W one(T(1));
-    o.sx *= one + w * (d.sx - one);
-    o.sy *= one + w * (d.sy - one);
-    o.sz *= one + w * (d.sz - one);
-    // nlerp(identity, Δq⁺, w), Δq⁺ with w ≥ 0.
-    W ws = w;
-    where(d.qw < zero, ws) = -w;
-    W aw = one - w + ws * d.qw, ax = ws * d.qx, ay = ws * d.qy, az = ws * d.qz;
-    const W an = one / stdx::sqrt(stdx::max(aw * aw + ax * ax + ay * ay + az * az, W(std::numeric_limits<T>::min())));
-    aw *= an;
-    ax *= an;
-    ay *= an;
-    az *= an;
-    const W qw = o.qw * aw - o.qx * ax - o.qy * ay - o.qz * az;
-    const W qx = o.qw * ax + o.qx * aw + o.qy * az - o.qz * ay;
-    const W qy = o.qw * ay - o.qx * az + o.qy * aw + o.qz * ax;
-    const W qz = o.qw * az + o.qx * ay - o.qy * ax + o.qz * aw;
-    o.qw = qw;
-    o.qx = qx;
-    o.qy = qy;
-    o.qz = qz;
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    JointPose<T>& p = out[j0 + i];
-    p.translation = {o.tx[i], o.ty[i], o.tz[i]};
-    p.rotation = Quat<T>::from_wxyz(o.qw[i], o.qx[i], o.qy[i], o.qz[i]);
-    p.scale = {o.sx[i], o.sy[i], o.sz[i]};
+    const T w = clean(layer.weight) * (layer.mask.empty() ? T(1) : clean(layer.mask[j]));
+    const JointPose<T>& d = layer.delta[j];
+    out.translation = out.translation + d.translation * w;
+    out.scale = {out.scale.x * (T(1) + w * (d.scale.x - T(1))), out.scale.y * (T(1) + w * (d.scale.y - T(1))),
+                 out.scale.z * (T(1) + w * (d.scale.z - T(1)))};
+    const Quat<T> dq = d.rotation.w < T(0) ? -d.rotation : d.rotation;  // Δq⁺
+    const Quat<T> a = Quat<T>{} * (T(1) - w) + dq * w;
+    out.rotation = out.rotation * (a / std::sqrt(std::max(dot(a, a), std::numeric_limits<T>::min())));
   }
 }
 }  // namespace blend_detail
@@ -270,9 +208,14 @@ void blend_poses(std::span<const BlendLayer<T>> layers, std::span<const Additive
   INBETWEEN_ASSERT(options.threshold > T(0) && options.threshold <= blend_weight_max<T>);
   for (const BlendLayer<T>& l : layers) INBETWEEN_ASSERT(l.pose.size() == joints && (l.mask.empty() || l.mask.size() == joints));
   for (const AdditiveLayer<T>& l : additive) INBETWEEN_ASSERT(l.delta.size() == joints && (l.mask.empty() || l.mask.size() == joints));
-  constexpr std::size_t G = blend_detail::V<T>::size();
-  for (std::size_t j0 = 0; j0 < joints; j0 += G)
-    blend_detail::blend_group<T>(layers, additive, rest, out.data(), j0, std::min(G, joints - j0), options.threshold);
+  static_assert(sizeof(JointPose<T>) == 10 * sizeof(T), "JointPose<T> is ten consecutive T");
+  // The layers' weights cleaned once (at most 16 layers on this stack buffer; more in chunks is
+  // not supported: asserted).
+  INBETWEEN_ASSERT(layers.size() <= blend_max_layers);
+  T clean_weight[blend_max_layers];
+  for (std::size_t l = 0; l < layers.size(); ++l) clean_weight[l] = blend_detail::clean(layers[l].weight);
+  for (std::size_t j = 0; j < joints; ++j)
+    blend_detail::blend_joint<T>(layers, clean_weight, additive, rest[j], out[j], j, options.threshold);
 }
 
 /// The target's weight of a crossfade `t` seconds (or frames) after it started over `duration`
