@@ -145,6 +145,32 @@ template <Real T>
                                                std::span<const AdditiveLayer<T>> additive,
                                                const JointPose<T>& rest, JointPose<T>& out, std::size_t j,
                                                T threshold) noexcept {
+  if constexpr (sizeof(T) == 8) {
+    // double: plain scalar code (GCC splits 4-lane double vectors into SSE2 pairs badly: 5× slower).
+    const Quat<T> h = layers.empty() ? rest.rotation : layers[0].pose[j].rotation;
+    Vec3<T> at{}, as{};
+    Quat<T> aq{T(0), T(0), T(0), T(0)};
+    T sum = 0;
+    const auto add = [&](const JointPose<T>& x, T w) {
+      sum += w;
+      at = at + x.translation * w;
+      as = as + x.scale * w;
+      aq = aq + x.rotation * (dot(x.rotation, h) < T(0) ? -w : w);
+    };
+    for (std::size_t l = 0; l < layers.size(); ++l) {
+      const BlendLayer<T>& layer = layers[l];
+      add(layer.pose[j], layer.mask.empty() ? clean_weight[l] : clean_weight[l] * clean(layer.mask[j]));
+    }
+    if (sum == T(0)) {
+      out = rest;
+    } else {
+      if (sum < threshold) add(rest, threshold - sum);
+      const T n2 = dot(aq, aq);
+      out.translation = at / sum;
+      out.scale = as / sum;
+      out.rotation = n2 >= T(64) * std::numeric_limits<T>::min() ? aq / std::sqrt(n2) : rest.rotation;
+    }
+  } else {
   using W = V4<T>;
   const T* r = fields(rest);
   const W h = load4<T>(layers.empty() ? r + 3 : fields(layers[0].pose[j]) + 3);  // the hemisphere
@@ -180,6 +206,7 @@ template <Real T>
     // Σ w σ q can vanish only for rotations a half turn apart: then the rest rotation.
     if (n2[0] >= T(64) * std::numeric_limits<T>::min()) store4<T>(o + 3, aq * (W{} + T(1) / std::sqrt(n2[0])));
     else store4<T>(o + 3, load4<T>(r + 3));
+  }
   }
   for (const AdditiveLayer<T>& layer : additive) {
     const T w = clean(layer.weight) * (layer.mask.empty() ? T(1) : clean(layer.mask[j]));

@@ -1,0 +1,77 @@
+// Issue 23's blending runtime (include/inbetween/tracks/runtime/blend.hpp): blend_poses on
+// bench/blend_fixture.hpp's poses (2 and 4 layers, masked, 64 and 1 024 joints — the same poses
+// tools/bench/ozz_blend_bench.cpp gives ozz-animation's BlendingJob), and the whole character
+// update at 71 joints against the 1 ms per frame engines budget for all animation: sample two
+// clips with sample_rig (bench/rig_fixture.hpp's 71-joint rig at two phases, two cursors), blend
+// them with a crossfade weight and an upper-body mask, and take the root motion out of the result.
+#include <benchmark/benchmark.h>
+
+#include <span>
+#include <vector>
+
+#include "blend_fixture.hpp"
+#include "inbetween/tracks/runtime/blend.hpp"
+#include "inbetween/tracks/runtime/rig_clip.hpp"
+#include "inbetween/tracks/runtime/root_motion.hpp"
+#include "rig_fixture.hpp"
+
+using namespace inbetween;
+
+namespace {
+
+// Args: joints, layers.
+template <class T>
+void BM_BlendPoses(benchmark::State& state) {
+  const auto b = inbetween_bench::make_blend_poses<T>(int(state.range(1)), int(state.range(0)));
+  std::vector<BlendLayer<T>> layers;
+  for (std::size_t l = 0; l < b.layers.size(); ++l) layers.push_back({b.layers[l], b.weights[l], b.masks[l]});
+  std::vector<JointPose<T>> out(b.rest.size());
+  for (auto _ : state) {
+    blend_poses<T>(layers, {}, b.rest, out);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["ns_per_joint"] = benchmark::Counter(double(state.iterations()) * double(out.size()),
+                                                      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// Arg: joints (71: the CMU skeleton's size class).  One iteration = one character's frame.
+template <class T>
+void BM_CharacterUpdate(benchmark::State& state) {
+  const auto rig = inbetween_bench::make_rig<T>(int(state.range(0)));
+  std::vector<Track<Vec3<T>>> tv, sv;
+  std::vector<QuatTrack<T>> rv;
+  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
+  const auto clip = build_rig_clip<T>(tv, rv, sv).value();
+  const double end = inbetween_bench::rig_end(rig);
+  RigClipCursor<T> ca = make_rig_clip_cursor(clip), cb = make_rig_clip_cursor(clip);
+  const std::size_t n = clip.joints();
+  std::vector<JointPose<T>> a(n), b(n), rest(n), out(n);
+  std::vector<T> upper(n);
+  for (std::size_t j = 0; j < n; ++j) upper[j] = j < n / 2 ? T(0) : T(1);  // second clip on the upper half only
+  const RootMotionOptions options;
+  const RootMotion<T> reference{};
+  double frame = 0;
+  for (auto _ : state) {
+    sample_rig(clip, T(frame), ca, std::span<JointPose<T>>(a));
+    sample_rig(clip, T(std::fmod(frame + 7.5, end)), cb, std::span<JointPose<T>>(b));
+    const T w = crossfade_weight(T(std::fmod(frame, 10.0)), T(10));
+    const BlendLayer<T> layers[2] = {{a, T(1) - w}, {b, w, upper}};
+    blend_poses<T>(layers, {}, rest, out);
+    const RootMotion<T> motion = root_motion_of(out[0], reference, options);
+    out[0] = remove_root_motion(out[0], motion);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::DoNotOptimize(motion);
+    benchmark::ClobberMemory();
+    frame += 0.5;  // 60 Hz playback of a 30 fps clip
+    if (frame > end) frame = 0;
+  }
+}
+
+}  // namespace
+
+BENCHMARK(BM_BlendPoses<float>)->ArgsProduct({{64, 1024}, {2, 4}});
+BENCHMARK(BM_BlendPoses<double>)->ArgsProduct({{64, 1024}, {2, 4}});
+BENCHMARK(BM_CharacterUpdate<float>)->Arg(71);
+BENCHMARK(BM_CharacterUpdate<double>)->Arg(71);
+BENCHMARK_MAIN();
