@@ -52,6 +52,7 @@ COMPARISON_FILTERS = {
     "inbetween_bench_curves": r"Sequential|BatchCubic",
     "inbetween_bench_tracks": r"BM_Rig.*/(25|64|71|551|1024)/2$",
     "inbetween_bench_io": r"BM_Bvh",
+    "inbetween_bench_blend": r"BM_BlendPoses<float>|BM_CharacterUpdate",
 }
 
 RIG_SIZES = (25, 64, 71, 551, 1024)
@@ -326,6 +327,64 @@ def ozz_section(ozz: Results | None) -> list[str]:
                      "ozz / ours double", "target ≥ 1× (float)", "max rotation error ozz / float / double",
                      "max translation error ozz / float / double"], rows) + [""])
 
+
+# Issue 23's blending runtime: blend_poses in tree (bench/blend_bench.cpp) and against ozz-animation's
+# BlendingJob out of tree (tools/bench/ozz_blend_bench.cpp, the last block of bench_ozz.sh).
+BLEND_SIZES = (64, 1024)
+BLEND_LAYERS = (2, 4)
+BLEND_TARGET = 2.0  # issue 23: at least 2x ozz's BlendingJob (ratio = ozz / ours)
+OZZ_BLEND_PROGRAM = "ozz_blend_bench"
+DEFAULT_OZZ_BLEND_JSON = ROOT / "build" / "ozz" / f"{OZZ_BLEND_PROGRAM}.json"
+
+
+def blend_section(r: Results, ozz_blend_json: Path = DEFAULT_OZZ_BLEND_JSON) -> list[str]:
+    """blend_poses and the 71-joint character update from inbetween_bench_blend, and the ozz
+    BlendingJob comparison when `make bench-ozz` wrote its JSON."""
+    rows = []
+    for scalar in ("float", "double"):
+        for j in BLEND_SIZES:
+            for n in BLEND_LAYERS:
+                t = r.time(f"BM_BlendPoses<{scalar}>/{j}/{n}")
+                if t is not None:
+                    rows.append([f"{scalar}, {j} joints, {n} layers", fmt_time(t), fmt_time(t / j)])
+    for scalar in ("float", "double"):
+        t = r.time(f"BM_CharacterUpdate<{scalar}>/71")
+        if t is not None:
+            rows.append([f"character update, {scalar}, 71 joints", fmt_time(t),
+                         f"{100 * t / 1e3 / FRAME_BUDGET_US:.2g} % of 1 ms"])
+    out = ["### Blending runtime (`inbetween_bench_blend`, issue 23)", "",
+           "`blend_poses` on `bench/blend_fixture.hpp`'s poses (every layer but the first masked per joint, "
+           "rest pose below the 0.1 threshold), one call per character; the character update samples two "
+           "clips with `sample_rig` (the rig table's 71-joint rig at two phases), blends them with a "
+           "crossfade weight and an upper-body mask and takes the root motion out (docs/blending.md).", ""]
+    out += table(["case", "time", "per joint / share of the frame budget"], rows) + [""]
+    title = "### ozz-animation BlendingJob vs blend_poses (`make bench-ozz`, out of tree)"
+    if not ozz_blend_json.is_file():
+        return out + [title, "", "not run: `make bench-ozz OZZ_SRC=…` writes build/ozz/ozz_blend_bench.json.", ""]
+    oz = Results()
+    oz.add_json(OZZ_BLEND_PROGRAM, json.loads(ozz_blend_json.read_text(encoding="utf-8")))
+    ctx = oz.contexts.get(OZZ_BLEND_PROGRAM, {})
+    rows = []
+    for j in BLEND_SIZES:
+        for n in BLEND_LAYERS:
+            o = oz.time(f"BM_OzzBlendingJob/{j}/{n}")
+            f = oz.time(f"BM_InbetweenBlend<float>/{j}/{n}")
+            d = oz.time(f"BM_InbetweenBlend<double>/{j}/{n}")
+            q = ratio(o, f)
+            rows.append([f"{j} joints, {n} layers", fmt_time(o), fmt_time(f), fmt_time(d), fmt_num(q),
+                         verdict(q, BLEND_TARGET, True),
+                         fmt_num(oz.counter(f"BM_OzzBlendingJob/{j}/{n}", "vs_inbetween_drot_rad"))])
+    intro = (f"Its own run: {ctx.get('date', '?')}, ozz-animation {ctx.get('ozz_version', '?')} (commit "
+             f"{ctx.get('ozz_commit', '?')}), inbetween {ctx.get('inbetween_commit', '?')}, flags "
+             f"`{ctx.get('cxxflags', '?')}`, load {ctx.get('load', '?')}; both sides in one binary "
+             "(`tools/bench/ozz_blend_bench.cpp`), 3 interleaved repetitions, CPU-time medians.  Same poses "
+             "(ozz as SoA transforms, ours as `JointPose` spans, each its runtime's layout).  Target: "
+             f"ours ≥ {BLEND_TARGET:g}× faster (ratio = ozz / ours float).  Last column: largest rotation "
+             "difference between the two outputs (rad; ozz normalises with an estimated reciprocal root).")
+    return out + [title, "", intro, ""] + table(
+        ["poses", "ozz BlendingJob", "ours float", "ours double", "ozz / ours float",
+         f"target ≥ {BLEND_TARGET:g}×", "rotation difference"], rows) + [""]
+
 def bvh_section(r: Results, three: Results | str | None) -> list[str]:
     """inbetween's BM_BvhReadBakeWorld against three.js (bvh_threejs.mjs); `three` is its Results or why not run."""
     title = "### Reading and baking a BVH clip in world space: inbetween vs three.js (`inbetween_bench_io`, `bvh_threejs.mjs`)"
@@ -495,6 +554,7 @@ def render(r: Results, command: str, when: str, load: str, build_dir: Path | Non
     lines += slerp_section(r) + arclength_section(r) + curves_section(r) + rig_section(r)
     lines += ozz_section(ozz)
     lines += rig_simd_section(r)
+    lines += blend_section(r)
     lines += bvh_section(r, threejs)
     lines.append(END)
     return "\n".join(lines) + "\n"
