@@ -139,6 +139,22 @@ inline T* fields(JointPose<T>& p) noexcept {
   return &p.translation.x;
 }
 
+// The additive layers on one blended joint.
+template <Real T>
+[[gnu::always_inline]] inline void apply_additive(std::span<const AdditiveLayer<T>> additive, JointPose<T>& out,
+                                                  std::size_t j) noexcept {
+  for (const AdditiveLayer<T>& layer : additive) {
+    const T w = clean(layer.weight) * (layer.mask.empty() ? T(1) : clean(layer.mask[j]));
+    const JointPose<T>& d = layer.delta[j];
+    out.translation = out.translation + d.translation * w;
+    out.scale = {out.scale.x * (T(1) + w * (d.scale.x - T(1))), out.scale.y * (T(1) + w * (d.scale.y - T(1))),
+                 out.scale.z * (T(1) + w * (d.scale.z - T(1)))};
+    const Quat<T> dq = d.rotation.w < T(0) ? -d.rotation : d.rotation;  // Δq⁺
+    const Quat<T> a = Quat<T>{} * (T(1) - w) + dq * w;
+    out.rotation = out.rotation * (a / std::sqrt(std::max(dot(a, a), std::numeric_limits<T>::min())));
+  }
+}
+
 // One joint: every layer, the rest pose, the normalisation and the additive layers, in registers.
 template <Real T>
 [[gnu::always_inline]] inline void blend_joint(std::span<const BlendLayer<T>> layers, const T* clean_weight,
@@ -208,17 +224,12 @@ template <Real T>
     else store4<T>(o + 3, load4<T>(r + 3));
   }
   }
-  for (const AdditiveLayer<T>& layer : additive) {
-    const T w = clean(layer.weight) * (layer.mask.empty() ? T(1) : clean(layer.mask[j]));
-    const JointPose<T>& d = layer.delta[j];
-    out.translation = out.translation + d.translation * w;
-    out.scale = {out.scale.x * (T(1) + w * (d.scale.x - T(1))), out.scale.y * (T(1) + w * (d.scale.y - T(1))),
-                 out.scale.z * (T(1) + w * (d.scale.z - T(1)))};
-    const Quat<T> dq = d.rotation.w < T(0) ? -d.rotation : d.rotation;  // Δq⁺
-    const Quat<T> a = Quat<T>{} * (T(1) - w) + dq * w;
-    out.rotation = out.rotation * (a / std::sqrt(std::max(dot(a, a), std::numeric_limits<T>::min())));
-  }
+  apply_additive<T>(additive, out, j);
 }
+/// blend_poses<float>'s kernel for `groups` full groups of 8 joints from joint 0, without the
+/// additive layers (src/tracks/blend_kernel.cpp; run-time dispatch to AVX2 where the CPU has it).
+void blend_groups8(const BlendLayer<float>* layers, std::size_t layer_count, const float* clean_weight,
+                   const JointPose<float>* rest, JointPose<float>* out, std::size_t groups, float threshold) noexcept;
 }  // namespace blend_detail
 
 /// Blends `layers` (then `additive`) joint by joint into `out`, as described at the top of this
@@ -241,7 +252,18 @@ void blend_poses(std::span<const BlendLayer<T>> layers, std::span<const Additive
   INBETWEEN_ASSERT(layers.size() <= blend_max_layers);
   T clean_weight[blend_max_layers];
   for (std::size_t l = 0; l < layers.size(); ++l) clean_weight[l] = blend_detail::clean(layers[l].weight);
-  for (std::size_t j = 0; j < joints; ++j)
+  std::size_t j = 0;
+  if constexpr (std::is_same_v<T, float>) {
+    // Groups of 8 joints through the transposing kernel (src/tracks/blend_kernel.cpp), the rest and
+    // the additive layers joint by joint.
+    const std::size_t groups = joints / 8;
+    blend_detail::blend_groups8(layers.data(), layers.size(), clean_weight, rest.data(), out.data(), groups,
+                                options.threshold);
+    if (!additive.empty())
+      for (std::size_t k = 0; k < 8 * groups; ++k) blend_detail::apply_additive<T>(additive, out[k], k);
+    j = 8 * groups;
+  }
+  for (; j < joints; ++j)
     blend_detail::blend_joint<T>(layers, clean_weight, additive, rest[j], out[j], j, options.threshold);
 }
 

@@ -1,0 +1,196 @@
+// blend_poses<float>'s kernel for groups of 8 joints (include/inbetween/tracks/runtime/blend.hpp,
+// docs/blending.md "Speed"): the eight JointPose records are read as three 4-lane rows each
+// (translation+w at 0, rotation at 3, w+scale at 6), turned into structure-of-arrays fields by 4×4
+// transposes in each 128-bit half of 8-lane vectors, blended over every layer in registers, and
+// turned back.  Compiled twice with GCC/Clang target_clones: an AVX2+FMA clone (x86-64-v3, one
+// 256-bit register per field) and the baseline (SSE2, two registers per field), chosen at load time
+// by the CPU (ifunc); other compilers/architectures get the baseline only.
+#include "inbetween/tracks/runtime/blend.hpp"
+
+#include <cstring>
+
+// The 8-lane helpers below are always inlined into the kernel, so the ABI of passing 32-byte vectors
+// without AVX (the baseline clone) never applies.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+namespace inbetween::blend_detail {
+namespace {
+
+using V4f [[gnu::vector_size(16)]] = float;
+using V8f [[gnu::vector_size(32)]] = float;
+using V8i [[gnu::vector_size(32)]] = std::int32_t;
+
+[[gnu::always_inline]] inline V4f row(const float* p) noexcept {
+  V4f v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline V8f load8(const float* p) noexcept {
+  V8f v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline V8f cat(V4f a, V4f b) noexcept { return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7); }
+
+// 4×4 transposes in each half: a_k = [row k | row k+4] → f_i = [field i of rows 0..3 | of rows 4..7]
+// (and back: the same network).
+[[gnu::always_inline]] inline void transpose(V8f a0, V8f a1, V8f a2, V8f a3, V8f& f0, V8f& f1, V8f& f2, V8f& f3) noexcept {
+  const V8f t0 = __builtin_shufflevector(a0, a1, 0, 8, 1, 9, 4, 12, 5, 13);
+  const V8f t1 = __builtin_shufflevector(a0, a1, 2, 10, 3, 11, 6, 14, 7, 15);
+  const V8f t2 = __builtin_shufflevector(a2, a3, 0, 8, 1, 9, 4, 12, 5, 13);
+  const V8f t3 = __builtin_shufflevector(a2, a3, 2, 10, 3, 11, 6, 14, 7, 15);
+  f0 = __builtin_shufflevector(t0, t2, 0, 1, 8, 9, 4, 5, 12, 13);
+  f1 = __builtin_shufflevector(t0, t2, 2, 3, 10, 11, 6, 7, 14, 15);
+  f2 = __builtin_shufflevector(t1, t3, 0, 1, 8, 9, 4, 5, 12, 13);
+  f3 = __builtin_shufflevector(t1, t3, 2, 3, 10, 11, 6, 7, 14, 15);
+}
+
+struct Fields {
+  V8f tx, ty, tz, qw, qx, qy, qz, sx, sy, sz;
+};
+
+[[gnu::always_inline]] inline Fields load_group(const JointPose<float>* p) noexcept {
+  const float* b = &p->translation.x;
+  Fields f;
+  V8f junk;
+  transpose(cat(row(b), row(b + 40)), cat(row(b + 10), row(b + 50)), cat(row(b + 20), row(b + 60)),
+            cat(row(b + 30), row(b + 70)), f.tx, f.ty, f.tz, junk);
+  transpose(cat(row(b + 3), row(b + 43)), cat(row(b + 13), row(b + 53)), cat(row(b + 23), row(b + 63)),
+            cat(row(b + 33), row(b + 73)), f.qw, f.qx, f.qy, f.qz);
+  transpose(cat(row(b + 6), row(b + 46)), cat(row(b + 16), row(b + 56)), cat(row(b + 26), row(b + 66)),
+            cat(row(b + 36), row(b + 76)), junk, f.sx, f.sy, f.sz);
+  return f;
+}
+
+[[gnu::always_inline]] inline void store_rows(float* b, V8f a0, V8f a1, V8f a2, V8f a3, std::size_t offset) noexcept {
+  V8f g0, g1, g2, g3;
+  transpose(a0, a1, a2, a3, g0, g1, g2, g3);
+  const V8f g[4] = {g0, g1, g2, g3};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const V4f lo = __builtin_shufflevector(g[k], g[k], 0, 1, 2, 3), hi = __builtin_shufflevector(g[k], g[k], 4, 5, 6, 7);
+    std::memcpy(b + 10 * k + offset, &lo, sizeof lo);
+    std::memcpy(b + 10 * (k + 4) + offset, &hi, sizeof hi);
+  }
+}
+
+[[gnu::always_inline]] inline V8f clean8(V8f w) noexcept {
+  const V8f zero{};
+  const V8f capped = w < V8f{} + blend_weight_max<float> ? w : V8f{} + blend_weight_max<float>;
+  return w > zero ? capped : zero;  // NaN compares false: 0
+}
+
+[[gnu::always_inline]] inline V8f signed_by(V8f w, V8f d) noexcept {
+  const V8i sign = V8i{} + std::int32_t(0x80000000u);
+  return reinterpret_cast<V8f>(reinterpret_cast<V8i>(w) ^ (reinterpret_cast<V8i>(d) & sign));
+}
+
+// Any lane of a comparison set.
+[[gnu::always_inline]] inline bool any(V8i m) noexcept {
+  m |= __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3);
+  m |= __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5);
+  m |= __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6);
+  return m[0] != 0;
+}
+
+[[gnu::always_inline]] inline V8f sqrt8(V8f x) noexcept {
+#if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
+  const V4f lo = __builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 0, 1, 2, 3));
+  const V4f hi = __builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 4, 5, 6, 7));
+  return cat(lo, hi);
+#else
+  for (int i = 0; i < 8; ++i) x[i] = std::sqrt(x[i]);
+  return x;
+#endif
+}
+
+// The hemisphere: the first layer's rotation fields.
+struct Hemisphere {
+  V8f qw, qx, qy, qz;
+};
+
+[[gnu::always_inline]] inline void accumulate(Fields& a, const Fields& x, V8f w, const Hemisphere& h) noexcept {
+  a.tx += w * x.tx;
+  a.ty += w * x.ty;
+  a.tz += w * x.tz;
+  a.sx += w * x.sx;
+  a.sy += w * x.sy;
+  a.sz += w * x.sz;
+  const V8f wq = signed_by(w, h.qw * x.qw + h.qx * x.qx + h.qy * x.qy + h.qz * x.qz);
+  a.qw += wq * x.qw;
+  a.qx += wq * x.qx;
+  a.qy += wq * x.qy;
+  a.qz += wq * x.qz;
+}
+
+}  // namespace
+
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#define INBETWEEN_BLEND_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define INBETWEEN_BLEND_CLONES
+#endif
+
+INBETWEEN_BLEND_CLONES
+void blend_groups8(const BlendLayer<float>* layers, std::size_t layer_count, const float* clean_weight,
+                   const JointPose<float>* rest, JointPose<float>* out, std::size_t groups, float threshold) noexcept {
+  const V8f zero{}, one = V8f{} + 1.0f, th = V8f{} + threshold;
+  const V8f tiny = V8f{} + 64.0f * std::numeric_limits<float>::min();
+  for (std::size_t g = 0; g < groups; ++g) {
+    const std::size_t j0 = 8 * g;
+    Fields a{zero, zero, zero, zero, zero, zero, zero, zero, zero, zero};
+    V8f sum = zero;
+    Hemisphere h;
+    for (std::size_t l = 0; l < layer_count; ++l) {
+      const BlendLayer<float>& layer = layers[l];
+      V8f w = V8f{} + clean_weight[l];
+      if (!layer.mask.empty()) w *= clean8(load8(layer.mask.data() + j0));
+      const Fields x = load_group(layer.pose.data() + j0);
+      if (l == 0) h = {x.qw, x.qx, x.qy, x.qz};
+      sum += w;
+      accumulate(a, x, w, h);
+    }
+    // The rest pose only where some joint needs it (a summed weight below the threshold, or a
+    // rotation sum without length): loaded on that rare path alone.
+    const V8i below = th > sum;
+    if (any(below) || layer_count == 0) {
+      const Fields r = load_group(rest + j0);
+      if (layer_count == 0) h = {r.qw, r.qx, r.qy, r.qz};
+      accumulate(a, r, th > sum ? th - sum : zero, h);  // ozz's rule: the rest fills up to the threshold
+    }
+    const V8i none = sum == zero;
+    sum = th > sum ? th : sum;
+    const V8f n2 = a.qw * a.qw + a.qx * a.qx + a.qy * a.qy + a.qz * a.qz;
+    const V8i degenerate = n2 < tiny;
+    // 1/W and 1/|Σ w σ q| from one division.
+    const V8f len = sqrt8(degenerate ? one : n2);
+    const V8f rd = one / (sum * len);
+    const V8f inv = rd * len, rn = rd * sum;
+    Fields o{a.tx * inv, a.ty * inv, a.tz * inv, a.qw * rn, a.qx * rn, a.qy * rn, a.qz * rn, a.sx * inv, a.sy * inv, a.sz * inv};
+    if (any(none | degenerate)) {
+      const Fields r = load_group(rest + j0);
+      o.qw = degenerate ? r.qw : o.qw;
+      o.qx = degenerate ? r.qx : o.qx;
+      o.qy = degenerate ? r.qy : o.qy;
+      o.qz = degenerate ? r.qz : o.qz;
+      // No layer weight at all: the rest pose exactly.
+      o.tx = none ? r.tx : o.tx;
+      o.ty = none ? r.ty : o.ty;
+      o.tz = none ? r.tz : o.tz;
+      o.qw = none ? r.qw : o.qw;
+      o.qx = none ? r.qx : o.qx;
+      o.qy = none ? r.qy : o.qy;
+      o.qz = none ? r.qz : o.qz;
+      o.sx = none ? r.sx : o.sx;
+      o.sy = none ? r.sy : o.sy;
+      o.sz = none ? r.sz : o.sz;
+    }
+    float* b = &out[j0].translation.x;
+    store_rows(b, o.tx, o.ty, o.tz, o.qw, 0);
+    store_rows(b, o.qz, o.sx, o.sy, o.sz, 6);
+    store_rows(b, o.qw, o.qx, o.qy, o.qz, 3);
+  }
+}
+
+}  // namespace inbetween::blend_detail
