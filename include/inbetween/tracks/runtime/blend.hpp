@@ -244,8 +244,8 @@ void blend_poses(std::span<const BlendLayer<T>> layers, std::span<const Additive
   const std::size_t joints = rest.size();
   INBETWEEN_ASSERT(out.size() == joints);
   INBETWEEN_ASSERT(options.threshold > T(0) && options.threshold <= blend_weight_max<T>);
-  for (const BlendLayer<T>& l : layers) INBETWEEN_ASSERT(l.pose.size() == joints && (l.mask.empty() || l.mask.size() == joints));
-  for (const AdditiveLayer<T>& l : additive) INBETWEEN_ASSERT(l.delta.size() == joints && (l.mask.empty() || l.mask.size() == joints));
+  for ([[maybe_unused]] const BlendLayer<T>& l : layers) INBETWEEN_ASSERT(l.pose.size() == joints && (l.mask.empty() || l.mask.size() == joints));
+  for ([[maybe_unused]] const AdditiveLayer<T>& l : additive) INBETWEEN_ASSERT(l.delta.size() == joints && (l.mask.empty() || l.mask.size() == joints));
   static_assert(sizeof(JointPose<T>) == 10 * sizeof(T), "JointPose<T> is ten consecutive T");
   // The layers' weights cleaned once (at most 16 layers on this stack buffer; more in chunks is
   // not supported: asserted).
