@@ -27,16 +27,14 @@ using V8i [[gnu::vector_size(32)]] = std::int32_t;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
-[[gnu::always_inline]] inline V8f load8(const float* p) noexcept {
-  V8f v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline V8f cat(V4f a, V4f b) noexcept { return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7); }
+// 8-lane values are passed by reference and returned through references: Clang refuses 32-byte
+// vectors by value between functions compiled without AVX (the baseline clone), even inlined ones.
+[[gnu::always_inline]] inline void load8(const float* p, V8f& v) noexcept { std::memcpy(&v, p, sizeof v); }
+[[gnu::always_inline]] inline void cat(V4f a, V4f b, V8f& v) noexcept { v = __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7); }
 
 // 4×4 transposes in each half: a_k = [row k | row k+4] → f_i = [field i of rows 0..3 | of rows 4..7]
 // (and back: the same network).
-[[gnu::always_inline]] inline void transpose(V8f a0, V8f a1, V8f a2, V8f a3, V8f& f0, V8f& f1, V8f& f2, V8f& f3) noexcept {
+[[gnu::always_inline]] inline void transpose(const V8f& a0, const V8f& a1, const V8f& a2, const V8f& a3, V8f& f0, V8f& f1, V8f& f2, V8f& f3) noexcept {
   const V8f t0 = __builtin_shufflevector(a0, a1, 0, 8, 1, 9, 4, 12, 5, 13);
   const V8f t1 = __builtin_shufflevector(a0, a1, 2, 10, 3, 11, 6, 14, 7, 15);
   const V8f t2 = __builtin_shufflevector(a2, a3, 0, 8, 1, 9, 4, 12, 5, 13);
@@ -54,17 +52,23 @@ struct Fields {
 [[gnu::always_inline]] inline Fields load_group(const JointPose<float>* p) noexcept {
   const float* b = &p->translation.x;
   Fields f;
-  V8f junk;
-  transpose(cat(row(b), row(b + 40)), cat(row(b + 10), row(b + 50)), cat(row(b + 20), row(b + 60)),
-            cat(row(b + 30), row(b + 70)), f.tx, f.ty, f.tz, junk);
-  transpose(cat(row(b + 3), row(b + 43)), cat(row(b + 13), row(b + 53)), cat(row(b + 23), row(b + 63)),
-            cat(row(b + 33), row(b + 73)), f.qw, f.qx, f.qy, f.qz);
-  transpose(cat(row(b + 6), row(b + 46)), cat(row(b + 16), row(b + 56)), cat(row(b + 26), row(b + 66)),
-            cat(row(b + 36), row(b + 76)), junk, f.sx, f.sy, f.sz);
+  V8f junk, a0, a1, a2, a3;
+  const auto rows = [&](std::size_t offset) {
+    cat(row(b + offset), row(b + 40 + offset), a0);
+    cat(row(b + 10 + offset), row(b + 50 + offset), a1);
+    cat(row(b + 20 + offset), row(b + 60 + offset), a2);
+    cat(row(b + 30 + offset), row(b + 70 + offset), a3);
+  };
+  rows(0);
+  transpose(a0, a1, a2, a3, f.tx, f.ty, f.tz, junk);
+  rows(3);
+  transpose(a0, a1, a2, a3, f.qw, f.qx, f.qy, f.qz);
+  rows(6);
+  transpose(a0, a1, a2, a3, junk, f.sx, f.sy, f.sz);
   return f;
 }
 
-[[gnu::always_inline]] inline void store_rows(float* b, V8f a0, V8f a1, V8f a2, V8f a3, std::size_t offset) noexcept {
+[[gnu::always_inline]] inline void store_rows(float* b, const V8f& a0, const V8f& a1, const V8f& a2, const V8f& a3, std::size_t offset) noexcept {
   V8f g0, g1, g2, g3;
   transpose(a0, a1, a2, a3, g0, g1, g2, g3);
   const V8f g[4] = {g0, g1, g2, g3};
@@ -75,33 +79,33 @@ struct Fields {
   }
 }
 
-[[gnu::always_inline]] inline V8f clean8(V8f w) noexcept {
+[[gnu::always_inline]] inline void clean8(V8f& w) noexcept {
   const V8f zero{};
   const V8f capped = w < V8f{} + blend_weight_max<float> ? w : V8f{} + blend_weight_max<float>;
-  return w > zero ? capped : zero;  // NaN compares false: 0
+  w = w > zero ? capped : zero;  // NaN compares false: 0
 }
 
-[[gnu::always_inline]] inline V8f signed_by(V8f w, V8f d) noexcept {
+[[gnu::always_inline]] inline void signed_by(const V8f& w, const V8f& d, V8f& out) noexcept {
   const V8i sign = V8i{} + std::int32_t(0x80000000u);
-  return reinterpret_cast<V8f>(reinterpret_cast<V8i>(w) ^ (reinterpret_cast<V8i>(d) & sign));
+  out = reinterpret_cast<V8f>(reinterpret_cast<V8i>(w) ^ (reinterpret_cast<V8i>(d) & sign));
 }
 
 // Any lane of a comparison set.
-[[gnu::always_inline]] inline bool any(V8i m) noexcept {
+[[gnu::always_inline]] inline bool any(const V8i& mask) noexcept {
+  V8i m = mask;
   m |= __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3);
   m |= __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5);
   m |= __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6);
   return m[0] != 0;
 }
 
-[[gnu::always_inline]] inline V8f sqrt8(V8f x) noexcept {
+[[gnu::always_inline]] inline void sqrt8(V8f& x) noexcept {
 #if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
   const V4f lo = __builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 0, 1, 2, 3));
   const V4f hi = __builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 4, 5, 6, 7));
-  return cat(lo, hi);
+  cat(lo, hi, x);
 #else
   for (int i = 0; i < 8; ++i) x[i] = std::sqrt(x[i]);
-  return x;
 #endif
 }
 
@@ -110,14 +114,15 @@ struct Hemisphere {
   V8f qw, qx, qy, qz;
 };
 
-[[gnu::always_inline]] inline void accumulate(Fields& a, const Fields& x, V8f w, const Hemisphere& h) noexcept {
+[[gnu::always_inline]] inline void accumulate(Fields& a, const Fields& x, const V8f& w, const Hemisphere& h) noexcept {
   a.tx += w * x.tx;
   a.ty += w * x.ty;
   a.tz += w * x.tz;
   a.sx += w * x.sx;
   a.sy += w * x.sy;
   a.sz += w * x.sz;
-  const V8f wq = signed_by(w, h.qw * x.qw + h.qx * x.qx + h.qy * x.qy + h.qz * x.qz);
+  V8f wq;
+  signed_by(w, h.qw * x.qw + h.qx * x.qx + h.qy * x.qy + h.qz * x.qz, wq);
   a.qw += wq * x.qw;
   a.qx += wq * x.qx;
   a.qy += wq * x.qy;
@@ -145,7 +150,12 @@ void blend_groups8(const BlendLayer<float>* layers, std::size_t layer_count, con
     for (std::size_t l = 0; l < layer_count; ++l) {
       const BlendLayer<float>& layer = layers[l];
       V8f w = V8f{} + clean_weight[l];
-      if (!layer.mask.empty()) w *= clean8(load8(layer.mask.data() + j0));
+      if (!layer.mask.empty()) {
+        V8f m;
+        load8(layer.mask.data() + j0, m);
+        clean8(m);
+        w *= m;
+      }
       const Fields x = load_group(layer.pose.data() + j0);
       if (l == 0) h = {x.qw, x.qx, x.qy, x.qz};
       sum += w;
@@ -164,7 +174,8 @@ void blend_groups8(const BlendLayer<float>* layers, std::size_t layer_count, con
     const V8f n2 = a.qw * a.qw + a.qx * a.qx + a.qy * a.qy + a.qz * a.qz;
     const V8i degenerate = n2 < tiny;
     // 1/W and 1/|Σ w σ q| from one division.
-    const V8f len = sqrt8(degenerate ? one : n2);
+    V8f len = degenerate ? one : n2;
+    sqrt8(len);
     const V8f rd = one / (sum * len);
     const V8f inv = rd * len, rn = rd * sum;
     Fields o{a.tx * inv, a.ty * inv, a.tz * inv, a.qw * rn, a.qx * rn, a.qy * rn, a.qz * rn, a.sx * inv, a.sy * inv, a.sz * inv};
