@@ -117,13 +117,15 @@ struct Fields {
   return m[0] != 0;
 }
 
-[[gnu::always_inline]] inline void sqrt8(V8f& x) noexcept {
+// 1/√x to about 2 ulp: the 12-bit estimate and one Newton step y·(3 − x y²)/2 (x ≥ 64·FLT_MIN).
+[[gnu::always_inline]] inline void rsqrt8(V8f& x) noexcept {
 #if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
-  const V4f lo = __builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 0, 1, 2, 3));
-  const V4f hi = __builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 4, 5, 6, 7));
-  cat(lo, hi, x);
+  V8f y;
+  cat(__builtin_ia32_rsqrtps(__builtin_shufflevector(x, x, 0, 1, 2, 3)),
+      __builtin_ia32_rsqrtps(__builtin_shufflevector(x, x, 4, 5, 6, 7)), y);
+  x = y * (1.5f - 0.5f * x * y * y);
 #else
-  for (int i = 0; i < 8; ++i) x[i] = std::sqrt(x[i]);
+  for (int i = 0; i < 8; ++i) x[i] = 1.0f / std::sqrt(x[i]);
 #endif
 }
 
@@ -192,10 +194,9 @@ void blend_groups8(const BlendLayer<float>* layers, std::size_t layer_count, con
     const V8f n2 = a.qw * a.qw + a.qx * a.qx + a.qy * a.qy + a.qz * a.qz;
     const V8i degenerate = n2 < tiny;
     // 1/W and 1/|Σ w σ q| from one division.
-    V8f len = degenerate ? one : n2;
-    sqrt8(len);
-    const V8f rd = one / (sum * len);
-    const V8f inv = rd * len, rn = rd * sum;
+    V8f rn = degenerate ? one : n2;
+    rsqrt8(rn);
+    const V8f inv = one / sum;  // exact: a pose blended with itself comes back unchanged
     Fields o{a.tx * inv, a.ty * inv, a.tz * inv, a.qw * rn, a.qx * rn, a.qy * rn, a.qz * rn, a.sx * inv, a.sy * inv, a.sz * inv};
     if (any(none | degenerate)) {
       const Fields r = load_group(rest + j0);
