@@ -90,8 +90,10 @@ fi
 # build/ozz/ozz_blend_bench.json, then the tables re-rendered from the JSON files (write_results.py's
 # blend_section reads it).  Same flags and the same ozz libraries as above.
 # shellcheck disable=SC2086  # flags are words on purpose
+# (libinbetween.a holds blend_poses<float>'s kernel, src/tracks/blend_kernel.cpp, with its CPU dispatch.)
 "$CXX" $flags -Iinclude -Ibench -I"$OZZ_SRC/include" tools/bench/ozz_blend_bench.cpp -o "$OUT/ozz_blend_bench" \
-  "$OUT/build/src/animation/runtime/libozz_animation.a" "$OUT/build/src/base/libozz_base.a" -lbenchmark -lpthread
+  "$OUT/build/src/animation/runtime/libozz_animation.a" "$OUT/build/src/base/libozz_base.a" "$BUILD/libinbetween.a" \
+  $(pkg-config --libs libhwy) -lbenchmark -lpthread
 "$OUT/ozz_blend_bench" "--benchmark_min_time=$BENCH_MIN_TIME" --benchmark_repetitions=3 \
   --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true \
   "--benchmark_out=$OUT/ozz_blend_bench.json.tmp" --benchmark_out_format=json
