@@ -14,10 +14,11 @@
 /// Then each additive layer a with w = clean(weight_a)·clean(mask_a[j]) (a delta pose, see
 /// additive_delta): t += w·Δt;  q = q · normalise((1 − w)·1 + w·Δq⁺) (Δq⁺: Δq with w ≥ 0);
 /// s ⊙= 1 + w·(Δs − 1).
-/// The kernel is one pass over the joints with every layer per joint, the accumulators in
-/// registers (ozz-animation's BlendingJob makes a pass per layer, one for the rest pose and one to
-/// normalise), on the JointPose records as they are (no transposition): a joint's ten scalars are
-/// three 4-lane loads, the hemisphere test a 4-lane dot product (docs/blending.md, "Speed").
+/// One pass over the joints with every layer in registers (ozz-animation's BlendingJob makes a pass
+/// per layer, one for the rest pose and one to normalise): float joints in groups of 8 through
+/// src/tracks/blend_kernel.cpp (AoS records transposed to fields, AVX-512/AVX2/SSE2 chosen at load
+/// time; rotation normalised by rsqrt + one Newton step, within 2 ulp), the rest joint by joint
+/// (docs/blending.md, "Speed").
 
 #include <algorithm>
 #include <cmath>
