@@ -151,7 +151,16 @@ struct Hemisphere {
 
 }  // namespace
 
-#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+// No clones under AddressSanitizer (GCC says __SANITIZE_ADDRESS__, Clang __has_feature): an ifunc
+// resolver runs before the sanitizer's run time is up.
+#if defined(__SANITIZE_ADDRESS__)
+#define INBETWEEN_BLEND_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define INBETWEEN_BLEND_ASAN 1
+#endif
+#endif
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(INBETWEEN_BLEND_ASAN)
 #define INBETWEEN_BLEND_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define INBETWEEN_BLEND_CLONES
