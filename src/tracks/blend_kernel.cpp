@@ -75,19 +75,21 @@ struct Fields {
 // five 16-byte blocks, aligned when `b` is): rows [tx ty tz qw], [qx qy qz sx], [sy sz · ·] per joint
 // by 4×4 transposes, then each pair of joints spliced into its five blocks.
 [[gnu::always_inline]] inline void store_group(const Fields& o, float* b) noexcept {
-  const V8f zero{};
-  V8f a[4], c[4], e[4];
+  V8f a[4], c[4];
   transpose(o.tx, o.ty, o.tz, o.qw, a[0], a[1], a[2], a[3]);
   transpose(o.qx, o.qy, o.qz, o.sx, c[0], c[1], c[2], c[3]);
-  transpose(o.sy, o.sz, zero, zero, e[0], e[1], e[2], e[3]);
-  const auto half = [](const V8f* v, int k) -> V4f {
-    return k < 4 ? __builtin_shufflevector(v[k], v[k], 0, 1, 2, 3) : __builtin_shufflevector(v[k - 4], v[k - 4], 4, 5, 6, 7);
+  // [sy sz] of joints 0 1 | 4 5 and 2 3 | 6 7: two unpacks instead of a transpose.
+  const V8f e01 = __builtin_shufflevector(o.sy, o.sz, 0, 8, 1, 9, 4, 12, 5, 13);
+  const V8f e23 = __builtin_shufflevector(o.sy, o.sz, 2, 10, 3, 11, 6, 14, 7, 15);
+  const auto half = [](const V8f& v, int h) -> V4f {
+    return h == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3) : __builtin_shufflevector(v, v, 4, 5, 6, 7);
   };
-  for (int k = 0; k < 8; k += 2) {
-    const V4f a0 = half(a, k), c0 = half(c, k), e0 = half(e, k);
-    const V4f a1 = half(a, k + 1), c1 = half(c, k + 1), e1 = half(e, k + 1);
-    const V4f b2 = __builtin_shufflevector(e0, a1, 0, 1, 4, 5), b3 = __builtin_shufflevector(a1, c1, 2, 3, 4, 5),
-              b4 = __builtin_shufflevector(c1, e1, 2, 3, 4, 5);
+  for (int k = 0; k < 8; k += 2) {  // joint k: row k % 4 of half k / 4
+    const int r = k % 4, h = k / 4;
+    const V4f a0 = half(a[r], h), c0 = half(c[r], h), a1 = half(a[r + 1], h), c1 = half(c[r + 1], h);
+    const V4f e = half(r == 0 ? e01 : e23, h);  // [sy sz] of joints k and k + 1
+    const V4f b2 = __builtin_shufflevector(e, a1, 0, 1, 4, 5), b3 = __builtin_shufflevector(a1, c1, 2, 3, 4, 5),
+              b4 = __builtin_shufflevector(c1, e, 2, 3, 6, 7);
     float* p = b + 10 * k;
     std::memcpy(p, &a0, 16);
     std::memcpy(p + 4, &c0, 16);
