@@ -188,9 +188,13 @@ void blend_groups8(const BlendLayer<float>* layers, std::size_t layer_count, con
         w *= m;
       }
       const Fields x = load_group(layer.pose.data() + j0);
-      if (l == 0) h = {x.qw, x.qx, x.qy, x.qz};
       sum += w;
-      accumulate(a, x, w, h);
+      if (l == 0) {  // the hemisphere itself: σ = +1, no dot product
+        h = {x.qw, x.qx, x.qy, x.qz};
+        a = {w * x.tx, w * x.ty, w * x.tz, w * x.qw, w * x.qx, w * x.qy, w * x.qz, w * x.sx, w * x.sy, w * x.sz};
+      } else {
+        accumulate(a, x, w, h);
+      }
     }
     // The rest pose only where some joint needs it (a summed weight below the threshold, or a
     // rotation sum without length): loaded on that rare path alone.
