@@ -100,9 +100,9 @@ struct Fields {
 }
 
 [[gnu::always_inline]] inline void clean8(V8f& w) noexcept {
-  const V8f zero{};
-  const V8f capped = w < V8f{} + blend_weight_max<float> ? w : V8f{} + blend_weight_max<float>;
-  w = w > zero ? capped : zero;  // NaN compares false: 0
+  const V8f zero{}, cap = V8f{} + blend_weight_max<float>;
+  w = w > zero ? w : zero;  // NaN compares false: 0 (one maxps)
+  w = w < cap ? w : cap;    // one minps
 }
 
 [[gnu::always_inline]] inline void signed_by(const V8f& w, const V8f& d, V8f& out) noexcept {
