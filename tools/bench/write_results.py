@@ -337,9 +337,18 @@ OZZ_BLEND_PROGRAM = "ozz_blend_bench"
 DEFAULT_OZZ_BLEND_JSON = ROOT / "build" / "ozz" / f"{OZZ_BLEND_PROGRAM}.json"
 
 
-def blend_section(r: Results, ozz_blend_json: Path = DEFAULT_OZZ_BLEND_JSON) -> list[str]:
+def read_ozz_blend(path: Path) -> Results | None:
+    """The ozz_blend_bench JSON `make bench-ozz` wrote, or None when it has not been run."""
+    if not path.is_file():
+        return None
+    r = Results()
+    r.add_json(OZZ_BLEND_PROGRAM, json.loads(path.read_text(encoding="utf-8")))
+    return r
+
+
+def blend_section(r: Results, oz: Results | None = None) -> list[str]:
     """blend_poses and the 71-joint character update from inbetween_bench_blend, and the ozz
-    BlendingJob comparison when `make bench-ozz` wrote its JSON."""
+    BlendingJob comparison when `make bench-ozz`'s JSON was read (read_ozz_blend)."""
     rows = []
     for scalar in ("float", "double"):
         for j in BLEND_SIZES:
@@ -357,12 +366,11 @@ def blend_section(r: Results, ozz_blend_json: Path = DEFAULT_OZZ_BLEND_JSON) -> 
            "rest pose below the 0.1 threshold), one call per character; the character update samples two "
            "clips with `sample_rig` (the rig table's 71-joint rig at two phases), blends them with a "
            "crossfade weight and an upper-body mask and takes the root motion out (docs/blending.md).", ""]
-    out += table(["case", "time", "per joint / share of the frame budget"], rows) + [""]
+    out += (table(["case", "time", "per joint / share of the frame budget"], rows) if rows
+            else ["not measured: no inbetween_bench_blend results in this run."]) + [""]
     title = "### ozz-animation BlendingJob vs blend_poses (`make bench-ozz`, out of tree)"
-    if not ozz_blend_json.is_file():
+    if oz is None:
         return out + [title, "", "not run: `make bench-ozz OZZ_SRC=…` writes build/ozz/ozz_blend_bench.json.", ""]
-    oz = Results()
-    oz.add_json(OZZ_BLEND_PROGRAM, json.loads(ozz_blend_json.read_text(encoding="utf-8")))
     ctx = oz.contexts.get(OZZ_BLEND_PROGRAM, {})
     rows = []
     for j in BLEND_SIZES:
@@ -545,7 +553,8 @@ def compiler_of(executable: str) -> str:
 
 # ----------------------------------------------------------------------------- document
 def render(r: Results, command: str, when: str, load: str, build_dir: Path | None = None,
-           ozz: Results | None = None, threejs: Results | str | None = None) -> str:
+           ozz: Results | None = None, threejs: Results | str | None = None,
+           ozz_blend: Results | None = None) -> str:
     lines = [BEGIN, "# Benchmark results (generated)", "",
              "Written by `make bench` (`tools/bench/write_results.py`) from the Google Benchmark programs in "
              "`bench/`, each comparison's two sides in one binary.  Times are CPU-time medians; ratios, "
@@ -554,7 +563,7 @@ def render(r: Results, command: str, when: str, load: str, build_dir: Path | Non
     lines += slerp_section(r) + arclength_section(r) + curves_section(r) + rig_section(r)
     lines += ozz_section(ozz)
     lines += rig_simd_section(r)
-    lines += blend_section(r)
+    lines += blend_section(r, ozz_blend)
     lines += bvh_section(r, threejs)
     lines.append(END)
     return "\n".join(lines) + "\n"
@@ -662,6 +671,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--comparisons-only", action="store_true", help="run only the benchmarks the tables use")
     ap.add_argument("--ozz-json", default=str(DEFAULT_OZZ_JSON),
                     help="`make bench-ozz`'s ozz_rig_bench JSON; its table is added when the file exists")
+    ap.add_argument("--ozz-blend-json", default=str(DEFAULT_OZZ_BLEND_JSON),
+                    help="`make bench-ozz`'s ozz_blend_bench JSON; its table is added when the file exists")
     ap.add_argument("--date", help="date to print (default: now, UTC)")
     ap.add_argument("--load", help="load average to print (default: os.getloadavg())")
     ap.add_argument("--command", help="command to print (default: this invocation)")
@@ -678,7 +689,8 @@ def main(argv: list[str] | None = None) -> int:
     load = args.load or ", ".join(f"{x:.2f}" for x in os.getloadavg())
     command = args.command or "python3 tools/bench/write_results.py " + " ".join(
         shlex.quote(a) for a in (argv if argv is not None else sys.argv[1:]))
-    section = render(r, command, when, load, Path(args.build_dir), read_ozz(Path(args.ozz_json)), threejs)
+    section = render(r, command, when, load, Path(args.build_dir), read_ozz(Path(args.ozz_json)), threejs,
+                     read_ozz_blend(Path(args.ozz_blend_json)))
     results = Path(args.results)
     old = results.read_text(encoding="utf-8") if results.exists() else ""
     target = Path(args.output) if args.output else results
