@@ -151,6 +151,143 @@ struct Hemisphere {
   a.qz += wq * x.qz;
 }
 
+// One group of 8 joints: every layer, the rest pose where needed, normalisation — the blended
+// fields in `o`.  `Src` gives a layer's fields (load(l, Fields&)), its mask (mask(l): 8 floats or
+// null) and the rest pose's fields (rest(Fields&)): JointPose records (transposed) or PoseBlocks.
+template <class Src>
+[[gnu::always_inline]] inline void blend_group(const Src& src, std::size_t layer_count, const float* clean_weight,
+                                               float threshold, Fields& o) noexcept {
+  const V8f zero{}, one = V8f{} + 1.0f, th = V8f{} + threshold;
+  const V8f tiny = V8f{} + 64.0f * std::numeric_limits<float>::min();
+  Fields a{zero, zero, zero, zero, zero, zero, zero, zero, zero, zero};
+  V8f sum = zero;
+  Hemisphere h;
+  for (std::size_t l = 0; l < layer_count; ++l) {
+    V8f w = V8f{} + clean_weight[l];
+    if (const float* mask = src.mask(l)) {
+      V8f m;
+      load8(mask, m);
+      clean8(m);
+      w *= m;
+    }
+    Fields x;
+    src.load(l, x);
+    sum += w;
+    if (l == 0) {  // the hemisphere itself: σ = +1, no dot product
+      h = {x.qw, x.qx, x.qy, x.qz};
+      a = {w * x.tx, w * x.ty, w * x.tz, w * x.qw, w * x.qx, w * x.qy, w * x.qz, w * x.sx, w * x.sy, w * x.sz};
+    } else {
+      accumulate(a, x, w, h);
+    }
+  }
+  // The rest pose only where some joint needs it (a summed weight below the threshold, or a
+  // rotation sum without length): loaded on that rare path alone.
+  const V8i below = th > sum;
+  if (any(below) || layer_count == 0) {
+    Fields r;
+    src.rest(r);
+    if (layer_count == 0) h = {r.qw, r.qx, r.qy, r.qz};
+    accumulate(a, r, th > sum ? th - sum : zero, h);  // ozz's rule: the rest fills up to the threshold
+  }
+  const V8i none = sum == zero;
+  sum = th > sum ? th : sum;
+  const V8f n2 = a.qw * a.qw + a.qx * a.qx + a.qy * a.qy + a.qz * a.qz;
+  const V8i degenerate = n2 < tiny;
+  V8f rn = degenerate ? one : n2;
+  rsqrt8(rn);
+  const V8f inv = one / sum;  // exact: a pose blended with itself comes back unchanged
+  o = {a.tx * inv, a.ty * inv, a.tz * inv, a.qw * rn, a.qx * rn, a.qy * rn, a.qz * rn, a.sx * inv, a.sy * inv, a.sz * inv};
+  if (any(none | degenerate)) {
+    Fields r;
+    src.rest(r);
+    o.qw = degenerate ? r.qw : o.qw;
+    o.qx = degenerate ? r.qx : o.qx;
+    o.qy = degenerate ? r.qy : o.qy;
+    o.qz = degenerate ? r.qz : o.qz;
+    // No layer weight at all: the rest pose exactly.
+    o.tx = none ? r.tx : o.tx;
+    o.ty = none ? r.ty : o.ty;
+    o.tz = none ? r.tz : o.tz;
+    o.qw = none ? r.qw : o.qw;
+    o.qx = none ? r.qx : o.qx;
+    o.qy = none ? r.qy : o.qy;
+    o.qz = none ? r.qz : o.qz;
+    o.sx = none ? r.sx : o.sx;
+    o.sy = none ? r.sy : o.sy;
+    o.sz = none ? r.sz : o.sz;
+  }
+}
+
+// JointPose records, eight at a time from joint j0 (three rows per joint, transposed).
+struct AosSource {
+  const BlendLayer<float>* layers;
+  const JointPose<float>* rest_pose;
+  std::size_t j0;
+  [[gnu::always_inline]] const float* mask(std::size_t l) const noexcept {
+    return layers[l].mask.empty() ? nullptr : layers[l].mask.data() + j0;
+  }
+  [[gnu::always_inline]] void load(std::size_t l, Fields& f) const noexcept { f = load_group(layers[l].pose.data() + j0); }
+  [[gnu::always_inline]] void rest(Fields& f) const noexcept { f = load_group(rest_pose + j0); }
+};
+
+// One PoseBlock's fields: ten aligned 8-lane loads.
+[[gnu::always_inline]] inline void load_block(const PoseBlock& b, Fields& f) noexcept {
+  load8(b.tx, f.tx), load8(b.ty, f.ty), load8(b.tz, f.tz);
+  load8(b.qw, f.qw), load8(b.qx, f.qx), load8(b.qy, f.qy), load8(b.qz, f.qz);
+  load8(b.sx, f.sx), load8(b.sy, f.sy), load8(b.sz, f.sz);
+}
+[[gnu::always_inline]] inline void store_block(const Fields& f, PoseBlock& b) noexcept {
+  std::memcpy(b.tx, &f.tx, 32), std::memcpy(b.ty, &f.ty, 32), std::memcpy(b.tz, &f.tz, 32);
+  std::memcpy(b.qw, &f.qw, 32), std::memcpy(b.qx, &f.qx, 32), std::memcpy(b.qy, &f.qy, 32), std::memcpy(b.qz, &f.qz, 32);
+  std::memcpy(b.sx, &f.sx, 32), std::memcpy(b.sy, &f.sy, 32), std::memcpy(b.sz, &f.sz, 32);
+}
+
+// PoseBlocks, block b.
+struct SoaSource {
+  const BlendLayerSoA* layers;
+  const PoseBlock* rest_pose;
+  std::size_t b;
+  [[gnu::always_inline]] const float* mask(std::size_t l) const noexcept {
+    return layers[l].mask.empty() ? nullptr : layers[l].mask.data() + pose_block_joints * b;
+  }
+  [[gnu::always_inline]] void load(std::size_t l, Fields& f) const noexcept { load_block(layers[l].pose[b], f); }
+  [[gnu::always_inline]] void rest(Fields& f) const noexcept { load_block(rest_pose[b], f); }
+};
+
+// √x per lane (IEEE: exact rounding), for the additive layers' normalisation.
+[[gnu::always_inline]] inline void sqrt8(V8f& x) noexcept {
+#if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
+  cat(__builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 0, 1, 2, 3)),
+      __builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 4, 5, 6, 7)), x);
+#else
+  for (int i = 0; i < 8; ++i) x[i] = std::sqrt(x[i]);
+#endif
+}
+
+// An additive layer on eight blended joints, the JointPose path's formulas (apply_additive) in lanes:
+// t += w Δt;  s ⊙= 1 + w (Δs − 1);  q = q · a/|a|, a = (1 − w)·1 + w Δq⁺.
+[[gnu::always_inline]] inline void add_block(Fields& o, const Fields& d, const V8f& w) noexcept {
+  const V8f zero{}, one = V8f{} + 1.0f, least = V8f{} + std::numeric_limits<float>::min();
+  o.tx += d.tx * w;
+  o.ty += d.ty * w;
+  o.tz += d.tz * w;
+  o.sx *= one + w * (d.sx - one);
+  o.sy *= one + w * (d.sy - one);
+  o.sz *= one + w * (d.sz - one);
+  const V8i flip = d.qw < zero;
+  V8f aw = (one - w) + (flip ? -d.qw : d.qw) * w;
+  V8f ax = (flip ? -d.qx : d.qx) * w, ay = (flip ? -d.qy : d.qy) * w, az = (flip ? -d.qz : d.qz) * w;
+  V8f n = aw * aw + ax * ax + ay * ay + az * az;
+  n = n > least ? n : least;
+  sqrt8(n);
+  aw /= n, ax /= n, ay /= n, az /= n;
+  const V8f qw = o.qw, qx = o.qx, qy = o.qy, qz = o.qz;
+  o.qw = qw * aw - qx * ax - qy * ay - qz * az;
+  o.qx = qw * ax + qx * aw + qy * az - qz * ay;
+  o.qy = qw * ay - qx * az + qy * aw + qz * ax;
+  o.qz = qw * az + qx * ay - qy * ax + qz * aw;
+}
+
 }  // namespace
 
 // No clones under AddressSanitizer (GCC says __SANITIZE_ADDRESS__, Clang __has_feature): an ifunc
@@ -171,67 +308,34 @@ struct Hemisphere {
 INBETWEEN_BLEND_CLONES
 void blend_groups8(const BlendLayer<float>* layers, std::size_t layer_count, const float* clean_weight,
                    const JointPose<float>* rest, JointPose<float>* out, std::size_t groups, float threshold) noexcept {
-  const V8f zero{}, one = V8f{} + 1.0f, th = V8f{} + threshold;
-  const V8f tiny = V8f{} + 64.0f * std::numeric_limits<float>::min();
   for (std::size_t g = 0; g < groups; ++g) {
-    const std::size_t j0 = 8 * g;
-    Fields a{zero, zero, zero, zero, zero, zero, zero, zero, zero, zero};
-    V8f sum = zero;
-    Hemisphere h;
-    for (std::size_t l = 0; l < layer_count; ++l) {
-      const BlendLayer<float>& layer = layers[l];
-      V8f w = V8f{} + clean_weight[l];
+    Fields o;
+    blend_group(AosSource{layers, rest, 8 * g}, layer_count, clean_weight, threshold, o);
+    store_group(o, &out[8 * g].translation.x);
+  }
+}
+
+INBETWEEN_BLEND_CLONES
+void blend_blocks8(const BlendLayerSoA* layers, std::size_t layer_count, const float* clean_weight,
+                   const AdditiveLayerSoA* additive, std::size_t additive_count, const PoseBlock* rest,
+                   PoseBlock* out, std::size_t blocks, float threshold) noexcept {
+  for (std::size_t b = 0; b < blocks; ++b) {
+    Fields o;
+    blend_group(SoaSource{layers, rest, b}, layer_count, clean_weight, threshold, o);
+    for (std::size_t k = 0; k < additive_count; ++k) {
+      const AdditiveLayerSoA& layer = additive[k];
+      V8f w = V8f{} + clean(layer.weight);
       if (!layer.mask.empty()) {
         V8f m;
-        load8(layer.mask.data() + j0, m);
+        load8(layer.mask.data() + pose_block_joints * b, m);
         clean8(m);
         w *= m;
       }
-      const Fields x = load_group(layer.pose.data() + j0);
-      sum += w;
-      if (l == 0) {  // the hemisphere itself: σ = +1, no dot product
-        h = {x.qw, x.qx, x.qy, x.qz};
-        a = {w * x.tx, w * x.ty, w * x.tz, w * x.qw, w * x.qx, w * x.qy, w * x.qz, w * x.sx, w * x.sy, w * x.sz};
-      } else {
-        accumulate(a, x, w, h);
-      }
+      Fields d;
+      load_block(layer.delta[b], d);
+      add_block(o, d, w);
     }
-    // The rest pose only where some joint needs it (a summed weight below the threshold, or a
-    // rotation sum without length): loaded on that rare path alone.
-    const V8i below = th > sum;
-    if (any(below) || layer_count == 0) {
-      const Fields r = load_group(rest + j0);
-      if (layer_count == 0) h = {r.qw, r.qx, r.qy, r.qz};
-      accumulate(a, r, th > sum ? th - sum : zero, h);  // ozz's rule: the rest fills up to the threshold
-    }
-    const V8i none = sum == zero;
-    sum = th > sum ? th : sum;
-    const V8f n2 = a.qw * a.qw + a.qx * a.qx + a.qy * a.qy + a.qz * a.qz;
-    const V8i degenerate = n2 < tiny;
-    // 1/W and 1/|Σ w σ q| from one division.
-    V8f rn = degenerate ? one : n2;
-    rsqrt8(rn);
-    const V8f inv = one / sum;  // exact: a pose blended with itself comes back unchanged
-    Fields o{a.tx * inv, a.ty * inv, a.tz * inv, a.qw * rn, a.qx * rn, a.qy * rn, a.qz * rn, a.sx * inv, a.sy * inv, a.sz * inv};
-    if (any(none | degenerate)) {
-      const Fields r = load_group(rest + j0);
-      o.qw = degenerate ? r.qw : o.qw;
-      o.qx = degenerate ? r.qx : o.qx;
-      o.qy = degenerate ? r.qy : o.qy;
-      o.qz = degenerate ? r.qz : o.qz;
-      // No layer weight at all: the rest pose exactly.
-      o.tx = none ? r.tx : o.tx;
-      o.ty = none ? r.ty : o.ty;
-      o.tz = none ? r.tz : o.tz;
-      o.qw = none ? r.qw : o.qw;
-      o.qx = none ? r.qx : o.qx;
-      o.qy = none ? r.qy : o.qy;
-      o.qz = none ? r.qz : o.qz;
-      o.sx = none ? r.sx : o.sx;
-      o.sy = none ? r.sy : o.sy;
-      o.sz = none ? r.sz : o.sz;
-    }
-    store_group(o, &out[j0].translation.x);
+    store_block(o, out[b]);
   }
 }
 

@@ -253,6 +253,18 @@ TEST(HotPath, BlendInertializeAndRootMotionNeverAllocate) {
               extract_root_motion<float>(a, RootMotionOptions{.loop = true}, motion, character);
             }),
             0);
+  // The PoseBlock (SoA) overload and its conversions.
+  std::vector<PoseBlock> sa(pose_blocks(n)), sb(sa.size()), sr(sa.size()), so(sa.size()), sd(sa.size());
+  std::vector<float> smask(sa.size() * pose_block_joints);
+  const std::vector<BlendLayerSoA> layers_soa{{sa, 0.7f}, {sb, 0.3f, smask}};
+  const std::vector<AdditiveLayerSoA> additive_soa{{sd, 0.5f, smask}};
+  EXPECT_EQ(allocations_in([&] {
+              to_pose_blocks(a, sa), to_pose_blocks(b, sb), to_pose_blocks(rest, sr), to_pose_blocks(delta, sd);
+              to_mask_blocks(mask, smask);
+              blend_poses(layers_soa, additive_soa, sr, so);
+              from_pose_blocks(so, out);
+            }),
+            0);
   EXPECT_TRUE(std::isfinite(out[5].translation.x + motion.back().translation.x));
 }
 

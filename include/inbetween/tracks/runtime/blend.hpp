@@ -268,6 +268,118 @@ void blend_poses(std::span<const BlendLayer<T>> layers, std::span<const Additive
     blend_detail::blend_joint<T>(layers, clean_weight, additive, rest[j], out[j], j, options.threshold);
 }
 
+// ---- Structure-of-arrays poses (docs/blending.md, "SoA poses") ----------------------------------
+
+/// Joints in one PoseBlock: one 256-bit vector (AVX2) of floats per field.
+inline constexpr std::size_t pose_block_joints = 8;
+
+/// Eight joints' poses as structure of arrays — the layout blend_poses' SIMD kernel computes in, so
+/// a blend of PoseBlock spans needs no transposition (ozz-animation's SoaTransform is the same idea
+/// with 4 joints).  Joint j of a pose is lane j % 8 of block j / 8; a pose of J joints is
+/// pose_blocks(J) blocks, the lanes past J are padding (any finite values: to_pose_blocks writes the
+/// identity pose there).  32-byte aligned, 320 bytes.
+struct alignas(32) PoseBlock {
+  float tx[pose_block_joints];  ///< translation x of the eight joints
+  float ty[pose_block_joints];  ///< translation y
+  float tz[pose_block_joints];  ///< translation z
+  float qw[pose_block_joints];  ///< rotation w (unit quaternions, either sign)
+  float qx[pose_block_joints];  ///< rotation x
+  float qy[pose_block_joints];  ///< rotation y
+  float qz[pose_block_joints];  ///< rotation z
+  float sx[pose_block_joints];  ///< scale x
+  float sy[pose_block_joints];  ///< scale y
+  float sz[pose_block_joints];  ///< scale z
+};
+
+/// Blocks holding `joints` joints: ⌈joints / 8⌉.
+[[nodiscard]] constexpr std::size_t pose_blocks(std::size_t joints) noexcept {
+  return (joints + pose_block_joints - 1) / pose_block_joints;
+}
+
+/// One blended layer of PoseBlocks (the SoA form of BlendLayer<float>).
+struct BlendLayerSoA {
+  std::span<const PoseBlock> pose;  ///< the layer's pose (size = the rest pose's block count)
+  float weight = 1.0f;              ///< as BlendLayer::weight: NaN and negatives count as 0
+  std::span<const float> mask{};    ///< empty = 1 everywhere, else 8 · blocks floats, joint j at [j] (padding: any value)
+};
+
+/// One additive layer of PoseBlocks (the SoA form of AdditiveLayer<float>).
+struct AdditiveLayerSoA {
+  std::span<const PoseBlock> delta;  ///< the delta pose (additive_delta, then to_pose_blocks)
+  float weight = 1.0f;               ///< as AdditiveLayer::weight
+  std::span<const float> mask{};     ///< empty = 1 everywhere, else 8 · blocks floats
+};
+
+/// `pose` (J joints) into pose_blocks(J) blocks (out.size(), asserted); the padding lanes get the
+/// identity pose.  noexcept, no allocation.
+inline void to_pose_blocks(std::span<const JointPose<float>> pose, std::span<PoseBlock> out) noexcept {
+  INBETWEEN_ASSERT(out.size() == pose_blocks(pose.size()));
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    PoseBlock& o = out[b];
+    for (std::size_t i = 0; i < pose_block_joints; ++i) {
+      const std::size_t j = b * pose_block_joints + i;
+      const JointPose<float> p = j < pose.size() ? pose[j] : JointPose<float>{};
+      o.tx[i] = p.translation.x, o.ty[i] = p.translation.y, o.tz[i] = p.translation.z;
+      o.qw[i] = p.rotation.w, o.qx[i] = p.rotation.x, o.qy[i] = p.rotation.y, o.qz[i] = p.rotation.z;
+      o.sx[i] = p.scale.x, o.sy[i] = p.scale.y, o.sz[i] = p.scale.z;
+    }
+  }
+}
+
+/// The first out.size() joints of `blocks` as JointPose records (out.size() ≤ 8 · blocks.size(),
+/// asserted).  noexcept, no allocation.
+inline void from_pose_blocks(std::span<const PoseBlock> blocks, std::span<JointPose<float>> out) noexcept {
+  INBETWEEN_ASSERT(out.size() <= blocks.size() * pose_block_joints);
+  for (std::size_t j = 0; j < out.size(); ++j) {
+    const PoseBlock& b = blocks[j / pose_block_joints];
+    const std::size_t i = j % pose_block_joints;
+    out[j].translation = {b.tx[i], b.ty[i], b.tz[i]};
+    out[j].rotation = Quat<float>::from_wxyz(b.qw[i], b.qx[i], b.qy[i], b.qz[i]);
+    out[j].scale = {b.sx[i], b.sy[i], b.sz[i]};
+  }
+}
+
+/// A per-joint mask of J floats as the 8 · pose_blocks(J) floats a SoA layer takes (padding 0).
+inline void to_mask_blocks(std::span<const float> mask, std::span<float> out) noexcept {
+  INBETWEEN_ASSERT(out.size() == pose_blocks(mask.size()) * pose_block_joints);
+  std::size_t j = 0;
+  for (; j < mask.size(); ++j) out[j] = mask[j];
+  for (; j < out.size(); ++j) out[j] = 0.0f;
+}
+
+namespace blend_detail {
+/// blend_poses' SoA kernel over `blocks` blocks, additive layers included (src/tracks/blend_kernel.cpp;
+/// AVX-512/AVX2/SSE2 chosen at load time).
+void blend_blocks8(const BlendLayerSoA* layers, std::size_t layer_count, const float* clean_weight,
+                   const AdditiveLayerSoA* additive, std::size_t additive_count, const PoseBlock* rest,
+                   PoseBlock* out, std::size_t blocks, float threshold) noexcept;
+}  // namespace blend_detail
+
+/// blend_poses on PoseBlock spans: the same formulas as the JointPose overload (top of this
+/// header), every block through the 8-lane kernel — no conversion, full-width loads and stores.  On
+/// the joints of full groups of 8 without additive layers the result equals the JointPose
+/// overload's bit for bit (same kernel arithmetic); the last partial group and the additive layers
+/// are computed in 8 lanes here and joint by joint there (within a few ulp, tests/tracks/blend_test.cpp).
+/// Every pose span and `out` have rest.size() blocks, every non-empty mask 8 · rest.size() floats
+/// (asserted); padding lanes are computed like joints (finite in, finite out) and carry no meaning.
+/// `out` must not alias an input.  noexcept, no allocation.
+inline void blend_poses(std::span<const BlendLayerSoA> layers, std::span<const AdditiveLayerSoA> additive,
+                        std::span<const PoseBlock> rest, std::span<PoseBlock> out,
+                        const BlendOptions<float>& options = {}) noexcept {
+  const std::size_t blocks = rest.size();
+  INBETWEEN_ASSERT(out.size() == blocks);
+  INBETWEEN_ASSERT(options.threshold > 0.0f && options.threshold <= blend_weight_max<float>);
+  INBETWEEN_ASSERT(layers.size() <= blend_max_layers);
+  for ([[maybe_unused]] const BlendLayerSoA& l : layers)
+    INBETWEEN_ASSERT(l.pose.size() == blocks && (l.mask.empty() || l.mask.size() == blocks * pose_block_joints));
+  for ([[maybe_unused]] const AdditiveLayerSoA& l : additive)
+    INBETWEEN_ASSERT(l.delta.size() == blocks && (l.mask.empty() || l.mask.size() == blocks * pose_block_joints));
+  float clean_weight[blend_max_layers];
+  for (std::size_t l = 0; l < layers.size(); ++l) clean_weight[l] = blend_detail::clean(layers[l].weight);
+  blend_detail::blend_blocks8(layers.data(), layers.size(), clean_weight, additive.data(), additive.size(),
+                              rest.data(), out.data(), blocks, options.threshold);
+}
+
 /// The target's weight of a crossfade `t` seconds (or frames) after it started over `duration`
 /// (> 0): smoothstep 3u² − 2u³ of u = t/duration clamped to [0, 1] — 0 before the start, 1 after
 /// the end, zero slope at both ends.  The source's weight is 1 minus it (two BlendLayers).  A
