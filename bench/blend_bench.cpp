@@ -35,6 +35,30 @@ void BM_BlendPoses(benchmark::State& state) {
                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+// The same blend on PoseBlocks (the SoA overload; float only), converted once before timing.
+// Args: joints, layers.
+void BM_BlendPosesSoA(benchmark::State& state) {
+  const auto b = inbetween_bench::make_blend_poses<float>(int(state.range(1)), int(state.range(0)));
+  const std::size_t blocks = pose_blocks(b.rest.size());
+  std::vector<std::vector<PoseBlock>> poses(b.layers.size(), std::vector<PoseBlock>(blocks));
+  std::vector<std::vector<float>> masks(b.layers.size());
+  std::vector<BlendLayerSoA> layers;
+  for (std::size_t l = 0; l < b.layers.size(); ++l) {
+    to_pose_blocks(b.layers[l], poses[l]);
+    if (!b.masks[l].empty()) masks[l].resize(blocks * pose_block_joints), to_mask_blocks(b.masks[l], masks[l]);
+    layers.push_back({poses[l], b.weights[l], masks[l]});
+  }
+  std::vector<PoseBlock> rest(blocks), out(blocks);
+  to_pose_blocks(b.rest, rest);
+  for (auto _ : state) {
+    blend_poses(layers, {}, rest, out);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["ns_per_joint"] = benchmark::Counter(double(state.iterations()) * double(b.rest.size()),
+                                                      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 // Arg: joints (71: the CMU skeleton's size class).  One iteration = one character's frame.
 template <class T>
 void BM_CharacterUpdate(benchmark::State& state) {
@@ -72,6 +96,7 @@ void BM_CharacterUpdate(benchmark::State& state) {
 
 BENCHMARK(BM_BlendPoses<float>)->ArgsProduct({{64, 1024}, {2, 4}});
 BENCHMARK(BM_BlendPoses<double>)->ArgsProduct({{64, 1024}, {2, 4}});
+BENCHMARK(BM_BlendPosesSoA)->ArgsProduct({{64, 1024}, {2, 4}});
 BENCHMARK(BM_CharacterUpdate<float>)->Arg(71);
 BENCHMARK(BM_CharacterUpdate<double>)->Arg(71);
 BENCHMARK_MAIN();

@@ -6,7 +6,8 @@
 // bench/RESULTS.md.  The poses are bench/blend_fixture.hpp's (as bench/blend_bench.cpp): 2 or 4
 // layers, every layer but the first masked per joint, the rest pose below the threshold, float.
 // ozz reads SoA transforms (what its SamplingJob writes); inbetween reads JointPose spans (what
-// sample_rig writes): each side gets its own runtime's layout, converted once before timing.
+// sample_rig writes) and, in BM_InbetweenBlendSoA, PoseBlocks (its SoA layout, 8 joints per block):
+// each converted once before timing.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -124,8 +125,44 @@ void BM_InbetweenBlend(benchmark::State& state) {
   }
 }
 
+// The same blend on PoseBlocks (inbetween's SoA layout: 8 joints per block, the peer's layout
+// idea with the AVX2 width), converted once before timing as ozz's SoaTransforms are.
+void BM_InbetweenBlendSoA(benchmark::State& state) {
+  const auto b = make_blend_poses<float>(int(state.range(1)), int(state.range(0)));
+  const std::size_t blocks = pose_blocks(b.rest.size());
+  std::vector<std::vector<PoseBlock>> poses(b.layers.size(), std::vector<PoseBlock>(blocks));
+  std::vector<std::vector<float>> masks(b.layers.size());
+  std::vector<BlendLayerSoA> layers;
+  for (std::size_t l = 0; l < b.layers.size(); ++l) {
+    to_pose_blocks(b.layers[l], poses[l]);
+    if (!b.masks[l].empty()) masks[l].resize(blocks * pose_block_joints), to_mask_blocks(b.masks[l], masks[l]);
+    layers.push_back({poses[l], b.weights[l], masks[l]});
+  }
+  std::vector<PoseBlock> rest(blocks), out(blocks);
+  to_pose_blocks(b.rest, rest);
+  for (auto _ : state) {
+    blend_poses(layers, {}, rest, out);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  // Same result as the JointPose overload (bit for bit on full groups of 8: the fixture's sizes).
+  std::vector<JointPose<float>> soa(b.rest.size()), aos(b.rest.size());
+  from_pose_blocks(out, soa);
+  std::vector<BlendLayer<float>> ls;
+  for (std::size_t l = 0; l < b.layers.size(); ++l) ls.push_back({b.layers[l], b.weights[l], b.masks[l]});
+  blend_poses<float>(ls, {}, b.rest, aos);
+  double unequal = 0;  // values that differ from the JointPose overload's (expected: none)
+  for (std::size_t j = 0; j < aos.size(); ++j) {
+    const float* x = &soa[j].translation.x;
+    const float* y = &aos[j].translation.x;
+    for (int k = 0; k < 10; ++k) unequal += x[k] != y[k] ? 1 : 0;
+  }
+  state.counters["vs_aos_unequal_values"] = unequal;
+}
+
 #define BLEND_ARGS ->ArgsProduct({{64, 1024}, {2, 4}})
 BENCHMARK(BM_OzzBlendingJob) BLEND_ARGS;
 BENCHMARK(BM_InbetweenBlend<float>) BLEND_ARGS;
+BENCHMARK(BM_InbetweenBlendSoA) BLEND_ARGS;
 BENCHMARK(BM_InbetweenBlend<double>) BLEND_ARGS;
 BENCHMARK_MAIN();
