@@ -59,6 +59,26 @@ void BM_BlendPosesSoA(benchmark::State& state) {
                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+// The conversions around the SoA path for a caller whose sampler writes JointPose records:
+// to_pose_blocks of one pose (Arg 0: joints) or from_pose_blocks of one pose (Arg 1).  A blend of L
+// layers from JointPose records through PoseBlocks costs L + 1 to_pose_blocks (layers, rest; the rest
+// can be converted once) and one from_pose_blocks on top of BM_BlendPosesSoA.
+void BM_PoseBlockConversion(benchmark::State& state) {
+  const auto b = inbetween_bench::make_blend_poses<float>(1, int(state.range(0)));
+  std::vector<PoseBlock> blocks(pose_blocks(b.rest.size()));
+  std::vector<JointPose<float>> back(b.rest.size());
+  to_pose_blocks(b.rest, blocks);
+  const bool to = state.range(1) == 0;
+  for (auto _ : state) {
+    if (to) to_pose_blocks(b.rest, blocks);
+    else from_pose_blocks(blocks, back);
+    benchmark::DoNotOptimize(blocks.data());
+    benchmark::DoNotOptimize(back.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetLabel(to ? "to_pose_blocks" : "from_pose_blocks");
+}
+
 // Arg: joints (71: the CMU skeleton's size class).  One iteration = one character's frame.
 template <class T>
 void BM_CharacterUpdate(benchmark::State& state) {
@@ -97,6 +117,7 @@ void BM_CharacterUpdate(benchmark::State& state) {
 BENCHMARK(BM_BlendPoses<float>)->ArgsProduct({{64, 1024}, {2, 4}});
 BENCHMARK(BM_BlendPoses<double>)->ArgsProduct({{64, 1024}, {2, 4}});
 BENCHMARK(BM_BlendPosesSoA)->ArgsProduct({{64, 1024}, {2, 4}});
+BENCHMARK(BM_PoseBlockConversion)->ArgsProduct({{64, 1024}, {0, 1}});
 BENCHMARK(BM_CharacterUpdate<float>)->Arg(71);
 BENCHMARK(BM_CharacterUpdate<double>)->Arg(71);
 BENCHMARK_MAIN();

@@ -339,4 +339,18 @@ void blend_blocks8(const BlendLayerSoA* layers, std::size_t layer_count, const f
   }
 }
 
+INBETWEEN_BLEND_CLONES
+void records_to_blocks8(const JointPose<float>* pose, PoseBlock* out, std::size_t groups) noexcept {
+  for (std::size_t g = 0; g < groups; ++g) store_block(load_group(pose + 8 * g), out[g]);
+}
+
+INBETWEEN_BLEND_CLONES
+void blocks_to_records8(const PoseBlock* blocks, JointPose<float>* out, std::size_t groups) noexcept {
+  for (std::size_t g = 0; g < groups; ++g) {
+    Fields f;
+    load_block(blocks[g], f);
+    store_group(f, &out[8 * g].translation.x);
+  }
+}
+
 }  // namespace inbetween::blend_detail

@@ -310,11 +310,22 @@ struct AdditiveLayerSoA {
   std::span<const float> mask{};     ///< empty = 1 everywhere, else 8 · blocks floats
 };
 
+namespace blend_detail {
+/// Full groups of 8 JointPose records ↔ PoseBlocks, by the blend kernel's 4×4 transposes
+/// (src/tracks/blend_kernel.cpp, same CPU dispatch).
+void records_to_blocks8(const JointPose<float>* pose, PoseBlock* out, std::size_t groups) noexcept;
+void blocks_to_records8(const PoseBlock* blocks, JointPose<float>* out, std::size_t groups) noexcept;
+}  // namespace blend_detail
+
 /// `pose` (J joints) into pose_blocks(J) blocks (out.size(), asserted); the padding lanes get the
-/// identity pose.  noexcept, no allocation.
+/// identity pose.  Full groups of 8 by SIMD transposes, the last partial one joint by joint.
+/// noexcept, no allocation.
 inline void to_pose_blocks(std::span<const JointPose<float>> pose, std::span<PoseBlock> out) noexcept {
   INBETWEEN_ASSERT(out.size() == pose_blocks(pose.size()));
-  for (std::size_t b = 0; b < out.size(); ++b) {
+  static_assert(sizeof(JointPose<float>) == 10 * sizeof(float), "JointPose<float> is ten consecutive floats");
+  const std::size_t full = pose.size() / pose_block_joints;
+  blend_detail::records_to_blocks8(pose.data(), out.data(), full);
+  for (std::size_t b = full; b < out.size(); ++b) {
     PoseBlock& o = out[b];
     for (std::size_t i = 0; i < pose_block_joints; ++i) {
       const std::size_t j = b * pose_block_joints + i;
@@ -327,10 +338,12 @@ inline void to_pose_blocks(std::span<const JointPose<float>> pose, std::span<Pos
 }
 
 /// The first out.size() joints of `blocks` as JointPose records (out.size() ≤ 8 · blocks.size(),
-/// asserted).  noexcept, no allocation.
+/// asserted).  Full groups of 8 by SIMD transposes, the rest joint by joint.  noexcept, no allocation.
 inline void from_pose_blocks(std::span<const PoseBlock> blocks, std::span<JointPose<float>> out) noexcept {
   INBETWEEN_ASSERT(out.size() <= blocks.size() * pose_block_joints);
-  for (std::size_t j = 0; j < out.size(); ++j) {
+  const std::size_t full = out.size() / pose_block_joints;
+  blend_detail::blocks_to_records8(blocks.data(), out.data(), full);
+  for (std::size_t j = full * pose_block_joints; j < out.size(); ++j) {
     const PoseBlock& b = blocks[j / pose_block_joints];
     const std::size_t i = j % pose_block_joints;
     out[j].translation = {b.tx[i], b.ty[i], b.tz[i]};
