@@ -391,7 +391,7 @@ def blend_section(r: Results, oz: Results | None = None) -> list[str]:
     intro = (f"Its own run: {ctx.get('date', '?')}, ozz-animation {ctx.get('ozz_version', '?')} (commit "
              f"{ctx.get('ozz_commit', '?')}), inbetween {ctx.get('inbetween_commit', '?')}, flags "
              f"`{ctx.get('cxxflags', '?')}`, load {ctx.get('load', '?')}; both sides in one binary "
-             "(`tools/bench/ozz_blend_bench.cpp`), 3 interleaved repetitions, CPU-time medians.  Same poses "
+             "(`tools/bench/ozz_blend_bench.cpp`), interleaved repetitions (bench_ozz.sh runs 3), CPU-time medians.  Same poses "
              "(ozz as SoA transforms of 4 joints; ours as `JointPose` records (AoS, what `sample_rig` writes) "
              "and as `PoseBlock`s (SoA, 8 joints per block: the peer's layout, the AVX2 width), each converted "
              f"once before timing).  Target: ours ≥ {BLEND_TARGET:g}× faster, judged on the SoA path (the "

@@ -18,7 +18,8 @@
 /// per layer, one for the rest pose and one to normalise): float joints in groups of 8 through
 /// src/tracks/blend_kernel.cpp (AoS records transposed to fields, AVX-512/AVX2/SSE2 chosen at load
 /// time; rotation normalised by rsqrt + one Newton step, within 2 ulp), the rest joint by joint
-/// (docs/blending.md, "Speed").
+/// (docs/blending.md, "Speed").  A second overload takes PoseBlocks (8 joints as structure of
+/// arrays, float) and runs the same kernel without the transposes (below, "Structure-of-arrays").
 
 #include <algorithm>
 #include <cmath>
