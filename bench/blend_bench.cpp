@@ -3,7 +3,8 @@
 // tools/bench/ozz_blend_bench.cpp gives ozz-animation's BlendingJob), and the whole character
 // update at 71 joints against the 1 ms per frame engines budget for all animation: sample two
 // clips with sample_rig (bench/rig_fixture.hpp's 71-joint rig at two phases, two cursors), blend
-// them with a crossfade weight and an upper-body mask, and take the root motion out of the result.
+// them with a crossfade weight and an upper-body mask, and take the root motion out of the result
+// (BM_CharacterUpdateSoA: the same through PoseBlocks, converting the sampled records).
 #include <benchmark/benchmark.h>
 
 #include <span>
@@ -112,6 +113,47 @@ void BM_CharacterUpdate(benchmark::State& state) {
   }
 }
 
+// The character update through PoseBlocks, float, for a caller of sample_rig (which writes
+// JointPose records): sample two clips, convert both poses to blocks, blend on blocks, convert back,
+// take the root motion out.  The mask and the rest pose are converted once, outside the loop.
+void BM_CharacterUpdateSoA(benchmark::State& state) {
+  using T = float;
+  const auto rig = inbetween_bench::make_rig<T>(int(state.range(0)));
+  std::vector<Track<Vec3<T>>> tv, sv;
+  std::vector<QuatTrack<T>> rv;
+  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
+  const auto clip = build_rig_clip<T>(tv, rv, sv).value();
+  const double end = inbetween_bench::rig_end(rig);
+  RigClipCursor<T> ca = make_rig_clip_cursor(clip), cb = make_rig_clip_cursor(clip);
+  const std::size_t n = clip.joints(), blocks = pose_blocks(n);
+  std::vector<JointPose<T>> a(n), b(n), rest(n), out(n);
+  std::vector<PoseBlock> sa(blocks), sb(blocks), srest(blocks), sout(blocks);
+  std::vector<T> upper(n), supper(blocks * pose_block_joints);
+  for (std::size_t j = 0; j < n; ++j) upper[j] = j < n / 2 ? T(0) : T(1);
+  to_mask_blocks(upper, supper);
+  to_pose_blocks(rest, srest);
+  const RootMotionOptions options;
+  const RootMotion<T> reference{};
+  double frame = 0;
+  for (auto _ : state) {
+    sample_rig(clip, T(frame), ca, std::span<JointPose<T>>(a));
+    sample_rig(clip, T(std::fmod(frame + 7.5, end)), cb, std::span<JointPose<T>>(b));
+    to_pose_blocks(a, sa);
+    to_pose_blocks(b, sb);
+    const T w = crossfade_weight(T(std::fmod(frame, 10.0)), T(10));
+    const BlendLayerSoA layers[2] = {{sa, T(1) - w}, {sb, w, supper}};
+    blend_poses(layers, {}, srest, sout);
+    from_pose_blocks(sout, out);
+    const RootMotion<T> motion = root_motion_of(out[0], reference, options);
+    out[0] = remove_root_motion(out[0], motion);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::DoNotOptimize(motion);
+    benchmark::ClobberMemory();
+    frame += 0.5;
+    if (frame > end) frame = 0;
+  }
+}
+
 }  // namespace
 
 BENCHMARK(BM_BlendPoses<float>)->ArgsProduct({{64, 1024}, {2, 4}});
@@ -120,4 +162,5 @@ BENCHMARK(BM_BlendPosesSoA)->ArgsProduct({{64, 1024}, {2, 4}});
 BENCHMARK(BM_PoseBlockConversion)->ArgsProduct({{64, 1024}, {0, 1}});
 BENCHMARK(BM_CharacterUpdate<float>)->Arg(71);
 BENCHMARK(BM_CharacterUpdate<double>)->Arg(71);
+BENCHMARK(BM_CharacterUpdateSoA)->Arg(71);
 BENCHMARK_MAIN();

@@ -366,6 +366,10 @@ def blend_section(r: Results, oz: Results | None = None) -> list[str]:
         if t is not None:
             rows.append([f"character update, {scalar}, 71 joints", fmt_time(t),
                          f"{100 * t / 1e3 / FRAME_BUDGET_US:.2g} % of 1 ms"])
+    t = r.time("BM_CharacterUpdateSoA/71")
+    if t is not None:
+        rows.append(["character update through PoseBlocks (records converted), float, 71 joints", fmt_time(t),
+                     f"{100 * t / 1e3 / FRAME_BUDGET_US:.2g} % of 1 ms"])
     out = ["### Blending runtime (`inbetween_bench_blend`, issue 23)", "",
            "`blend_poses` on `bench/blend_fixture.hpp`'s poses (every layer but the first masked per joint, "
            "rest pose below the 0.1 threshold), one call per character; the character update samples two "
