@@ -24,6 +24,10 @@ namespace {
 using V4f [[gnu::vector_size(16)]] = float;
 using V8f [[gnu::vector_size(32)]] = float;
 using V8i [[gnu::vector_size(32)]] = std::int32_t;
+using V4i [[gnu::vector_size(16)]] = std::int32_t;
+// The comparison result type of a float vector V (V8i or V4i).
+template <class V>
+using VI = decltype(V{} > V{});
 
 [[gnu::always_inline]] inline V4f row(const float* p) noexcept {
   V4f v;
@@ -32,7 +36,8 @@ using V8i [[gnu::vector_size(32)]] = std::int32_t;
 }
 // 8-lane values are passed by reference and returned through references: Clang refuses 32-byte
 // vectors by value between functions compiled without AVX (the baseline clone), even inlined ones.
-[[gnu::always_inline]] inline void load8(const float* p, V8f& v) noexcept { std::memcpy(&v, p, sizeof v); }
+template <class V>
+[[gnu::always_inline]] inline void load8(const float* p, V& v) noexcept { std::memcpy(&v, p, sizeof v); }
 [[gnu::always_inline]] inline void cat(V4f a, V4f b, V8f& v) noexcept { v = __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7); }
 
 // 4×4 transposes in each half: a_k = [row k | row k+4] → f_i = [field i of rows 0..3 | of rows 4..7]
@@ -48,9 +53,12 @@ using V8i [[gnu::vector_size(32)]] = std::int32_t;
   f3 = __builtin_shufflevector(t1, t3, 2, 3, 10, 11, 6, 7, 14, 15);
 }
 
-struct Fields {
-  V8f tx, ty, tz, qw, qx, qy, qz, sx, sy, sz;
+// The ten fields of 8 (V8f) or 4 (V4f: the SSE2 build of the PoseBlock kernel) joints.
+template <class V>
+struct FieldsT {
+  V tx, ty, tz, qw, qx, qy, qz, sx, sy, sz;
 };
+using Fields = FieldsT<V8f>;
 
 [[gnu::always_inline]] inline Fields load_group(const JointPose<float>* p) noexcept {
   const float* b = &p->translation.x;
@@ -99,15 +107,18 @@ struct Fields {
   }
 }
 
-[[gnu::always_inline]] inline void clean8(V8f& w) noexcept {
-  const V8f zero{}, cap = V8f{} + blend_weight_max<float>;
+template <class V>
+[[gnu::always_inline]] inline void clean8(V& w) noexcept {
+  const V zero{}, cap = V{} + blend_weight_max<float>;
   w = w > zero ? w : zero;  // NaN compares false: 0 (one maxps)
   w = w < cap ? w : cap;    // one minps
 }
 
-[[gnu::always_inline]] inline void signed_by(const V8f& w, const V8f& d, V8f& out) noexcept {
-  const V8i sign = V8i{} + std::int32_t(0x80000000u);
-  out = reinterpret_cast<V8f>(reinterpret_cast<V8i>(w) ^ (reinterpret_cast<V8i>(d) & sign));
+template <class V>
+[[gnu::always_inline]] inline void signed_by(const V& w, const V& d, V& out) noexcept {
+  using I = VI<V>;
+  const I sign = I{} + std::int32_t(0x80000000u);
+  out = reinterpret_cast<V>(reinterpret_cast<I>(w) ^ (reinterpret_cast<I>(d) & sign));
 }
 
 // Any lane of a comparison set.
@@ -116,6 +127,12 @@ struct Fields {
   m |= __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3);
   m |= __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5);
   m |= __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6);
+  return m[0] != 0;
+}
+[[gnu::always_inline]] inline bool any(const V4i& mask) noexcept {
+  V4i m = mask;
+  m |= __builtin_shufflevector(m, m, 2, 3, 0, 1);
+  m |= __builtin_shufflevector(m, m, 1, 0, 3, 2);
   return m[0] != 0;
 }
 
@@ -130,20 +147,30 @@ struct Fields {
   for (int i = 0; i < 8; ++i) x[i] = 1.0f / std::sqrt(x[i]);
 #endif
 }
+[[gnu::always_inline]] inline void rsqrt8(V4f& x) noexcept {
+#if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
+  const V4f y = __builtin_ia32_rsqrtps(x);
+  x = y * (1.5f - 0.5f * x * y * y);
+#else
+  for (int i = 0; i < 4; ++i) x[i] = 1.0f / std::sqrt(x[i]);
+#endif
+}
 
 // The hemisphere: the first layer's rotation fields.
+template <class V>
 struct Hemisphere {
-  V8f qw, qx, qy, qz;
+  V qw, qx, qy, qz;
 };
 
-[[gnu::always_inline]] inline void accumulate(Fields& a, const Fields& x, const V8f& w, const Hemisphere& h) noexcept {
+template <class V>
+[[gnu::always_inline]] inline void accumulate(FieldsT<V>& a, const FieldsT<V>& x, const V& w, const Hemisphere<V>& h) noexcept {
   a.tx += w * x.tx;
   a.ty += w * x.ty;
   a.tz += w * x.tz;
   a.sx += w * x.sx;
   a.sy += w * x.sy;
   a.sz += w * x.sz;
-  V8f wq;
+  V wq;
   signed_by(w, h.qw * x.qw + h.qx * x.qx + h.qy * x.qy + h.qz * x.qz, wq);
   a.qw += wq * x.qw;
   a.qx += wq * x.qx;
@@ -154,23 +181,24 @@ struct Hemisphere {
 // One group of 8 joints: every layer, the rest pose where needed, normalisation — the blended
 // fields in `o`.  `Src` gives a layer's fields (load(l, Fields&)), its mask (mask(l): 8 floats or
 // null) and the rest pose's fields (rest(Fields&)): JointPose records (transposed) or PoseBlocks.
-template <class Src>
+template <class V, class Src>
 [[gnu::always_inline]] inline void blend_group(const Src& src, std::size_t layer_count, const float* clean_weight,
-                                               float threshold, Fields& o) noexcept {
-  const V8f zero{}, one = V8f{} + 1.0f, th = V8f{} + threshold;
-  const V8f tiny = V8f{} + 64.0f * std::numeric_limits<float>::min();
-  Fields a{zero, zero, zero, zero, zero, zero, zero, zero, zero, zero};
-  V8f sum = zero;
-  Hemisphere h;
+                                               float threshold, FieldsT<V>& o) noexcept {
+  using I = VI<V>;
+  const V zero{}, one = V{} + 1.0f, th = V{} + threshold;
+  const V tiny = V{} + 64.0f * std::numeric_limits<float>::min();
+  FieldsT<V> a{zero, zero, zero, zero, zero, zero, zero, zero, zero, zero};
+  V sum = zero;
+  Hemisphere<V> h;
   for (std::size_t l = 0; l < layer_count; ++l) {
-    V8f w = V8f{} + clean_weight[l];
+    V w = V{} + clean_weight[l];
     if (const float* mask = src.mask(l)) {
-      V8f m;
+      V m;
       load8(mask, m);
       clean8(m);
       w *= m;
     }
-    Fields x;
+    FieldsT<V> x;
     src.load(l, x);
     sum += w;
     if (l == 0) {  // the hemisphere itself: σ = +1, no dot product
@@ -182,23 +210,23 @@ template <class Src>
   }
   // The rest pose only where some joint needs it (a summed weight below the threshold, or a
   // rotation sum without length): loaded on that rare path alone.
-  const V8i below = th > sum;
+  const I below = th > sum;
   if (any(below) || layer_count == 0) {
-    Fields r;
+    FieldsT<V> r;
     src.rest(r);
     if (layer_count == 0) h = {r.qw, r.qx, r.qy, r.qz};
     accumulate(a, r, th > sum ? th - sum : zero, h);  // ozz's rule: the rest fills up to the threshold
   }
-  const V8i none = sum == zero;
+  const I none = sum == zero;
   sum = th > sum ? th : sum;
-  const V8f n2 = a.qw * a.qw + a.qx * a.qx + a.qy * a.qy + a.qz * a.qz;
-  const V8i degenerate = n2 < tiny;
-  V8f rn = degenerate ? one : n2;
+  const V n2 = a.qw * a.qw + a.qx * a.qx + a.qy * a.qy + a.qz * a.qz;
+  const I degenerate = n2 < tiny;
+  V rn = degenerate ? one : n2;
   rsqrt8(rn);
-  const V8f inv = one / sum;  // exact: a pose blended with itself comes back unchanged
+  const V inv = one / sum;  // exact: a pose blended with itself comes back unchanged
   o = {a.tx * inv, a.ty * inv, a.tz * inv, a.qw * rn, a.qx * rn, a.qy * rn, a.qz * rn, a.sx * inv, a.sy * inv, a.sz * inv};
   if (any(none | degenerate)) {
-    Fields r;
+    FieldsT<V> r;
     src.rest(r);
     o.qw = degenerate ? r.qw : o.qw;
     o.qx = degenerate ? r.qx : o.qx;
@@ -230,31 +258,43 @@ struct AosSource {
   [[gnu::always_inline]] void rest(Fields& f) const noexcept { f = load_group(rest_pose + j0); }
 };
 
-// One PoseBlock's fields: ten aligned 8-lane loads.
-[[gnu::always_inline]] inline void load_block(const PoseBlock& b, Fields& f) noexcept {
-  load8(b.tx, f.tx), load8(b.ty, f.ty), load8(b.tz, f.tz);
-  load8(b.qw, f.qw), load8(b.qx, f.qx), load8(b.qy, f.qy), load8(b.qz, f.qz);
-  load8(b.sx, f.sx), load8(b.sy, f.sy), load8(b.sz, f.sz);
+// One PoseBlock's fields from lane `off` (0; or 0 and 4 for V4f): ten aligned vector loads.
+template <class V>
+[[gnu::always_inline]] inline void load_block(const PoseBlock& b, std::size_t off, FieldsT<V>& f) noexcept {
+  load8(b.tx + off, f.tx), load8(b.ty + off, f.ty), load8(b.tz + off, f.tz);
+  load8(b.qw + off, f.qw), load8(b.qx + off, f.qx), load8(b.qy + off, f.qy), load8(b.qz + off, f.qz);
+  load8(b.sx + off, f.sx), load8(b.sy + off, f.sy), load8(b.sz + off, f.sz);
 }
-[[gnu::always_inline]] inline void store_block(const Fields& f, PoseBlock& b) noexcept {
-  std::memcpy(b.tx, &f.tx, 32), std::memcpy(b.ty, &f.ty, 32), std::memcpy(b.tz, &f.tz, 32);
-  std::memcpy(b.qw, &f.qw, 32), std::memcpy(b.qx, &f.qx, 32), std::memcpy(b.qy, &f.qy, 32), std::memcpy(b.qz, &f.qz, 32);
-  std::memcpy(b.sx, &f.sx, 32), std::memcpy(b.sy, &f.sy, 32), std::memcpy(b.sz, &f.sz, 32);
+template <class V>
+[[gnu::always_inline]] inline void store_block(const FieldsT<V>& f, PoseBlock& b, std::size_t off) noexcept {
+  constexpr std::size_t n = sizeof(V);
+  std::memcpy(b.tx + off, &f.tx, n), std::memcpy(b.ty + off, &f.ty, n), std::memcpy(b.tz + off, &f.tz, n);
+  std::memcpy(b.qw + off, &f.qw, n), std::memcpy(b.qx + off, &f.qx, n), std::memcpy(b.qy + off, &f.qy, n);
+  std::memcpy(b.qz + off, &f.qz, n);
+  std::memcpy(b.sx + off, &f.sx, n), std::memcpy(b.sy + off, &f.sy, n), std::memcpy(b.sz + off, &f.sz, n);
 }
 
-// PoseBlocks, block b.
+// PoseBlocks, block b from lane off.
+template <class V>
 struct SoaSource {
   const BlendLayerSoA* layers;
   const PoseBlock* rest_pose;
-  std::size_t b;
+  std::size_t b, off;
   [[gnu::always_inline]] const float* mask(std::size_t l) const noexcept {
-    return layers[l].mask.empty() ? nullptr : layers[l].mask.data() + pose_block_joints * b;
+    return layers[l].mask.empty() ? nullptr : layers[l].mask.data() + pose_block_joints * b + off;
   }
-  [[gnu::always_inline]] void load(std::size_t l, Fields& f) const noexcept { load_block(layers[l].pose[b], f); }
-  [[gnu::always_inline]] void rest(Fields& f) const noexcept { load_block(rest_pose[b], f); }
+  [[gnu::always_inline]] void load(std::size_t l, FieldsT<V>& f) const noexcept { load_block(layers[l].pose[b], off, f); }
+  [[gnu::always_inline]] void rest(FieldsT<V>& f) const noexcept { load_block(rest_pose[b], off, f); }
 };
 
 // √x per lane (IEEE: exact rounding), for the additive layers' normalisation.
+[[gnu::always_inline]] inline void sqrt8(V4f& x) noexcept {
+#if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
+  x = __builtin_ia32_sqrtps(x);
+#else
+  for (int i = 0; i < 4; ++i) x[i] = std::sqrt(x[i]);
+#endif
+}
 [[gnu::always_inline]] inline void sqrt8(V8f& x) noexcept {
 #if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
   cat(__builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 0, 1, 2, 3)),
@@ -266,26 +306,58 @@ struct SoaSource {
 
 // An additive layer on eight blended joints, the JointPose path's formulas (apply_additive) in lanes:
 // t += w Δt;  s ⊙= 1 + w (Δs − 1);  q = q · a/|a|, a = (1 − w)·1 + w Δq⁺.
-[[gnu::always_inline]] inline void add_block(Fields& o, const Fields& d, const V8f& w) noexcept {
-  const V8f zero{}, one = V8f{} + 1.0f, least = V8f{} + std::numeric_limits<float>::min();
+template <class V>
+[[gnu::always_inline]] inline void add_block(FieldsT<V>& o, const FieldsT<V>& d, const V& w) noexcept {
+  const V zero{}, one = V{} + 1.0f, least = V{} + std::numeric_limits<float>::min();
   o.tx += d.tx * w;
   o.ty += d.ty * w;
   o.tz += d.tz * w;
   o.sx *= one + w * (d.sx - one);
   o.sy *= one + w * (d.sy - one);
   o.sz *= one + w * (d.sz - one);
-  const V8i flip = d.qw < zero;
-  V8f aw = (one - w) + (flip ? -d.qw : d.qw) * w;
-  V8f ax = (flip ? -d.qx : d.qx) * w, ay = (flip ? -d.qy : d.qy) * w, az = (flip ? -d.qz : d.qz) * w;
-  V8f n = aw * aw + ax * ax + ay * ay + az * az;
+  const VI<V> flip = d.qw < zero;
+  V aw = (one - w) + (flip ? -d.qw : d.qw) * w;
+  V ax = (flip ? -d.qx : d.qx) * w, ay = (flip ? -d.qy : d.qy) * w, az = (flip ? -d.qz : d.qz) * w;
+  V n = aw * aw + ax * ax + ay * ay + az * az;
   n = n > least ? n : least;
   sqrt8(n);
   aw /= n, ax /= n, ay /= n, az /= n;
-  const V8f qw = o.qw, qx = o.qx, qy = o.qy, qz = o.qz;
+  const V qw = o.qw, qx = o.qx, qy = o.qy, qz = o.qz;
   o.qw = qw * aw - qx * ax - qy * ay - qz * az;
   o.qx = qw * ax + qx * aw + qy * az - qz * ay;
   o.qy = qw * ay - qx * az + qy * aw + qz * ax;
   o.qz = qw * az + qx * ay - qy * ax + qz * aw;
+}
+
+// The PoseBlock kernel in vectors V: 8 lanes (one per joint of a block) where the CPU has AVX, two
+// halves of 4 lanes on SSE2 (GCC lowers 8-lane comparisons and selects lane by lane on SSE2: the
+// 8-lane code was 10× slower than ozz there, the 4-lane code is native).
+template <class V>
+[[gnu::always_inline]] inline void blend_blocks(const BlendLayerSoA* layers, std::size_t layer_count,
+                                                const float* clean_weight, const AdditiveLayerSoA* additive,
+                                                std::size_t additive_count, const PoseBlock* rest, PoseBlock* out,
+                                                std::size_t blocks, float threshold) noexcept {
+  constexpr std::size_t lanes = sizeof(V) / sizeof(float);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    for (std::size_t off = 0; off < pose_block_joints; off += lanes) {
+      FieldsT<V> o;
+      blend_group(SoaSource<V>{layers, rest, b, off}, layer_count, clean_weight, threshold, o);
+      for (std::size_t k = 0; k < additive_count; ++k) {
+        const AdditiveLayerSoA& layer = additive[k];
+        V w = V{} + clean(layer.weight);
+        if (!layer.mask.empty()) {
+          V m;
+          load8(layer.mask.data() + pose_block_joints * b + off, m);
+          clean8(m);
+          w *= m;
+        }
+        FieldsT<V> d;
+        load_block(layer.delta[b], off, d);
+        add_block(o, d, w);
+      }
+      store_block(o, out[b], off);
+    }
+  }
 }
 
 }  // namespace
@@ -315,40 +387,52 @@ void blend_groups8(const BlendLayer<float>* layers, std::size_t layer_count, con
   }
 }
 
-INBETWEEN_BLEND_CLONES
-void blend_blocks8(const BlendLayerSoA* layers, std::size_t layer_count, const float* clean_weight,
-                   const AdditiveLayerSoA* additive, std::size_t additive_count, const PoseBlock* rest,
-                   PoseBlock* out, std::size_t blocks, float threshold) noexcept {
-  for (std::size_t b = 0; b < blocks; ++b) {
-    Fields o;
-    blend_group(SoaSource{layers, rest, b}, layer_count, clean_weight, threshold, o);
-    for (std::size_t k = 0; k < additive_count; ++k) {
-      const AdditiveLayerSoA& layer = additive[k];
-      V8f w = V8f{} + clean(layer.weight);
-      if (!layer.mask.empty()) {
-        V8f m;
-        load8(layer.mask.data() + pose_block_joints * b, m);
-        clean8(m);
-        w *= m;
-      }
-      Fields d;
-      load_block(layer.delta[b], d);
-      add_block(o, d, w);
-    }
-    store_block(o, out[b]);
-  }
+// blend_blocks8: 8-lane code for AVX-512 (32 registers) and AVX2+FMA machines, the 4-lane code
+// otherwise, chosen once by the CPU's features (not target_clones: the baseline needs other code).
+namespace {
+#define INBETWEEN_BLEND_SOA_ARGS                                                                                  \
+  const BlendLayerSoA *layers, std::size_t layer_count, const float *clean_weight, const AdditiveLayerSoA *additive, \
+      std::size_t additive_count, const PoseBlock *rest, PoseBlock *out, std::size_t blocks, float threshold
+#define INBETWEEN_BLEND_SOA_PASS layers, layer_count, clean_weight, additive, additive_count, rest, out, blocks, threshold
+using BlendBlocksFn = void (*)(INBETWEEN_BLEND_SOA_ARGS) noexcept;
+void blend_blocks_sse(INBETWEEN_BLEND_SOA_ARGS) noexcept { blend_blocks<V4f>(INBETWEEN_BLEND_SOA_PASS); }
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(INBETWEEN_BLEND_ASAN)
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,avx2,fma"))) void blend_blocks_avx512(INBETWEEN_BLEND_SOA_ARGS) noexcept {
+  blend_blocks<V8f>(INBETWEEN_BLEND_SOA_PASS);
 }
+__attribute__((target("avx2,fma"))) void blend_blocks_avx2(INBETWEEN_BLEND_SOA_ARGS) noexcept {
+  blend_blocks<V8f>(INBETWEEN_BLEND_SOA_PASS);
+}
+BlendBlocksFn pick_blend_blocks() noexcept {
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+      __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    return blend_blocks_avx512;
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return blend_blocks_avx2;
+  return blend_blocks_sse;
+}
+#else
+BlendBlocksFn pick_blend_blocks() noexcept { return blend_blocks_sse; }
+#endif
+}  // namespace
+
+void blend_blocks8(INBETWEEN_BLEND_SOA_ARGS) noexcept {
+  static const BlendBlocksFn fn = pick_blend_blocks();
+  fn(INBETWEEN_BLEND_SOA_PASS);
+}
+#undef INBETWEEN_BLEND_SOA_ARGS
+#undef INBETWEEN_BLEND_SOA_PASS
 
 INBETWEEN_BLEND_CLONES
 void records_to_blocks8(const JointPose<float>* pose, PoseBlock* out, std::size_t groups) noexcept {
-  for (std::size_t g = 0; g < groups; ++g) store_block(load_group(pose + 8 * g), out[g]);
+  for (std::size_t g = 0; g < groups; ++g) store_block(load_group(pose + 8 * g), out[g], 0);
 }
 
 INBETWEEN_BLEND_CLONES
 void blocks_to_records8(const PoseBlock* blocks, JointPose<float>* out, std::size_t groups) noexcept {
   for (std::size_t g = 0; g < groups; ++g) {
     Fields f;
-    load_block(blocks[g], f);
+    load_block(blocks[g], 0, f);
     store_group(f, &out[8 * g].translation.x);
   }
 }
