@@ -189,7 +189,7 @@ template <class V, class Src>
   const V tiny = V{} + 64.0f * std::numeric_limits<float>::min();
   FieldsT<V> a{zero, zero, zero, zero, zero, zero, zero, zero, zero, zero};
   V sum = zero;
-  Hemisphere<V> h;
+  Hemisphere<V> h{zero, zero, zero, zero};  // set by layer 0 (or the rest pose when there is no layer)
   for (std::size_t l = 0; l < layer_count; ++l) {
     V w = V{} + clean_weight[l];
     if (const float* mask = src.mask(l)) {
@@ -329,6 +329,38 @@ template <class V>
   o.qz = qw * az + qx * ay - qy * ax + qz * aw;
 }
 
+// JointPose records, four at a time from joint j0, for the SSE2 build: 4×4 transposes of the rows.
+[[gnu::always_inline]] inline void transpose4(V4f& a0, V4f& a1, V4f& a2, V4f& a3) noexcept {
+  const V4f t0 = __builtin_shufflevector(a0, a1, 0, 4, 1, 5), t1 = __builtin_shufflevector(a0, a1, 2, 6, 3, 7);
+  const V4f t2 = __builtin_shufflevector(a2, a3, 0, 4, 1, 5), t3 = __builtin_shufflevector(a2, a3, 2, 6, 3, 7);
+  a0 = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+  a1 = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+  a2 = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  a3 = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+[[gnu::always_inline]] inline void load_group4(const JointPose<float>* p, FieldsT<V4f>& f) noexcept {
+  const float* b = &p->translation.x;
+  V4f a0 = row(b), a1 = row(b + 10), a2 = row(b + 20), a3 = row(b + 30);
+  transpose4(a0, a1, a2, a3);
+  f.tx = a0, f.ty = a1, f.tz = a2;
+  a0 = row(b + 3), a1 = row(b + 13), a2 = row(b + 23), a3 = row(b + 33);
+  transpose4(a0, a1, a2, a3);
+  f.qw = a0, f.qx = a1, f.qy = a2, f.qz = a3;
+  a0 = row(b + 6), a1 = row(b + 16), a2 = row(b + 26), a3 = row(b + 36);
+  transpose4(a0, a1, a2, a3);
+  f.sx = a1, f.sy = a2, f.sz = a3;
+}
+struct AosSource4 {
+  const BlendLayer<float>* layers;
+  const JointPose<float>* rest_pose;
+  std::size_t j0;
+  [[gnu::always_inline]] const float* mask(std::size_t l) const noexcept {
+    return layers[l].mask.empty() ? nullptr : layers[l].mask.data() + j0;
+  }
+  [[gnu::always_inline]] void load(std::size_t l, FieldsT<V4f>& f) const noexcept { load_group4(layers[l].pose.data() + j0, f); }
+  [[gnu::always_inline]] void rest(FieldsT<V4f>& f) const noexcept { load_group4(rest_pose + j0, f); }
+};
+
 // The PoseBlock kernel in vectors V: 8 lanes (one per joint of a block) where the CPU has AVX, two
 // halves of 4 lanes on SSE2 (GCC lowers 8-lane comparisons and selects lane by lane on SSE2: the
 // 8-lane code was 10× slower than ozz there, the 4-lane code is native).
@@ -377,15 +409,60 @@ template <class V>
 #define INBETWEEN_BLEND_CLONES
 #endif
 
-INBETWEEN_BLEND_CLONES
-void blend_groups8(const BlendLayer<float>* layers, std::size_t layer_count, const float* clean_weight,
-                   const JointPose<float>* rest, JointPose<float>* out, std::size_t groups, float threshold) noexcept {
+// blend_groups8 (JointPose records): the 8-lane transposing kernel on AVX2+FMA and AVX-512, on SSE2
+// two groups of 4 joints (4×4 transposes; the 8-lane code's compares are lane by lane there), stored
+// through the 8-lane store_group (shuffles only).
+namespace {
+#define INBETWEEN_BLEND_AOS_ARGS                                                                                 \
+  const BlendLayer<float>*layers, std::size_t layer_count, const float *clean_weight, const JointPose<float>*rest, \
+      JointPose<float>*out, std::size_t groups, float threshold
+#define INBETWEEN_BLEND_AOS_PASS layers, layer_count, clean_weight, rest, out, groups, threshold
+using BlendGroupsFn = void (*)(INBETWEEN_BLEND_AOS_ARGS) noexcept;
+[[gnu::always_inline]] inline void blend_groups_wide(INBETWEEN_BLEND_AOS_ARGS) noexcept {
   for (std::size_t g = 0; g < groups; ++g) {
     Fields o;
     blend_group(AosSource{layers, rest, 8 * g}, layer_count, clean_weight, threshold, o);
     store_group(o, &out[8 * g].translation.x);
   }
 }
+void blend_groups_sse(INBETWEEN_BLEND_AOS_ARGS) noexcept {
+  for (std::size_t g = 0; g < groups; ++g) {
+    FieldsT<V4f> lo, hi;
+    blend_group(AosSource4{layers, rest, 8 * g}, layer_count, clean_weight, threshold, lo);
+    blend_group(AosSource4{layers, rest, 8 * g + 4}, layer_count, clean_weight, threshold, hi);
+    Fields o;
+    cat(lo.tx, hi.tx, o.tx), cat(lo.ty, hi.ty, o.ty), cat(lo.tz, hi.tz, o.tz);
+    cat(lo.qw, hi.qw, o.qw), cat(lo.qx, hi.qx, o.qx), cat(lo.qy, hi.qy, o.qy), cat(lo.qz, hi.qz, o.qz);
+    cat(lo.sx, hi.sx, o.sx), cat(lo.sy, hi.sy, o.sy), cat(lo.sz, hi.sz, o.sz);
+    store_group(o, &out[8 * g].translation.x);
+  }
+}
+#if (defined(__GNUC__) || defined(__clang__)) && defined(__x86_64__) && !defined(INBETWEEN_BLEND_ASAN)
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,avx2,fma"))) void blend_groups_avx512(INBETWEEN_BLEND_AOS_ARGS) noexcept {
+  blend_groups_wide(INBETWEEN_BLEND_AOS_PASS);
+}
+__attribute__((target("avx2,fma"))) void blend_groups_avx2(INBETWEEN_BLEND_AOS_ARGS) noexcept {
+  blend_groups_wide(INBETWEEN_BLEND_AOS_PASS);
+}
+BlendGroupsFn pick_blend_groups() noexcept {
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+      __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    return blend_groups_avx512;
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return blend_groups_avx2;
+  return blend_groups_sse;
+}
+#else
+BlendGroupsFn pick_blend_groups() noexcept { return blend_groups_sse; }
+#endif
+}  // namespace
+
+void blend_groups8(INBETWEEN_BLEND_AOS_ARGS) noexcept {
+  static const BlendGroupsFn fn = pick_blend_groups();
+  fn(INBETWEEN_BLEND_AOS_PASS);
+}
+#undef INBETWEEN_BLEND_AOS_ARGS
+#undef INBETWEEN_BLEND_AOS_PASS
 
 // blend_blocks8: 8-lane code for AVX-512 (32 registers) and AVX2+FMA machines, the 4-lane code
 // otherwise, chosen once by the CPU's features (not target_clones: the baseline needs other code).
