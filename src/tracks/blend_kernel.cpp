@@ -1,13 +1,12 @@
-// blend_poses<float>'s kernel for groups of 8 joints (include/inbetween/tracks/runtime/blend.hpp,
-// docs/blending.md "Speed"): the eight JointPose records are read as three 4-lane rows each
-// (translation+w at 0, rotation at 3, w+scale at 6), turned into structure-of-arrays fields by 4×4
-// transposes in each 128-bit half of 8-lane vectors, blended over every layer in registers, and
-// turned back.  Compiled with GCC/Clang target_clones: an AVX2+FMA clone (x86-64-v3, one
-// 256-bit register per field) and the baseline (SSE2, two registers per field), chosen at load time
-// by the CPU (ifunc); other compilers/architectures get the baseline only.  A third clone for
-// AVX-512 machines (x86-64-v4) runs the same 8-lane code with 32 vector registers instead of 16:
-// the ten accumulators, the hemisphere and a layer's fields then stay in registers (the AVX2 clone
-// spills the accumulators to the stack in the layer loop): 5.3 → 4.7 ns per joint at 2 layers.
+// blend_poses<float>'s kernels (include/inbetween/tracks/runtime/blend.hpp, docs/blending.md
+// "Speed").  One body, blend_group, blends 8 (or 4) joints over every layer in registers; it gets
+// its fields from JointPose records (three 4-lane rows per joint — translation+w at 0, rotation at
+// 3, w+scale at 6 — turned into fields by 4×4 transposes, and turned back) or from PoseBlocks (ten
+// vector loads, no transposes).  Each kernel exists three times, picked on the first call by the
+// CPU's features: AVX-512 (the 8-lane code with 32 registers: the ten accumulators, the hemisphere
+// and a layer's fields stay in registers; 5.3 → 4.7 ns per joint at 2 layers against AVX2), AVX2+FMA
+// (8 lanes, 16 registers: spills) and SSE2 (4-lane code: GCC lowers the 8-lane code's compares lane
+// by lane there).  Other compilers/architectures and ASan builds get the 4-lane code.
 #include "inbetween/tracks/runtime/blend.hpp"
 
 #include <cstring>
@@ -409,6 +408,12 @@ template <class V>
 #define INBETWEEN_BLEND_CLONES
 #endif
 
+// The highest x86-64 level the kernels' run-time choice may take (4: AVX-512, 3: AVX2+FMA, lower:
+// SSE2): only for measuring the narrower code on a wider machine (docs/blending.md, "Speed").
+#ifndef INBETWEEN_BLEND_MAX_LEVEL
+#define INBETWEEN_BLEND_MAX_LEVEL 4
+#endif
+
 // blend_groups8 (JointPose records): the 8-lane transposing kernel on AVX2+FMA and AVX-512, on SSE2
 // two groups of 4 joints (4×4 transposes; the 8-lane code's compares are lane by lane there), stored
 // through the 8-lane store_group (shuffles only).
@@ -446,10 +451,11 @@ __attribute__((target("avx2,fma"))) void blend_groups_avx2(INBETWEEN_BLEND_AOS_A
 }
 BlendGroupsFn pick_blend_groups() noexcept {
   __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
-      __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+  if (INBETWEEN_BLEND_MAX_LEVEL >= 4 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+      __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") &&
+      __builtin_cpu_supports("fma"))
     return blend_groups_avx512;
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return blend_groups_avx2;
+  if (INBETWEEN_BLEND_MAX_LEVEL >= 3 && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return blend_groups_avx2;
   return blend_groups_sse;
 }
 #else
@@ -482,10 +488,11 @@ __attribute__((target("avx2,fma"))) void blend_blocks_avx2(INBETWEEN_BLEND_SOA_A
 }
 BlendBlocksFn pick_blend_blocks() noexcept {
   __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
-      __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+  if (INBETWEEN_BLEND_MAX_LEVEL >= 4 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+      __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") &&
+      __builtin_cpu_supports("fma"))
     return blend_blocks_avx512;
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return blend_blocks_avx2;
+  if (INBETWEEN_BLEND_MAX_LEVEL >= 3 && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return blend_blocks_avx2;
   return blend_blocks_sse;
 }
 #else
