@@ -294,7 +294,7 @@ struct SoaSource {
   for (int i = 0; i < 4; ++i) x[i] = std::sqrt(x[i]);
 #endif
 }
-[[gnu::always_inline]] inline void sqrt8(V8f& x) noexcept {
+[[maybe_unused, gnu::always_inline]] inline void sqrt8(V8f& x) noexcept {
 #if defined(__SSE__) && (defined(__GNUC__) || defined(__clang__))
   cat(__builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 0, 1, 2, 3)),
       __builtin_ia32_sqrtps(__builtin_shufflevector(x, x, 4, 5, 6, 7)), x);
@@ -423,7 +423,7 @@ namespace {
       JointPose<float>*out, std::size_t groups, float threshold
 #define INBETWEEN_BLEND_AOS_PASS layers, layer_count, clean_weight, rest, out, groups, threshold
 using BlendGroupsFn = void (*)(INBETWEEN_BLEND_AOS_ARGS) noexcept;
-[[gnu::always_inline]] inline void blend_groups_wide(INBETWEEN_BLEND_AOS_ARGS) noexcept {
+[[maybe_unused, gnu::always_inline]] inline void blend_groups_wide(INBETWEEN_BLEND_AOS_ARGS) noexcept {
   for (std::size_t g = 0; g < groups; ++g) {
     Fields o;
     blend_group(AosSource{layers, rest, 8 * g}, layer_count, clean_weight, threshold, o);
