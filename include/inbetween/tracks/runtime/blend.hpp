@@ -16,7 +16,7 @@
 /// s ⊙= 1 + w·(Δs − 1).
 /// One pass over the joints with every layer in registers (ozz-animation's BlendingJob makes a pass
 /// per layer, one for the rest pose and one to normalise): float joints in groups of 8 through
-/// src/tracks/blend_kernel.cpp (AoS records transposed to fields, AVX-512/AVX2/SSE2 chosen at load
+/// src/tracks/blend_kernel.cpp (AoS records transposed to fields, AVX-512/AVX2/SSE2 chosen at run
 /// time; rotation normalised by rsqrt + one Newton step, within 2 ulp), the rest joint by joint
 /// (docs/blending.md, "Speed").  A second overload takes PoseBlocks (8 joints as structure of
 /// arrays, float) and runs the same kernel without the transposes (below, "Structure-of-arrays").
@@ -229,7 +229,7 @@ template <Real T>
   apply_additive<T>(additive, out, j);
 }
 /// blend_poses<float>'s kernel for `groups` full groups of 8 joints from joint 0, without the
-/// additive layers (src/tracks/blend_kernel.cpp; run-time dispatch to AVX2 where the CPU has it).
+/// additive layers (src/tracks/blend_kernel.cpp; AVX-512/AVX2/SSE2 chosen by the CPU).
 void blend_groups8(const BlendLayer<float>* layers, std::size_t layer_count, const float* clean_weight,
                    const JointPose<float>* rest, JointPose<float>* out, std::size_t groups, float threshold) noexcept;
 }  // namespace blend_detail
@@ -363,7 +363,7 @@ inline void to_mask_blocks(std::span<const float> mask, std::span<float> out) no
 
 namespace blend_detail {
 /// blend_poses' SoA kernel over `blocks` blocks, additive layers included (src/tracks/blend_kernel.cpp;
-/// AVX-512/AVX2/SSE2 chosen at load time).
+/// AVX-512/AVX2/SSE2 chosen on the first call by the CPU).
 void blend_blocks8(const BlendLayerSoA* layers, std::size_t layer_count, const float* clean_weight,
                    const AdditiveLayerSoA* additive, std::size_t additive_count, const PoseBlock* rest,
                    PoseBlock* out, std::size_t blocks, float threshold) noexcept;
