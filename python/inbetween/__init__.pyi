@@ -249,3 +249,14 @@ def surface_uv_path(surface: Source, from_uv: ArrayLike, to_uv: ArrayLike, count
 def surface_downhill_path(surface: Source, start: ArrayLike, up: ArrayLike = ..., step: float = 0.0,
                           max_steps: int = 100000) -> NDArray:
     """Downhill on a named surface from S(u, v) or a point (x, y, z): points (n, 3)."""
+def blend_poses(poses: ArrayLike, weights: ArrayLike, masks: ArrayLike | None = None, rest: ArrayLike | None = None,
+                additive: ArrayLike | None = None, additive_weights: ArrayLike | None = None,
+                additive_masks: ArrayLike | None = None, threshold: float = 0.1) -> NDArray:
+    """Blend of layers (L, J, 10) of poses [tx, ty, tz, qw, qx, qy, qz, sx, sy, sz] with weights (L,), masks (L, J), rest (J, 10), additive deltas (A, J, 10); returns (J, 10)."""
+def additive_delta(pose: ArrayLike, reference: ArrayLike) -> NDArray:
+    """Delta poses (..., 10) of pose relative to reference: t - t_ref, q_ref* q, s / s_ref."""
+def extract_root_motion(root: ArrayLike, x: bool = True, y: bool = False, z: bool = True, yaw: bool = True,
+                        pitch: bool = False, roll: bool = False, position_reference: str = "first_frame",
+                        rotation_reference: str = "first_frame", bake: bool = True, loop: bool = False,
+                        rest: ArrayLike | None = None) -> tuple[NDArray, NDArray]:
+    """Root motion (N, 7) [tx, ty, tz, qw, qx, qy, qz] and the root in character space (N, 10) of root poses (N, 10); Y up."""

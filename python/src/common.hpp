@@ -88,6 +88,8 @@ void bind_paths(py::module_& m);
 void bind_clip(py::module_& m);
 /// load_compressed() and CompressedClip (compressed.cpp).
 void bind_compressed(py::module_& m);
+/// blend_poses, additive_delta, extract_root_motion (blend.cpp).
+void bind_blend(py::module_& m);
 /// _run_cli (cli/run_cli.cpp), only where the tool is built (INBETWEEN_PYTHON_CLI).
 void bind_cli(py::module_& m);
 

@@ -38,6 +38,7 @@ PYBIND11_MODULE(_inbetween, m) {
   bind_paths(m);
   bind_clip(m);
   bind_compressed(m);
+  bind_blend(m);
 #ifdef INBETWEEN_PYTHON_CLI
   bind_cli(m);
 #endif

@@ -21,3 +21,10 @@ COMPOSE_REL = 64 * 2.220446049250313e-16
 # glTF accessors are float32: values read back from a .glb agree with the double scene to float
 # rounding of O(1) values (a few float ulp).
 GLTF_FLOAT = 4 * 1.1920929e-07
+# blend_poses in double against the NumPy formulas of docs/blending.md (sums of a few weighted
+# terms divided by their weight sum, then a normalisation): 1e-12 of the O(1..5) values is far above
+# both sides' rounding and far below any formula mix-up (a wrong sign or weight moves results by 0.1).
+BLEND_ABS = 1e-12
+# Root motion: motion composed with the character-space root gives the root back to 1e-6 of the
+# clip's extent (issue 23's bound); double rounding is ~1e-15 of it.
+ROOT_MOTION_REL = 1e-6

@@ -17,7 +17,10 @@
 #include "inbetween/tracks/quat_track.hpp"
 #include "inbetween/tracks/track.hpp"
 #include "inbetween/tracks/runtime/fcurve_clip.hpp"
+#include "inbetween/tracks/runtime/blend.hpp"
+#include "inbetween/tracks/runtime/inertialize.hpp"
 #include "inbetween/tracks/runtime/rig_clip.hpp"
+#include "inbetween/tracks/runtime/root_motion.hpp"
 #include "inbetween/tracks/transform_track.hpp"
 #include "support/museum_tracks.hpp"
 
@@ -226,6 +229,43 @@ TEST(HotPath, FCurveAndHierarchySamplingNeverAllocate) {
               }
             }),
             0);
+}
+
+TEST(HotPath, BlendInertializeAndRootMotionNeverAllocate) {
+  // Issue 23: one call per character into caller-owned spans.
+  const std::size_t n = 37;
+  std::vector<JointPose<float>> a(n), b(n), rest(n), out(n), delta(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    a[j].translation = {float(j), 1, 2};
+    b[j].rotation = Quatf::from_axis_angle(Vec3f{0, 1, 0}, 0.1f * float(j));
+  }
+  std::vector<float> mask(n, 0.5f);
+  const std::vector<BlendLayer<float>> layers{{a, 0.7f}, {b, 0.3f, mask}};
+  const std::vector<AdditiveLayer<float>> additive{{delta, 0.5f, mask}};
+  std::vector<JointOffset<float>> offsets(n);
+  std::vector<RootMotion<float>> motion(n);
+  std::vector<JointPose<float>> character(n);
+  EXPECT_EQ(allocations_in([&] {
+              additive_delta<float>(b, a, delta);
+              blend_poses<float>(layers, additive, rest, out);
+              inertialize_begin<float>(a, b, b, a, 1.0f / 30, offsets);
+              inertialize<float>(offsets, 0.1f, 0.3f, a, out);
+              extract_root_motion<float>(a, RootMotionOptions{.loop = true}, motion, character);
+            }),
+            0);
+  // The PoseBlock (SoA) overload and its conversions.
+  std::vector<PoseBlock> sa(pose_blocks(n)), sb(sa.size()), sr(sa.size()), so(sa.size()), sd(sa.size());
+  std::vector<float> smask(sa.size() * pose_block_joints);
+  const std::vector<BlendLayerSoA> layers_soa{{sa, 0.7f}, {sb, 0.3f, smask}};
+  const std::vector<AdditiveLayerSoA> additive_soa{{sd, 0.5f, smask}};
+  EXPECT_EQ(allocations_in([&] {
+              to_pose_blocks(a, sa), to_pose_blocks(b, sb), to_pose_blocks(rest, sr), to_pose_blocks(delta, sd);
+              to_mask_blocks(mask, smask);
+              blend_poses(layers_soa, additive_soa, sr, so);
+              from_pose_blocks(so, out);
+            }),
+            0);
+  EXPECT_TRUE(std::isfinite(out[5].translation.x + motion.back().translation.x));
 }
 
 }  // namespace

@@ -85,3 +85,32 @@ else
   python3 tools/bench/write_results.py --build-dir "$BUILD" --min-time "$BENCH_MIN_TIME" \
     --ozz-json "$OUT/ozz_rig_bench.json" --command "make bench-ozz PRESET=$PRESET"
 fi
+
+# ---- issue 23 (blend helper): blend_poses against ozz-animation's BlendingJob on the same poses
+# (tools/bench/ozz_blend_bench.cpp, poses from bench/blend_fixture.hpp), JSON to
+# build/ozz/ozz_blend_bench.json, then the tables re-rendered from the JSON files (write_results.py's
+# blend_section reads it).  Same flags and the same ozz libraries as above.
+# shellcheck disable=SC2086  # flags are words on purpose
+# (libinbetween.a holds blend_poses<float>'s kernel, src/tracks/blend_kernel.cpp, with its CPU dispatch.)
+"$CXX" $flags -Iinclude -Ibench -I"$OZZ_SRC/include" tools/bench/ozz_blend_bench.cpp -o "$OUT/ozz_blend_bench" \
+  "$OUT/build/src/animation/runtime/libozz_animation.a" "$OUT/build/src/base/libozz_base.a" "$BUILD/libinbetween.a" \
+  $(pkg-config --libs libhwy) -lbenchmark -lpthread
+"$OUT/ozz_blend_bench" "--benchmark_min_time=$BENCH_MIN_TIME" --benchmark_repetitions=3 \
+  --benchmark_report_aggregates_only=true --benchmark_enable_random_interleaving=true \
+  "--benchmark_out=$OUT/ozz_blend_bench.json.tmp" --benchmark_out_format=json
+python3 - "$OUT/ozz_blend_bench.json.tmp" "${ozz_version:-unknown}" "$ozz_commit" "$flags" "$inbetween_commit" "$(cut -d' ' -f1-3 /proc/loadavg)" <<'PY'
+import json, sys
+path, version, commit, flags, ours, load = sys.argv[1:]
+with open(path, encoding="utf-8") as f:
+    doc = json.load(f)
+doc["context"].update({"ozz_version": version, "ozz_commit": commit, "cxxflags": flags,
+                       "inbetween_commit": ours, "command": "make bench-ozz", "load": load})
+with open(path, "w", encoding="utf-8") as f:
+    json.dump(doc, f, indent=2)
+PY
+mv "$OUT/ozz_blend_bench.json.tmp" "$OUT/ozz_blend_bench.json"
+if ls "$BUILD"/bench/inbetween_bench_*.json >/dev/null 2>&1; then
+  python3 tools/bench/write_results.py --build-dir "$BUILD" --json-dir "$BUILD/bench" \
+    --ozz-json "$OUT/ozz_rig_bench.json" \
+    --command "make bench PRESET=$PRESET (re-rendered from its JSON by make bench-ozz)"
+fi

@@ -52,6 +52,7 @@ COMPARISON_FILTERS = {
     "inbetween_bench_curves": r"Sequential|BatchCubic",
     "inbetween_bench_tracks": r"BM_Rig.*/(25|64|71|551|1024)/2$",
     "inbetween_bench_io": r"BM_Bvh",
+    "inbetween_bench_blend": r"BM_BlendPoses<float>|BM_CharacterUpdate",
 }
 
 RIG_SIZES = (25, 64, 71, 551, 1024)
@@ -390,6 +391,85 @@ def ozz_long_section(ozz: Results | None) -> list[str]:
                      "max rotation error ozz / float / double", "max translation error ozz / float / double"], rows)
             + [""])
 
+
+# Issue 23's blending runtime: blend_poses in tree (bench/blend_bench.cpp) and against ozz-animation's
+# BlendingJob out of tree (tools/bench/ozz_blend_bench.cpp, the last block of bench_ozz.sh).
+BLEND_SIZES = (64, 1024)
+BLEND_LAYERS = (2, 4)
+BLEND_TARGET = 2.0  # issue 23: at least 2x ozz's BlendingJob (ratio = ozz / ours)
+OZZ_BLEND_PROGRAM = "ozz_blend_bench"
+DEFAULT_OZZ_BLEND_JSON = ROOT / "build" / "ozz" / f"{OZZ_BLEND_PROGRAM}.json"
+
+
+def read_ozz_blend(path: Path) -> Results | None:
+    """The ozz_blend_bench JSON `make bench-ozz` wrote, or None when it has not been run."""
+    if not path.is_file():
+        return None
+    r = Results()
+    r.add_json(OZZ_BLEND_PROGRAM, json.loads(path.read_text(encoding="utf-8")))
+    return r
+
+
+def blend_section(r: Results, oz: Results | None = None) -> list[str]:
+    """blend_poses and the 71-joint character update from inbetween_bench_blend, and the ozz
+    BlendingJob comparison when `make bench-ozz`'s JSON was read (read_ozz_blend)."""
+    rows = []
+    for scalar in ("float", "double"):
+        for j in BLEND_SIZES:
+            for n in BLEND_LAYERS:
+                t = r.time(f"BM_BlendPoses<{scalar}>/{j}/{n}")
+                if t is not None:
+                    rows.append([f"{scalar}, {j} joints, {n} layers", fmt_time(t), fmt_time(t / j)])
+    for j in BLEND_SIZES:
+        for n in BLEND_LAYERS:
+            t = r.time(f"BM_BlendPosesSoA/{j}/{n}")
+            if t is not None:
+                rows.append([f"float PoseBlocks (SoA), {j} joints, {n} layers", fmt_time(t), fmt_time(t / j)])
+    for scalar in ("float", "double"):
+        t = r.time(f"BM_CharacterUpdate<{scalar}>/71")
+        if t is not None:
+            rows.append([f"character update, {scalar}, 71 joints", fmt_time(t),
+                         f"{100 * t / 1e3 / FRAME_BUDGET_US:.2g} % of 1 ms"])
+    t = r.time("BM_CharacterUpdateSoA/71")
+    if t is not None:
+        rows.append(["character update through PoseBlocks (records converted), float, 71 joints", fmt_time(t),
+                     f"{100 * t / 1e3 / FRAME_BUDGET_US:.2g} % of 1 ms"])
+    out = ["### Blending runtime (`inbetween_bench_blend`, issue 23)", "",
+           "`blend_poses` on `bench/blend_fixture.hpp`'s poses (every layer but the first masked per joint, "
+           "rest pose below the 0.1 threshold), one call per character; the character update samples two "
+           "clips with `sample_rig` (the rig table's 71-joint rig at two phases), blends them with a "
+           "crossfade weight and an upper-body mask and takes the root motion out (docs/blending.md).", ""]
+    out += (table(["case", "time", "per joint / share of the frame budget"], rows) if rows
+            else ["not measured: no inbetween_bench_blend results in this run."]) + [""]
+    title = "### ozz-animation BlendingJob vs blend_poses (`make bench-ozz`, out of tree)"
+    if oz is None:
+        return out + [title, "", "not run: `make bench-ozz OZZ_SRC=…` writes build/ozz/ozz_blend_bench.json.", ""]
+    ctx = oz.contexts.get(OZZ_BLEND_PROGRAM, {})
+    rows = []
+    for j in BLEND_SIZES:
+        for n in BLEND_LAYERS:
+            o = oz.time(f"BM_OzzBlendingJob/{j}/{n}")
+            f = oz.time(f"BM_InbetweenBlend<float>/{j}/{n}")
+            d = oz.time(f"BM_InbetweenBlend<double>/{j}/{n}")
+            v = oz.time(f"BM_InbetweenBlendSoA/{j}/{n}")
+            q, qv = ratio(o, f), ratio(o, v)
+            rows.append([f"{j} joints, {n} layers", fmt_time(o), fmt_time(f), fmt_time(v), fmt_time(d), fmt_num(q),
+                         fmt_num(qv), verdict(qv, BLEND_TARGET, True),
+                         fmt_num(oz.counter(f"BM_OzzBlendingJob/{j}/{n}", "vs_inbetween_drot_rad"))])
+    intro = (f"Its own run: {ctx.get('date', '?')}, ozz-animation {ctx.get('ozz_version', '?')} (commit "
+             f"{ctx.get('ozz_commit', '?')}), inbetween {ctx.get('inbetween_commit', '?')}, flags "
+             f"`{ctx.get('cxxflags', '?')}`, load {ctx.get('load', '?')}; both sides in one binary "
+             "(`tools/bench/ozz_blend_bench.cpp`), interleaved repetitions (bench_ozz.sh runs 3), CPU-time medians.  Same poses "
+             "(ozz as SoA transforms of 4 joints; ours as `JointPose` records (AoS, what `sample_rig` writes) "
+             "and as `PoseBlock`s (SoA, 8 joints per block: the peer's layout, the AVX2 width), each converted "
+             f"once before timing).  Target: ours ≥ {BLEND_TARGET:g}× faster, judged on the SoA path (the "
+             "layout ozz's job takes).  Last column: largest rotation difference between ozz's output and "
+             "ours (rad; ozz normalises with an estimated reciprocal root); the SoA output equals the AoS "
+             "one bit for bit (counter vs_aos_unequal_values).")
+    return out + [title, "", intro, ""] + table(
+        ["poses", "ozz BlendingJob", "ours float AoS", "ours float SoA", "ours double AoS", "ozz / ours AoS",
+         "ozz / ours SoA", f"target ≥ {BLEND_TARGET:g}×", "rotation difference"], rows) + [""]
+
 def bvh_section(r: Results, three: Results | str | None) -> list[str]:
     """inbetween's BM_BvhReadBakeWorld against three.js (bvh_threejs.mjs); `three` is its Results or why not run."""
     title = "### Reading and baking a BVH clip in world space: inbetween vs three.js (`inbetween_bench_io`, `bvh_threejs.mjs`)"
@@ -550,7 +630,8 @@ def compiler_of(executable: str) -> str:
 
 # ----------------------------------------------------------------------------- document
 def render(r: Results, command: str, when: str, load: str, build_dir: Path | None = None,
-           ozz: Results | None = None, threejs: Results | str | None = None) -> str:
+           ozz: Results | None = None, threejs: Results | str | None = None,
+           ozz_blend: Results | None = None) -> str:
     lines = [BEGIN, "# Benchmark results (generated)", "",
              "Written by `make bench` (`tools/bench/write_results.py`) from the Google Benchmark programs in "
              "`bench/`, each comparison's two sides in one binary.  Times are CPU-time medians; ratios, "
@@ -559,6 +640,7 @@ def render(r: Results, command: str, when: str, load: str, build_dir: Path | Non
     lines += slerp_section(r) + arclength_section(r) + curves_section(r) + rig_section(r)
     lines += ozz_section(ozz)
     lines += rig_simd_section(r)
+    lines += blend_section(r, ozz_blend)
     lines += bvh_section(r, threejs)
     lines.append(END)
     return "\n".join(lines) + "\n"
@@ -666,6 +748,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--comparisons-only", action="store_true", help="run only the benchmarks the tables use")
     ap.add_argument("--ozz-json", default=str(DEFAULT_OZZ_JSON),
                     help="`make bench-ozz`'s ozz_rig_bench JSON; its table is added when the file exists")
+    ap.add_argument("--ozz-blend-json", default=str(DEFAULT_OZZ_BLEND_JSON),
+                    help="`make bench-ozz`'s ozz_blend_bench JSON; its table is added when the file exists")
     ap.add_argument("--date", help="date to print (default: now, UTC)")
     ap.add_argument("--load", help="load average to print (default: os.getloadavg())")
     ap.add_argument("--command", help="command to print (default: this invocation)")
@@ -682,7 +766,8 @@ def main(argv: list[str] | None = None) -> int:
     load = args.load or ", ".join(f"{x:.2f}" for x in os.getloadavg())
     command = args.command or "python3 tools/bench/write_results.py " + " ".join(
         shlex.quote(a) for a in (argv if argv is not None else sys.argv[1:]))
-    section = render(r, command, when, load, Path(args.build_dir), read_ozz(Path(args.ozz_json)), threejs)
+    section = render(r, command, when, load, Path(args.build_dir), read_ozz(Path(args.ozz_json)), threejs,
+                     read_ozz_blend(Path(args.ozz_blend_json)))
     results = Path(args.results)
     old = results.read_text(encoding="utf-8") if results.exists() else ""
     target = Path(args.output) if args.output else results
