@@ -1,0 +1,392 @@
+// Issue 24: ACL 2.1 (nfrechette/acl) on the CMU clips of Debian's assimp-testmodels, measured by
+// inbetween's own clip-error metric, in one binary.  Not part of the CMake build (ACL is not
+// packaged by Debian): `make bench-acl ACL_SRC=/path/to/acl` (tools/bench/bench_acl.sh) compiles
+// this file against ACL's headers (header-only, with its rtm submodule) and build/<preset>'s
+// libinbetween_io.a / libinbetween.a, runs it, and tools/bench/write_results.py puts the table into
+// bench/RESULTS.md.  Nothing of ACL enters the repository.
+//
+// Per clip and error threshold E (clip units), shell distance D:
+//   - ACL at compression level high, the qvvf transform error metric, every track's precision E and
+//     shell distance D, otherwise ACL's default settings (variable bit rates, trivial keyframe
+//     stripping, loop optimisation): its compressed bytes, its compression time, ACL's own error
+//     figure (calculate_compression_error) and the error by inbetween's metric (below);
+//   - "held to E": the ACL threshold, found by bisection, at which inbetween's metric is at most E
+//     on every frame and joint, and its bytes; or the smallest error ACL reaches at threshold 0
+//     when even that is above E;
+//   - decode: ns per joint to decompress a whole pose (decompress_tracks into a caller's buffer of
+//     rtm::qvvf) at the clip's frames in order and at seeded random times, median of repetitions.
+//
+// The metric (issue 24, as ACL measures, in double): for every frame and joint, the joint's origin
+// and the points at distance D along its local x, y and z axes, carried by the raw and by the
+// decompressed world (object-space) transform; the clip's error is the largest distance.
+#include <acl/compression/compress.h>
+#include <acl/compression/track_array.h>
+#include <acl/compression/track_error.h>
+#include <acl/compression/transform_error_metrics.h>
+#include <acl/core/ansi_allocator.h>
+#include <acl/decompression/decompress.h>
+#include <acl/version.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "inbetween/io/input.hpp"
+#include "inbetween/scene/scene.hpp"
+
+using namespace inbetween;
+using json = nlohmann::json;
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// The raw clip: every joint's local transform at every frame of the scene's range, in double.
+struct LocalPose {
+  Vec3d translation{};
+  Quatd rotation{};
+  Vec3d scale{1, 1, 1};
+};
+
+struct RawClip {
+  std::vector<std::string> names;
+  std::vector<std::optional<std::size_t>> parents;  // parents before children (checked)
+  double first_frame = 0;
+  double fps = 0;
+  std::size_t frames = 0;
+  std::vector<LocalPose> poses;  // frames × joints, frame-major
+  [[nodiscard]] std::size_t joints() const { return names.size(); }
+  [[nodiscard]] const LocalPose& at(std::size_t f, std::size_t j) const { return poses[f * joints() + j]; }
+};
+
+[[noreturn]] void fail(const std::string& what) {
+  std::fprintf(stderr, "acl_clip_bench: %s\n", what.c_str());
+  std::exit(2);
+}
+
+RawClip read_clip(const std::string& path) {
+  Expected<RawScene> raw = read_input_file(path);
+  if (!raw) fail(path + ": " + raw.error().message);
+  Expected<Scene> built = build_scene(*raw);
+  if (!built) fail(path + ": " + built.error().message);
+  const Scene& scene = *built;
+  RawClip clip;
+  clip.fps = scene.fps();
+  clip.first_frame = scene.range_start();
+  clip.frames = std::size_t(std::llround(scene.range_end() - scene.range_start())) + 1;
+  const auto objects = scene.objects();
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    if (!scene.path_legs(i).empty() || scene.camera(i)) fail(path + ": object '" + objects[i].name + "' is a path object or a camera");
+    if (objects[i].parent && *objects[i].parent >= i) fail(path + ": object '" + objects[i].name + "' comes before its parent");
+    clip.names.push_back(objects[i].name);
+    clip.parents.push_back(objects[i].parent);
+  }
+  clip.poses.resize(clip.frames * clip.joints());
+  for (std::size_t f = 0; f < clip.frames; ++f) {
+    for (std::size_t j = 0; j < clip.joints(); ++j) {
+      const Transform<double> t = objects[j].local.sample(clip.first_frame + double(f));
+      clip.poses[f * clip.joints() + j] = {t.translation, t.rotation, t.scale};
+    }
+  }
+  return clip;
+}
+
+// ---------------------------------------------------------------------------------------------
+// inbetween's error metric (see the top of the file).
+struct ClipErrorResult {
+  double max = 0;
+  std::size_t frame = 0, joint = 0;
+};
+
+ClipErrorResult clip_error(const RawClip& ref, const std::vector<LocalPose>& cand, double shell) {
+  const std::size_t J = ref.joints();
+  std::vector<Transform<double>> wr(J), wc(J);
+  const Vec3d axes[4] = {{0, 0, 0}, {shell, 0, 0}, {0, shell, 0}, {0, 0, shell}};
+  ClipErrorResult out;
+  for (std::size_t f = 0; f < ref.frames; ++f) {
+    for (std::size_t j = 0; j < J; ++j) {
+      const LocalPose& a = ref.at(f, j);
+      const LocalPose& b = cand[f * J + j];
+      const Transform<double> la{a.translation, a.rotation, a.scale}, lb{b.translation, b.rotation, b.scale};
+      wr[j] = ref.parents[j] ? compose(wr[*ref.parents[j]], la) : la;
+      wc[j] = ref.parents[j] ? compose(wc[*ref.parents[j]], lb) : lb;
+      for (const Vec3d& p : axes) {
+        const double d = norm(wr[j].apply_to_point(p) - wc[j].apply_to_point(p));
+        if (d > out.max) out = {d, f, j};
+      }
+    }
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// ACL side.
+acl::track_array_qvvf make_acl_tracks(acl::iallocator& alloc, const RawClip& clip, float threshold, float shell) {
+  const auto J = std::uint32_t(clip.joints()), N = std::uint32_t(clip.frames);
+  acl::track_array_qvvf tracks(alloc, J);
+  for (std::uint32_t j = 0; j < J; ++j) {
+    acl::track_desc_transformf desc;
+    desc.output_index = j;
+    desc.parent_index = clip.parents[j] ? std::uint32_t(*clip.parents[j]) : acl::k_invalid_track_index;
+    desc.precision = threshold;
+    desc.shell_distance = shell;
+    acl::track_qvvf track = acl::track_qvvf::make_reserve(desc, alloc, N, float(clip.fps));
+    for (std::uint32_t f = 0; f < N; ++f) {
+      const LocalPose& p = clip.at(f, j);
+      track[f] = rtm::qvv_set(rtm::quat_set(float(p.rotation.x), float(p.rotation.y), float(p.rotation.z), float(p.rotation.w)),
+                              rtm::vector_set(float(p.translation.x), float(p.translation.y), float(p.translation.z)),
+                              rtm::vector_set(float(p.scale.x), float(p.scale.y), float(p.scale.z)));
+    }
+    tracks[j] = std::move(track);
+  }
+  return tracks;
+}
+
+// Writes the decompressed pose into a caller's buffer of rtm::qvvf (one per joint).
+struct PoseWriter final : acl::track_writer {
+  rtm::qvvf* out = nullptr;
+  void RTM_SIMD_CALL write_rotation(std::uint32_t i, rtm::quatf_arg0 q) { out[i].rotation = q; }
+  void RTM_SIMD_CALL write_translation(std::uint32_t i, rtm::vector4f_arg0 t) { out[i].translation = t; }
+  void RTM_SIMD_CALL write_scale(std::uint32_t i, rtm::vector4f_arg0 s) { out[i].scale = s; }
+};
+
+using Context = acl::decompression_context<acl::default_transform_decompression_settings>;
+
+struct AclRun {
+  acl::compressed_tracks* tracks = nullptr;  // allocated by ACL, freed by release()
+  double threshold = 0;
+  std::uint32_t bytes = 0;
+  double compress_seconds = 0;
+  double acl_error = 0;
+  ClipErrorResult error;
+};
+
+void release(acl::iallocator& alloc, AclRun& run) {
+  if (run.tracks) alloc.deallocate(run.tracks, run.tracks->get_size());
+  run.tracks = nullptr;
+}
+
+// The decompressed local poses at the clip's frames (times k / fps, ACL's rounding `none`, as
+// ACL's own calculate_compression_error samples them).
+std::vector<LocalPose> decompress_frames(const RawClip& clip, const acl::compressed_tracks& tracks) {
+  Context ctx;
+  if (!ctx.initialize(tracks)) fail("ACL: decompression_context::initialize failed");
+  const std::size_t J = clip.joints();
+  std::vector<rtm::qvvf> pose(J);
+  PoseWriter writer;
+  writer.out = pose.data();
+  std::vector<LocalPose> out(clip.frames * J);
+  const float rate = float(clip.fps);
+  for (std::size_t f = 0; f < clip.frames; ++f) {
+    ctx.seek(float(f) / rate, acl::sample_rounding_policy::none);
+    ctx.decompress_tracks(writer);
+    for (std::size_t j = 0; j < J; ++j) {
+      const rtm::qvvf& q = pose[j];
+      out[f * J + j] = {Vec3d{rtm::vector_get_x(q.translation), rtm::vector_get_y(q.translation), rtm::vector_get_z(q.translation)},
+                        Quatd::from_xyzw(rtm::quat_get_x(q.rotation), rtm::quat_get_y(q.rotation), rtm::quat_get_z(q.rotation),
+                                         rtm::quat_get_w(q.rotation)),
+                        Vec3d{rtm::vector_get_x(q.scale), rtm::vector_get_y(q.scale), rtm::vector_get_z(q.scale)}};
+    }
+  }
+  return out;
+}
+
+AclRun compress_acl(acl::iallocator& alloc, const RawClip& clip, double threshold, double shell) {
+  const acl::track_array_qvvf raw = make_acl_tracks(alloc, clip, float(threshold), float(shell));
+  acl::compression_settings settings = acl::get_default_compression_settings();
+  settings.level = acl::compression_level8::high;
+  acl::qvvf_transform_error_metric metric;
+  settings.error_metric = &metric;
+  AclRun run;
+  run.threshold = threshold;
+  acl::output_stats stats;
+  const auto t0 = std::chrono::steady_clock::now();
+  const acl::error_result result = acl::compress_track_list(alloc, raw, settings, run.tracks, stats);
+  run.compress_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (result.any()) fail(std::string("ACL: compress_track_list: ") + result.c_str());
+  run.bytes = run.tracks->get_size();
+  Context ctx;
+  ctx.initialize(*run.tracks);
+  run.acl_error = acl::calculate_compression_error(alloc, raw, ctx, metric).error;
+  run.error = clip_error(clip, decompress_frames(clip, *run.tracks), shell);
+  return run;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// ns per joint to decompress a whole pose at each of `times`, median of `reps` passes.
+double decode_ns_per_joint(const acl::compressed_tracks& tracks, std::size_t joints, const std::vector<float>& times, int reps) {
+  Context ctx;
+  ctx.initialize(tracks);
+  std::vector<rtm::qvvf> pose(joints);
+  PoseWriter writer;
+  writer.out = pose.data();
+  std::vector<double> ns;
+  for (int r = 0; r < reps + 1; ++r) {  // the first pass warms the caches and is not counted
+    const auto t0 = std::chrono::steady_clock::now();
+    for (float t : times) {
+      ctx.seek(t, acl::sample_rounding_policy::none);
+      ctx.decompress_tracks(writer);
+      asm volatile("" : : "r"(pose.data()) : "memory");
+    }
+    const double elapsed = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+    if (r > 0) ns.push_back(elapsed / double(times.size() * joints));
+  }
+  return median(ns);
+}
+
+json error_json(const RawClip& clip, const ClipErrorResult& e) {
+  return {{"max", e.max}, {"frame", clip.first_frame + double(e.frame)}, {"joint", clip.names[e.joint]}};
+}
+
+struct Options {
+  std::string out;
+  std::vector<std::string> clips;
+  std::vector<double> errors{0.01, 0.1};
+  double shell = 3;
+  int reps = 7;
+  int bisect_steps = 12;
+};
+
+std::vector<double> parse_list(const std::string& s) {
+  std::vector<double> v;
+  std::size_t pos = 0;
+  while (pos <= s.size()) {
+    const std::size_t comma = s.find(',', pos);
+    v.push_back(std::stod(s.substr(pos, comma - pos)));
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  return v;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) fail(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "-o") o.out = next();
+    else if (a == "--errors") o.errors = parse_list(next());
+    else if (a == "--shell") o.shell = std::stod(next());
+    else if (a == "--reps") o.reps = std::stoi(next());
+    else if (a == "--bisect-steps") o.bisect_steps = std::stoi(next());
+    else o.clips.push_back(a);
+  }
+  if (o.out.empty() || o.clips.empty())
+    fail("usage: acl_clip_bench -o OUT.json [--errors 0.01,0.1] [--shell 3] [--reps 7] [--bisect-steps 12] CLIP...");
+  return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = parse(argc, argv);
+  acl::ansi_allocator alloc;
+  json results = json::array();
+  for (const std::string& path : opt.clips) {
+    const RawClip clip = read_clip(path);
+    const std::size_t J = clip.joints();
+    const double raw_bytes = double(clip.frames * J * 10 * sizeof(float));  // t, q, s as float32
+    std::fprintf(stderr, "== %s: %zu joints, %zu frames at %.4f fps, raw float32 %.0f bytes\n", path.c_str(), J, clip.frames,
+                 clip.fps, raw_bytes);
+    // Decode times: the frames in order, and as many seeded uniform random times in the clip.
+    std::vector<float> seq_times(clip.frames), rnd_times(clip.frames);
+    const float duration = float(double(clip.frames - 1) / clip.fps);
+    std::mt19937 rng(24);
+    std::uniform_real_distribution<float> uni(0.0F, duration);
+    for (std::size_t f = 0; f < clip.frames; ++f) {
+      seq_times[f] = std::min(float(f) / float(clip.fps), duration);
+      rnd_times[f] = uni(rng);
+    }
+    json clip_json = {{"clip", std::filesystem::path(path).filename().string()}, {"path", path},
+                      {"joints", J}, {"frames", clip.frames}, {"fps", clip.fps}, {"raw_float32_bytes", raw_bytes},
+                      {"shell", opt.shell}, {"cases", json::array()}};
+    for (const double E : opt.errors) {
+      AclRun at = compress_acl(alloc, clip, E, opt.shell);
+      const double seq_ns = decode_ns_per_joint(*at.tracks, J, seq_times, opt.reps);
+      const double rnd_ns = decode_ns_per_joint(*at.tracks, J, rnd_times, opt.reps);
+      std::fprintf(stderr, "  E=%g: %u bytes (%.1f:1) in %.2f s, ACL error %.5f, measured %.5f; decode %.1f / %.1f ns/joint\n", E,
+                   at.bytes, raw_bytes / at.bytes, at.compress_seconds, at.acl_error, at.error.max, seq_ns, rnd_ns);
+      json c = {{"error_bound", E},
+                {"acl", {{"threshold", E}, {"bytes", at.bytes}, {"ratio_to_raw", raw_bytes / at.bytes},
+                         {"compress_seconds", at.compress_seconds}, {"acl_error", at.acl_error},
+                         {"measured_error", error_json(clip, at.error)},
+                         {"decode_ns_per_joint", {{"sequential", seq_ns}, {"random", rnd_ns}}}}}};
+      // Held to E: the largest threshold (bisection in log scale) whose measured error is ≤ E.
+      json held;
+      if (at.error.max <= E) {
+        held = {{"threshold", E}, {"bytes", at.bytes}, {"measured_error", error_json(clip, at.error)}, {"steps", 0}};
+      } else {
+        double lo = E / 8;
+        AclRun best = compress_acl(alloc, clip, lo, opt.shell);
+        while (best.error.max > E && lo > E / 4096) {
+          release(alloc, best);
+          lo /= 8;
+          best = compress_acl(alloc, clip, lo, opt.shell);
+        }
+        if (best.error.max > E) {  // not even far below E: the floor at threshold 0
+          release(alloc, best);
+          AclRun floor = compress_acl(alloc, clip, 0.0, opt.shell);
+          held = {{"reached", false}, {"threshold", 0.0}, {"bytes", floor.bytes}, {"measured_error", error_json(clip, floor.error)},
+                  {"acl_error", floor.acl_error}};
+          std::fprintf(stderr, "  E=%g held: not reached; at threshold 0 %u bytes, measured %.5f\n", E, floor.bytes, floor.error.max);
+          release(alloc, floor);
+        } else {
+          double hi = (lo == E / 8) ? E : lo * 8;
+          int steps = 0;
+          for (; steps < opt.bisect_steps; ++steps) {
+            const double mid = std::sqrt(lo * hi);
+            AclRun r = compress_acl(alloc, clip, mid, opt.shell);
+            if (r.error.max <= E) {
+              release(alloc, best);
+              best = r;
+              lo = mid;
+            } else {
+              release(alloc, r);
+              hi = mid;
+            }
+          }
+          held = {{"reached", true}, {"threshold", best.threshold}, {"bytes", best.bytes}, {"acl_error", best.acl_error},
+                  {"measured_error", error_json(clip, best.error)}, {"steps", steps}};
+          std::fprintf(stderr, "  E=%g held: threshold %.6g, %u bytes, measured %.5f\n", E, best.threshold, best.bytes, best.error.max);
+          release(alloc, best);
+        }
+      }
+      c["acl_held_to_error"] = held;
+      clip_json["cases"].push_back(c);
+      release(alloc, at);
+    }
+    results.push_back(clip_json);
+  }
+  const json doc = {{"context", {{"acl_version", std::to_string(ACL_VERSION_MAJOR) + "." + std::to_string(ACL_VERSION_MINOR) + "." +
+                                                     std::to_string(ACL_VERSION_PATCH)},
+                                 {"compression_level", "high"},
+                                 {"error_metric", "qvvf_transform_error_metric"},
+                                 {"decompression_settings", "default_transform_decompression_settings"},
+                                 {"decode_repetitions", opt.reps}}},
+                    {"clips", results}};
+  const std::string tmp = opt.out + ".tmp";
+  {
+    std::ofstream f(tmp);
+    f << doc.dump(2) << "\n";
+    if (!f) fail("cannot write " + tmp);
+  }
+  std::filesystem::rename(tmp, opt.out);
+  return 0;
+}
