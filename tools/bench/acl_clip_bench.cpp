@@ -160,7 +160,10 @@ struct PoseWriter final : acl::track_writer {
   void RTM_SIMD_CALL write_scale(std::uint32_t i, rtm::vector4f_arg0 s) { out[i].scale = s; }
 };
 
+// Timing uses ACL's default transform settings (variable formats only, as compressed here); the
+// error measurements use its debug settings, which also decode the raw formats.
 using Context = acl::decompression_context<acl::default_transform_decompression_settings>;
+using CheckContext = acl::decompression_context<acl::debug_transform_decompression_settings>;
 
 struct AclRun {
   acl::compressed_tracks* tracks = nullptr;  // allocated by ACL, freed by release()
@@ -179,7 +182,7 @@ void release(acl::iallocator& alloc, AclRun& run) {
 // The decompressed local poses at the clip's frames (times k / fps, ACL's rounding `none`, as
 // ACL's own calculate_compression_error samples them).
 std::vector<LocalPose> decompress_frames(const RawClip& clip, const acl::compressed_tracks& tracks) {
-  Context ctx;
+  CheckContext ctx;
   if (!ctx.initialize(tracks)) fail("ACL: decompression_context::initialize failed");
   const std::size_t J = clip.joints();
   std::vector<rtm::qvvf> pose(J);
@@ -201,9 +204,11 @@ std::vector<LocalPose> decompress_frames(const RawClip& clip, const acl::compres
   return out;
 }
 
-AclRun compress_acl(acl::iallocator& alloc, const RawClip& clip, double threshold, double shell) {
+// ACL at `threshold` with its default settings at level high, or with get_raw_compression_settings()
+// (full-precision floats, every sample kept) when `raw_format`.
+AclRun compress_acl(acl::iallocator& alloc, const RawClip& clip, double threshold, double shell, bool raw_format = false) {
   const acl::track_array_qvvf raw = make_acl_tracks(alloc, clip, float(threshold), float(shell));
-  acl::compression_settings settings = acl::get_default_compression_settings();
+  acl::compression_settings settings = raw_format ? acl::get_raw_compression_settings() : acl::get_default_compression_settings();
   settings.level = acl::compression_level8::high;
   acl::qvvf_transform_error_metric metric;
   settings.error_metric = &metric;
@@ -215,7 +220,7 @@ AclRun compress_acl(acl::iallocator& alloc, const RawClip& clip, double threshol
   run.compress_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (result.any()) fail(std::string("ACL: compress_track_list: ") + result.c_str());
   run.bytes = run.tracks->get_size();
-  Context ctx;
+  CheckContext ctx;
   ctx.initialize(*run.tracks);
   run.acl_error = acl::calculate_compression_error(alloc, raw, ctx, metric).error;
   run.error = clip_error(clip, decompress_frames(clip, *run.tracks), shell);
@@ -314,9 +319,20 @@ int main(int argc, char** argv) {
       seq_times[f] = std::min(float(f) / float(clip.fps), duration);
       rnd_times[f] = uni(rng);
     }
+    // The floor of any float32 representation: the raw samples rounded to float, by the metric.
+    std::vector<LocalPose> rounded = clip.poses;
+    for (LocalPose& p : rounded) {
+      p.translation = Vec3d{double(float(p.translation.x)), double(float(p.translation.y)), double(float(p.translation.z))};
+      p.rotation = Quatd::from_wxyz(double(float(p.rotation.w)), double(float(p.rotation.x)), double(float(p.rotation.y)),
+                                    double(float(p.rotation.z)));
+      p.scale = Vec3d{double(float(p.scale.x)), double(float(p.scale.y)), double(float(p.scale.z))};
+    }
+    const ClipErrorResult float_floor = clip_error(clip, rounded, opt.shell);
+    std::fprintf(stderr, "  raw samples rounded to float32: error %.3g\n", float_floor.max);
     json clip_json = {{"clip", std::filesystem::path(path).filename().string()}, {"path", path},
                       {"joints", J}, {"frames", clip.frames}, {"fps", clip.fps}, {"raw_float32_bytes", raw_bytes},
-                      {"shell", opt.shell}, {"cases", json::array()}};
+                      {"shell", opt.shell},
+                      {"float32_rounding_error", error_json(clip, float_floor)}, {"cases", json::array()}};
     for (const double E : opt.errors) {
       AclRun at = compress_acl(alloc, clip, E, opt.shell);
       const double seq_ns = decode_ns_per_joint(*at.tracks, J, seq_times, opt.reps);
@@ -343,10 +359,14 @@ int main(int argc, char** argv) {
         if (best.error.max > E) {  // not even far below E: the floor at threshold 0
           release(alloc, best);
           AclRun floor = compress_acl(alloc, clip, 0.0, opt.shell);
+          AclRun full = compress_acl(alloc, clip, 0.0, opt.shell, true);
           held = {{"reached", false}, {"threshold", 0.0}, {"bytes", floor.bytes}, {"measured_error", error_json(clip, floor.error)},
-                  {"acl_error", floor.acl_error}};
-          std::fprintf(stderr, "  E=%g held: not reached; at threshold 0 %u bytes, measured %.5f\n", E, floor.bytes, floor.error.max);
+                  {"acl_error", floor.acl_error},
+                  {"raw_format", {{"bytes", full.bytes}, {"measured_error", error_json(clip, full.error)}, {"acl_error", full.acl_error}}}};
+          std::fprintf(stderr, "  E=%g held: not reached; at threshold 0 %u bytes, measured %.5f (%s); raw format %u bytes, %.5f\n", E,
+                       floor.bytes, floor.error.max, clip.names[floor.error.joint].c_str(), full.bytes, full.error.max);
           release(alloc, floor);
+          release(alloc, full);
         } else {
           double hi = (lo == E / 8) ? E : lo * 8;
           int steps = 0;
