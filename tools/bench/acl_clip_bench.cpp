@@ -16,9 +16,10 @@
 //   - decode: ns per joint to decompress a whole pose (decompress_tracks into a caller's buffer of
 //     rtm::qvvf) at the clip's frames in order and at seeded random times, median of repetitions.
 //
-// The metric (issue 24, as ACL measures, in double): for every frame and joint, the joint's origin
-// and the points at distance D along its local x, y and z axes, carried by the raw and by the
-// decompressed world (object-space) transform; the clip's error is the largest distance.
+// The metric is inbetween's clip_error (scene/sampled_clip.hpp), the one its compressor is held to:
+// for every frame and joint, the joint's origin and the points at distance D along its local x, y
+// and z axes, carried by the raw and by the decompressed world (object-space) transform, in
+// double; the clip's error is the largest distance.  ACL's decompressed poses become a SampledClip.
 #include <acl/compression/compress.h>
 #include <acl/compression/track_array.h>
 #include <acl/compression/track_error.h>
@@ -35,7 +36,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -43,6 +43,7 @@
 #include <nlohmann/json.hpp>
 
 #include "inbetween/io/input.hpp"
+#include "inbetween/scene/sampled_clip.hpp"
 #include "inbetween/scene/scene.hpp"
 
 using namespace inbetween;
@@ -50,99 +51,39 @@ using json = nlohmann::json;
 
 namespace {
 
-// ---------------------------------------------------------------------------------------------
-// The raw clip: every joint's local transform at every frame of the scene's range, in double.
-struct LocalPose {
-  Vec3d translation{};
-  Quatd rotation{};
-  Vec3d scale{1, 1, 1};
-};
-
-struct RawClip {
-  std::vector<std::string> names;
-  std::vector<std::optional<std::size_t>> parents;  // parents before children (checked)
-  double first_frame = 0;
-  double fps = 0;
-  std::size_t frames = 0;
-  std::vector<LocalPose> poses;  // frames × joints, frame-major
-  [[nodiscard]] std::size_t joints() const { return names.size(); }
-  [[nodiscard]] const LocalPose& at(std::size_t f, std::size_t j) const { return poses[f * joints() + j]; }
-};
-
 [[noreturn]] void fail(const std::string& what) {
   std::fprintf(stderr, "acl_clip_bench: %s\n", what.c_str());
   std::exit(2);
 }
 
-RawClip read_clip(const std::string& path) {
+// The raw clip: every joint's local transform at every frame of the scene's range, in double
+// (sample_clip, the reference inbetween's compressor is held to).
+SampledClip read_clip(const std::string& path) {
   Expected<RawScene> raw = read_input_file(path);
   if (!raw) fail(path + ": " + raw.error().message);
   Expected<Scene> built = build_scene(*raw);
   if (!built) fail(path + ": " + built.error().message);
-  const Scene& scene = *built;
-  RawClip clip;
-  clip.fps = scene.fps();
-  clip.first_frame = scene.range_start();
-  clip.frames = std::size_t(std::llround(scene.range_end() - scene.range_start())) + 1;
-  const auto objects = scene.objects();
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    if (!scene.path_legs(i).empty() || scene.camera(i)) fail(path + ": object '" + objects[i].name + "' is a path object or a camera");
-    if (objects[i].parent && *objects[i].parent >= i) fail(path + ": object '" + objects[i].name + "' comes before its parent");
-    clip.names.push_back(objects[i].name);
-    clip.parents.push_back(objects[i].parent);
-  }
-  clip.poses.resize(clip.frames * clip.joints());
-  for (std::size_t f = 0; f < clip.frames; ++f) {
-    for (std::size_t j = 0; j < clip.joints(); ++j) {
-      const Transform<double> t = objects[j].local.sample(clip.first_frame + double(f));
-      clip.poses[f * clip.joints() + j] = {t.translation, t.rotation, t.scale};
-    }
-  }
-  return clip;
+  Expected<SampledClip> clip = sample_clip(*built);
+  if (!clip) fail(path + ": " + clip.error().message);
+  return std::move(clip).value();
 }
 
-// ---------------------------------------------------------------------------------------------
-// inbetween's error metric (see the top of the file).
-struct ClipErrorResult {
-  double max = 0;
-  std::size_t frame = 0, joint = 0;
-};
-
-ClipErrorResult clip_error(const RawClip& ref, const std::vector<LocalPose>& cand, double shell) {
-  const std::size_t J = ref.joints();
-  std::vector<Transform<double>> wr(J), wc(J);
-  const Vec3d axes[4] = {{0, 0, 0}, {shell, 0, 0}, {0, shell, 0}, {0, 0, shell}};
-  ClipErrorResult out;
-  for (std::size_t f = 0; f < ref.frames; ++f) {
-    for (std::size_t j = 0; j < J; ++j) {
-      const LocalPose& a = ref.at(f, j);
-      const LocalPose& b = cand[f * J + j];
-      const Transform<double> la{a.translation, a.rotation, a.scale}, lb{b.translation, b.rotation, b.scale};
-      wr[j] = ref.parents[j] ? compose(wr[*ref.parents[j]], la) : la;
-      wc[j] = ref.parents[j] ? compose(wc[*ref.parents[j]], lb) : lb;
-      for (const Vec3d& p : axes) {
-        const double d = norm(wr[j].apply_to_point(p) - wc[j].apply_to_point(p));
-        if (d > out.max) out = {d, f, j};
-      }
-    }
-  }
-  return out;
-}
+const JointPose<double>& at(const SampledClip& clip, std::size_t f, std::size_t j) { return clip.poses[f * clip.joints() + j]; }
 
 // ---------------------------------------------------------------------------------------------
 // ACL side.
-acl::track_array_qvvf make_acl_tracks(acl::iallocator& alloc, const RawClip& clip, float threshold, float shell) {
+acl::track_array_qvvf make_acl_tracks(acl::iallocator& alloc, const SampledClip& clip, float threshold, float shell) {
   const auto J = std::uint32_t(clip.joints()), N = std::uint32_t(clip.frames);
   acl::track_array_qvvf tracks(alloc, J);
   for (std::uint32_t j = 0; j < J; ++j) {
     acl::track_desc_transformf desc;
     desc.output_index = j;
-    desc.parent_index = clip.parents[j] ? std::uint32_t(*clip.parents[j]) : acl::k_invalid_track_index;
+    desc.parent_index = clip.parents[j] >= 0 ? std::uint32_t(clip.parents[j]) : acl::k_invalid_track_index;
     desc.precision = threshold;
     desc.shell_distance = shell;
-    acl::track_qvvf track = acl::track_qvvf::make_reserve(desc, alloc, N, float(clip.fps));
+    acl::track_qvvf track = acl::track_qvvf::make_reserve(desc, alloc, N, float(clip.frame_rate));
     for (std::uint32_t f = 0; f < N; ++f) {
-      const LocalPose& p = clip.at(f, j);
+      const JointPose<double>& p = at(clip, f, j);
       track[f] = rtm::qvv_set(rtm::quat_set(float(p.rotation.x), float(p.rotation.y), float(p.rotation.z), float(p.rotation.w)),
                               rtm::vector_set(float(p.translation.x), float(p.translation.y), float(p.translation.z)),
                               rtm::vector_set(float(p.scale.x), float(p.scale.y), float(p.scale.z)));
@@ -171,7 +112,7 @@ struct AclRun {
   std::uint32_t bytes = 0;
   double compress_seconds = 0;
   double acl_error = 0;
-  ClipErrorResult error;
+  ClipError error;
 };
 
 void release(acl::iallocator& alloc, AclRun& run) {
@@ -181,21 +122,21 @@ void release(acl::iallocator& alloc, AclRun& run) {
 
 // The decompressed local poses at the clip's frames (times k / fps, ACL's rounding `none`, as
 // ACL's own calculate_compression_error samples them).
-std::vector<LocalPose> decompress_frames(const RawClip& clip, const acl::compressed_tracks& tracks) {
+SampledClip decompress_frames(const SampledClip& clip, const acl::compressed_tracks& tracks) {
   CheckContext ctx;
   if (!ctx.initialize(tracks)) fail("ACL: decompression_context::initialize failed");
   const std::size_t J = clip.joints();
   std::vector<rtm::qvvf> pose(J);
   PoseWriter writer;
   writer.out = pose.data();
-  std::vector<LocalPose> out(clip.frames * J);
-  const float rate = float(clip.fps);
+  SampledClip out = clip;
+  const float rate = float(clip.frame_rate);
   for (std::size_t f = 0; f < clip.frames; ++f) {
     ctx.seek(float(f) / rate, acl::sample_rounding_policy::none);
     ctx.decompress_tracks(writer);
     for (std::size_t j = 0; j < J; ++j) {
       const rtm::qvvf& q = pose[j];
-      out[f * J + j] = {Vec3d{rtm::vector_get_x(q.translation), rtm::vector_get_y(q.translation), rtm::vector_get_z(q.translation)},
+      out.poses[f * J + j] = {Vec3d{rtm::vector_get_x(q.translation), rtm::vector_get_y(q.translation), rtm::vector_get_z(q.translation)},
                         Quatd::from_xyzw(rtm::quat_get_x(q.rotation), rtm::quat_get_y(q.rotation), rtm::quat_get_z(q.rotation),
                                          rtm::quat_get_w(q.rotation)),
                         Vec3d{rtm::vector_get_x(q.scale), rtm::vector_get_y(q.scale), rtm::vector_get_z(q.scale)}};
@@ -206,7 +147,7 @@ std::vector<LocalPose> decompress_frames(const RawClip& clip, const acl::compres
 
 // ACL at `threshold` with its default settings at level high, or with get_raw_compression_settings()
 // (full-precision floats, every sample kept) when `raw_format`.
-AclRun compress_acl(acl::iallocator& alloc, const RawClip& clip, double threshold, double shell, bool raw_format = false) {
+AclRun compress_acl(acl::iallocator& alloc, const SampledClip& clip, double threshold, double shell, bool raw_format = false) {
   const acl::track_array_qvvf raw = make_acl_tracks(alloc, clip, float(threshold), float(shell));
   acl::compression_settings settings = raw_format ? acl::get_raw_compression_settings() : acl::get_default_compression_settings();
   settings.level = acl::compression_level8::high;
@@ -253,7 +194,7 @@ double decode_ns_per_joint(const acl::compressed_tracks& tracks, std::size_t joi
   return median(ns);
 }
 
-json error_json(const RawClip& clip, const ClipErrorResult& e) {
+json error_json(const SampledClip& clip, const ClipError& e) {
   return {{"max", e.max}, {"frame", clip.first_frame + double(e.frame)}, {"joint", clip.names[e.joint]}};
 }
 
@@ -262,7 +203,7 @@ struct Options {
   std::vector<std::string> clips;
   std::vector<double> errors{0.01, 0.1};
   double shell = 3;
-  int reps = 7;
+  int reps = 31;
   int bisect_steps = 12;
 };
 
@@ -294,7 +235,7 @@ Options parse(int argc, char** argv) {
     else o.clips.push_back(a);
   }
   if (o.out.empty() || o.clips.empty())
-    fail("usage: acl_clip_bench -o OUT.json [--errors 0.01,0.1] [--shell 3] [--reps 7] [--bisect-steps 12] CLIP...");
+    fail("usage: acl_clip_bench -o OUT.json [--errors 0.01,0.1] [--shell 3] [--reps 31] [--bisect-steps 12] CLIP...");
   return o;
 }
 
@@ -305,32 +246,32 @@ int main(int argc, char** argv) {
   acl::ansi_allocator alloc;
   json results = json::array();
   for (const std::string& path : opt.clips) {
-    const RawClip clip = read_clip(path);
+    const SampledClip clip = read_clip(path);
     const std::size_t J = clip.joints();
     const double raw_bytes = double(clip.frames * J * 10 * sizeof(float));  // t, q, s as float32
     std::fprintf(stderr, "== %s: %zu joints, %zu frames at %.4f fps, raw float32 %.0f bytes\n", path.c_str(), J, clip.frames,
-                 clip.fps, raw_bytes);
+                 clip.frame_rate, raw_bytes);
     // Decode times: the frames in order, and as many seeded uniform random times in the clip.
     std::vector<float> seq_times(clip.frames), rnd_times(clip.frames);
-    const float duration = float(double(clip.frames - 1) / clip.fps);
+    const float duration = float(double(clip.frames - 1) / clip.frame_rate);
     std::mt19937 rng(24);
     std::uniform_real_distribution<float> uni(0.0F, duration);
     for (std::size_t f = 0; f < clip.frames; ++f) {
-      seq_times[f] = std::min(float(f) / float(clip.fps), duration);
+      seq_times[f] = std::min(float(f) / float(clip.frame_rate), duration);
       rnd_times[f] = uni(rng);
     }
     // The floor of any float32 representation: the raw samples rounded to float, by the metric.
-    std::vector<LocalPose> rounded = clip.poses;
-    for (LocalPose& p : rounded) {
+    SampledClip rounded = clip;
+    for (JointPose<double>& p : rounded.poses) {
       p.translation = Vec3d{double(float(p.translation.x)), double(float(p.translation.y)), double(float(p.translation.z))};
       p.rotation = Quatd::from_wxyz(double(float(p.rotation.w)), double(float(p.rotation.x)), double(float(p.rotation.y)),
                                     double(float(p.rotation.z)));
       p.scale = Vec3d{double(float(p.scale.x)), double(float(p.scale.y)), double(float(p.scale.z))};
     }
-    const ClipErrorResult float_floor = clip_error(clip, rounded, opt.shell);
+    const ClipError float_floor = clip_error(clip, rounded, opt.shell);
     std::fprintf(stderr, "  raw samples rounded to float32: error %.3g\n", float_floor.max);
     json clip_json = {{"clip", std::filesystem::path(path).filename().string()}, {"path", path},
-                      {"joints", J}, {"frames", clip.frames}, {"fps", clip.fps}, {"raw_float32_bytes", raw_bytes},
+                      {"joints", J}, {"frames", clip.frames}, {"fps", clip.frame_rate}, {"raw_float32_bytes", raw_bytes},
                       {"shell", opt.shell},
                       {"float32_rounding_error", error_json(clip, float_floor)}, {"cases", json::array()}};
     for (const double E : opt.errors) {
