@@ -25,6 +25,14 @@ table says "not run" and why.
 ozz-animation is not packaged in Debian: `make bench-ozz OZZ_SRC=…` (tools/bench/bench_ozz.sh) runs
 tools/bench/ozz_rig_bench.cpp out of tree and writes build/ozz/ozz_rig_bench.json; when that file
 exists (`--ozz-json`), its table joins the section, otherwise a line says how to produce it.
+
+ACL 2.1 (issue 24) is not packaged either: `make bench-acl ACL_SRC=…` (tools/bench/bench_acl.sh)
+writes build/acl/acl_clip_bench.json and the tracked reference bench/acl_reference.json.  The
+"ACL 2.1 vs inbetween compression" table takes ACL's figures from the former when it exists
+(`--acl-json`), else from the latter (`--acl-reference`), and inbetween's from the same JSON when
+acl_clip_bench measured both sides, else from inbetween_bench_compression's counters
+(BM_ClipRaw/<clip>: raw_float32_bytes; BM_CompressClip/<clip>/<E>: bytes, measured_error;
+BM_SampleCompressed/<clip>/<E>/sequential|random: items_per_second = joints per second).
 """
 
 from __future__ import annotations
@@ -67,6 +75,10 @@ BVH_TARGET = 10.0  # issue 20: reading and baking 01_03.bvh at least 10× faster
 THREEJS_PROGRAM = "bvh_threejs"  # tools/bench/bvh_threejs.mjs; its JSON is <bench dir>/bvh_threejs.json
 THREEJS_SCRIPT = ROOT / "tools" / "bench" / "bvh_threejs.mjs"
 THREEJS_REPETITIONS = 5
+ACL_PROGRAM = "acl_clip_bench"  # tools/bench/acl_clip_bench.cpp, run by `make bench-acl`
+DEFAULT_ACL_JSON = ROOT / "build" / "acl" / f"{ACL_PROGRAM}.json"
+DEFAULT_ACL_REFERENCE = ROOT / "bench" / "acl_reference.json"
+ACL_SIZE_TARGET = 0.9  # issue 24: at most 0.9× ACL's bytes at the same E and D, error ≤ E on every frame and joint
 
 
 # ----------------------------------------------------------------------------- reading results
@@ -484,9 +496,108 @@ def compiler_of(executable: str) -> str:
     return found[-1] if found else "unknown"
 
 
+# Issue 24: ACL 2.1 against inbetween's compression on the CMU clips (make bench-acl / bench/acl_reference.json).
+def read_acl(live: Path, reference: Path) -> tuple[dict, str] | None:
+    """ACL's figures: `make bench-acl`'s JSON when it exists, else the tracked reference; and which one."""
+    for path, what in ((live, "this machine's `make bench-acl` run"), (reference, "the recorded reference")):
+        if path.is_file():
+            return json.loads(path.read_text(encoding="utf-8")), f"{what} (`{path.relative_to(ROOT) if path.is_relative_to(ROOT) else path}`)"
+    return None
+
+
+def fmt_bytes(x: float | None) -> str:
+    return "—" if x is None else f"{x:,.0f}".replace(",", " ")
+
+
+def acl_inbetween_side(r: Results, case: dict, stem: str) -> dict:
+    """inbetween's figures for one clip and E: from acl_clip_bench's JSON (same run) or the in-tree bench."""
+    ours = case.get("inbetween")
+    if ours:
+        err = ours.get("measured_error")
+        return {"bytes": ours.get("bytes"), "error": err.get("max") if isinstance(err, dict) else err,
+                "seq": ours.get("decode_ns_per_joint", {}).get("sequential"),
+                "rnd": ours.get("decode_ns_per_joint", {}).get("random"),
+                "seconds": ours.get("compress_seconds"), "where": "acl_clip_bench"}
+    name = f"BM_CompressClip/{stem}/{case['error_bound']:g}"
+    t = r.time(name)
+    sample = f"BM_SampleCompressed/{stem}/{case['error_bound']:g}/"
+    return {"bytes": r.counter(name, "bytes"), "error": r.counter(name, "measured_error"),
+            "seq": r.per_item_ns(sample + "sequential"), "rnd": r.per_item_ns(sample + "random"),
+            "seconds": None if t is None else t / 1e9, "where": "inbetween_bench_compression"}
+
+
+def acl_section(r: Results, acl: tuple[dict, str] | None) -> list[str]:
+    """Issue 24's table: ACL's bytes, errors and decode times next to inbetween's, per clip and E."""
+    title = "### ACL 2.1 vs inbetween compression (`make bench-acl`, out of tree; `inbetween_bench_compression`)"
+    if acl is None:
+        return [title, "", "not run: ACL is not packaged and bench/acl_reference.json is missing; "
+                "`make bench-acl ACL_SRC=/path/to/acl` measures it.", ""]
+    doc, source = acl
+    ctx = doc.get("context", {})
+    sizes, speeds = [], []
+    for clip in doc.get("clips", []):
+        stem = Path(clip["clip"]).stem
+        raw = r.counter(f"BM_ClipRaw/{stem}", "raw_float32_bytes") or clip.get("raw_float32_bytes")
+        label = f"{stem} ({clip['joints']} joints × {clip['frames']} frames)"
+        for case in clip["cases"]:
+            e = case["error_bound"]
+            a, held = case["acl"], case["acl_held_to_error"]
+            ours = acl_inbetween_side(r, case, stem)
+            a_err = a["measured_error"]["max"] if isinstance(a["measured_error"], dict) else a["measured_error"]
+            if held.get("reached", True):
+                held_cell = f"{fmt_bytes(held['bytes'])} (threshold {held['threshold']:.3g})"
+            else:
+                floor = held["measured_error"]["max"] if isinstance(held["measured_error"], dict) else held["measured_error"]
+                raw_fmt = held.get("raw_format", {}).get("bytes")
+                held_cell = (f"not reachable: error {fmt_num(floor)} at threshold 0 ({fmt_bytes(held['bytes'])} B)"
+                             + ("" if raw_fmt is None else f"; raw format {fmt_bytes(raw_fmt)} B"))
+            q = ratio(ours["bytes"], a["bytes"])
+            if ours["bytes"] is None:
+                target = "not measured"
+            elif ours["error"] is None or ours["error"] > e:
+                target = "missed (error > E)"
+            else:
+                target = verdict(q, ACL_SIZE_TARGET, False)
+            sizes.append([label, f"{e:g}", fmt_bytes(raw),
+                          f"{fmt_bytes(a['bytes'])} ({fmt_num(ratio(raw, a['bytes']))}:1)",
+                          f"{fmt_num(a_err)} / {fmt_num(a['acl_error'])}", held_cell,
+                          "—" if ours["bytes"] is None else f"{fmt_bytes(ours['bytes'])} ({fmt_num(ratio(raw, ours['bytes']))}:1)",
+                          fmt_num(ours["error"]), fmt_num(q), target])
+            dec = a["decode_ns_per_joint"]
+            speeds.append([label, f"{e:g}", f"{fmt_num(dec['sequential'])} / {fmt_num(dec['random'])}",
+                           f"{fmt_num(ours['seq'])} / {fmt_num(ours['rnd'])}",
+                           fmt_num(ratio(ours["seq"], dec["sequential"])),
+                           f"{a['compress_seconds']:.2f} s",
+                           "—" if ours["seconds"] is None else f"{ours['seconds']:.2f} s"])
+    out = [title, "",
+           "Issue 24: the CMU clips of Debian's assimp-testmodels (01_01 and 01_03 in CMU's unit of 5.644 cm, "
+           "Boxing_Toes in cm), error bound E and shell distance D = "
+           f"{doc['clips'][0].get('shell', 3) if doc.get('clips') else 3:g} in clip units.  Error = inbetween's "
+           "metric (`clip_error`, scene/sampled_clip.hpp: the joint's origin and the points at D along its local "
+           "axes, raw vs decompressed world transforms, largest distance over every frame and joint); ACL's own "
+           "figure (`calculate_compression_error`, same points without the origin, in float) beside it.  ACL: "
+           f"{ctx.get('acl_version', '?')} (commit {ctx.get('acl_commit', '?')}), level "
+           f"{ctx.get('compression_level', 'high')}, `qvvf_transform_error_metric`, every track's precision E, "
+           "ACL's default settings otherwise; \"held to E\" is the ACL threshold found by bisection at which "
+           "inbetween's metric is ≤ E.  ACL's figures come from " + source + f", {ctx.get('date', '?')} on "
+           f"{ctx.get('machine', '?')} (inbetween {ctx.get('inbetween_commit', '?')}).  Target: inbetween's "
+           f"bytes ≤ {ACL_SIZE_TARGET:g}× ACL's at E, with its error ≤ E.  Raw = frames × joints × 10 float32.", ""]
+    out += table(["clip", "E", "raw float32 B", "ACL at E: B (ratio)", "ACL error: ours / ACL's",
+                  "ACL held to E: B", "inbetween: B (ratio)", "inbetween error", "inbetween / ACL at E",
+                  f"target ≤ {ACL_SIZE_TARGET:g}× and error ≤ E"], sizes)
+    out += ["", "Decode: ns per joint to sample a whole pose into a caller's buffer, at the clip's frames in order / "
+            "at random times (ACL: `decompress_tracks` with `default_transform_decompression_settings`, median of "
+            f"{ctx.get('decode_repetitions', '?')} passes).  Target: inbetween's time per joint ≤ ACL's on the same "
+            "clip and machine (ratio ≤ 1).  Compression time is reported, not a target.", ""]
+    out += table(["clip", "E", "ACL ns/joint (in order / random)", "inbetween ns/joint (in order / random)",
+                  "inbetween / ACL (in order)", "ACL compression", "inbetween compression"], speeds)
+    return out + [""]
+
+
 # ----------------------------------------------------------------------------- document
 def render(r: Results, command: str, when: str, load: str, build_dir: Path | None = None,
-           ozz: Results | None = None, threejs: Results | str | None = None) -> str:
+           ozz: Results | None = None, threejs: Results | str | None = None,
+           acl: tuple[dict, str] | None = None) -> str:
     lines = [BEGIN, "# Benchmark results (generated)", "",
              "Written by `make bench` (`tools/bench/write_results.py`) from the Google Benchmark programs in "
              "`bench/`, each comparison's two sides in one binary.  Times are CPU-time medians; ratios, "
@@ -496,6 +607,7 @@ def render(r: Results, command: str, when: str, load: str, build_dir: Path | Non
     lines += ozz_section(ozz)
     lines += rig_simd_section(r)
     lines += bvh_section(r, threejs)
+    lines += acl_section(r, acl)
     lines.append(END)
     return "\n".join(lines) + "\n"
 
@@ -602,6 +714,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--comparisons-only", action="store_true", help="run only the benchmarks the tables use")
     ap.add_argument("--ozz-json", default=str(DEFAULT_OZZ_JSON),
                     help="`make bench-ozz`'s ozz_rig_bench JSON; its table is added when the file exists")
+    ap.add_argument("--acl-json", default=str(DEFAULT_ACL_JSON),
+                    help="`make bench-acl`'s acl_clip_bench JSON; ACL's figures come from it when the file exists")
+    ap.add_argument("--acl-reference", default=str(DEFAULT_ACL_REFERENCE),
+                    help="ACL's recorded figures (bench/acl_reference.json), used when --acl-json does not exist")
     ap.add_argument("--date", help="date to print (default: now, UTC)")
     ap.add_argument("--load", help="load average to print (default: os.getloadavg())")
     ap.add_argument("--command", help="command to print (default: this invocation)")
@@ -618,7 +734,8 @@ def main(argv: list[str] | None = None) -> int:
     load = args.load or ", ".join(f"{x:.2f}" for x in os.getloadavg())
     command = args.command or "python3 tools/bench/write_results.py " + " ".join(
         shlex.quote(a) for a in (argv if argv is not None else sys.argv[1:]))
-    section = render(r, command, when, load, Path(args.build_dir), read_ozz(Path(args.ozz_json)), threejs)
+    section = render(r, command, when, load, Path(args.build_dir), read_ozz(Path(args.ozz_json)), threejs,
+                     read_acl(Path(args.acl_json), Path(args.acl_reference)))
     results = Path(args.results)
     old = results.read_text(encoding="utf-8") if results.exists() else ""
     target = Path(args.output) if args.output else results
