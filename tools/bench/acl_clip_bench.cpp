@@ -11,8 +11,9 @@
 //     stripping, loop optimisation): its compressed bytes, its compression time, ACL's own error
 //     figure (calculate_compression_error) and the error by inbetween's metric (below);
 //   - "held to E": the ACL threshold, found by bisection, at which inbetween's metric is at most E
-//     on every frame and joint, and its bytes; or the smallest error ACL reaches at threshold 0
-//     when even that is above E;
+//     on every frame and joint, and its bytes; or, when even threshold 0 stays above E, that floor
+//     and ACL at E with full-precision quaternions (rotation_format8::quatf_full) instead of its
+//     variable drop-w rotations;
 //   - decode: ns per joint to decompress a whole pose (decompress_tracks into a caller's buffer of
 //     rtm::qvvf) at the clip's frames in order and at seeded random times, median of repetitions.
 //
@@ -145,12 +146,17 @@ SampledClip decompress_frames(const SampledClip& clip, const acl::compressed_tra
   return out;
 }
 
-// ACL at `threshold` with its default settings at level high, or with get_raw_compression_settings()
-// (full-precision floats, every sample kept) when `raw_format`.
-AclRun compress_acl(acl::iallocator& alloc, const SampledClip& clip, double threshold, double shell, bool raw_format = false) {
+// Which ACL settings: its defaults at level high (the table's), or the same with full-precision
+// quaternions instead of its variable drop-w rotations (where the defaults cannot reach E).
+enum class AclFormat { variable, full_rotations };
+
+// ACL at `threshold` (every track's precision), compression level high, the qvvf error metric.
+AclRun compress_acl(acl::iallocator& alloc, const SampledClip& clip, double threshold, double shell,
+                    AclFormat format = AclFormat::variable) {
   const acl::track_array_qvvf raw = make_acl_tracks(alloc, clip, float(threshold), float(shell));
-  acl::compression_settings settings = raw_format ? acl::get_raw_compression_settings() : acl::get_default_compression_settings();
+  acl::compression_settings settings = acl::get_default_compression_settings();
   settings.level = acl::compression_level8::high;
+  if (format == AclFormat::full_rotations) settings.rotation_format = acl::rotation_format8::quatf_full;
   acl::qvvf_transform_error_metric metric;
   settings.error_metric = &metric;
   AclRun run;
@@ -300,11 +306,12 @@ int main(int argc, char** argv) {
         if (best.error.max > E) {  // not even far below E: the floor at threshold 0
           release(alloc, best);
           AclRun floor = compress_acl(alloc, clip, 0.0, opt.shell);
-          AclRun full = compress_acl(alloc, clip, 0.0, opt.shell, true);
+          AclRun full = compress_acl(alloc, clip, E, opt.shell, AclFormat::full_rotations);
           held = {{"reached", false}, {"threshold", 0.0}, {"bytes", floor.bytes}, {"measured_error", error_json(clip, floor.error)},
                   {"acl_error", floor.acl_error},
-                  {"raw_format", {{"bytes", full.bytes}, {"measured_error", error_json(clip, full.error)}, {"acl_error", full.acl_error}}}};
-          std::fprintf(stderr, "  E=%g held: not reached; at threshold 0 %u bytes, measured %.5f (%s); raw format %u bytes, %.5f\n", E,
+                  {"full_rotations", {{"threshold", E}, {"bytes", full.bytes}, {"measured_error", error_json(clip, full.error)},
+                                      {"acl_error", full.acl_error}}}};
+          std::fprintf(stderr, "  E=%g held: not reached; at threshold 0 %u bytes, measured %.5f (%s); full rotations at E %u bytes, %.5f\n", E,
                        floor.bytes, floor.error.max, clip.names[floor.error.joint].c_str(), full.bytes, full.error.max);
           release(alloc, floor);
           release(alloc, full);

@@ -45,8 +45,8 @@ def condense(doc: dict) -> dict:
                      "acl_held_to_error": {k: held[k] for k in ("reached", "threshold", "bytes", "measured_error")
                                            if k in held}}
             entry["acl_held_to_error"].setdefault("reached", True)
-            if "raw_format" in held:
-                entry["acl_held_to_error"]["raw_format"] = held["raw_format"]
+            if "full_rotations" in held:
+                entry["acl_held_to_error"]["full_rotations"] = held["full_rotations"]
             if "inbetween" in case:
                 entry["inbetween"] = case["inbetween"]
             c["cases"].append(entry)

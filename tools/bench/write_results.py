@@ -548,9 +548,12 @@ def acl_section(r: Results, acl: tuple[dict, str] | None) -> list[str]:
                 held_cell = f"{fmt_bytes(held['bytes'])} (threshold {held['threshold']:.3g})"
             else:
                 floor = held["measured_error"]["max"] if isinstance(held["measured_error"], dict) else held["measured_error"]
-                raw_fmt = held.get("raw_format", {}).get("bytes")
+                full = held.get("full_rotations")
+                full_err = None if full is None else full["measured_error"]
+                full_err = full_err.get("max") if isinstance(full_err, dict) else full_err
                 held_cell = (f"not reachable: error {fmt_num(floor)} at threshold 0 ({fmt_bytes(held['bytes'])} B)"
-                             + ("" if raw_fmt is None else f"; raw format {fmt_bytes(raw_fmt)} B"))
+                             + ("" if full is None else f"; with full-precision rotations {fmt_bytes(full['bytes'])} B, "
+                                f"error {fmt_num(full_err)}"))
             q = ratio(ours["bytes"], a["bytes"])
             if ours["bytes"] is None:
                 target = "not measured"
