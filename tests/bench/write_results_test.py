@@ -538,8 +538,19 @@ class Acl(unittest.TestCase):
                                        (0.5, 0.011, "missed (error > E)")):
             self.inject(doc, "01_01", 0.01, acl * factor, error)
             c = self.cells(doc)
+            self.assertEqual(c[7], f"{error:g} / —")
             self.assertEqual(c[8], f"{factor:.3g}")
             self.assertEqual(c[9], verdict, c)
+
+    def test_the_float_runtime_error_counts(self):
+        doc = self.doc()
+        acl = self.inject(doc, "01_01", 0.01, 0, 0.009)
+        self.inject(doc, "01_01", 0.01, acl * 0.8, 0.009)
+        case = doc["clips"][0]["cases"][0]
+        case["inbetween"]["runtime_error"] = {"max": 0.0101}
+        c = self.cells(doc)
+        self.assertEqual(c[7], "0.009 / 0.0101")
+        self.assertEqual(c[9], "missed (error > E)")
 
     def test_inbetween_from_the_in_tree_counters(self):
         doc = self.doc()
@@ -552,7 +563,7 @@ class Acl(unittest.TestCase):
         r = results_of(load_docs())
         r.add_json("inbetween_bench_compression", bench)
         c = self.cells(doc, r, "0.1")
-        self.assertEqual(c[7], "0.09")
+        self.assertEqual(c[7], "0.09 / —")
         self.assertEqual(c[8], "0.7")
         self.assertEqual(c[9], "met")
 
