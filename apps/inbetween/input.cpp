@@ -32,7 +32,7 @@ RawScene load_raw(const InputArgs& args) {
   if (!args.animation.empty() && format != InputFormat::gltf && format != InputFormat::assimp) {
     throw CommandError{"--animation: only for glTF and assimp input (.gltf, .glb, .fbx, .dae, …)"};
   }
-  if ((args.scale != 1 || !args.axes.empty()) && (format == InputFormat::scene_json || format == InputFormat::gltf)) {
+  if ((args.scale != 1 || !args.axes.empty()) && (format == InputFormat::scene_json || format == InputFormat::gltf || format == InputFormat::ibc)) {
     throw CommandError{std::string(args.scale != 1 ? "--scale" : "--axes") + ": only for BVH and assimp input"};
   }
   if (!keyed_in_time) {

@@ -10,6 +10,7 @@
 #include "inbetween/io/bvh.hpp"
 #include "inbetween/io/assimp.hpp"
 #include "inbetween/io/gltf.hpp"
+#include "inbetween/io/ibc.hpp"
 #include "inbetween/io/read_file.hpp"
 #include "inbetween/io/scene.hpp"
 
@@ -30,6 +31,14 @@ bool has_glb_magic(const std::filesystem::path& file) {
   return in.read(magic, 4) && std::memcmp(magic, "glTF", 4) == 0;
 }
 
+bool has_ibc_file_magic(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return false;
+  std::ifstream in(file, std::ios::binary);
+  char magic[4] = {};
+  return in.read(magic, 4) && has_ibc_magic(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(magic), 4));
+}
+
 }  // namespace
 
 std::string_view to_string(InputFormat format) noexcept {
@@ -38,6 +47,7 @@ std::string_view to_string(InputFormat format) noexcept {
     case InputFormat::gltf: return "glTF";
     case InputFormat::bvh: return "BVH";
     case InputFormat::assimp: return "assimp";
+    case InputFormat::ibc: return "ibc";
   }
   return "scene";
 }
@@ -47,10 +57,12 @@ InputFormat input_format(const std::filesystem::path& file) {
   const std::string ext = lower_extension(file);
   if (ext == ".gltf" || ext == ".glb") return InputFormat::gltf;
   if (ext == ".bvh") return InputFormat::bvh;
+  if (ext == ".ibc") return InputFormat::ibc;
   if (ext == ".json") return InputFormat::scene_json;
   for (const std::string_view known : assimp_extensions())
     if (ext == known) return InputFormat::assimp;
   if (has_glb_magic(file)) return InputFormat::gltf;
+  if (has_ibc_file_magic(file)) return InputFormat::ibc;
   return InputFormat::scene_json;
 }
 
@@ -81,6 +93,13 @@ Expected<RawScene> read_input_file(const std::filesystem::path& file, const Inpu
       assimp.axes = options.axes;
       assimp.notes = options.notes;
       return read_assimp_file(file, assimp);
+    }
+    case InputFormat::ibc: {
+      auto clip = read_ibc_file(file);
+      if (!clip) return clip.error();
+      RawScene scene = ibc_raw_scene(*clip);
+      if (options.fps > 0) scene.fps = options.fps;
+      return scene;
     }
     case InputFormat::scene_json: break;
   }

@@ -7,6 +7,7 @@
 ///   glTF 2.0     .gltf, .glb, or the "glTF" magic io/gltf.hpp  (read_gltf_file)
 ///   BVH          .bvh                             io/bvh.hpp   (read_bvh_file)
 ///   assimp       .fbx .dae .x .md5anim .smd …     io/assimp.hpp (read_assimp_file)
+///   compressed   .ibc, or the "IBC\x1a" magic      io/ibc.hpp    (read_ibc_file, ibc_raw_scene)
 
 #include <cstdint>
 #include <filesystem>
@@ -25,9 +26,10 @@ enum class InputFormat : std::uint8_t {
   gltf,        ///< glTF 2.0 (docs/gltf.md)
   bvh,         ///< Biovision hierarchy motion capture (docs/bvh.md)
   assimp,      ///< what Debian's assimp reads with node animation: FBX, Collada, … (docs/assimp.md)
+  ibc,         ///< inbetween's compressed clip, .ibc or its magic (docs/compression.md)
 };
 
-/// The name of a format as the commands print it: "scene", "glTF", "BVH", "assimp".
+/// The name of a format as the commands print it: "scene", "glTF", "BVH", "assimp", "ibc".
 [[nodiscard]] std::string_view to_string(InputFormat format) noexcept;
 
 /// Options of read_input_file(); each reader uses those that apply to it.

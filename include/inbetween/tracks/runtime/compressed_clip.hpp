@@ -1,0 +1,264 @@
+#pragma once
+/// A compressed rig clip (issue 24, docs/compression.md): the bytes of an .ibc file, checked once
+/// by load_compressed_clip() and then sampled in place.  The clip's frames are cut into pieces
+/// (at discontinuities such as a rest pose on frame 0, and at a maximum length); in every piece
+/// every joint has three tracks, translation, rotation and scale, each absent (identity),
+/// constant, or a uniform cubic B-spline over the piece's frames whose control points are
+/// range-reduced and quantised at a per-track bit width in one shared bit stream.  Rotations are stored relative to a per-track reference quaternion r
+/// (q = r ⊗ q_rel) as q_rel's x, y, z with w = √(1 − x² − y² − z²) ≥ 0 (or all four components,
+/// normalised, when q_rel turns too far for that).  The uniform knots give O(1) random access: a
+/// sample reads four control points per track.
+///
+/// This header holds the format (layout constants, the parsed track table) and the two decoders:
+/// decode_frame() in double, the reference that compression's error guarantee is measured on and
+/// that the .ibc reader turns into keyed tracks, and sample_compressed(), the runtime's float
+/// sampler (no allocation, caller-owned span), which agrees with decode_frame within
+/// compressed_sample_tolerance.  The compressor is scene/compress.hpp; the file, io/ibc.hpp.
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "inbetween/math/expected.hpp"
+#include "inbetween/math/quat.hpp"
+#include "inbetween/math/vec.hpp"
+#include "inbetween/tracks/runtime/rig_clip.hpp"
+
+namespace inbetween {
+
+/// The .ibc magic, the first four bytes of the file.
+inline constexpr std::array<std::uint8_t, 4> ibc_magic = {'I', 'B', 'C', 0x1a};
+/// The format version this build writes and reads.
+inline constexpr std::uint16_t ibc_version = 1;
+/// Bytes of the fixed header.
+inline constexpr std::size_t ibc_header_size = 64;
+/// Zero bytes after the last control point of the bit stream (one 8-byte load reads any value).
+inline constexpr std::size_t ibc_stream_padding = 8;
+/// Largest bit width of a quantised value.
+inline constexpr unsigned ibc_max_bits = 24;
+/// Control points per block: each block stores, per component, the smallest index of its
+/// control points (at the track's bit width) and the width of the offsets from it (5 bits), then
+/// the offsets — lossless range reduction of the track's quantised indices.
+inline constexpr unsigned ibc_block_controls = 16;
+/// Bits of a block's per-component offset width (0 … ibc_max_bits).
+inline constexpr unsigned ibc_width_bits = 5;
+
+/// What a track stores.
+enum class CompressedTrackKind : std::uint8_t {
+  absent = 0,    ///< the identity value (translation 0, rotation identity, scale 1); no payload
+  constant = 1,  ///< one value (float32), held over the clip
+  spline = 2,    ///< a uniform cubic B-spline with quantised control points
+};
+
+/// Which of a joint's tracks.
+enum class CompressedChannel : std::uint8_t { translation = 0, rotation = 1, scale = 2 };
+
+/// One track as parsed from the file, with the decoding constants precomputed.
+struct CompressedTrack {
+  CompressedTrackKind kind = CompressedTrackKind::absent;  ///< what it stores
+  std::uint8_t components = 3;   ///< spline values per control point: 3, or 4 for a rotation with w stored
+  std::uint8_t degree = 3;       ///< 1: linear between control points (h = 1: the samples themselves); 3: cubic B-spline
+  std::uint8_t bits = 0;         ///< bits per quantised value, 0 … ibc_max_bits (0: every value is `min`)
+  std::uint32_t spacing = 1;     ///< frames per knot interval (h ≥ 1)
+  std::uint32_t controls = 0;    ///< control points: segments + degree, segments = max(1, ⌈(piece frames − 1)/h⌉)
+  std::uint64_t bit_offset = 0;  ///< first bit of the track's first block in the bit stream
+  std::uint32_t first_block = 0; ///< index of the track's first block in the clip's block table (set on load)
+  std::array<float, 4> min{};    ///< spline: per-component lower end of the range; constant: the value (w, x, y, z for a rotation)
+  std::array<float, 4> extent{}; ///< spline: per-component range length (≥ 0)
+  std::array<float, 4> step{};   ///< extent / (2^bits − 1) (0 when bits == 0), computed on load
+  Quatf reference{};             ///< rotation spline: q = reference ⊗ q_rel
+};
+
+/// Segments of a spline of `frames` samples at knot spacing `spacing`: max(1, ⌈(frames − 1)/spacing⌉).
+[[nodiscard]] constexpr std::uint64_t compressed_segments(std::uint64_t frames, std::uint64_t spacing) noexcept {
+  const std::uint64_t s = frames > 1 ? (frames - 1 + spacing - 1) / spacing : 1;
+  return s < 1 ? 1 : s;
+}
+
+/// The uniform cubic B-spline basis at t ∈ [0, 1]: weights of control points i … i+3 (sum 1, ≥ 0).
+template <Real T>
+[[gnu::always_inline]] inline std::array<T, 4> bspline_weights(T t) noexcept {
+  const T s = T(1) - t, t2 = t * t, t3 = t2 * t;
+  return {s * s * s / T(6), (T(3) * t3 - T(6) * t2 + T(4)) / T(6), (T(-3) * t3 + T(3) * t2 + T(3) * t + T(1)) / T(6),
+          t3 / T(6)};
+}
+
+/// The linear basis at t ∈ [0, 1]: weights of control points i, i+1.
+template <Real T>
+[[gnu::always_inline]] inline std::array<T, 4> linear_weights(T t) noexcept {
+  return {T(1) - t, t, T(0), T(0)};
+}
+
+/// Bits of a spline track's blocks in the stream (ibc_block_controls control points per block:
+/// per component the base index at `bits` and an ibc_width_bits width, then the offsets), for
+/// quantised indices `values` (controls × components, control-major).
+[[nodiscard]] std::uint64_t compressed_block_bits(std::span<const std::uint32_t> values, unsigned components, unsigned bits) noexcept;
+
+/// Reconstructs a rotation from a relative rotation's spline components: 3 components → w = √(1 − |v|²)
+/// (v scaled to unit length when |v| > 1); 4 → normalised (identity when zero); then reference ⊗ q_rel.
+template <Real T>
+[[gnu::always_inline]] inline Quat<T> compressed_rotation(const Quat<T>& reference, const T* v, unsigned components) noexcept {
+  Quat<T> rel;
+  if (components == 3) {
+    const T n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if (n2 >= T(1)) {
+      const T inv = T(1) / std::sqrt(n2);
+      rel = Quat<T>::from_wxyz(T(0), v[0] * inv, v[1] * inv, v[2] * inv);
+    } else {
+      rel = Quat<T>::from_wxyz(std::sqrt(T(1) - n2), v[0], v[1], v[2]);
+    }
+  } else {
+    const T n2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3];
+    if (!(n2 > T(0))) return reference;
+    const T inv = T(1) / std::sqrt(n2);
+    rel = Quat<T>::from_wxyz(v[3] * inv, v[0] * inv, v[1] * inv, v[2] * inv);
+  }
+  return reference * rel;
+}
+
+/// A checked compressed clip: owns the .ibc bytes and the parsed track table.  Only
+/// load_compressed_clip() makes one, so every offset and width in it is in bounds.
+class CompressedClip {
+ public:
+  /// Joints (each with translation, rotation and scale tracks).
+  [[nodiscard]] std::size_t joints() const noexcept { return parents_.size(); }
+  /// Samples per track (frames of the clip, one per frame).
+  [[nodiscard]] std::size_t frames() const noexcept { return frames_; }
+  /// Frame of sample 0.
+  [[nodiscard]] double first_frame() const noexcept { return first_frame_; }
+  /// Frames per second.
+  [[nodiscard]] double frame_rate() const noexcept { return frame_rate_; }
+  /// Per joint: parent joint or −1 (parents before children).
+  [[nodiscard]] std::span<const std::int32_t> parents() const noexcept { return parents_; }
+  /// Per joint: name.
+  [[nodiscard]] std::span<const std::string> names() const noexcept { return names_; }
+  /// First sample of each piece: 0, then strictly increasing, < frames().
+  [[nodiscard]] std::span<const std::uint32_t> pieces() const noexcept { return pieces_; }
+  /// The piece holding sample `frame_index` (the last piece starting at or before it).
+  [[nodiscard]] std::size_t piece_of(std::size_t frame_index) const noexcept {
+    std::size_t p = 0;
+    while (p + 1 < pieces_.size() && pieces_[p + 1] <= frame_index) ++p;
+    return p;
+  }
+  /// Samples in piece `p`.
+  [[nodiscard]] std::size_t piece_frames(std::size_t p) const noexcept {
+    return (p + 1 < pieces_.size() ? pieces_[p + 1] : frames_) - pieces_[p];
+  }
+  /// Track of `joint`'s `channel` in piece `piece`.
+  [[nodiscard]] const CompressedTrack& track(std::size_t piece, std::size_t joint, CompressedChannel channel) const noexcept {
+    return tracks_[(piece * parents_.size() + joint) * 3 + std::size_t(channel)];
+  }
+  /// All tracks, piece-major, then joint-major (translation, rotation, scale).
+  [[nodiscard]] std::span<const CompressedTrack> tracks() const noexcept { return tracks_; }
+  /// The error bound requested at compression (clip units).
+  [[nodiscard]] double error_bound() const noexcept { return error_bound_; }
+  /// The virtual-vertex error measured at compression (clip units, ≤ error_bound()).
+  [[nodiscard]] double measured_error() const noexcept { return measured_error_; }
+  /// The shell distance of the error metric (clip units).
+  [[nodiscard]] double shell() const noexcept { return shell_; }
+  /// The whole file.
+  [[nodiscard]] std::span<const std::uint8_t> bytes() const noexcept { return bytes_; }
+  /// The bit stream of control points (padded with ibc_stream_padding zero bytes).
+  [[nodiscard]] const std::uint8_t* stream() const noexcept { return bytes_.data() + stream_offset_; }
+  /// Bit position of every block in the stream (all spline tracks' blocks, in track order; a
+  /// track's start at its first_block) — the index built on load.
+  [[nodiscard]] std::span<const std::uint32_t> blocks() const noexcept { return blocks_; }
+
+ private:
+  friend Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes);
+  CompressedClip() = default;
+  std::vector<std::uint8_t> bytes_;
+  std::vector<std::int32_t> parents_;
+  std::vector<std::string> names_;
+  std::vector<std::uint32_t> pieces_;
+  std::vector<CompressedTrack> tracks_;
+  std::vector<std::uint32_t> blocks_;
+  std::size_t frames_ = 0, stream_offset_ = 0;
+  double first_frame_ = 0, frame_rate_ = 0, error_bound_ = 0, measured_error_ = 0, shell_ = 0;
+};
+
+/// Checks and parses .ibc bytes (docs/compression.md, "Format"): magic, version, header size,
+/// file size, counts, offsets and sizes in bounds, parents before children, names, track kinds,
+/// component counts, bit widths ≤ ibc_max_bits, spacings ≥ 1, control counts matching the frames,
+/// control points inside the bit stream, finite floats (ranges ≥ 0, references of unit length
+/// within 1e-3, constant rotations non-zero).  Errors: parse, with the place Element{"byte", offset}
+/// of the offending field and the field named in the message.
+[[nodiscard]] Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes);
+
+/// The quantisation step of component c of a spline track in double: extent / (2^bits − 1), 0
+/// at 0 bits (decode_frame's; the float sampler uses the rounded CompressedTrack::step).
+[[nodiscard]] inline double compressed_step(const CompressedTrack& t, unsigned c) noexcept {
+  return t.bits == 0 ? 0.0 : double(t.extent[c]) / double((std::uint64_t(1) << t.bits) - 1);
+}
+
+/// Reads the quantised indices of control point `n` of spline track `t` into idx[0 … components).
+[[gnu::always_inline]] inline void compressed_control(const CompressedTrack& t, const std::uint8_t* stream,
+                                                      const std::uint32_t* blocks, std::uint32_t n,
+                                                      std::uint32_t* idx) noexcept;
+
+/// One quantised value of the stream: `bits` bits at bit position `bit` (LSB first).
+[[gnu::always_inline]] inline std::uint32_t compressed_value(const std::uint8_t* stream, std::uint64_t bit,
+                                                             unsigned bits) noexcept {
+  std::uint64_t word;
+  __builtin_memcpy(&word, stream + (bit >> 3), 8);
+  if constexpr (std::endian::native == std::endian::big) word = __builtin_bswap64(word);
+  return std::uint32_t((word >> (bit & 7)) & ((std::uint64_t(1) << bits) - 1));
+}
+
+inline void compressed_control(const CompressedTrack& t, const std::uint8_t* stream, const std::uint32_t* blocks,
+                               std::uint32_t n, std::uint32_t* idx) noexcept {
+  const unsigned comps = t.components, bits = t.bits;
+  std::uint64_t pos = blocks[t.first_block + n / ibc_block_controls];
+  std::uint32_t width[4];
+  unsigned row = 0, before[4];
+  for (unsigned c = 0; c < comps; ++c, pos += bits + ibc_width_bits) {
+    idx[c] = compressed_value(stream, pos, bits);
+    width[c] = compressed_value(stream, pos + bits, ibc_width_bits);
+    before[c] = row;
+    row += width[c];
+  }
+  pos += std::uint64_t(n % ibc_block_controls) * row;
+  for (unsigned c = 0; c < comps; ++c) idx[c] += compressed_value(stream, pos + before[c], width[c]);
+}
+
+/// The local pose of every joint at sample `frame_index` (< frames(), asserted), in double: the
+/// reference decoder (compression measures its error on this; the .ibc reader keys these values).
+/// out.size() == joints() (asserted).  Never allocates.
+void decode_frame(const CompressedClip& clip, std::size_t frame_index, std::span<JointPose<double>> out) noexcept;
+
+/// The largest difference between sample_compressed() and decode_frame() at the same frame
+/// (translation and scale, relative to the track's largest |value| + 1, and rotation angle, radians):
+/// float evaluation of the basis and the range (a few float ulp of each term).
+inline constexpr double compressed_sample_tolerance = 1e-5;
+
+/// The runtime sampler: the local pose of every joint at `frame` (a frame number, clamped to the
+/// clip's frames; fractional frames evaluate the splines between samples) in float, read in place
+/// from the bit stream (four control points per spline track).  local.size() == joints()
+/// (asserted).  Never allocates, noexcept.
+void sample_compressed(const CompressedClip& clip, double frame, std::span<JointPose<float>> local) noexcept;
+
+/// The .ibc bytes of a clip: the header fields, the joints, the tracks (kind, widths, ranges; bit
+/// offsets are assigned here in track order) and each spline track's quantised control values
+/// (controls × components values, control-major).  The compressor's writer; load_compressed_clip()
+/// reads it back.
+struct CompressedClipParts {
+  std::vector<std::int32_t> parents;        ///< per joint
+  std::vector<std::string> names;           ///< per joint (≤ 65 535 bytes each)
+  std::vector<std::uint32_t> pieces{0};     ///< first sample of each piece (0 first, increasing)
+  std::size_t frames = 0;                   ///< samples per track
+  double first_frame = 0, frame_rate = 0;   ///< timing
+  double error_bound = 0, measured_error = 0, shell = 0;  ///< the metric's figures
+  std::vector<CompressedTrack> tracks;      ///< 3 per joint and piece, piece-major then joint-major
+  std::vector<std::vector<std::uint32_t>> values;  ///< per track: quantised values (empty unless spline)
+};
+
+/// Serialises `parts` (precondition: consistent counts, asserted loosely; load_compressed_clip()
+/// is the check).
+[[nodiscard]] std::vector<std::uint8_t> write_compressed_clip(const CompressedClipParts& parts);
+
+}  // namespace inbetween

@@ -1,0 +1,463 @@
+// The .ibc format (docs/compression.md, "Format"): writer, checked reader, and the two decoders.
+#include "inbetween/tracks/runtime/compressed_clip.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "inbetween/math/assert.hpp"
+
+namespace inbetween {
+namespace {
+
+// ---- little-endian byte writing
+void put_u8(std::vector<std::uint8_t>& out, std::uint8_t v) { out.push_back(v); }
+void put_u16(std::vector<std::uint8_t>& out, std::uint16_t v) {
+  for (int i = 0; i < 2; ++i) out.push_back(std::uint8_t(v >> (8 * i)));
+}
+void put_u32(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out.push_back(std::uint8_t(v >> (8 * i)));
+}
+void put_u64(std::vector<std::uint8_t>& out, std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) out.push_back(std::uint8_t(v >> (8 * i)));
+}
+void put_f32(std::vector<std::uint8_t>& out, float v) { put_u32(out, std::bit_cast<std::uint32_t>(v)); }
+void put_f64(std::vector<std::uint8_t>& out, double v) { put_u64(out, std::bit_cast<std::uint64_t>(v)); }
+void set_u32(std::vector<std::uint8_t>& out, std::size_t at, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) out[at + std::size_t(i)] = std::uint8_t(v >> (8 * i));
+}
+// A float not below v (the stored measured error must not understate it).
+float float_up(double v) {
+  float f = float(v);
+  if (double(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// ---- checked little-endian reading: every read names its field and byte offset on failure
+class Reader {
+ public:
+  explicit Reader(std::span<const std::uint8_t> bytes) : bytes_(bytes) {}
+  std::size_t at = 0;
+  Error fail(std::size_t offset, const std::string& what) const {
+    return Error{ErrorCode::parse, what, {Element{"byte", offset}}};
+  }
+  bool has(std::size_t n) const { return at <= bytes_.size() && bytes_.size() - at >= n; }
+  Expected<std::uint64_t> uint(std::size_t n, const char* field) {
+    if (!has(n)) return fail(at, std::string(field) + ": the file ends (truncated)");
+    std::uint64_t v = 0;
+    for (std::size_t i = 0; i < n; ++i) v |= std::uint64_t(bytes_[at + i]) << (8 * i);
+    at += n;
+    return v;
+  }
+  Expected<float> f32(const char* field) {
+    const std::size_t start = at;
+    auto u = uint(4, field);
+    if (!u) return u.error();
+    const float f = std::bit_cast<float>(std::uint32_t(*u));
+    if (!std::isfinite(f)) return fail(start, std::string(field) + ": not finite");
+    return f;
+  }
+  Expected<double> f64(const char* field) {
+    const std::size_t start = at;
+    auto u = uint(8, field);
+    if (!u) return u.error();
+    const double f = std::bit_cast<double>(*u);
+    if (!std::isfinite(f)) return fail(start, std::string(field) + ": not finite");
+    return f;
+  }
+
+ private:
+  std::span<const std::uint8_t> bytes_;
+};
+
+#define IBC_TRY(var, expr)          \
+  auto var##_r = (expr);            \
+  if (!var##_r) return var##_r.error(); \
+  auto var = *var##_r
+
+// Per block and component: the smallest index and the width of the offsets from it.
+struct BlockComponent {
+  std::uint32_t base = 0;
+  unsigned width = 0;
+};
+BlockComponent block_component(std::span<const std::uint32_t> values, unsigned comps, std::size_t first, std::size_t count,
+                               unsigned c) {
+  std::uint32_t lo = std::numeric_limits<std::uint32_t>::max(), hi = 0;
+  for (std::size_t i = first; i < first + count; ++i) lo = std::min(lo, values[i * comps + c]), hi = std::max(hi, values[i * comps + c]);
+  return {lo, unsigned(std::bit_width(hi - lo))};
+}
+
+// Appends `bits` bits of v at bit position `bit` of `out` (zeroed bytes).
+void put_bits(std::uint8_t* out, std::uint64_t bit, std::uint32_t v, unsigned bits) {
+  for (unsigned b = 0; b < bits; ++b, ++bit)
+    if ((v >> b) & 1u) out[bit >> 3] |= std::uint8_t(1u << (bit & 7));
+}
+
+}  // namespace
+
+std::uint64_t compressed_block_bits(std::span<const std::uint32_t> values, unsigned comps, unsigned bits) noexcept {
+  const std::size_t n = values.size() / comps;
+  std::uint64_t total = 0;
+  for (std::size_t first = 0; first < n; first += ibc_block_controls) {
+    const std::size_t count = std::min<std::size_t>(ibc_block_controls, n - first);
+    total += std::uint64_t(comps) * (bits + ibc_width_bits);
+    for (unsigned c = 0; c < comps; ++c) total += count * block_component(values, comps, first, count, c).width;
+  }
+  return total;
+}
+
+std::vector<std::uint8_t> write_compressed_clip(const CompressedClipParts& parts) {
+  const std::size_t joints = parts.parents.size();
+  INBETWEEN_ASSERT(parts.names.size() == joints && parts.tracks.size() == 3 * joints * parts.pieces.size() &&
+                   parts.values.size() == parts.tracks.size());
+  std::vector<std::uint8_t> out;
+  out.insert(out.end(), ibc_magic.begin(), ibc_magic.end());
+  put_u16(out, ibc_version);
+  put_u16(out, std::uint16_t(ibc_header_size));
+  put_u32(out, 0);  // file size, set below
+  put_u32(out, std::uint32_t(joints));
+  put_u32(out, std::uint32_t(parts.frames));
+  put_u32(out, 0);  // names offset
+  put_u32(out, 0);  // tracks offset
+  put_u32(out, 0);  // stream offset
+  put_u32(out, 0);  // stream size
+  put_f64(out, parts.first_frame);
+  put_f64(out, parts.frame_rate);
+  put_f32(out, float(parts.error_bound));
+  put_f32(out, float_up(parts.measured_error));
+  put_f32(out, float(parts.shell));
+  INBETWEEN_ASSERT(out.size() == ibc_header_size);
+  for (std::int32_t p : parts.parents) put_u32(out, std::uint32_t(p));
+  put_u32(out, std::uint32_t(parts.pieces.size()));
+  for (std::uint32_t start : parts.pieces) put_u32(out, start);
+  set_u32(out, 20, std::uint32_t(out.size()));
+  for (const std::string& name : parts.names) {
+    const std::size_t n = std::min<std::size_t>(name.size(), 65535);
+    put_u16(out, std::uint16_t(n));
+    out.insert(out.end(), name.begin(), name.begin() + std::ptrdiff_t(n));
+  }
+  set_u32(out, 24, std::uint32_t(out.size()));
+  std::uint64_t bit = 0;
+  for (std::size_t k = 0; k < parts.tracks.size(); ++k) {
+    const CompressedTrack& t = parts.tracks[k];
+    const bool rotation = k % 3 == 1;
+    put_u8(out, std::uint8_t(t.kind));
+    if (t.kind == CompressedTrackKind::constant) {
+      for (unsigned c = 0; c < (rotation ? 4u : 3u); ++c) put_f32(out, t.min[c]);
+    } else if (t.kind == CompressedTrackKind::spline) {
+      put_u8(out, t.components);
+      put_u8(out, t.degree);
+      put_u8(out, t.bits);
+      put_u16(out, std::uint16_t(t.spacing));
+      put_u32(out, std::uint32_t(bit));
+      for (unsigned c = 0; c < t.components; ++c) put_f32(out, t.min[c]);
+      for (unsigned c = 0; c < t.components; ++c) put_f32(out, t.extent[c]);
+      if (rotation) {
+        put_f32(out, t.reference.w), put_f32(out, t.reference.x), put_f32(out, t.reference.y), put_f32(out, t.reference.z);
+      }
+      bit += compressed_block_bits(parts.values[k], t.components, t.bits);
+    }
+  }
+  set_u32(out, 28, std::uint32_t(out.size()));
+  const std::size_t stream_start = out.size();
+  const std::size_t stream_size = std::size_t((bit + 7) / 8) + ibc_stream_padding;
+  out.resize(stream_start + stream_size, 0);
+  bit = 0;
+  std::uint8_t* stream = out.data() + stream_start;
+  for (std::size_t k = 0; k < parts.tracks.size(); ++k) {
+    const CompressedTrack& t = parts.tracks[k];
+    if (t.kind != CompressedTrackKind::spline) continue;
+    const std::span<const std::uint32_t> values = parts.values[k];
+    const unsigned comps = t.components;
+    const std::size_t n = values.size() / comps;
+    for (std::size_t first = 0; first < n; first += ibc_block_controls) {
+      const std::size_t count = std::min<std::size_t>(ibc_block_controls, n - first);
+      BlockComponent bc[4];
+      for (unsigned c = 0; c < comps; ++c) {
+        bc[c] = block_component(values, comps, first, count, c);
+        put_bits(stream, bit, bc[c].base, t.bits);
+        put_bits(stream, bit + t.bits, bc[c].width, ibc_width_bits);
+        bit += t.bits + ibc_width_bits;
+      }
+      for (std::size_t i = first; i < first + count; ++i)
+        for (unsigned c = 0; c < comps; ++c) {
+          put_bits(stream, bit, values[i * comps + c] - bc[c].base, bc[c].width);
+          bit += bc[c].width;
+        }
+    }
+  }
+  set_u32(out, 32, std::uint32_t(stream_size));
+  set_u32(out, 8, std::uint32_t(out.size()));
+  return out;
+}
+
+Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
+  CompressedClip clip;
+  Reader r(bytes);
+  if (bytes.size() < ibc_header_size)
+    return r.fail(bytes.size(), "header: the file ends after " + std::to_string(bytes.size()) + " bytes, a header has " +
+                                    std::to_string(ibc_header_size) + " (truncated)");
+  if (!std::equal(ibc_magic.begin(), ibc_magic.end(), bytes.begin())) return r.fail(0, "magic: not an .ibc file");
+  r.at = 4;
+  IBC_TRY(version, r.uint(2, "version"));
+  if (version != ibc_version)
+    return r.fail(4, "version: " + std::to_string(version) + ", this build reads version " + std::to_string(ibc_version));
+  IBC_TRY(header_size, r.uint(2, "header size"));
+  if (header_size != ibc_header_size) return r.fail(6, "header size: " + std::to_string(header_size) + ", expected 64");
+  IBC_TRY(file_size, r.uint(4, "file size"));
+  if (file_size != bytes.size())
+    return r.fail(8, "file size: the header says " + std::to_string(file_size) + " bytes, the file has " +
+                         std::to_string(bytes.size()) + (file_size > bytes.size() ? " (truncated)" : ""));
+  IBC_TRY(joints, r.uint(4, "joint count"));
+  IBC_TRY(frames, r.uint(4, "frame count"));
+  if (joints == 0) return r.fail(12, "joint count: 0");
+  if (frames == 0) return r.fail(16, "frame count: 0");
+  IBC_TRY(names_offset, r.uint(4, "names offset"));
+  IBC_TRY(tracks_offset, r.uint(4, "tracks offset"));
+  IBC_TRY(stream_offset, r.uint(4, "stream offset"));
+  IBC_TRY(stream_size, r.uint(4, "stream size"));
+  IBC_TRY(first_frame, r.f64("first frame"));
+  IBC_TRY(frame_rate, r.f64("frame rate"));
+  if (!(frame_rate > 0)) return r.fail(44, "frame rate: not > 0");
+  IBC_TRY(error_bound, r.f32("error bound"));
+  IBC_TRY(measured_error, r.f32("measured error"));
+  IBC_TRY(shell, r.f32("shell"));
+  if (error_bound < 0 || measured_error < 0 || shell < 0) return r.fail(52, "error bound, measured error, shell: negative");
+  if (joints > (bytes.size() - ibc_header_size) / 4)
+    return r.fail(12, "joint count: " + std::to_string(joints) + " joints do not fit in the file");
+  clip.parents_.resize(joints);
+  for (std::size_t j = 0; j < joints; ++j) {
+    const std::size_t at = r.at;
+    IBC_TRY(p, r.uint(4, "parent"));
+    const auto parent = std::int32_t(std::uint32_t(p));
+    if (parent < -1 || parent >= std::int32_t(j))
+      return r.fail(at, "parent of joint " + std::to_string(j) + ": " + std::to_string(parent) + " is not -1 or an earlier joint");
+    clip.parents_[j] = parent;
+  }
+  const std::size_t pieces_at = r.at;
+  IBC_TRY(pieces, r.uint(4, "piece count"));
+  if (pieces == 0 || pieces > frames) return r.fail(pieces_at, "piece count: " + std::to_string(pieces) + " is not in 1 … frames");
+  if (!r.has(4 * pieces)) return r.fail(r.at, "piece starts: the file ends (truncated)");
+  clip.pieces_.resize(pieces);
+  for (std::size_t p = 0; p < pieces; ++p) {
+    const std::size_t at = r.at;
+    IBC_TRY(start, r.uint(4, "piece start"));
+    if (p == 0 ? start != 0 : (start <= clip.pieces_[p - 1] || start >= frames))
+      return r.fail(at, "piece start " + std::to_string(p) + ": " + std::to_string(start) +
+                            (p == 0 ? " is not 0" : " does not increase or is past the last frame"));
+    clip.pieces_[p] = std::uint32_t(start);
+  }
+  if (names_offset != r.at)
+    return r.fail(20, "names offset: " + std::to_string(names_offset) + ", expected " + std::to_string(r.at));
+  clip.names_.resize(joints);
+  for (std::size_t j = 0; j < joints; ++j) {
+    IBC_TRY(n, r.uint(2, "name length"));
+    if (!r.has(n)) return r.fail(r.at, "name of joint " + std::to_string(j) + ": the file ends (truncated)");
+    clip.names_[j].assign(reinterpret_cast<const char*>(bytes.data() + r.at), n);
+    r.at += n;
+  }
+  if (tracks_offset != r.at)
+    return r.fail(24, "tracks offset: " + std::to_string(tracks_offset) + ", the names end at " + std::to_string(r.at));
+  if (stream_offset > bytes.size() || stream_size != bytes.size() - stream_offset || stream_size < ibc_stream_padding)
+    return r.fail(28, "stream offset and size: " + std::to_string(stream_offset) + " + " + std::to_string(stream_size) +
+                          " do not end the " + std::to_string(bytes.size()) + "-byte file with at least " +
+                          std::to_string(ibc_stream_padding) + " bytes");
+  const std::uint64_t stream_bits = std::uint64_t(stream_size - ibc_stream_padding) * 8;
+  if (stream_bits >= (std::uint64_t(1) << 32)) return r.fail(32, "stream size: more than 2^32 bits");
+  if (3 * joints * pieces > stream_offset) return r.fail(12, "joint and piece counts: more tracks than the track table holds");
+  clip.tracks_.resize(3 * joints * pieces);
+  clip.frames_ = frames;
+  for (std::size_t k = 0; k < clip.tracks_.size(); ++k) {
+    const std::size_t piece_frames = clip.piece_frames(k / (3 * joints));
+    CompressedTrack& t = clip.tracks_[k];
+    const bool rotation = k % 3 == 1;
+    const std::size_t track_at = r.at;
+    if (r.at >= stream_offset) return r.fail(r.at, "track " + std::to_string(k) + ": the track table runs into the stream");
+    IBC_TRY(kind, r.uint(1, "track kind"));
+    if (kind > 2) return r.fail(track_at, "track kind: " + std::to_string(kind) + " is not 0, 1 or 2");
+    t.kind = CompressedTrackKind(kind);
+    if (t.kind == CompressedTrackKind::constant) {
+      for (unsigned c = 0; c < (rotation ? 4u : 3u); ++c) {
+        IBC_TRY(v, r.f32("constant value"));
+        t.min[c] = v;
+      }
+      if (rotation && t.min[0] == 0 && t.min[1] == 0 && t.min[2] == 0 && t.min[3] == 0)
+        return r.fail(track_at + 1, "constant rotation: zero quaternion");
+    } else if (t.kind == CompressedTrackKind::spline) {
+      IBC_TRY(components, r.uint(1, "components"));
+      if (components != 3 && !(rotation && components == 4))
+        return r.fail(track_at + 1, "components: " + std::to_string(components) + (rotation ? " is not 3 or 4" : " is not 3"));
+      t.components = std::uint8_t(components);
+      IBC_TRY(degree, r.uint(1, "degree"));
+      if (degree != 1 && degree != 3) return r.fail(track_at + 2, "degree: " + std::to_string(degree) + " is not 1 or 3");
+      t.degree = std::uint8_t(degree);
+      IBC_TRY(bits, r.uint(1, "bits"));
+      if (bits > ibc_max_bits) return r.fail(track_at + 3, "bits: " + std::to_string(bits) + " > " + std::to_string(ibc_max_bits));
+      t.bits = std::uint8_t(bits);
+      IBC_TRY(spacing, r.uint(2, "spacing"));
+      if (spacing == 0) return r.fail(track_at + 4, "spacing: 0");
+      t.spacing = std::uint32_t(spacing);
+      IBC_TRY(bit_offset, r.uint(4, "bit offset"));
+      t.bit_offset = bit_offset;
+      t.controls = std::uint32_t(compressed_segments(piece_frames, spacing) + degree);
+      // Walk the blocks: headers and offsets inside the stream, widths ≤ bits.
+      t.first_block = std::uint32_t(clip.blocks_.size());
+      std::uint64_t pos = bit_offset;
+      for (std::uint32_t first = 0; first < t.controls; first += ibc_block_controls) {
+        const std::uint32_t count = std::min<std::uint32_t>(ibc_block_controls, t.controls - first);
+        const std::uint64_t header = std::uint64_t(t.components) * (t.bits + ibc_width_bits);
+        if (pos > stream_bits || header > stream_bits - pos)
+          return r.fail(track_at + 6, "bit offset: block " + std::to_string(first / ibc_block_controls) + " of track " +
+                                          std::to_string(k) + " runs past the " + std::to_string(stream_bits) + "-bit stream");
+        clip.blocks_.push_back(std::uint32_t(pos));
+        std::uint64_t row = 0;
+        for (unsigned c = 0; c < t.components; ++c) {
+          const unsigned width = compressed_value(bytes.data() + stream_offset, pos + c * (t.bits + ibc_width_bits) + t.bits, ibc_width_bits);
+          if (width > t.bits)
+            return r.fail(std::size_t(stream_offset + (pos >> 3)), "block width: " + std::to_string(width) + " > the track's " +
+                                                                     std::to_string(unsigned(t.bits)) + " bits (track " + std::to_string(k) + ")");
+          row += width;
+        }
+        pos += header;
+        if (row * count > stream_bits - pos)
+          return r.fail(track_at + 6, "bit offset: block " + std::to_string(first / ibc_block_controls) + " of track " +
+                                          std::to_string(k) + " runs past the " + std::to_string(stream_bits) + "-bit stream");
+        pos += row * count;
+      }
+      for (unsigned c = 0; c < t.components; ++c) {
+        IBC_TRY(v, r.f32("range minimum"));
+        t.min[c] = v;
+      }
+      for (unsigned c = 0; c < t.components; ++c) {
+        const std::size_t at = r.at;
+        IBC_TRY(v, r.f32("range extent"));
+        if (v < 0) return r.fail(at, "range extent: negative");
+        t.extent[c] = v;
+        t.step[c] = t.bits == 0 ? 0.0f : float(double(v) / double((std::uint64_t(1) << t.bits) - 1));
+        if (!std::isfinite(t.min[c] + t.extent[c])) return r.fail(at, "range: min + extent overflows float");
+      }
+      if (rotation) {
+        const std::size_t at = r.at;
+        std::array<float, 4> q{};
+        for (float& v : q) {
+          IBC_TRY(x, r.f32("reference rotation"));
+          v = x;
+        }
+        const double n = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] + double(q[2]) * q[2] + double(q[3]) * q[3]);
+        if (std::abs(n - 1) > 1e-3) return r.fail(at, "reference rotation: not of unit length");
+        t.reference = Quatf::from_wxyz(q[0], q[1], q[2], q[3]);
+      }
+    }
+  }
+  if (r.at != stream_offset)
+    return r.fail(28, "stream offset: " + std::to_string(stream_offset) + ", the track table ends at " + std::to_string(r.at));
+  clip.stream_offset_ = stream_offset;
+  clip.first_frame_ = first_frame;
+  clip.frame_rate_ = frame_rate;
+  clip.error_bound_ = error_bound;
+  clip.measured_error_ = measured_error;
+  clip.shell_ = shell;
+  clip.bytes_ = std::move(bytes);
+  return clip;
+}
+
+namespace {
+
+// Spline values of one track at local sample position x (samples from the piece's start).
+template <Real T>
+[[gnu::always_inline]] inline void spline_values(const CompressedTrack& t, const std::uint8_t* stream, const std::uint32_t* blocks,
+                                                 std::uint64_t seg, T u, const T* step, T* out) noexcept {
+  const auto w = t.degree == 3 ? bspline_weights(u) : linear_weights(u);
+  const unsigned n = t.components;
+  T acc[4] = {0, 0, 0, 0};
+  std::uint32_t idx[4];
+  for (unsigned k = 0; k <= t.degree; ++k) {
+    compressed_control(t, stream, blocks, std::uint32_t(seg + k), idx);
+    for (unsigned c = 0; c < n; ++c) acc[c] += w[k] * T(idx[c]);
+  }
+  for (unsigned c = 0; c < n; ++c) out[c] = T(t.min[c]) + step[c] * acc[c];
+}
+
+}  // namespace
+
+void decode_frame(const CompressedClip& clip, std::size_t frame_index, std::span<JointPose<double>> out) noexcept {
+  INBETWEEN_ASSERT(frame_index < clip.frames() && out.size() == clip.joints());
+  const std::uint8_t* stream = clip.stream();
+  const std::uint32_t* blocks = clip.blocks().data();
+  const std::size_t piece = clip.piece_of(frame_index);
+  frame_index -= clip.pieces()[piece];
+  for (std::size_t j = 0; j < clip.joints(); ++j) {
+    JointPose<double>& pose = out[j];
+    for (unsigned ch = 0; ch < 3; ++ch) {
+      const CompressedTrack& t = clip.track(piece, j, CompressedChannel(ch));
+      if (t.kind == CompressedTrackKind::absent) {
+        if (ch == 0) pose.translation = {};
+        if (ch == 1) pose.rotation = {};
+        if (ch == 2) pose.scale = {1, 1, 1};
+        continue;
+      }
+      if (t.kind == CompressedTrackKind::constant) {
+        if (ch == 1) {
+          pose.rotation = normalized(Quatd::from_wxyz(t.min[0], t.min[1], t.min[2], t.min[3]));
+        } else {
+          (ch == 0 ? pose.translation : pose.scale) = Vec3d{t.min[0], t.min[1], t.min[2]};
+        }
+        continue;
+      }
+      const std::uint64_t seg = std::min<std::uint64_t>(frame_index / t.spacing, t.controls - 1 - t.degree);
+      const double u = double(frame_index - seg * t.spacing) / double(t.spacing);
+      double step[4], v[4];
+      for (unsigned c = 0; c < t.components; ++c) step[c] = compressed_step(t, c);
+      spline_values(t, stream, blocks, seg, u, step, v);
+      if (ch == 1) {
+        pose.rotation = compressed_rotation(t.reference.cast<double>(), v, t.components);
+      } else {
+        (ch == 0 ? pose.translation : pose.scale) = Vec3d{v[0], v[1], v[2]};
+      }
+    }
+  }
+}
+
+void sample_compressed(const CompressedClip& clip, double frame, std::span<JointPose<float>> local) noexcept {
+  INBETWEEN_ASSERT(local.size() == clip.joints());
+  const std::uint8_t* stream = clip.stream();
+  const std::uint32_t* blocks = clip.blocks().data();
+  double x = frame - clip.first_frame();
+  const double last = double(clip.frames() - 1);
+  if (!(x > 0)) x = 0;  // NaN too
+  if (x > last) x = last;
+  const std::size_t piece = clip.piece_of(std::size_t(x));
+  x -= double(clip.pieces()[piece]);
+  const auto tracks = clip.tracks().subspan(piece * 3 * clip.joints(), 3 * clip.joints());
+  for (std::size_t j = 0; j < local.size(); ++j) {
+    JointPose<float>& pose = local[j];
+    for (unsigned ch = 0; ch < 3; ++ch) {
+      const CompressedTrack& t = tracks[3 * j + ch];
+      if (t.kind == CompressedTrackKind::spline) {
+        const double u = x / double(t.spacing);
+        std::uint64_t seg = std::uint64_t(u);
+        if (seg > t.controls - 1 - t.degree) seg = t.controls - 1 - t.degree;
+        float v[4];
+        spline_values(t, stream, blocks, seg, float(u - double(seg)), t.step.data(), v);
+        if (ch == 1) {
+          pose.rotation = compressed_rotation(t.reference, v, t.components);
+        } else {
+          (ch == 0 ? pose.translation : pose.scale) = Vec3f{v[0], v[1], v[2]};
+        }
+      } else if (t.kind == CompressedTrackKind::constant) {
+        if (ch == 1) {
+          pose.rotation = normalized(Quatf::from_wxyz(t.min[0], t.min[1], t.min[2], t.min[3]));
+        } else {
+          (ch == 0 ? pose.translation : pose.scale) = Vec3f{t.min[0], t.min[1], t.min[2]};
+        }
+      } else {
+        if (ch == 0) pose.translation = {};
+        if (ch == 1) pose.rotation = {};
+        if (ch == 2) pose.scale = {1, 1, 1};
+      }
+    }
+  }
+}
+
+}  // namespace inbetween
