@@ -15,7 +15,11 @@
 //     and ACL at E with full-precision quaternions (rotation_format8::quatf_full) instead of its
 //     variable drop-w rotations;
 //   - decode: ns per joint to decompress a whole pose (decompress_tracks into a caller's buffer of
-//     rtm::qvvf) at the clip's frames in order and at seeded random times, median of repetitions.
+//     rtm::qvvf) at the clip's frames in order and at seeded random times, median of repetitions;
+//   - inbetween at the same E and D (compress_clip, scene/compress.hpp): its .ibc bytes, compression
+//     time, error of the double decoder (decompress, the compressor's guarantee) and of the float
+//     runtime sampler (sample_compressed at the clip's frames), and sample_compressed's ns per joint
+//     at the same frames and random times, timed interleaved with ACL's passes.
 //
 // The metric is inbetween's clip_error (scene/sampled_clip.hpp), the one its compressor is held to:
 // for every frame and joint, the joint's origin and the points at distance D along its local x, y
@@ -37,6 +41,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -44,8 +49,10 @@
 #include <nlohmann/json.hpp>
 
 #include "inbetween/io/input.hpp"
+#include "inbetween/scene/compress.hpp"
 #include "inbetween/scene/sampled_clip.hpp"
 #include "inbetween/scene/scene.hpp"
+#include "inbetween/tracks/runtime/compressed_clip.hpp"
 
 using namespace inbetween;
 using json = nlohmann::json;
@@ -179,25 +186,65 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// ns per joint to decompress a whole pose at each of `times`, median of `reps` passes.
-double decode_ns_per_joint(const acl::compressed_tracks& tracks, std::size_t joints, const std::vector<float>& times, int reps) {
-  Context ctx;
-  ctx.initialize(tracks);
-  std::vector<rtm::qvvf> pose(joints);
-  PoseWriter writer;
-  writer.out = pose.data();
-  std::vector<double> ns;
-  for (int r = 0; r < reps + 1; ++r) {  // the first pass warms the caches and is not counted
-    const auto t0 = std::chrono::steady_clock::now();
+// One decode pass: a whole pose at each of a list of times, into a caller's buffer.
+using Pass = std::function<void()>;
+
+// ACL: seek + decompress_tracks into rtm::qvvf per joint, at each of `times` (seconds).
+Pass acl_pass(Context& ctx, std::vector<rtm::qvvf>& pose, const std::vector<float>& times) {
+  return [&ctx, &pose, &times] {
+    PoseWriter writer;
+    writer.out = pose.data();
     for (float t : times) {
       ctx.seek(t, acl::sample_rounding_policy::none);
       ctx.decompress_tracks(writer);
       asm volatile("" : : "r"(pose.data()) : "memory");
     }
-    const double elapsed = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
-    if (r > 0) ns.push_back(elapsed / double(times.size() * joints));
+  };
+}
+
+// ns per joint of each pass: the passes run interleaved (one of each per round, so a change of the
+// machine's load hits all alike), `reps` rounds after one warm-up round; median per pass.
+std::vector<double> interleaved_ns_per_joint(const std::vector<Pass>& passes, std::size_t poses, std::size_t joints, int reps) {
+  std::vector<std::vector<double>> ns(passes.size());
+  for (int r = 0; r < reps + 1; ++r) {
+    for (std::size_t i = 0; i < passes.size(); ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      passes[i]();
+      const double elapsed = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+      if (r > 0) ns[i].push_back(elapsed / double(poses * joints));
+    }
   }
-  return median(ns);
+  std::vector<double> out;
+  for (auto& v : ns) out.push_back(median(v));
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// inbetween's side: compress_clip (scene/compress.hpp) and the runtime sampler sample_compressed.
+
+// The runtime sampler's poses (float) at the clip's frames, as a SampledClip in double.
+SampledClip runtime_frames(const SampledClip& clip, const CompressedClip& c) {
+  const std::size_t J = clip.joints();
+  std::vector<JointPose<float>> pose(J);
+  SampledClip out = clip;
+  for (std::size_t f = 0; f < clip.frames; ++f) {
+    sample_compressed(c, clip.first_frame + double(f), pose);
+    for (std::size_t j = 0; j < J; ++j) {
+      const JointPose<float>& p = pose[j];
+      out.poses[f * J + j] = {p.translation.cast<double>(), p.rotation.cast<double>(), p.scale.cast<double>()};
+    }
+  }
+  return out;
+}
+
+// inbetween: sample_compressed into JointPose<float> per joint, at each of `frames`.
+Pass ours_pass(const CompressedClip& c, std::vector<JointPose<float>>& pose, const std::vector<double>& frames) {
+  return [&c, &pose, &frames] {
+    for (double f : frames) {
+      sample_compressed(c, f, pose);
+      asm volatile("" : : "r"(pose.data()) : "memory");
+    }
+  };
 }
 
 json error_json(const SampledClip& clip, const ClipError& e) {
@@ -210,7 +257,7 @@ struct Options {
   std::vector<double> errors{0.01, 0.1};
   double shell = 3;
   int reps = 31;
-  int bisect_steps = 12;
+  int bisect_steps = 16;
 };
 
 std::vector<double> parse_list(const std::string& s) {
@@ -241,7 +288,7 @@ Options parse(int argc, char** argv) {
     else o.clips.push_back(a);
   }
   if (o.out.empty() || o.clips.empty())
-    fail("usage: acl_clip_bench -o OUT.json [--errors 0.01,0.1] [--shell 3] [--reps 31] [--bisect-steps 12] CLIP...");
+    fail("usage: acl_clip_bench -o OUT.json [--errors 0.01,0.1] [--shell 3] [--reps 31] [--bisect-steps 16] CLIP...");
   return o;
 }
 
@@ -262,9 +309,12 @@ int main(int argc, char** argv) {
     const float duration = float(double(clip.frames - 1) / clip.frame_rate);
     std::mt19937 rng(24);
     std::uniform_real_distribution<float> uni(0.0F, duration);
+    std::vector<double> seq_frames(clip.frames), rnd_frames(clip.frames);  // the same, as inbetween's frame numbers
     for (std::size_t f = 0; f < clip.frames; ++f) {
       seq_times[f] = std::min(float(f) / float(clip.frame_rate), duration);
       rnd_times[f] = uni(rng);
+      seq_frames[f] = clip.first_frame + double(f);
+      rnd_frames[f] = clip.first_frame + double(rnd_times[f]) * clip.frame_rate;
     }
     // The floor of any float32 representation: the raw samples rounded to float, by the metric.
     SampledClip rounded = clip;
@@ -282,15 +332,38 @@ int main(int argc, char** argv) {
                       {"float32_rounding_error", error_json(clip, float_floor)}, {"cases", json::array()}};
     for (const double E : opt.errors) {
       AclRun at = compress_acl(alloc, clip, E, opt.shell);
-      const double seq_ns = decode_ns_per_joint(*at.tracks, J, seq_times, opt.reps);
-      const double rnd_ns = decode_ns_per_joint(*at.tracks, J, rnd_times, opt.reps);
-      std::fprintf(stderr, "  E=%g: %u bytes (%.1f:1) in %.2f s, ACL error %.5f, measured %.5f; decode %.1f / %.1f ns/joint\n", E,
-                   at.bytes, raw_bytes / at.bytes, at.compress_seconds, at.acl_error, at.error.max, seq_ns, rnd_ns);
+      std::fprintf(stderr, "  E=%g ACL: %u bytes (%.1f:1) in %.2f s, ACL error %.5f, measured %.5f\n", E, at.bytes,
+                   raw_bytes / at.bytes, at.compress_seconds, at.acl_error, at.error.max);
+      // inbetween at the same E and D, in the same run.
+      const auto t0 = std::chrono::steady_clock::now();
+      Expected<CompressedClip> ours = compress_clip(clip, {.error = E, .shell = opt.shell});
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (!ours) fail(path + ": compress_clip: " + ours.error().message);
+      const ClipError reference = clip_error(clip, decompress(*ours), opt.shell);
+      const ClipError runtime = clip_error(clip, runtime_frames(clip, *ours), opt.shell);
+      const double bytes = double(ours->bytes().size());
+      std::fprintf(stderr, "  E=%g inbetween: %.0f bytes (%.1f:1, %.3f× ACL) in %.2f s, error %.5f (float runtime %.5f)\n", E, bytes,
+                   raw_bytes / bytes, bytes / at.bytes, seconds, reference.max, runtime.max);
+      // Decode, both sides interleaved: the same frames in order and the same random times.
+      Context ctx;
+      ctx.initialize(*at.tracks);
+      std::vector<rtm::qvvf> acl_pose(J);
+      std::vector<JointPose<float>> our_pose(J);
+      const std::vector<double> ns = interleaved_ns_per_joint(
+          {acl_pass(ctx, acl_pose, seq_times), ours_pass(*ours, our_pose, seq_frames), acl_pass(ctx, acl_pose, rnd_times),
+           ours_pass(*ours, our_pose, rnd_frames)},
+          clip.frames, J, opt.reps);
+      std::fprintf(stderr, "  E=%g decode ns/joint in order / random: ACL %.1f / %.1f, inbetween %.1f / %.1f\n", E, ns[0], ns[2], ns[1],
+                   ns[3]);
       json c = {{"error_bound", E},
                 {"acl", {{"threshold", E}, {"bytes", at.bytes}, {"ratio_to_raw", raw_bytes / at.bytes},
                          {"compress_seconds", at.compress_seconds}, {"acl_error", at.acl_error},
                          {"measured_error", error_json(clip, at.error)},
-                         {"decode_ns_per_joint", {{"sequential", seq_ns}, {"random", rnd_ns}}}}}};
+                         {"decode_ns_per_joint", {{"sequential", ns[0]}, {"random", ns[2]}}}}},
+                {"inbetween", {{"bytes", bytes}, {"ratio_to_raw", raw_bytes / bytes}, {"ratio_to_acl", bytes / at.bytes},
+                               {"compress_seconds", seconds}, {"measured_error", error_json(clip, reference)},
+                               {"runtime_error", error_json(clip, runtime)},
+                               {"decode_ns_per_joint", {{"sequential", ns[1]}, {"random", ns[3]}}}}}};
       // Held to E: the largest threshold (bisection in log scale) whose measured error is ≤ E.
       json held;
       if (at.error.max <= E) {

@@ -527,6 +527,8 @@ def acl_inbetween_side(r: Results, case: dict, stem: str) -> dict:
                 "rnd": ours.get("decode_ns_per_joint", {}).get("random"),
                 "seconds": ours.get("compress_seconds"), "where": "acl_clip_bench"}
     name = f"BM_CompressClip/{stem}/{case['error_bound']:g}"
+    # Registered with Iterations(1)->Repetitions(1), which Google Benchmark appends to the name.
+    name = next((k for k in r.cpu_ns if k == name or k.startswith(name + "/iterations:")), name)
     t = r.time(name)
     sample = f"BM_SampleCompressed/{stem}/{case['error_bound']:g}/"
     ref, rt = r.counter(name, "measured_error"), r.counter(name, "runtime_error")
