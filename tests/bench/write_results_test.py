@@ -524,9 +524,9 @@ class Acl(unittest.TestCase):
         ours, acl = case["inbetween"], case["acl"]
         c = self.cells(doc)
         self.assertEqual(c[6], f"{wr.fmt_bytes(ours['bytes'])} ({doc['clips'][0]['raw_float32_bytes'] / ours['bytes']:.3g}:1)")
-        self.assertEqual(c[8], f"{ours['bytes'] / acl['bytes']:.3g}")
+        self.assertEqual(c[8], f"{ours['bytes'] / acl['bytes']:.3f}")
         self.assertEqual(c[9], "met" if ours["bytes"] <= 0.9 * acl["bytes"] else
-                         f"missed ({wr.fmt_beside(ours['bytes'] / acl['bytes'], 0.9)}× > 0.9×)")
+                         f"missed ({ours['bytes'] / acl['bytes']:.3f}× > 0.9×)")
 
     def test_acl_figures_without_inbetween_are_not_measured(self):
         doc = self.doc()
@@ -547,12 +547,12 @@ class Acl(unittest.TestCase):
     def test_target_is_bytes_ratio_and_error_bound(self):
         doc = self.doc()
         acl = self.inject(doc, "01_01", 0.01, 0, 0.005)
-        for factor, error, verdict in ((0.8, 0.005, "met"), (0.95, 0.005, "missed (0.95× > 0.9×)"),
-                                       (0.5, 0.011, "missed (error > E)")):
+        for factor, error, verdict in ((0.8, 0.005, "met"), (0.95, 0.005, "missed (0.950× > 0.9×)"),
+                                       (0.9005, 0.005, "missed (0.900× > 0.9×)"), (0.5, 0.011, "missed (error > E)")):
             self.inject(doc, "01_01", 0.01, acl * factor, error)
             c = self.cells(doc)
             self.assertEqual(c[7], f"{error:g} / —")
-            self.assertEqual(c[8], f"{factor:.3g}")
+            self.assertEqual(c[8], f"{factor:.3f}")
             self.assertEqual(c[9], verdict, c)
 
     def test_the_float_runtime_error_counts(self):
@@ -581,7 +581,7 @@ class Acl(unittest.TestCase):
         r.add_json("inbetween_bench_compression", bench)
         c = self.cells(doc, r, "0.1")
         self.assertEqual(c[7], "0.09 / —")
-        self.assertEqual(c[8], "0.7")
+        self.assertEqual(c[8], "0.700")
         self.assertEqual(c[9], "met")
 
     def test_read_acl_prefers_the_live_run(self):

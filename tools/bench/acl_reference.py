@@ -10,7 +10,8 @@ these recorded figures instead (tools/bench/write_results.py, "ACL 2.1 vs inbetw
 Per clip: joints, frames, raw float32 bytes; per error bound E: ACL's bytes at E, ACL's own error
 figure, the error by inbetween's metric (and where), the bytes held to E (or the floor when ACL
 cannot reach E), decode ns per joint and the compression time; plus ACL's version and commit, the
-date and the machine.  Python's standard library only; the file is written atomically.
+date and the machine.  ACL's side only: inbetween's figures of the same run stay in the run's own
+JSON (`make bench` measures inbetween's side again, inbetween_bench_compression).  Python's standard library only; the file is written atomically.
 """
 
 from __future__ import annotations
@@ -47,8 +48,6 @@ def condense(doc: dict) -> dict:
             entry["acl_held_to_error"].setdefault("reached", True)
             if "full_rotations" in held:
                 entry["acl_held_to_error"]["full_rotations"] = held["full_rotations"]
-            if "inbetween" in case:
-                entry["inbetween"] = case["inbetween"]
             c["cases"].append(entry)
         out["clips"].append(c)
     return out

@@ -545,7 +545,7 @@ def acl_section(r: Results, acl: tuple[dict, str] | None) -> list[str]:
                 "`make bench-acl ACL_SRC=/path/to/acl` measures it.", ""]
     doc, source = acl
     ctx = doc.get("context", {})
-    sizes, speeds = [], []
+    sizes, speeds, wheres = [], [], set()
     for clip in doc.get("clips", []):
         stem = Path(clip["clip"]).stem
         raw = r.counter(f"BM_ClipRaw/{stem}", "raw_float32_bytes") or clip.get("raw_float32_bytes")
@@ -566,21 +566,22 @@ def acl_section(r: Results, acl: tuple[dict, str] | None) -> list[str]:
                              + ("" if full is None else f"; with full-precision rotations {fmt_bytes(full['bytes'])} B, "
                                 f"error {fmt_num(full_err)}"))
             q = ratio(ours["bytes"], a["bytes"])
+            wheres.add(ours["where"])
             if ours["bytes"] is None:
                 target = "not measured"
             elif ours["error"] is None or ours["error"] > e:
                 target = "missed (error > E)"
-            else:
-                target = verdict(q, ACL_SIZE_TARGET, False)
+            else:  # 3 decimals: 1.003× must not print as 1×
+                target = "met" if q <= ACL_SIZE_TARGET else f"missed ({q:.3f}× > {ACL_SIZE_TARGET:g}×)"
             sizes.append([label, f"{e:g}", fmt_bytes(raw),
                           f"{fmt_bytes(a['bytes'])} ({fmt_num(ratio(raw, a['bytes']))}:1)",
                           f"{fmt_num(a_err)} / {fmt_num(a['acl_error'])}", held_cell,
                           "—" if ours["bytes"] is None else f"{fmt_bytes(ours['bytes'])} ({fmt_num(ratio(raw, ours['bytes']))}:1)",
-                          f"{fmt_num(ours['ref'])} / {fmt_num(ours['rt'])}", fmt_num(q), target])
+                          f"{fmt_num(ours['ref'])} / {fmt_num(ours['rt'])}", "—" if q is None else f"{q:.3f}", target])
             dec = a["decode_ns_per_joint"]
             speeds.append([label, f"{e:g}", f"{fmt_num(dec['sequential'])} / {fmt_num(dec['random'])}",
                            f"{fmt_num(ours['seq'])} / {fmt_num(ours['rnd'])}",
-                           fmt_num(ratio(ours["seq"], dec["sequential"])),
+                           "—" if ours["seq"] is None else f"{ours['seq'] / dec['sequential']:.2f}",
                            f"{a['compress_seconds']:.2f} s",
                            "—" if ours["seconds"] is None else f"{ours['seconds']:.2f} s"])
     out = [title, "",
@@ -598,6 +599,11 @@ def acl_section(r: Results, acl: tuple[dict, str] | None) -> list[str]:
            f"bytes ≤ {ACL_SIZE_TARGET:g}× ACL's at E, with its error ≤ E, the larger of the double decoder's "
            "(`decompress`, the compressor's guarantee) and the float runtime's (`sample_compressed` at the same "
            "frames; ACL is measured on its float runtime too).  Raw = frames × joints × 10 float32.", ""]
+    if "acl_clip_bench" in wheres:
+        out += ["inbetween's side comes from the same `acl_clip_bench` run (same binary, decode passes "
+                "interleaved with ACL's).", ""]
+    elif "inbetween_bench_compression" in wheres:
+        out += ["inbetween's side comes from this run's `inbetween_bench_compression`.", ""]
     out += table(["clip", "E", "raw float32 B", "ACL at E: B (ratio)", "ACL error: ours / ACL's",
                   "ACL held to E: B", "inbetween: B (ratio)", "inbetween error: decoder / float runtime",
                   "inbetween / ACL at E",
