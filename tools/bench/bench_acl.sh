@@ -1,6 +1,6 @@
 #!/bin/sh
-# `make bench-acl ACL_SRC=/path/to/acl`: ACL 2.1 (nfrechette/acl) on the CMU clips of Debian's
-# assimp-testmodels, by inbetween's own clip-error metric, in one binary (issue 24).  ACL is not
+# `make bench-acl ACL_SRC=/path/to/acl`: ACL 2.1 (nfrechette/acl) and inbetween's compressor on the
+# CMU clips of Debian's assimp-testmodels, by inbetween's own clip-error metric, in one binary (issue 24).  ACL is not
 # packaged in Debian, so the user supplies its source (`git clone --recursive
 # https://github.com/nfrechette/acl`, with its external/rtm submodule); nothing is downloaded here
 # and nothing of ACL enters the repository.  ACL is header-only: none of its tests or tools are built.
@@ -9,7 +9,8 @@
 #   2. compile tools/bench/acl_clip_bench.cpp against ACL's and rtm's headers and those libraries
 #      (-O3 -DNDEBUG as the release preset, plus ACL_CXXFLAGS, e.g. -march=native);
 #   3. run it on 01_01.bvh, 01_03.bvh, Boxing_Toes.bvh at E = 0.01 and 0.1, shell D = 3 (clip
-#      units) with JSON output to build/acl/acl_clip_bench.json, ACL's version and commit,
+#      units): ACL's and inbetween's bytes, errors, decode ns per joint and compression times side
+#      by side, with JSON output to build/acl/acl_clip_bench.json, ACL's version and commit,
 #      inbetween's commit, the flags, the date and the machine in its context;
 #   4. write the in-tree reference bench/acl_reference.json from it (what `make bench` reports
 #      against without ACL) and rewrite the generated section of bench/RESULTS.md with
