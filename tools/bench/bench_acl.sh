@@ -61,7 +61,7 @@ cmake --build --preset "$PRESET" -j "$JOBS" --target inbetween_core inbetween_io
 flags=$(echo "-std=c++20 -O3 -DNDEBUG $ACL_CXXFLAGS" | sed "s/ *$//")
 eigen_lib=""
 [ -f "$BUILD/libinbetween_eigen.a" ] && eigen_lib="$BUILD/libinbetween_eigen.a"
-# shellcheck disable=SC2086  # flags and libraries are words on purpose
+# shellcheck disable=SC2086,SC2046  # flags and libraries are words on purpose
 "$CXX" $flags -Iinclude -isystem "$ACL_SRC/includes" -isystem "$ACL_SRC/external/rtm/includes" \
   tools/bench/acl_clip_bench.cpp -o "$OUT/acl_clip_bench" \
   "$BUILD/libinbetween_io.a" $eigen_lib "$BUILD/libinbetween.a" \
