@@ -25,6 +25,7 @@ struct CompressArgs {
   double error = 0.01;
   double shell = 3;
   int piece_frames = 0;
+  int refine_passes = CompressOptions{}.refine_passes;
 };
 
 // Raw float32 size of a clip: 10 floats (translation, rotation, scale) per joint and frame.
@@ -61,7 +62,7 @@ void run_compress(const CompressArgs& args) {
   const auto clip = sample_clip(scene);
   if (!clip) throw CommandError{args.input.path + ": " + clip.error().describe()};
   const auto start = std::chrono::steady_clock::now();
-  const auto compressed = compress_clip(*clip, {.error = args.error, .shell = args.shell, .piece_frames = args.piece_frames});
+  const auto compressed = compress_clip(*clip, {.error = args.error, .shell = args.shell, .piece_frames = args.piece_frames, .refine_passes = args.refine_passes});
   if (!compressed) throw CommandError{args.input.path + ": " + compressed.error().describe()};
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto bytes = compressed->bytes();
@@ -92,6 +93,10 @@ const RegisterCommand kCompress{{"compress", 45, [](CLI::App& root) {
   cmd->add_option("--piece-frames", args->piece_frames,
                   "Largest piece in frames (each piece has its own ranges and widths; default 0: pieces only at jumps)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--refine", args->refine_passes,
+                  "Greedy relaxation passes after the bisection (default " + std::to_string(CompressOptions{}.refine_passes) +
+                      "; more: smaller files, slower)")
+      ->check(CLI::Range(0, 10));
   cmd->callback([args] { run_compress(*args); });
 }}};
 

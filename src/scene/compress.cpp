@@ -2,6 +2,7 @@
 #include "inbetween/scene/compress.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -93,31 +94,39 @@ struct Quantised {
   std::vector<std::uint32_t> values;
 };
 
-Quantised quantise(const std::vector<double>& controls, unsigned dims, std::uint32_t h, unsigned bits, unsigned degree) {
+// Quantisation levels: step = (largest component extent) · 2^(−level/4), level 0 … max_level
+// (quarter-bit resolution; at max_level indices stay below 2^24).
+constexpr unsigned max_level = 4 * (ibc_max_bits - 1);
+
+Quantised quantise(const std::vector<double>& controls, unsigned dims, std::uint32_t h, unsigned level, unsigned degree) {
   Quantised q;
   q.track.kind = CompressedTrackKind::spline;
   q.track.degree = std::uint8_t(degree);
   q.track.components = std::uint8_t(dims);
-  q.track.bits = std::uint8_t(bits);
   q.track.spacing = h;
   const std::size_t n = controls.size() / dims;
   q.track.controls = std::uint32_t(n);
   q.values.resize(controls.size());
-  const double levels = double((std::uint64_t(1) << bits) - 1);
+  double lo[4], extent = 0;
   for (unsigned c = 0; c < dims; ++c) {
-    double lo = infinity, hi = -infinity;
-    for (std::size_t i = 0; i < n; ++i) lo = std::min(lo, controls[i * dims + c]), hi = std::max(hi, controls[i * dims + c]);
-    const float min_f = float_down(lo);
-    const float ext_f = float_up(hi - double(min_f));
-    q.track.min[c] = min_f;
-    q.track.extent[c] = ext_f;
-    const double step = bits == 0 ? 0.0 : double(ext_f) / levels;
+    double hi = -infinity;
+    lo[c] = infinity;
+    for (std::size_t i = 0; i < n; ++i) lo[c] = std::min(lo[c], controls[i * dims + c]), hi = std::max(hi, controls[i * dims + c]);
+    q.track.min[c] = float_down(lo[c]);
+    extent = std::max(extent, hi - double(q.track.min[c]));
+  }
+  const float step = float(extent * std::exp2(-double(level) / 4));
+  std::uint32_t largest = 0;
+  for (unsigned c = 0; c < dims; ++c) {
+    q.track.step[c] = step;
     for (std::size_t i = 0; i < n; ++i) {
-      double v = step > 0 ? std::round((controls[i * dims + c] - double(min_f)) / step) : 0.0;
-      v = std::clamp(v, 0.0, levels);
+      double v = step > 0 ? std::round((controls[i * dims + c] - double(q.track.min[c])) / double(step)) : 0.0;
+      v = std::clamp(v, 0.0, double((1u << ibc_max_bits) - 1));
       q.values[i * dims + c] = std::uint32_t(v);
+      largest = std::max(largest, q.values[i * dims + c]);
     }
   }
+  q.track.bits = std::uint8_t(std::bit_width(largest));
   return q;
 }
 
@@ -131,8 +140,7 @@ void evaluate(const Quantised& q, std::size_t f, double* out) {
   for (unsigned k = 0; k <= t.degree; ++k)
     for (unsigned c = 0; c < t.components; ++c) acc[c] += w[k] * double(q.values[(seg + k) * t.components + c]);
   for (unsigned c = 0; c < t.components; ++c) {
-    const double step = t.bits == 0 ? 0.0 : double(t.extent[c]) / double((std::uint64_t(1) << t.bits) - 1);
-    out[c] = double(t.min[c]) + step * acc[c];
+    out[c] = double(t.min[c]) + compressed_step(t, c) * acc[c];
   }
 }
 
@@ -388,7 +396,7 @@ Option Search::choose(TrackWork& k, double tolerance) {
   const double descriptor_bits = 8.0 * (11 + 8 * k.dims + (k.channel == 1 ? 16 : 0));
   double best_bits = infinity;
   std::uint32_t best_h = 1;
-  unsigned best_b = ibc_max_bits, best_degree = 1;
+  unsigned best_b = max_level, best_degree = 1;
   for (unsigned degree : {1u, 3u}) {
     for (std::uint32_t h : spacings) {
       const double controls = double(compressed_segments(F, h) + degree);
@@ -398,11 +406,11 @@ Option Search::choose(TrackWork& k, double tolerance) {
         if (h >= F) break;
         continue;
       }
-      if (error_of(k, h, ibc_max_bits, degree) > tolerance) {
+      if (error_of(k, h, max_level, degree) > tolerance) {
         if (h >= F) break;
         continue;
       }
-      unsigned lo = 0, hi = ibc_max_bits;  // error at hi ≤ tolerance
+      unsigned lo = 0, hi = max_level;  // error at hi ≤ tolerance
       while (lo < hi) {
         const unsigned mid = (lo + hi) / 2;
         if (error_of(k, h, mid, degree) <= tolerance) hi = mid;
@@ -416,8 +424,8 @@ Option Search::choose(TrackWork& k, double tolerance) {
   }
   Option o;
   if (!std::isfinite(best_bits)) {  // nothing meets it: the finest encoding (the exact check decides)
-    best_h = 1, best_b = ibc_max_bits, best_degree = 1;
-    best_bits = measure(k, 1, 1, ibc_max_bits).second + descriptor_bits;
+    best_h = 1, best_b = max_level, best_degree = 1;
+    best_bits = measure(k, 1, 1, max_level).second + descriptor_bits;
   }
   o.q = quantised(k, best_h, best_degree, best_b);
   o.error = error_of(k, best_h, best_b, best_degree);
@@ -453,7 +461,10 @@ Expected<CompressedClip> Search::build(const std::vector<Option>& options, doubl
 double Search::exact_error(const std::vector<Option>& options, ClipError* where) const {
   const auto built = build(options, 0);
   if (!built) return infinity;
-  const ClipError e = clip_error(clip_, decompress(*built), options_.shell);
+  // Both decoders: the double reference (the .ibc reader's keys) and the runtime's float sampler.
+  ClipError e = clip_error(clip_, decompress(*built), options_.shell);
+  const ClipError ef = clip_error(clip_, sample_float(*built), options_.shell);
+  if (ef.max > e.max) e = ef;
   if (where) *where = e;
   return e.max;
 }
@@ -470,6 +481,27 @@ SampledClip decompress(const CompressedClip& clip) {
   out.poses.resize(out.frames * out.joints());
   for (std::size_t f = 0; f < out.frames; ++f)
     decode_frame(clip, f, std::span<JointPose<double>>(out.poses).subspan(f * out.joints(), out.joints()));
+  return out;
+}
+
+SampledClip sample_float(const CompressedClip& clip) {
+  SampledClip out;
+  out.parents.assign(clip.parents().begin(), clip.parents().end());
+  out.names.assign(clip.names().begin(), clip.names().end());
+  out.first_frame = clip.first_frame();
+  out.frame_rate = clip.frame_rate();
+  out.frames = clip.frames();
+  out.poses.resize(out.frames * out.joints());
+  std::vector<JointPose<float>> local(out.joints());
+  for (std::size_t f = 0; f < out.frames; ++f) {
+    sample_compressed(clip, clip.first_frame() + double(f), local);
+    for (std::size_t j = 0; j < out.joints(); ++j) {
+      JointPose<double>& p = out.poses[f * out.joints() + j];
+      p.translation = local[j].translation.cast<double>();
+      p.rotation = local[j].rotation.cast<double>();
+      p.scale = local[j].scale.cast<double>();
+    }
+  }
   return out;
 }
 
@@ -540,7 +572,8 @@ Expected<CompressedClip> compress_clip(const SampledClip& clip, const CompressOp
     std::vector<std::size_t> order(search.work.size());
     std::iota(order.begin(), order.end(), 0);
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return best[a].bits > best[b].bits; });
-    const double factor = pass == 0 ? 2.0 : pass == 1 ? 1.4 : 1.15;
+    static const double factors[] = {2.0, 1.4, 1.19, 1.09, 1.04};
+    const double factor = factors[std::min(pass, 4)];
     for (std::size_t i : order) {
       TrackWork& k = search.work[i];
       if (best[i].q.track.kind != CompressedTrackKind::spline) continue;
@@ -569,7 +602,7 @@ Expected<CompressedClip> compress_clip(const SampledClip& clip, const CompressOp
       if (std::getenv("INBETWEEN_COMPRESS_DEBUG")[0] == '2') {
         for (std::uint32_t h : {1u, 2u, 3u, 4u, 6u, 8u}) {
           std::fprintf(stderr, " h%u:", h);
-          for (unsigned b : {8u, 10u, 12u, 14u, 24u}) std::fprintf(stderr, " %.2g", search.debug_error(search.work[i], h, b));
+          for (unsigned b : {32u, 40u, 48u, 56u, 92u}) std::fprintf(stderr, " %.2g", search.debug_error(search.work[i], h, b));
         }
         std::fprintf(stderr, "\n");
       }

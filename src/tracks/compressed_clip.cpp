@@ -88,23 +88,72 @@ BlockComponent block_component(std::span<const std::uint32_t> values, unsigned c
   return {lo, unsigned(std::bit_width(hi - lo))};
 }
 
-// Appends `bits` bits of v at bit position `bit` of `out` (zeroed bytes).
+// Sets `bits` bits of v at bit position `bit` of `out` (zeroed bytes); a null `out` only counts.
 void put_bits(std::uint8_t* out, std::uint64_t bit, std::uint32_t v, unsigned bits) {
+  if (out == nullptr) return;
   for (unsigned b = 0; b < bits; ++b, ++bit)
     if ((v >> b) & 1u) out[bit >> 3] |= std::uint8_t(1u << (bit & 7));
 }
 
-}  // namespace
-
-std::uint64_t compressed_block_bits(std::span<const std::uint32_t> values, unsigned comps, unsigned bits) noexcept {
+// The track's width_base and width_bits.
+std::pair<unsigned, unsigned> track_widths(std::span<const std::uint32_t> values, unsigned comps) {
   const std::size_t n = values.size() / comps;
-  std::uint64_t total = 0;
+  unsigned lo = 32, hi = 0;
   for (std::size_t first = 0; first < n; first += ibc_block_controls) {
     const std::size_t count = std::min<std::size_t>(ibc_block_controls, n - first);
-    total += std::uint64_t(comps) * (bits + ibc_width_bits);
-    for (unsigned c = 0; c < comps; ++c) total += count * block_component(values, comps, first, count, c).width;
+    for (unsigned c = 0; c < comps; ++c) {
+      const unsigned w = block_component(values, comps, first, count, c).width;
+      lo = std::min(lo, w), hi = std::max(hi, w);
+    }
   }
-  return total;
+  if (lo > hi) lo = hi = 0;
+  return {lo, unsigned(std::bit_width(hi - lo))};
+}
+
+// Writes (or with a null `out`, counts) a spline track's superblocks and blocks from bit `bit`;
+// returns the bit after them.
+std::uint64_t encode_track(std::span<const std::uint32_t> values, unsigned comps, unsigned bits, std::uint8_t* out,
+                           std::uint64_t bit) {
+  const std::size_t n = values.size() / comps;
+  const auto [width_base, width_bits] = track_widths(values, comps);
+  const std::size_t super_controls = std::size_t(ibc_block_controls) * ibc_superblock_blocks;
+  for (std::size_t sfirst = 0; sfirst < n; sfirst += super_controls) {
+    const std::size_t scount = std::min(super_controls, n - sfirst);
+    std::uint32_t sbase[4], swidth[4];
+    for (unsigned c = 0; c < comps; ++c) {
+      std::uint32_t lo = std::numeric_limits<std::uint32_t>::max(), hi = 0;
+      for (std::size_t first = sfirst; first < sfirst + scount; first += ibc_block_controls) {
+        const std::uint32_t b = block_component(values, comps, first, std::min<std::size_t>(ibc_block_controls, n - first), c).base;
+        lo = std::min(lo, b), hi = std::max(hi, b);
+      }
+      sbase[c] = lo, swidth[c] = unsigned(std::bit_width(hi - lo));
+      put_bits(out, bit, sbase[c], bits);
+      put_bits(out, bit + bits, swidth[c], ibc_width_bits);
+      bit += bits + ibc_width_bits;
+    }
+    for (std::size_t first = sfirst; first < sfirst + scount; first += ibc_block_controls) {
+      const std::size_t count = std::min<std::size_t>(ibc_block_controls, n - first);
+      BlockComponent bc[4];
+      for (unsigned c = 0; c < comps; ++c) {
+        bc[c] = block_component(values, comps, first, count, c);
+        put_bits(out, bit, bc[c].base - sbase[c], swidth[c]);
+        put_bits(out, bit + swidth[c], bc[c].width - width_base, width_bits);
+        bit += swidth[c] + width_bits;
+      }
+      for (std::size_t i = first; i < first + count; ++i)
+        for (unsigned c = 0; c < comps; ++c) {
+          put_bits(out, bit, values[i * comps + c] - bc[c].base, bc[c].width);
+          bit += bc[c].width;
+        }
+    }
+  }
+  return bit;
+}
+
+}  // namespace
+
+std::uint64_t compressed_block_bits(std::span<const std::uint32_t> values, unsigned components, unsigned bits) noexcept {
+  return encode_track(values, components, bits, nullptr, 0);
 }
 
 std::vector<std::uint8_t> write_compressed_clip(const CompressedClipParts& parts) {
@@ -146,13 +195,16 @@ std::vector<std::uint8_t> write_compressed_clip(const CompressedClipParts& parts
     if (t.kind == CompressedTrackKind::constant) {
       for (unsigned c = 0; c < (rotation ? 4u : 3u); ++c) put_f32(out, t.min[c]);
     } else if (t.kind == CompressedTrackKind::spline) {
+      const auto [width_base, width_bits] = track_widths(parts.values[k], t.components);
       put_u8(out, t.components);
       put_u8(out, t.degree);
       put_u8(out, t.bits);
+      put_u8(out, std::uint8_t(width_base));
+      put_u8(out, std::uint8_t(width_bits));
       put_u16(out, std::uint16_t(t.spacing));
       put_u32(out, std::uint32_t(bit));
       for (unsigned c = 0; c < t.components; ++c) put_f32(out, t.min[c]);
-      for (unsigned c = 0; c < t.components; ++c) put_f32(out, t.extent[c]);
+      for (unsigned c = 0; c < t.components; ++c) put_f32(out, t.step[c]);
       if (rotation) {
         put_f32(out, t.reference.w), put_f32(out, t.reference.x), put_f32(out, t.reference.y), put_f32(out, t.reference.z);
       }
@@ -167,25 +219,7 @@ std::vector<std::uint8_t> write_compressed_clip(const CompressedClipParts& parts
   std::uint8_t* stream = out.data() + stream_start;
   for (std::size_t k = 0; k < parts.tracks.size(); ++k) {
     const CompressedTrack& t = parts.tracks[k];
-    if (t.kind != CompressedTrackKind::spline) continue;
-    const std::span<const std::uint32_t> values = parts.values[k];
-    const unsigned comps = t.components;
-    const std::size_t n = values.size() / comps;
-    for (std::size_t first = 0; first < n; first += ibc_block_controls) {
-      const std::size_t count = std::min<std::size_t>(ibc_block_controls, n - first);
-      BlockComponent bc[4];
-      for (unsigned c = 0; c < comps; ++c) {
-        bc[c] = block_component(values, comps, first, count, c);
-        put_bits(stream, bit, bc[c].base, t.bits);
-        put_bits(stream, bit + t.bits, bc[c].width, ibc_width_bits);
-        bit += t.bits + ibc_width_bits;
-      }
-      for (std::size_t i = first; i < first + count; ++i)
-        for (unsigned c = 0; c < comps; ++c) {
-          put_bits(stream, bit, values[i * comps + c] - bc[c].base, bc[c].width);
-          bit += bc[c].width;
-        }
-    }
+    if (t.kind == CompressedTrackKind::spline) bit = encode_track(parts.values[k], t.components, t.bits, stream, bit);
   }
   set_u32(out, 32, std::uint32_t(stream_size));
   set_u32(out, 8, std::uint32_t(out.size()));
@@ -295,34 +329,55 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
       IBC_TRY(bits, r.uint(1, "bits"));
       if (bits > ibc_max_bits) return r.fail(track_at + 3, "bits: " + std::to_string(bits) + " > " + std::to_string(ibc_max_bits));
       t.bits = std::uint8_t(bits);
+      IBC_TRY(width_base, r.uint(1, "width base"));
+      if (width_base > bits) return r.fail(track_at + 4, "width base: " + std::to_string(width_base) + " > bits " + std::to_string(bits));
+      t.width_base = std::uint8_t(width_base);
+      IBC_TRY(width_bits, r.uint(1, "width bits"));
+      if (width_bits > ibc_width_bits) return r.fail(track_at + 5, "width bits: " + std::to_string(width_bits) + " > 5");
+      t.width_bits = std::uint8_t(width_bits);
       IBC_TRY(spacing, r.uint(2, "spacing"));
-      if (spacing == 0) return r.fail(track_at + 4, "spacing: 0");
+      if (spacing == 0) return r.fail(track_at + 6, "spacing: 0");
       t.spacing = std::uint32_t(spacing);
       IBC_TRY(bit_offset, r.uint(4, "bit offset"));
       t.bit_offset = bit_offset;
       t.controls = std::uint32_t(compressed_segments(piece_frames, spacing) + degree);
-      // Walk the blocks: headers and offsets inside the stream, widths ≤ bits.
+      // Walk the superblocks and blocks: headers and offsets inside the stream, widths ≤ bits.
       t.first_block = std::uint32_t(clip.blocks_.size());
+      t.first_superblock = std::uint32_t(clip.superblocks_.size());
+      const std::uint8_t* stream = bytes.data() + stream_offset;
       std::uint64_t pos = bit_offset;
-      for (std::uint32_t first = 0; first < t.controls; first += ibc_block_controls) {
+      const auto past = [&](std::uint64_t need) { return pos > stream_bits || need > stream_bits - pos; };
+      const auto overrun = [&](std::uint32_t block) {
+        return r.fail(track_at + 8, "bit offset: block " + std::to_string(block) + " of track " + std::to_string(k) +
+                                        " runs past the " + std::to_string(stream_bits) + "-bit stream");
+      };
+      unsigned swidth[4] = {0, 0, 0, 0};
+      for (std::uint32_t first = 0, block = 0; first < t.controls; first += ibc_block_controls, ++block) {
+        if (block % ibc_superblock_blocks == 0) {
+          if (past(std::uint64_t(t.components) * (t.bits + ibc_width_bits))) return overrun(block);
+          clip.superblocks_.push_back(std::uint32_t(pos));
+          for (unsigned c = 0; c < t.components; ++c, pos += t.bits + ibc_width_bits) {
+            swidth[c] = compressed_value(stream, pos + t.bits, ibc_width_bits);
+            if (swidth[c] > t.bits)
+              return r.fail(std::size_t(stream_offset + (pos >> 3)), "superblock width: " + std::to_string(swidth[c]) +
+                                                                       " > the track's " + std::to_string(bits) + " bits (track " + std::to_string(k) + ")");
+          }
+        }
         const std::uint32_t count = std::min<std::uint32_t>(ibc_block_controls, t.controls - first);
-        const std::uint64_t header = std::uint64_t(t.components) * (t.bits + ibc_width_bits);
-        if (pos > stream_bits || header > stream_bits - pos)
-          return r.fail(track_at + 6, "bit offset: block " + std::to_string(first / ibc_block_controls) + " of track " +
-                                          std::to_string(k) + " runs past the " + std::to_string(stream_bits) + "-bit stream");
+        std::uint64_t header = 0;
+        for (unsigned c = 0; c < t.components; ++c) header += swidth[c] + t.width_bits;
+        if (past(header)) return overrun(block);
         clip.blocks_.push_back(std::uint32_t(pos));
         std::uint64_t row = 0;
         for (unsigned c = 0; c < t.components; ++c) {
-          const unsigned width = compressed_value(bytes.data() + stream_offset, pos + c * (t.bits + ibc_width_bits) + t.bits, ibc_width_bits);
+          const unsigned width = t.width_base + compressed_value(stream, pos + swidth[c], t.width_bits);
           if (width > t.bits)
             return r.fail(std::size_t(stream_offset + (pos >> 3)), "block width: " + std::to_string(width) + " > the track's " +
-                                                                     std::to_string(unsigned(t.bits)) + " bits (track " + std::to_string(k) + ")");
+                                                                     std::to_string(bits) + " bits (track " + std::to_string(k) + ")");
           row += width;
+          pos += swidth[c] + t.width_bits;
         }
-        pos += header;
-        if (row * count > stream_bits - pos)
-          return r.fail(track_at + 6, "bit offset: block " + std::to_string(first / ibc_block_controls) + " of track " +
-                                          std::to_string(k) + " runs past the " + std::to_string(stream_bits) + "-bit stream");
+        if (past(row * count)) return overrun(block);
         pos += row * count;
       }
       for (unsigned c = 0; c < t.components; ++c) {
@@ -331,11 +386,11 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
       }
       for (unsigned c = 0; c < t.components; ++c) {
         const std::size_t at = r.at;
-        IBC_TRY(v, r.f32("range extent"));
-        if (v < 0) return r.fail(at, "range extent: negative");
-        t.extent[c] = v;
-        t.step[c] = t.bits == 0 ? 0.0f : float(double(v) / double((std::uint64_t(1) << t.bits) - 1));
-        if (!std::isfinite(t.min[c] + t.extent[c])) return r.fail(at, "range: min + extent overflows float");
+        IBC_TRY(v, r.f32("step"));
+        if (v < 0) return r.fail(at, "step: negative");
+        t.step[c] = v;
+        // Indices are below 2^(bits + 1) (a base below 2^bits plus an offset below 2^bits).
+        if (!std::isfinite(t.min[c] + t.step[c] * 33554432.0f)) return r.fail(at, "step: min + step · 2^25 overflows float");
       }
       if (rotation) {
         const std::size_t at = r.at;
@@ -364,16 +419,24 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
 
 namespace {
 
-// Spline values of one track at local sample position x (samples from the piece's start).
+// Spline values of one track at segment `seg`, local parameter u.
 template <Real T>
-[[gnu::always_inline]] inline void spline_values(const CompressedTrack& t, const std::uint8_t* stream, const std::uint32_t* blocks,
-                                                 std::uint64_t seg, T u, const T* step, T* out) noexcept {
+[[gnu::always_inline]] inline void spline_values(const CompressedTrack& t, const CompressedClip& clip, std::uint64_t seg, T u,
+                                                 const T* step, T* out) noexcept {
   const auto w = t.degree == 3 ? bspline_weights(u) : linear_weights(u);
   const unsigned n = t.components;
+  const std::uint8_t* stream = clip.stream();
   T acc[4] = {0, 0, 0, 0};
   std::uint32_t idx[4];
+  CompressedBlock block;
+  std::uint32_t current = std::numeric_limits<std::uint32_t>::max();
   for (unsigned k = 0; k <= t.degree; ++k) {
-    compressed_control(t, stream, blocks, std::uint32_t(seg + k), idx);
+    const auto control = std::uint32_t(seg + k);
+    if (control / ibc_block_controls != current) {
+      current = control / ibc_block_controls;
+      compressed_block(t, stream, clip.blocks().data(), clip.superblocks().data(), current, block);
+    }
+    compressed_control(block, stream, n, control % ibc_block_controls, idx);
     for (unsigned c = 0; c < n; ++c) acc[c] += w[k] * T(idx[c]);
   }
   for (unsigned c = 0; c < n; ++c) out[c] = T(t.min[c]) + step[c] * acc[c];
@@ -383,8 +446,6 @@ template <Real T>
 
 void decode_frame(const CompressedClip& clip, std::size_t frame_index, std::span<JointPose<double>> out) noexcept {
   INBETWEEN_ASSERT(frame_index < clip.frames() && out.size() == clip.joints());
-  const std::uint8_t* stream = clip.stream();
-  const std::uint32_t* blocks = clip.blocks().data();
   const std::size_t piece = clip.piece_of(frame_index);
   frame_index -= clip.pieces()[piece];
   for (std::size_t j = 0; j < clip.joints(); ++j) {
@@ -409,7 +470,7 @@ void decode_frame(const CompressedClip& clip, std::size_t frame_index, std::span
       const double u = double(frame_index - seg * t.spacing) / double(t.spacing);
       double step[4], v[4];
       for (unsigned c = 0; c < t.components; ++c) step[c] = compressed_step(t, c);
-      spline_values(t, stream, blocks, seg, u, step, v);
+      spline_values(t, clip, seg, u, step, v);
       if (ch == 1) {
         pose.rotation = compressed_rotation(t.reference.cast<double>(), v, t.components);
       } else {
@@ -421,8 +482,6 @@ void decode_frame(const CompressedClip& clip, std::size_t frame_index, std::span
 
 void sample_compressed(const CompressedClip& clip, double frame, std::span<JointPose<float>> local) noexcept {
   INBETWEEN_ASSERT(local.size() == clip.joints());
-  const std::uint8_t* stream = clip.stream();
-  const std::uint32_t* blocks = clip.blocks().data();
   double x = frame - clip.first_frame();
   const double last = double(clip.frames() - 1);
   if (!(x > 0)) x = 0;  // NaN too
@@ -439,7 +498,7 @@ void sample_compressed(const CompressedClip& clip, double frame, std::span<Joint
         std::uint64_t seg = std::uint64_t(u);
         if (seg > t.controls - 1 - t.degree) seg = t.controls - 1 - t.degree;
         float v[4];
-        spline_values(t, stream, blocks, seg, float(u - double(seg)), t.step.data(), v);
+        spline_values(t, clip, seg, float(u - double(seg)), t.step.data(), v);
         if (ch == 1) {
           pose.rotation = compressed_rotation(t.reference, v, t.components);
         } else {

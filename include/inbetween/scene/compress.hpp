@@ -26,8 +26,8 @@ struct CompressOptions {
   int refine_passes = 3;  ///< greedy relaxation passes after the bisection (0: none; more: smaller, slower)
 };
 
-/// Compresses `clip` (docs/compression.md).  The result's measured_error() is clip_error of
-/// decompress(result) against `clip`, and is ≤ options.error.  Errors: invalid_argument naming
+/// Compresses `clip` (docs/compression.md).  The result's measured_error() is the larger
+/// clip_error of decompress(result) and of sample_float(result) against `clip`, and is ≤ options.error.  Errors: invalid_argument naming
 /// the option (error not finite or ≤ 0, shell not finite or < 0); not_finite for a non-finite
 /// pose ({"frames", f, "joints", j}); unsupported for more than 65 535 frames per knot interval
 /// never arises (spacings are small) — and for a clip whose bytes would exceed 4 GiB.
@@ -35,5 +35,9 @@ struct CompressOptions {
 
 /// Every sample of a compressed clip, decoded in double (decode_frame), as a SampledClip.
 [[nodiscard]] SampledClip decompress(const CompressedClip& clip);
+
+/// Every sample of a compressed clip through the runtime's float sampler (sample_compressed at
+/// first_frame() + f), widened to double.  compress_clip() bounds the error of this too.
+[[nodiscard]] SampledClip sample_float(const CompressedClip& clip);
 
 }  // namespace inbetween

@@ -41,11 +41,15 @@ inline constexpr std::size_t ibc_header_size = 64;
 inline constexpr std::size_t ibc_stream_padding = 8;
 /// Largest bit width of a quantised value.
 inline constexpr unsigned ibc_max_bits = 24;
-/// Control points per block: each block stores, per component, the smallest index of its
-/// control points (at the track's bit width) and the width of the offsets from it (5 bits), then
-/// the offsets — lossless range reduction of the track's quantised indices.
+/// Control points per block.  A track's quantised indices are stored losslessly range-reduced on
+/// two levels: a superblock (ibc_superblock_blocks blocks) stores per component the smallest
+/// base of its blocks (at the track's `bits`) and the width of the block bases above it (5 bits);
+/// a block stores per component its base above the superblock's (at that width) and its offsets'
+/// width above the track's width_base (at width_bits bits), then the offsets.
 inline constexpr unsigned ibc_block_controls = 16;
-/// Bits of a block's per-component offset width (0 … ibc_max_bits).
+/// Blocks per superblock.
+inline constexpr unsigned ibc_superblock_blocks = 16;
+/// Bits of a superblock's per-component width of block bases (0 … ibc_max_bits).
 inline constexpr unsigned ibc_width_bits = 5;
 
 /// What a track stores.
@@ -63,14 +67,16 @@ struct CompressedTrack {
   CompressedTrackKind kind = CompressedTrackKind::absent;  ///< what it stores
   std::uint8_t components = 3;   ///< spline values per control point: 3, or 4 for a rotation with w stored
   std::uint8_t degree = 3;       ///< 1: linear between control points (h = 1: the samples themselves); 3: cubic B-spline
-  std::uint8_t bits = 0;         ///< bits per quantised value, 0 … ibc_max_bits (0: every value is `min`)
+  std::uint8_t bits = 0;         ///< bits of a block's base index, 0 … ibc_max_bits (indices are < 2^bits)
   std::uint32_t spacing = 1;     ///< frames per knot interval (h ≥ 1)
   std::uint32_t controls = 0;    ///< control points: segments + degree, segments = max(1, ⌈(piece frames − 1)/h⌉)
   std::uint64_t bit_offset = 0;  ///< first bit of the track's first block in the bit stream
+  std::uint8_t width_base = 0;   ///< smallest offset width of the track's blocks (≤ bits)
+  std::uint8_t width_bits = 0;   ///< bits of a block's width field (≤ 5): width = width_base + field
   std::uint32_t first_block = 0; ///< index of the track's first block in the clip's block table (set on load)
+  std::uint32_t first_superblock = 0; ///< index of the track's first superblock in the clip's superblock table (set on load)
   std::array<float, 4> min{};    ///< spline: per-component lower end of the range; constant: the value (w, x, y, z for a rotation)
-  std::array<float, 4> extent{}; ///< spline: per-component range length (≥ 0)
-  std::array<float, 4> step{};   ///< extent / (2^bits − 1) (0 when bits == 0), computed on load
+  std::array<float, 4> step{};   ///< spline: per-component quantisation step (≥ 0): value = min + step · index
   Quatf reference{};             ///< rotation spline: q = reference ⊗ q_rel
 };
 
@@ -94,9 +100,8 @@ template <Real T>
   return {T(1) - t, t, T(0), T(0)};
 }
 
-/// Bits of a spline track's blocks in the stream (ibc_block_controls control points per block:
-/// per component the base index at `bits` and an ibc_width_bits width, then the offsets), for
-/// quantised indices `values` (controls × components, control-major).
+/// Bits of a spline track's superblocks and blocks in the stream, for quantised indices `values`
+/// (controls × components, control-major) whose largest is below 2^bits.
 [[nodiscard]] std::uint64_t compressed_block_bits(std::span<const std::uint32_t> values, unsigned components, unsigned bits) noexcept;
 
 /// Reconstructs a rotation from a relative rotation's spline components: 3 components → w = √(1 − |v|²)
@@ -168,6 +173,8 @@ class CompressedClip {
   /// Bit position of every block in the stream (all spline tracks' blocks, in track order; a
   /// track's start at its first_block) — the index built on load.
   [[nodiscard]] std::span<const std::uint32_t> blocks() const noexcept { return blocks_; }
+  /// Bit position of every superblock in the stream (a track's start at its first_superblock).
+  [[nodiscard]] std::span<const std::uint32_t> superblocks() const noexcept { return superblocks_; }
 
  private:
   friend Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes);
@@ -177,7 +184,7 @@ class CompressedClip {
   std::vector<std::string> names_;
   std::vector<std::uint32_t> pieces_;
   std::vector<CompressedTrack> tracks_;
-  std::vector<std::uint32_t> blocks_;
+  std::vector<std::uint32_t> blocks_, superblocks_;
   std::size_t frames_ = 0, stream_offset_ = 0;
   double first_frame_ = 0, frame_rate_ = 0, error_bound_ = 0, measured_error_ = 0, shell_ = 0;
 };
@@ -190,16 +197,17 @@ class CompressedClip {
 /// of the offending field and the field named in the message.
 [[nodiscard]] Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes);
 
-/// The quantisation step of component c of a spline track in double: extent / (2^bits − 1), 0
-/// at 0 bits (decode_frame's; the float sampler uses the rounded CompressedTrack::step).
-[[nodiscard]] inline double compressed_step(const CompressedTrack& t, unsigned c) noexcept {
-  return t.bits == 0 ? 0.0 : double(t.extent[c]) / double((std::uint64_t(1) << t.bits) - 1);
-}
+/// The quantisation step of component c of a spline track in double (the stored float).
+[[nodiscard]] inline double compressed_step(const CompressedTrack& t, unsigned c) noexcept { return double(t.step[c]); }
 
-/// Reads the quantised indices of control point `n` of spline track `t` into idx[0 … components).
-[[gnu::always_inline]] inline void compressed_control(const CompressedTrack& t, const std::uint8_t* stream,
-                                                      const std::uint32_t* blocks, std::uint32_t n,
-                                                      std::uint32_t* idx) noexcept;
+/// One block of a spline track, its header read: per component the base index and the offsets' width.
+struct CompressedBlock {
+  std::uint32_t base[4] = {0, 0, 0, 0};   ///< per component: index of offset 0
+  unsigned width[4] = {0, 0, 0, 0};       ///< per component: offset width (bits)
+  unsigned before[4] = {0, 0, 0, 0};      ///< per component: bits of the earlier components in a row
+  unsigned row = 0;                       ///< bits of one control point's offsets
+  std::uint64_t values = 0;               ///< bit position of the block's first offset
+};
 
 /// One quantised value of the stream: `bits` bits at bit position `bit` (LSB first).
 [[gnu::always_inline]] inline std::uint32_t compressed_value(const std::uint8_t* stream, std::uint64_t bit,
@@ -210,20 +218,34 @@ class CompressedClip {
   return std::uint32_t((word >> (bit & 7)) & ((std::uint64_t(1) << bits) - 1));
 }
 
-inline void compressed_control(const CompressedTrack& t, const std::uint8_t* stream, const std::uint32_t* blocks,
-                               std::uint32_t n, std::uint32_t* idx) noexcept {
+/// Reads the header of block `block` (control points block · ibc_block_controls …) of spline track
+/// `t`: its superblock's bases and widths, then its own.
+[[gnu::always_inline]] inline void compressed_block(const CompressedTrack& t, const std::uint8_t* stream,
+                                                    const std::uint32_t* blocks, const std::uint32_t* superblocks,
+                                                    std::uint32_t block, CompressedBlock& out) noexcept {
   const unsigned comps = t.components, bits = t.bits;
-  std::uint64_t pos = blocks[t.first_block + n / ibc_block_controls];
-  std::uint32_t width[4];
-  unsigned row = 0, before[4];
-  for (unsigned c = 0; c < comps; ++c, pos += bits + ibc_width_bits) {
-    idx[c] = compressed_value(stream, pos, bits);
-    width[c] = compressed_value(stream, pos + bits, ibc_width_bits);
-    before[c] = row;
-    row += width[c];
+  std::uint64_t spos = superblocks[t.first_superblock + block / ibc_superblock_blocks];
+  std::uint64_t pos = blocks[t.first_block + block];
+  unsigned row = 0;
+  for (unsigned c = 0; c < comps; ++c) {
+    const std::uint32_t sbase = compressed_value(stream, spos, bits);
+    const unsigned swidth = compressed_value(stream, spos + bits, ibc_width_bits);
+    spos += bits + ibc_width_bits;
+    out.base[c] = sbase + compressed_value(stream, pos, swidth);
+    out.width[c] = t.width_base + compressed_value(stream, pos + swidth, t.width_bits);
+    pos += swidth + t.width_bits;
+    out.before[c] = row;
+    row += out.width[c];
   }
-  pos += std::uint64_t(n % ibc_block_controls) * row;
-  for (unsigned c = 0; c < comps; ++c) idx[c] += compressed_value(stream, pos + before[c], width[c]);
+  out.row = row;
+  out.values = pos;
+}
+
+/// The quantised indices of control point `i` (within the block) of a block read by compressed_block.
+[[gnu::always_inline]] inline void compressed_control(const CompressedBlock& b, const std::uint8_t* stream, unsigned components,
+                                                      std::uint32_t i, std::uint32_t* idx) noexcept {
+  const std::uint64_t pos = b.values + std::uint64_t(i) * b.row;
+  for (unsigned c = 0; c < components; ++c) idx[c] = b.base[c] + compressed_value(stream, pos + b.before[c], b.width[c]);
 }
 
 /// The local pose of every joint at sample `frame_index` (< frames(), asserted), in double: the
