@@ -60,6 +60,7 @@ COMPARISON_FILTERS = {
     "inbetween_bench_curves": r"Sequential|BatchCubic",
     "inbetween_bench_tracks": r"BM_Rig.*/(25|64|71|551|1024)/2$",
     "inbetween_bench_io": r"BM_Bvh",
+    "inbetween_bench_compression": r"BM_ClipRaw|BM_CompressClip|BM_SampleCompressed",  # issue 24's ACL table
 }
 
 RIG_SIZES = (25, 64, 71, 551, 1024)
