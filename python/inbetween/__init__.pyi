@@ -194,6 +194,43 @@ def load_clip(path: str | PathLike[str], space: str = "local", frames: ArrayLike
     """Any file inbetween reads, every object sampled at frames (default the file's range, step 1) in
     space "local" or "world", as `inbetween bake --space`; inbetween.Error names the file and place."""
 
+class CompressedClip:
+    """A compressed clip (.ibc) sampled in place."""
+    def __init__(self) -> None:
+        """Not constructible from Python: load_compressed() makes one."""
+    @property
+    def names(self) -> list[str]:
+        """Joint names (parents before children)."""
+    @property
+    def parents(self) -> NDArray:
+        """int64 index of each joint's parent in names, -1 for a root."""
+    @property
+    def frame_count(self) -> int:
+        """Samples per joint."""
+    @property
+    def first_frame(self) -> float:
+        """Frame of the first sample."""
+    @property
+    def fps(self) -> float:
+        """Frames per second."""
+    @property
+    def error_bound(self) -> float:
+        """The error bound of compression (clip units)."""
+    @property
+    def measured_error(self) -> float:
+        """The measured virtual-vertex error (<= error_bound)."""
+    @property
+    def shell(self) -> float:
+        """Distance of the metric's virtual vertices."""
+    @property
+    def nbytes(self) -> int:
+        """Size of the .ibc file."""
+    def sample(self, frames: ArrayLike) -> NDArray:
+        """float32 frames.shape + (joints, 10) local transforms from the runtime's float sampler."""
+
+def load_compressed(path: str | PathLike[str]) -> CompressedClip:
+    """Loads an .ibc file for sampling in place; inbetween.Error names the byte of a corrupt file."""
+
 # ----------------------------------------------------------------------------------- paths
 def fit_bspline(t: ArrayLike, points: ArrayLike, degree: int = 3,
                 control_points: int = 0) -> tuple[Curve, dict[str, Any]]:

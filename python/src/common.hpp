@@ -86,6 +86,8 @@ void bind_curves(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_paths(py::module_& m);
 void bind_clip(py::module_& m);
+/// load_compressed() and CompressedClip (compressed.cpp).
+void bind_compressed(py::module_& m);
 /// _run_cli (cli/run_cli.cpp), only where the tool is built (INBETWEEN_PYTHON_CLI).
 void bind_cli(py::module_& m);
 

@@ -37,6 +37,7 @@ PYBIND11_MODULE(_inbetween, m) {
   bind_scene(m);
   bind_paths(m);
   bind_clip(m);
+  bind_compressed(m);
 #ifdef INBETWEEN_PYTHON_CLI
   bind_cli(m);
 #endif

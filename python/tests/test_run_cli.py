@@ -57,7 +57,7 @@ def test_errors_are_the_tools_line_and_exit_code(cli, tmp_path):
     for args in (["bake", str(bad), "-o", str(tmp_path / "o.csv")],
                  ["bake", str(tmp_path / "missing.json"), "-o", str(tmp_path / "o.csv")],
                  ["bake", "--frames"],
-                 ["compress", "clip.bvh", "-o", "out.bin"],  # no such command (yet): the parser's own line
+                 ["compress", "clip.bvh", "-o", "out.ibc"],  # a missing clip
                  ["no-such-command"]):
         ref = cli(*args, check=False)
         code, out, err, _, _ = run_cli(args)

@@ -12,10 +12,10 @@ using inbetween::test::CliRun;
 using inbetween::test::run_cli;
 
 TEST(ToolCli, AnUnknownCommandIsNamedWithTheCommands) {
-  const CliRun r = run_cli("compress clip.bvh -o clip.bin");
+  const CliRun r = run_cli("squash clip.bvh -o clip.bin");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.out, "");
-  EXPECT_EQ(r.err.rfind("inbetween: compress: no such command; the commands are bake, convert, curve, demo, ", 0), 0u)
+  EXPECT_EQ(r.err.rfind("inbetween: squash: no such command; the commands are bake, compress, convert, curve, demo, ", 0), 0u)
       << r.err;
   EXPECT_NE(r.err.find(" (--help for usage)\n"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
