@@ -538,7 +538,7 @@ class Acl(unittest.TestCase):
         raw = doc["clips"][0]["raw_float32_bytes"]
         self.assertEqual(c[2], wr.fmt_bytes(raw))
         self.assertEqual(c[3], f"{wr.fmt_bytes(acl['bytes'])} ({raw / acl['bytes']:.3g}:1)")
-        self.assertEqual(c[4], f"{acl['measured_error']['max']:.3g} / {acl['acl_error']:.3g}")
+        self.assertEqual(c[4], f"{acl['measured_error']['max']:.4g} / {acl['acl_error']:.4g}")
         self.assertEqual(c[6], "—")
         self.assertEqual(c[9], "not measured")
         boxing = self.cells(doc, label="Boxing_Toes (21 joints × 3069 frames)")
@@ -571,18 +571,25 @@ class Acl(unittest.TestCase):
             for case in clip["cases"]:
                 case.pop("inbetween", None)
         acl = doc["clips"][0]["cases"][1]["acl"]
+        # bench/compress_bench.cpp's names and counters (ns_per_joint is seconds per joint: an inverted rate)
         bench = {"context": {}, "benchmarks": [
-            {"name": "BM_CompressClip/01_01/0.1/iterations:1/repeats:1",
-             "run_name": "BM_CompressClip/01_01/0.1/iterations:1/repeats:1", "run_type": "iteration",
-             "cpu_time": 2.0, "time_unit": "s", "bytes": acl["bytes"] * 0.7, "measured_error": 0.09},
-            {"name": "BM_SampleCompressed/01_01/0.1/sequential", "run_name": "BM_SampleCompressed/01_01/0.1/sequential",
-             "run_type": "iteration", "cpu_time": 1.0, "time_unit": "ns", "items_per_second": 1e8}]}
+            {"name": "BM_CompressClip/01_01/E=0.1/iterations:1", "run_name": "BM_CompressClip/01_01/E=0.1/iterations:1",
+             "run_type": "iteration", "cpu_time": 2.0, "time_unit": "s"},
+            {"name": "BM_CompressedSample/01_01/E=0.1/sequential", "run_name": "BM_CompressedSample/01_01/E=0.1/sequential",
+             "run_type": "iteration", "cpu_time": 1.0, "time_unit": "ns", "bytes": acl["bytes"] * 0.7, "error": 0.09,
+             "ns_per_joint": 4.2e-8}]}
         r = results_of(load_docs())
-        r.add_json("inbetween_bench_compression", bench)
+        r.add_json("inbetween_bench_compress", bench)
         c = self.cells(doc, r, "0.1")
-        self.assertEqual(c[7], "0.09 / —")
+        self.assertEqual(c[7], "0.09 (stored)")
         self.assertEqual(c[8], "0.700")
         self.assertEqual(c[9], "met")
+        text = wr.render(r, "cmd", "2026-11-28", "1.00", None, None, "no node", (doc, "the recorded reference"))
+        rows = [[c.strip() for c in line.strip().strip("|").split("|")] for line in text.splitlines()
+                if line.startswith(f"| {self.LABEL} | 0.1 |")]
+        self.assertEqual(len(rows), 2)  # the size table's row and the decode table's
+        self.assertTrue(rows[1][3].startswith("42 / "), rows[1])
+        self.assertEqual(rows[1][-1], "2.00 s")
 
     def test_read_acl_prefers_the_live_run(self):
         with tempfile.TemporaryDirectory() as d:

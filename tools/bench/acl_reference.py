@@ -11,7 +11,7 @@ Per clip: joints, frames, raw float32 bytes; per error bound E: ACL's bytes at E
 figure, the error by inbetween's metric (and where), the bytes held to E (or the floor when ACL
 cannot reach E), decode ns per joint and the compression time; plus ACL's version and commit, the
 date and the machine.  ACL's side only: inbetween's figures of the same run stay in the run's own
-JSON (`make bench` measures inbetween's side again, inbetween_bench_compression).  Python's standard library only; the file is written atomically.
+JSON (`make bench` measures inbetween's side again, inbetween_bench_compress).  Python's standard library only; the file is written atomically.
 """
 
 from __future__ import annotations

@@ -30,9 +30,9 @@ ACL 2.1 (issue 24) is not packaged either: `make bench-acl ACL_SRC=…` (tools/b
 writes build/acl/acl_clip_bench.json and the tracked reference bench/acl_reference.json.  The
 "ACL 2.1 vs inbetween compression" table takes ACL's figures from the former when it exists
 (`--acl-json`), else from the latter (`--acl-reference`), and inbetween's from the same JSON when
-acl_clip_bench measured both sides, else from inbetween_bench_compression's counters
-(BM_ClipRaw/<clip>: raw_float32_bytes; BM_CompressClip/<clip>/<E>: bytes, measured_error;
-BM_SampleCompressed/<clip>/<E>/sequential|random: items_per_second = joints per second).
+acl_clip_bench measured both sides, else from this run's counters (inbetween_bench_clips'
+BM_ClipRaw/<clip>: raw_float32_bytes; inbetween_bench_compress's BM_CompressedSample/<clip>/E=<E>/
+sequential|random: bytes, error, ns_per_joint; BM_CompressClip/<clip>/E=<E>: compression time).
 """
 
 from __future__ import annotations
@@ -60,7 +60,8 @@ COMPARISON_FILTERS = {
     "inbetween_bench_curves": r"Sequential|BatchCubic",
     "inbetween_bench_tracks": r"BM_Rig.*/(25|64|71|551|1024)/2$",
     "inbetween_bench_io": r"BM_Bvh",
-    "inbetween_bench_compression": r"BM_ClipRaw|BM_CompressClip|BM_SampleCompressed",  # issue 24's ACL table
+    "inbetween_bench_clips": r"BM_ClipRaw",  # issue 24's ACL table, with the next line
+    "inbetween_bench_compress": r"BM_CompressedSample|BM_CompressClip",
 }
 
 RIG_SIZES = (25, 64, 71, 551, 1024)
@@ -528,20 +529,28 @@ def acl_inbetween_side(r: Results, case: dict, stem: str) -> dict:
                 "rnd": ours.get("decode_ns_per_joint", {}).get("random"),
                 "seq_fastest": ours.get("decode_ns_per_joint", {}).get("sequential_fastest"),
                 "seconds": ours.get("compress_seconds"), "where": "acl_clip_bench"}
-    name = f"BM_CompressClip/{stem}/{case['error_bound']:g}"
-    # Registered with Iterations(1)->Repetitions(1), which Google Benchmark appends to the name.
+    # bench/compress_bench.cpp: BM_CompressedSample/<clip>/E=<E>/sequential|random (counters bytes, error: the
+    # double decoder's, ns_per_joint: seconds per joint, a rate inverted) and BM_CompressClip/<clip>/E=<E>,
+    # registered with Iterations(1), which Google Benchmark appends to the name.
+    tag = f"{stem}/E={case['error_bound']:g}"
+    sample = f"BM_CompressedSample/{tag}/"
+
+    def ns(name: str) -> float | None:
+        s_per_joint = r.counter(name, "ns_per_joint")
+        return None if s_per_joint is None else s_per_joint * 1e9
+
+    name = f"BM_CompressClip/{tag}"
     name = next((k for k in r.cpu_ns if k == name or k.startswith(name + "/iterations:")), name)
     t = r.time(name)
-    sample = f"BM_SampleCompressed/{stem}/{case['error_bound']:g}/"
-    ref, rt = r.counter(name, "measured_error"), r.counter(name, "runtime_error")
-    return {"bytes": r.counter(name, "bytes"), "error": worst(ref, rt), "ref": ref, "rt": rt,
-            "seq": r.per_item_ns(sample + "sequential"), "rnd": r.per_item_ns(sample + "random"), "seq_fastest": None,
-            "seconds": None if t is None else t / 1e9, "where": "inbetween_bench_compression"}
+    return {"bytes": r.counter(sample + "sequential", "bytes"), "error": r.counter(sample + "sequential", "error"),
+            "ref": r.counter(sample + "sequential", "error"), "rt": None,
+            "seq": ns(sample + "sequential"), "rnd": ns(sample + "random"), "seq_fastest": None,
+            "seconds": None if t is None else t / 1e9, "where": "inbetween_bench_compress"}
 
 
 def acl_section(r: Results, acl: tuple[dict, str] | None) -> list[str]:
     """Issue 24's table: ACL's bytes, errors and decode times next to inbetween's, per clip and E."""
-    title = "### ACL 2.1 vs inbetween compression (`make bench-acl`, out of tree; `inbetween_bench_compression`)"
+    title = "### ACL 2.1 vs inbetween compression (`make bench-acl`, out of tree; `inbetween_bench_compress`)"
     if acl is None:
         return [title, "", "not run: ACL is not packaged and bench/acl_reference.json is missing; "
                 "`make bench-acl ACL_SRC=/path/to/acl` measures it.", ""]
@@ -577,9 +586,11 @@ def acl_section(r: Results, acl: tuple[dict, str] | None) -> list[str]:
                 target = "met" if q <= ACL_SIZE_TARGET else f"missed ({q:.3f}× > {ACL_SIZE_TARGET:g}×)"
             sizes.append([label, f"{e:g}", fmt_bytes(raw),
                           f"{fmt_bytes(a['bytes'])} ({fmt_num(ratio(raw, a['bytes']))}:1)",
-                          f"{fmt_num(a_err)} / {fmt_num(a['acl_error'])}", held_cell,
+                          f"{fmt_num(a_err, 4)} / {fmt_num(a['acl_error'], 4)}", held_cell,
                           "—" if ours["bytes"] is None else f"{fmt_bytes(ours['bytes'])} ({fmt_num(ratio(raw, ours['bytes']))}:1)",
-                          f"{fmt_num(ours['ref'])} / {fmt_num(ours['rt'])}", "—" if q is None else f"{q:.3f}", target])
+                          (f"{fmt_num(ours['ref'], 4)} (stored)" if ours["where"] == "inbetween_bench_compress"
+                           else f"{fmt_num(ours['ref'], 4)} / {fmt_num(ours['rt'], 4)}"),
+                          "—" if q is None else f"{q:.3f}", target])
             dec = a["decode_ns_per_joint"]
             speeds.append([label, f"{e:g}", f"{fmt_num(dec['sequential'])} / {fmt_num(dec['random'])}",
                            f"{fmt_num(ours['seq'])} / {fmt_num(ours['rnd'])}",
@@ -605,8 +616,10 @@ def acl_section(r: Results, acl: tuple[dict, str] | None) -> list[str]:
     if "acl_clip_bench" in wheres:
         out += ["inbetween's side comes from the same `acl_clip_bench` run (same binary, decode passes "
                 "interleaved with ACL's).", ""]
-    elif "inbetween_bench_compression" in wheres:
-        out += ["inbetween's side comes from this run's `inbetween_bench_compression`.", ""]
+    elif "inbetween_bench_compress" in wheres:
+        out += ["inbetween's side comes from this run's `inbetween_bench_compress` (bench/compress_bench.cpp: the "
+                "error stored at compression, the larger of the decoder's and the float runtime's; raw sizes from "
+                "`inbetween_bench_clips`).", ""]
     out += table(["clip", "E", "raw float32 B", "ACL at E: B (ratio)", "ACL error: ours / ACL's",
                   "ACL held to E: B", "inbetween: B (ratio)", "inbetween error: decoder / float runtime",
                   "inbetween / ACL at E",
