@@ -318,6 +318,7 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
       }
       if (rotation && t.min[0] == 0 && t.min[1] == 0 && t.min[2] == 0 && t.min[3] == 0)
         return r.fail(track_at + 1, "constant rotation: zero quaternion");
+      if (rotation) t.reference = normalized(Quatd::from_wxyz(t.min[0], t.min[1], t.min[2], t.min[3])).cast<float>();
     } else if (t.kind == CompressedTrackKind::spline) {
       IBC_TRY(components, r.uint(1, "components"));
       if (components != 3 && !(rotation && components == 4))
@@ -419,27 +420,53 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
 
 namespace {
 
-// Spline values of one track at segment `seg`, local parameter u.
+// Spline values of one track at segment `seg`, local parameter u; Degree and Comps fixed so the
+// loops unroll (the runtime's hot path).
+template <unsigned Degree, unsigned Comps, Real T>
+[[gnu::always_inline]] inline void spline_values_fixed(const CompressedTrack& t, const CompressedClip& clip, std::uint64_t seg,
+                                                       T u, const T* step, T* out) noexcept {
+  std::array<T, 4> w;
+  if constexpr (Degree == 3) w = bspline_weights(u);
+  else w = linear_weights(u);
+  const std::uint8_t* stream = clip.stream();
+  const std::uint32_t* blocks = clip.blocks().data();
+  const std::uint32_t* superblocks = clip.superblocks().data();
+  T acc[Comps] = {};
+  const auto first = std::uint32_t(seg);
+  const std::uint32_t b0 = first / ibc_block_controls, i0 = first % ibc_block_controls;
+  CompressedBlock block;
+  compressed_block_fixed<Comps>(t, stream, blocks, superblocks, b0, block);
+  std::uint32_t idx[4];
+  if (i0 + Degree < ibc_block_controls) {  // all control points in one block (the common case)
+    std::uint64_t pos = block.values + std::uint64_t(i0) * block.row;
+    for (unsigned k = 0; k <= Degree; ++k, pos += block.row)
+      for (unsigned c = 0; c < Comps; ++c)
+        acc[c] += w[k] * T(block.base[c] + compressed_value(stream, pos + block.before[c], block.width[c]));
+  } else {
+    std::uint32_t current = b0;
+    for (unsigned k = 0; k <= Degree; ++k) {
+      const std::uint32_t control = first + k;
+      if (control / ibc_block_controls != current) {
+        current = control / ibc_block_controls;
+        compressed_block(t, stream, blocks, superblocks, current, block);
+      }
+      compressed_control(block, stream, Comps, control % ibc_block_controls, idx);
+      for (unsigned c = 0; c < Comps; ++c) acc[c] += w[k] * T(idx[c]);
+    }
+  }
+  for (unsigned c = 0; c < Comps; ++c) out[c] = T(t.min[c]) + step[c] * acc[c];
+}
+
 template <Real T>
 [[gnu::always_inline]] inline void spline_values(const CompressedTrack& t, const CompressedClip& clip, std::uint64_t seg, T u,
                                                  const T* step, T* out) noexcept {
-  const auto w = t.degree == 3 ? bspline_weights(u) : linear_weights(u);
-  const unsigned n = t.components;
-  const std::uint8_t* stream = clip.stream();
-  T acc[4] = {0, 0, 0, 0};
-  std::uint32_t idx[4];
-  CompressedBlock block;
-  std::uint32_t current = std::numeric_limits<std::uint32_t>::max();
-  for (unsigned k = 0; k <= t.degree; ++k) {
-    const auto control = std::uint32_t(seg + k);
-    if (control / ibc_block_controls != current) {
-      current = control / ibc_block_controls;
-      compressed_block(t, stream, clip.blocks().data(), clip.superblocks().data(), current, block);
-    }
-    compressed_control(block, stream, n, control % ibc_block_controls, idx);
-    for (unsigned c = 0; c < n; ++c) acc[c] += w[k] * T(idx[c]);
+  if (t.components == 3) {
+    if (t.degree == 3) spline_values_fixed<3, 3>(t, clip, seg, u, step, out);
+    else spline_values_fixed<1, 3>(t, clip, seg, u, step, out);
+  } else {
+    if (t.degree == 3) spline_values_fixed<3, 4>(t, clip, seg, u, step, out);
+    else spline_values_fixed<1, 4>(t, clip, seg, u, step, out);
   }
-  for (unsigned c = 0; c < n; ++c) out[c] = T(t.min[c]) + step[c] * acc[c];
 }
 
 }  // namespace
@@ -506,7 +533,7 @@ void sample_compressed(const CompressedClip& clip, double frame, std::span<Joint
         }
       } else if (t.kind == CompressedTrackKind::constant) {
         if (ch == 1) {
-          pose.rotation = normalized(Quatf::from_wxyz(t.min[0], t.min[1], t.min[2], t.min[3]));
+          pose.rotation = t.reference;
         } else {
           (ch == 0 ? pose.translation : pose.scale) = Vec3f{t.min[0], t.min[1], t.min[2]};
         }

@@ -77,7 +77,7 @@ struct CompressedTrack {
   std::uint32_t first_superblock = 0; ///< index of the track's first superblock in the clip's superblock table (set on load)
   std::array<float, 4> min{};    ///< spline: per-component lower end of the range; constant: the value (w, x, y, z for a rotation)
   std::array<float, 4> step{};   ///< spline: per-component quantisation step (≥ 0): value = min + step · index
-  Quatf reference{};             ///< rotation spline: q = reference ⊗ q_rel
+  Quatf reference{};             ///< rotation spline: q = reference ⊗ q_rel; constant rotation: the value normalised (set on load)
 };
 
 /// Segments of a spline of `frames` samples at knot spacing `spacing`: max(1, ⌈(frames − 1)/spacing⌉).
@@ -219,15 +219,16 @@ struct CompressedBlock {
 }
 
 /// Reads the header of block `block` (control points block · ibc_block_controls …) of spline track
-/// `t`: its superblock's bases and widths, then its own.
-[[gnu::always_inline]] inline void compressed_block(const CompressedTrack& t, const std::uint8_t* stream,
-                                                    const std::uint32_t* blocks, const std::uint32_t* superblocks,
-                                                    std::uint32_t block, CompressedBlock& out) noexcept {
-  const unsigned comps = t.components, bits = t.bits;
+/// `t` with Comps components: its superblock's bases and widths, then its own.
+template <unsigned Comps>
+[[gnu::always_inline]] inline void compressed_block_fixed(const CompressedTrack& t, const std::uint8_t* stream,
+                                                          const std::uint32_t* blocks, const std::uint32_t* superblocks,
+                                                          std::uint32_t block, CompressedBlock& out) noexcept {
+  const unsigned bits = t.bits;
   std::uint64_t spos = superblocks[t.first_superblock + block / ibc_superblock_blocks];
   std::uint64_t pos = blocks[t.first_block + block];
   unsigned row = 0;
-  for (unsigned c = 0; c < comps; ++c) {
+  for (unsigned c = 0; c < Comps; ++c) {
     const std::uint32_t sbase = compressed_value(stream, spos, bits);
     const unsigned swidth = compressed_value(stream, spos + bits, ibc_width_bits);
     spos += bits + ibc_width_bits;
@@ -239,6 +240,14 @@ struct CompressedBlock {
   }
   out.row = row;
   out.values = pos;
+}
+
+/// compressed_block_fixed for t.components (3 or 4).
+[[gnu::always_inline]] inline void compressed_block(const CompressedTrack& t, const std::uint8_t* stream,
+                                                    const std::uint32_t* blocks, const std::uint32_t* superblocks,
+                                                    std::uint32_t block, CompressedBlock& out) noexcept {
+  if (t.components == 3) compressed_block_fixed<3>(t, stream, blocks, superblocks, block, out);
+  else compressed_block_fixed<4>(t, stream, blocks, superblocks, block, out);
 }
 
 /// The quantised indices of control point `i` (within the block) of a block read by compressed_block.
