@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <set>
+#include <string_view>
 
 #include "inbetween/math/assert.hpp"
 
@@ -127,18 +129,23 @@ std::uint64_t encode_track(std::span<const std::uint32_t> values, unsigned comps
         lo = std::min(lo, b), hi = std::max(hi, b);
       }
       sbase[c] = lo, swidth[c] = unsigned(std::bit_width(hi - lo));
-      put_bits(out, bit, sbase[c], bits);
-      put_bits(out, bit + bits, swidth[c], ibc_width_bits);
-      bit += bits + ibc_width_bits;
     }
+    // Fixed offsets (no field's place depends on another's value): the widths, then the bases.
+    for (unsigned c = 0; c < comps; ++c) put_bits(out, bit + c * ibc_width_bits, swidth[c], ibc_width_bits);
+    bit += comps * ibc_width_bits;
+    for (unsigned c = 0; c < comps; ++c) put_bits(out, bit + c * bits, sbase[c], bits);
+    bit += comps * bits;
     for (std::size_t first = sfirst; first < sfirst + scount; first += ibc_block_controls) {
       const std::size_t count = std::min<std::size_t>(ibc_block_controls, n - first);
       BlockComponent bc[4];
-      for (unsigned c = 0; c < comps; ++c) {
+      for (unsigned c = 0; c < comps; ++c) {  // the width fields at fixed offsets, then the bases
         bc[c] = block_component(values, comps, first, count, c);
+        put_bits(out, bit, bc[c].width - width_base, width_bits);
+        bit += width_bits;
+      }
+      for (unsigned c = 0; c < comps; ++c) {
         put_bits(out, bit, bc[c].base - sbase[c], swidth[c]);
-        put_bits(out, bit + swidth[c], bc[c].width - width_base, width_bits);
-        bit += swidth[c] + width_bits;
+        bit += swidth[c];
       }
       for (std::size_t i = first; i < first + count; ++i)
         for (unsigned c = 0; c < comps; ++c) {
@@ -252,6 +259,8 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
   IBC_TRY(stream_offset, r.uint(4, "stream offset"));
   IBC_TRY(stream_size, r.uint(4, "stream size"));
   IBC_TRY(first_frame, r.f64("first frame"));
+  if (std::abs(first_frame) + double(frames) >= 9007199254740992.0)
+    return r.fail(36, "first frame: |first| + frames reaches 2^53, where whole frames are no longer distinct");
   IBC_TRY(frame_rate, r.f64("frame rate"));
   if (!(frame_rate > 0)) return r.fail(44, "frame rate: not > 0");
   IBC_TRY(error_bound, r.f32("error bound"));
@@ -285,10 +294,15 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
   if (names_offset != r.at)
     return r.fail(20, "names offset: " + std::to_string(names_offset) + ", expected " + std::to_string(r.at));
   clip.names_.resize(joints);
+  std::set<std::string_view> seen;
   for (std::size_t j = 0; j < joints; ++j) {
+    const std::size_t at = r.at;
     IBC_TRY(n, r.uint(2, "name length"));
+    if (n == 0) return r.fail(at, "name of joint " + std::to_string(j) + ": empty");
     if (!r.has(n)) return r.fail(r.at, "name of joint " + std::to_string(j) + ": the file ends (truncated)");
     clip.names_[j].assign(reinterpret_cast<const char*>(bytes.data() + r.at), n);
+    if (!seen.insert(std::string_view(reinterpret_cast<const char*>(bytes.data() + r.at), n)).second)
+      return r.fail(at, "name of joint " + std::to_string(j) + ": '" + clip.names_[j] + "' names an earlier joint too");
     r.at += n;
   }
   if (tracks_offset != r.at)
@@ -341,7 +355,9 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
       t.spacing = std::uint32_t(spacing);
       IBC_TRY(bit_offset, r.uint(4, "bit offset"));
       t.bit_offset = bit_offset;
-      t.controls = std::uint32_t(compressed_segments(piece_frames, spacing) + degree);
+      const std::uint64_t controls = compressed_segments(piece_frames, spacing) + degree;
+      if (controls >= (std::uint64_t(1) << 31)) return r.fail(track_at + 6, "spacing: 2^31 control points or more");
+      t.controls = std::uint32_t(controls);
       // Walk the superblocks and blocks: headers and offsets inside the stream, widths ≤ bits.
       t.first_block = std::uint32_t(clip.blocks_.size());
       t.first_superblock = std::uint32_t(clip.superblocks_.size());
@@ -357,12 +373,13 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
         if (block % ibc_superblock_blocks == 0) {
           if (past(std::uint64_t(t.components) * (t.bits + ibc_width_bits))) return overrun(block);
           clip.superblocks_.push_back(std::uint32_t(pos));
-          for (unsigned c = 0; c < t.components; ++c, pos += t.bits + ibc_width_bits) {
-            swidth[c] = compressed_value(stream, pos + t.bits, ibc_width_bits);
+          for (unsigned c = 0; c < t.components; ++c) {
+            swidth[c] = compressed_value(stream, pos + c * ibc_width_bits, ibc_width_bits);
             if (swidth[c] > t.bits)
               return r.fail(std::size_t(stream_offset + (pos >> 3)), "superblock width: " + std::to_string(swidth[c]) +
                                                                        " > the track's " + std::to_string(bits) + " bits (track " + std::to_string(k) + ")");
           }
+          pos += std::uint64_t(t.components) * (t.bits + ibc_width_bits);
         }
         const std::uint32_t count = std::min<std::uint32_t>(ibc_block_controls, t.controls - first);
         std::uint64_t header = 0;
@@ -371,13 +388,13 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
         clip.blocks_.push_back(std::uint32_t(pos));
         std::uint64_t row = 0;
         for (unsigned c = 0; c < t.components; ++c) {
-          const unsigned width = t.width_base + compressed_value(stream, pos + swidth[c], t.width_bits);
+          const unsigned width = t.width_base + compressed_value(stream, pos + c * t.width_bits, t.width_bits);
           if (width > t.bits)
             return r.fail(std::size_t(stream_offset + (pos >> 3)), "block width: " + std::to_string(width) + " > the track's " +
                                                                      std::to_string(bits) + " bits (track " + std::to_string(k) + ")");
           row += width;
-          pos += swidth[c] + t.width_bits;
         }
+        pos += header;
         if (past(row * count)) return overrun(block);
         pos += row * count;
       }

@@ -124,6 +124,10 @@ TEST(CompressedClip, CorruptBytesAreRefusedOrDecodeFinite) {
       auto corrupt = bytes;
       corrupt[at] ^= x;
       const auto r = load_compressed_clip(corrupt);
+      // The layout fields (magic, version, header size, file size, joint count, the four offsets and
+      // sizes) are checked exactly: any change to them is refused.
+      const bool layout = at < 16 || (at >= 20 && at < 36);
+      if (layout) EXPECT_FALSE(r) << "byte " << at << " ^ " << int(x);
       if (!r) {
         ++refused;
         EXPECT_EQ(r.error().place().rfind("byte ", 0), 0u) << r.error().describe();
@@ -138,7 +142,7 @@ TEST(CompressedClip, CorruptBytesAreRefusedOrDecodeFinite) {
       }
     }
   }
-  EXPECT_GT(refused, bytes.size());  // most corruptions of the header and table are caught
+  EXPECT_GE(refused, 3u * 32u);  // at least the layout fields
 }
 
 TEST(CompressedClip, NamedFieldsInErrors) {
@@ -149,6 +153,13 @@ TEST(CompressedClip, NamedFieldsInErrors) {
   bad = bytes;
   bad[4] = 9;
   EXPECT_EQ(load_compressed_clip(bad).error().describe(), "byte 4: version: 9, this build reads version 1");
+  auto parts = sample_parts();
+  parts.names = {"root", "root"};  // the RawScene of a clip needs unique names
+  EXPECT_NE(load_compressed_clip(write_compressed_clip(parts)).error().describe().find("names an earlier joint"),
+            std::string::npos);
+  parts = sample_parts();
+  parts.first_frame = 1e17;  // whole frames no longer distinct
+  EXPECT_EQ(load_compressed_clip(write_compressed_clip(parts)).error().place(), "byte 36");
   bad = bytes;
   bad.push_back(0);
   EXPECT_NE(load_compressed_clip(bad).error().describe().find("file size"), std::string::npos);

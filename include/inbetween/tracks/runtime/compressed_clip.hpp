@@ -224,17 +224,22 @@ template <unsigned Comps>
 [[gnu::always_inline]] inline void compressed_block_fixed(const CompressedTrack& t, const std::uint8_t* stream,
                                                           const std::uint32_t* blocks, const std::uint32_t* superblocks,
                                                           std::uint32_t block, CompressedBlock& out) noexcept {
-  const unsigned bits = t.bits;
-  std::uint64_t spos = superblocks[t.first_superblock + block / ibc_superblock_blocks];
+  const unsigned bits = t.bits, wbits = t.width_bits;
+  const std::uint64_t spos = superblocks[t.first_superblock + block / ibc_superblock_blocks];
   std::uint64_t pos = blocks[t.first_block + block];
-  unsigned row = 0;
+  // Every header field at a fixed offset: the superblock's widths, then its bases; the block's
+  // width fields, then its bases (at the superblock's widths).
+  unsigned swidth[Comps], row = 0;
+  std::uint32_t sbase[Comps];
   for (unsigned c = 0; c < Comps; ++c) {
-    const std::uint32_t sbase = compressed_value(stream, spos, bits);
-    const unsigned swidth = compressed_value(stream, spos + bits, ibc_width_bits);
-    spos += bits + ibc_width_bits;
-    out.base[c] = sbase + compressed_value(stream, pos, swidth);
-    out.width[c] = t.width_base + compressed_value(stream, pos + swidth, t.width_bits);
-    pos += swidth + t.width_bits;
+    swidth[c] = compressed_value(stream, spos + c * ibc_width_bits, ibc_width_bits);
+    sbase[c] = compressed_value(stream, spos + Comps * ibc_width_bits + c * bits, bits);
+    out.width[c] = t.width_base + compressed_value(stream, pos + c * wbits, wbits);
+  }
+  pos += Comps * wbits;
+  for (unsigned c = 0; c < Comps; ++c) {
+    out.base[c] = sbase[c] + compressed_value(stream, pos, swidth[c]);
+    pos += swidth[c];
     out.before[c] = row;
     row += out.width[c];
   }
