@@ -148,7 +148,8 @@ const RegisterCommand kBake{{"bake", 40, [](CLI::App& root) {
   auto* cmd = root.add_subcommand("bake", "Evaluate every track of a scene file at every frame (CSV or JSON)");
   add_input_options(cmd, opt->input, "scene",
                     "Scene file (docs/scene-format.md; - for standard input), glTF 2.0 (.gltf, .glb; docs/gltf.md), "
-                    "BVH (.bvh; docs/bvh.md) or a file assimp reads (.fbx, .dae, …; docs/assimp.md)");
+                    "BVH (.bvh; docs/bvh.md), a file assimp reads (.fbx, .dae, …; docs/assimp.md) or a compressed clip "
+                    "(.ibc; docs/compression.md)");
   cmd->add_option("--frames", opt->frames, "A:B[:STEP] frames to evaluate (default: the scene's range, step 1; glTF, BVH, assimp: the animation's time range × fps)");
   cmd->add_option("--fps", opt->input.fps,
                   "Frames per second: of the time column (default: the scene's fps); glTF, BVH, assimp input: "

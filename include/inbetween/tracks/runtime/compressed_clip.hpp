@@ -46,7 +46,7 @@ inline constexpr unsigned ibc_max_bits = 24;
 /// base of its blocks (at the track's `bits`) and the width of the block bases above it (5 bits);
 /// a block stores per component its base above the superblock's (at that width) and its offsets'
 /// width above the track's width_base (at width_bits bits), then the offsets.
-inline constexpr unsigned ibc_block_controls = 16;
+inline constexpr unsigned ibc_block_controls = 12;
 /// Blocks per superblock.
 inline constexpr unsigned ibc_superblock_blocks = 16;
 /// Bits of a superblock's per-component width of block bases (0 … ibc_max_bits).
