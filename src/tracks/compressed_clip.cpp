@@ -527,13 +527,12 @@ void spline_values(const CompressedTrack& t, const CompressedClip& clip, std::ui
   }
 }
 
-// The runtime's evaluation of one spline track at piece sample x (≥ 0) into `pose`: segment and
-// parameter, the block's decoded header from the index (no stream header read), the Degree + 1
-// control points — one 8-byte load each when a row fits — weighted in float, then the rotation or
-// vector.  Every field is loaded before the pose is stored (the stores may alias nothing it reads).
+// The runtime's values of one spline track at piece sample x (≥ 0): segment and parameter, the
+// block's decoded header from the index (no stream header read), the Degree + 1 control points —
+// one 8-byte load each when a row fits — weighted in float: min + step · Σ w·index per component.
 template <unsigned Degree, unsigned Comps>
 [[gnu::always_inline]] inline void sample_spline(const CompressedSpline& s, const std::uint32_t* index, const std::uint8_t* stream,
-                                                 double x, JointPose<float>& pose) noexcept {
+                                                 double x, float* v) noexcept {
   const double ux = x * s.inv_spacing;
   auto seg = std::uint32_t(ux);
   if (double(seg + 1) * double(s.spacing) <= x) ++seg;  // x / spacing exactly at a knot
@@ -560,17 +559,28 @@ template <unsigned Degree, unsigned Comps>
     }
     std::uint64_t pos = e[0] + std::uint64_t(i0) * row;
     if (row <= 56) {
+      // The components in the lanes of a vector (GCC vector extensions: AVX2's variable shifts in
+      // the x86-64-v3 clone, SSE2 emulation in the baseline): per control point one 8-byte load,
+      // each lane shifted to its component, masked, its base added, converted, weighted.
+      using U64x4 = std::uint64_t __attribute__((vector_size(32)));
+      using I32x4 = std::int32_t __attribute__((vector_size(16)));
+      using F32x4 = float __attribute__((vector_size(16)));
+      U64x4 before{}, mask{};
+      I32x4 basev{};
+      for (unsigned c = 0, at = 0; c < Comps; at += width[c], ++c) {
+        before[c] = at;
+        mask[c] = (std::uint64_t(1) << width[c]) - 1;
+        basev[c] = std::int32_t(base[c]);
+      }
+      F32x4 accv{};
       for (unsigned k = 0; k <= Degree; ++k, pos += row) {
         std::uint64_t word;
         __builtin_memcpy(&word, stream + (pos >> 3), 8);
         if constexpr (std::endian::native == std::endian::big) word = __builtin_bswap64(word);
-        word >>= (pos & 7);
-        for (unsigned c = 0; c < Comps; ++c) {
-          const auto off = std::uint32_t(word & ((std::uint64_t(1) << width[c]) - 1));
-          word >>= width[c];
-          acc[c] += w[k] * float(base[c] + off);
-        }
+        const U64x4 offsets = (U64x4{} + word) >> (before + (pos & 7)) & mask;
+        accv += w[k] * __builtin_convertvector(__builtin_convertvector(offsets, I32x4) + basev, F32x4);
       }
+      for (unsigned c = 0; c < Comps; ++c) acc[c] = accv[c];
     } else {
       for (unsigned k = 0; k <= Degree; ++k, pos += row) {
         std::uint64_t p = pos;
@@ -587,13 +597,7 @@ template <unsigned Degree, unsigned Comps>
       for (unsigned c = 0; c < Comps; ++c) acc[c] += w[k] * float(idx[c]);
     }
   }
-  float v[4];
   for (unsigned c = 0; c < Comps; ++c) v[c] = s.min[c] + s.step[c] * acc[c];
-  if (s.channel == std::uint8_t(CompressedChannel::rotation)) {
-    pose.rotation = compressed_rotation(s.reference, v, Comps);
-  } else {
-    (s.channel == std::uint8_t(CompressedChannel::translation) ? pose.translation : pose.scale) = Vec3f{v[0], v[1], v[2]};
-  }
 }
 
 }  // namespace
@@ -651,12 +655,50 @@ void sample_compressed(const CompressedClip& clip, double frame, std::span<Joint
   const std::uint32_t* index = clip.block_index().data();
   const std::uint8_t* stream = clip.stream();
   JointPose<float>* out = local.data();
-  for (const CompressedSpline& s : clip.splines(piece)) {
-    switch (s.form) {
-      case 1: sample_spline<3, 3>(s, index, stream, x, out[s.joint]); break;
-      case 0: sample_spline<1, 3>(s, index, stream, x, out[s.joint]); break;
-      case 3: sample_spline<3, 4>(s, index, stream, x, out[s.joint]); break;
-      default: sample_spline<1, 4>(s, index, stream, x, out[s.joint]); break;
+  const auto splines = clip.splines(piece);
+  // In chunks: first every track's values (translations and scales stored at once, 3-component
+  // rotations' relative parts kept), then the rotations, independent of each other, then their
+  // stores — short independent chains instead of one long one per track.
+  constexpr std::size_t chunk = 16;
+  for (std::size_t first = 0; first < splines.size(); first += chunk) {
+    const std::size_t n = std::min(chunk, splines.size() - first);
+    float rx[chunk], ry[chunk], rz[chunk], qw[chunk], qx[chunk], qy[chunk], qz[chunk];
+    Quatf* target[chunk];
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const CompressedSpline& s = splines[first + i];
+      float v[4];
+      switch (s.form) {
+        case 1: sample_spline<3, 3>(s, index, stream, x, v); break;
+        case 0: sample_spline<1, 3>(s, index, stream, x, v); break;
+        case 3: sample_spline<3, 4>(s, index, stream, x, v); break;
+        default: sample_spline<1, 4>(s, index, stream, x, v); break;
+      }
+      JointPose<float>& pose = out[s.joint];
+      if (s.channel == std::uint8_t(CompressedChannel::rotation)) {
+        if (s.form >= 2) {
+          pose.rotation = compressed_rotation(s.reference, v, 4);
+        } else {
+          rx[m] = v[0], ry[m] = v[1], rz[m] = v[2];
+          qw[m] = s.reference.w, qx[m] = s.reference.x, qy[m] = s.reference.y, qz[m] = s.reference.z;
+          target[m++] = &pose.rotation;
+        }
+      } else {
+        (s.channel == std::uint8_t(CompressedChannel::translation) ? pose.translation : pose.scale) = Vec3f{v[0], v[1], v[2]};
+      }
+    }
+    for (std::size_t i = 0; i < m; ++i) {  // compressed_rotation's 3-component form
+      const float n2 = rx[i] * rx[i] + ry[i] * ry[i] + rz[i] * rz[i];
+      float w, bx = rx[i], by = ry[i], bz = rz[i];
+      if (n2 >= 1.0f) {
+        const float inv = 1.0f / std::sqrt(n2);
+        w = 0, bx *= inv, by *= inv, bz *= inv;
+      } else {
+        w = std::sqrt(1.0f - n2);
+      }
+      const float aw = qw[i], ax = qx[i], ay = qy[i], az = qz[i];
+      *target[i] = Quatf::from_wxyz(aw * w - ax * bx - ay * by - az * bz, aw * bx + ax * w + ay * bz - az * by,
+                                    aw * by - ax * bz + ay * w + az * bx, aw * bz + ax * by - ay * bx + az * w);
     }
   }
 }
