@@ -362,10 +362,10 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
       // Walk the superblocks and blocks: headers and offsets inside the stream, widths ≤ bits; the
       // decoded headers go to the block index.
       // Blocks of zero-width values take no bits: bound the index by the file (ibc_max_index_words).
-      if (clip.index_.size() + std::uint64_t(t.controls / ibc_block_controls + 1) * (1 + t.components) >
+      if (clip.index_.size() + std::uint64_t(t.controls / ibc_block_controls + 1) * ibc_index_words >
           ibc_max_index_words(bytes.size()))
         return r.fail(track_at + 6, "spacing: the block index would pass " + std::to_string(ibc_max_index_words(bytes.size())) +
-                                        " words (16 per byte of the file, + 2^20): too many empty blocks");
+                                        " words (32 per byte of the file, + 2^20): too many empty blocks");
       t.first_index = std::uint32_t(clip.index_.size());
       const std::uint8_t* stream = bytes.data() + stream_offset;
       std::uint64_t pos = bit_offset;
@@ -393,7 +393,7 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
         for (unsigned c = 0; c < t.components; ++c) header += swidth[c] + t.width_bits;
         if (past(header)) return overrun(block);
         std::uint64_t row = 0;
-        std::uint32_t entry[4];
+        std::uint32_t entry[ibc_index_words] = {0, 0, 0, 0, 0, 0};
         std::uint64_t base_at = pos + std::uint64_t(t.components) * t.width_bits;
         for (unsigned c = 0; c < t.components; ++c) {
           const unsigned width = t.width_base + compressed_value(stream, pos + c * t.width_bits, t.width_bits);
@@ -401,14 +401,14 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
             return r.fail(std::size_t(stream_offset + (pos >> 3)), "block width: " + std::to_string(width) + " > the track's " +
                                                                      std::to_string(bits) + " bits (track " + std::to_string(k) + ")");
           row += width;
-          // base < 2^bits + 2^swidth ≤ 2^25 < 2^ibc_index_base_bits; width ≤ 24 fits above it.
-          entry[c] = (sbase[c] + compressed_value(stream, base_at, swidth[c])) | std::uint32_t(width) << ibc_index_base_bits;
+          entry[c] = sbase[c] + compressed_value(stream, base_at, swidth[c]);  // < 2^bits + 2^swidth ≤ 2^25
+          entry[5] |= std::uint32_t(width) << (8 * c);
           base_at += swidth[c];
         }
         pos += header;
         if (past(row * count)) return overrun(block);
-        clip.index_.push_back(std::uint32_t(pos));
-        clip.index_.insert(clip.index_.end(), entry, entry + t.components);
+        entry[4] = std::uint32_t(pos);
+        clip.index_.insert(clip.index_.end(), entry, entry + ibc_index_words);
         pos += row * count;
       }
       for (unsigned c = 0; c < t.components; ++c) {
@@ -478,10 +478,9 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
 namespace {
 
 // Block index entry of control point `control` of a track whose block index starts at `first`.
-template <unsigned Comps>
 [[gnu::always_inline]] inline const std::uint32_t* index_entry(const std::uint32_t* index, std::uint32_t first,
                                                                std::uint32_t control) noexcept {
-  return index + first + (control / ibc_block_controls) * (1 + Comps);
+  return index + first + (control / ibc_block_controls) * ibc_index_words;
 }
 
 // The quantised indices of control point `control` of a track (any block): its block's decoded
@@ -489,13 +488,13 @@ template <unsigned Comps>
 template <unsigned Comps>
 [[gnu::always_inline]] inline void control_indices(const std::uint32_t* index, std::uint32_t first, const std::uint8_t* stream,
                                                    std::uint32_t control, std::uint32_t* idx) noexcept {
-  const std::uint32_t* e = index_entry<Comps>(index, first, control);
-  unsigned row = 0;
-  for (unsigned c = 0; c < Comps; ++c) row += e[1 + c] >> ibc_index_base_bits;
-  std::uint64_t pos = e[0] + std::uint64_t(control % ibc_block_controls) * row;
+  const std::uint32_t* e = index_entry(index, first, control);
+  const std::uint32_t widths = e[5];
+  const unsigned row = (widths * 0x01010101u) >> 24;  // the widths' sum (each ≤ 24: no carry)
+  std::uint64_t pos = e[4] + std::uint64_t(control % ibc_block_controls) * row;
   for (unsigned c = 0; c < Comps; ++c) {
-    const unsigned width = e[1 + c] >> ibc_index_base_bits;
-    idx[c] = (e[1 + c] & ((1u << ibc_index_base_bits) - 1)) + compressed_value(stream, pos, width);
+    const unsigned width = (widths >> (8 * c)) & 0xff;
+    idx[c] = e[c] + compressed_value(stream, pos, width);
     pos += width;
   }
 }
@@ -549,29 +548,27 @@ template <unsigned Degree, unsigned Comps>
   float acc[Comps] = {};
   const std::uint32_t i0 = seg % ibc_block_controls;
   if (i0 + Degree < ibc_block_controls) {  // all control points in one block (the common case)
-    const std::uint32_t* e = index_entry<Comps>(index, s.first_index, seg);
-    std::uint32_t base[Comps];
-    unsigned width[Comps], row = 0;
-    for (unsigned c = 0; c < Comps; ++c) {
-      base[c] = e[1 + c] & ((1u << ibc_index_base_bits) - 1);
-      width[c] = e[1 + c] >> ibc_index_base_bits;
-      row += width[c];
-    }
-    std::uint64_t pos = e[0] + std::uint64_t(i0) * row;
+    // The block's header in lane form: bases loaded as a vector, widths and their prefix sums
+    // (one multiplication each: bytes ≤ 24 never carry) widened from bytes.
+    const std::uint32_t* e = index_entry(index, s.first_index, seg);
+    using U64x4 = std::uint64_t __attribute__((vector_size(32)));
+    using I32x4 = std::int32_t __attribute__((vector_size(16)));
+    using U8x4 = std::uint8_t __attribute__((vector_size(4)));
+    using F32x4 = float __attribute__((vector_size(16)));
+    const std::uint32_t widths = e[5], befores = widths * 0x01010100u;
+    const unsigned row = (widths * 0x01010101u) >> 24;
+    I32x4 basev;
+    __builtin_memcpy(&basev, e, sizeof basev);
+    U8x4 wb, bb;
+    __builtin_memcpy(&wb, &widths, 4);
+    __builtin_memcpy(&bb, &befores, 4);
+    const U64x4 mask = (U64x4{1, 1, 1, 1} << __builtin_convertvector(wb, U64x4)) - 1;
+    const U64x4 before = __builtin_convertvector(bb, U64x4);
+    std::uint64_t pos = e[4] + std::uint64_t(i0) * row;
     if (row <= 56) {
       // The components in the lanes of a vector (GCC vector extensions: AVX2's variable shifts in
       // the x86-64-v3 clone, SSE2 emulation in the baseline): per control point one 8-byte load,
       // each lane shifted to its component, masked, its base added, converted, weighted.
-      using U64x4 = std::uint64_t __attribute__((vector_size(32)));
-      using I32x4 = std::int32_t __attribute__((vector_size(16)));
-      using F32x4 = float __attribute__((vector_size(16)));
-      U64x4 before{}, mask{};
-      I32x4 basev{};
-      for (unsigned c = 0, at = 0; c < Comps; at += width[c], ++c) {
-        before[c] = at;
-        mask[c] = (std::uint64_t(1) << width[c]) - 1;
-        basev[c] = std::int32_t(base[c]);
-      }
       F32x4 accv{};
       for (unsigned k = 0; k <= Degree; ++k, pos += row) {
         std::uint64_t word;
@@ -583,11 +580,8 @@ template <unsigned Degree, unsigned Comps>
       for (unsigned c = 0; c < Comps; ++c) acc[c] = accv[c];
     } else {
       for (unsigned k = 0; k <= Degree; ++k, pos += row) {
-        std::uint64_t p = pos;
-        for (unsigned c = 0; c < Comps; ++c) {
-          acc[c] += w[k] * float(base[c] + compressed_value(stream, p, width[c]));
-          p += width[c];
-        }
+        for (unsigned c = 0; c < Comps; ++c)
+          acc[c] += w[k] * float(std::uint32_t(basev[c]) + compressed_value(stream, pos + before[c], (widths >> (8 * c)) & 0xff));
       }
     }
   } else {
