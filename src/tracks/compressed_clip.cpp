@@ -649,50 +649,21 @@ void sample_compressed(const CompressedClip& clip, double frame, std::span<Joint
   const std::uint32_t* index = clip.block_index().data();
   const std::uint8_t* stream = clip.stream();
   JointPose<float>* out = local.data();
-  const auto splines = clip.splines(piece);
-  // In chunks: first every track's values (translations and scales stored at once, 3-component
-  // rotations' relative parts kept), then the rotations, independent of each other, then their
-  // stores — short independent chains instead of one long one per track.
-  constexpr std::size_t chunk = 16;
-  for (std::size_t first = 0; first < splines.size(); first += chunk) {
-    const std::size_t n = std::min(chunk, splines.size() - first);
-    float rx[chunk], ry[chunk], rz[chunk], qw[chunk], qx[chunk], qy[chunk], qz[chunk];
-    Quatf* target[chunk];
-    std::size_t m = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const CompressedSpline& s = splines[first + i];
-      float v[4];
-      switch (s.form) {
-        case 1: sample_spline<3, 3>(s, index, stream, x, v); break;
-        case 0: sample_spline<1, 3>(s, index, stream, x, v); break;
-        case 3: sample_spline<3, 4>(s, index, stream, x, v); break;
-        default: sample_spline<1, 4>(s, index, stream, x, v); break;
-      }
-      JointPose<float>& pose = out[s.joint];
-      if (s.channel == std::uint8_t(CompressedChannel::rotation)) {
-        if (s.form >= 2) {
-          pose.rotation = compressed_rotation(s.reference, v, 4);
-        } else {
-          rx[m] = v[0], ry[m] = v[1], rz[m] = v[2];
-          qw[m] = s.reference.w, qx[m] = s.reference.x, qy[m] = s.reference.y, qz[m] = s.reference.z;
-          target[m++] = &pose.rotation;
-        }
-      } else {
-        (s.channel == std::uint8_t(CompressedChannel::translation) ? pose.translation : pose.scale) = Vec3f{v[0], v[1], v[2]};
-      }
+  // The pose's absent and constant values are copied above; each spline track's values, then its
+  // rotation or vector, written once (every field of the track loaded before the store).
+  for (const CompressedSpline& s : clip.splines(piece)) {
+    float v[4];
+    switch (s.form) {
+      case 1: sample_spline<3, 3>(s, index, stream, x, v); break;
+      case 0: sample_spline<1, 3>(s, index, stream, x, v); break;
+      case 3: sample_spline<3, 4>(s, index, stream, x, v); break;
+      default: sample_spline<1, 4>(s, index, stream, x, v); break;
     }
-    for (std::size_t i = 0; i < m; ++i) {  // compressed_rotation's 3-component form
-      const float n2 = rx[i] * rx[i] + ry[i] * ry[i] + rz[i] * rz[i];
-      float w, bx = rx[i], by = ry[i], bz = rz[i];
-      if (n2 >= 1.0f) {
-        const float inv = 1.0f / std::sqrt(n2);
-        w = 0, bx *= inv, by *= inv, bz *= inv;
-      } else {
-        w = std::sqrt(1.0f - n2);
-      }
-      const float aw = qw[i], ax = qx[i], ay = qy[i], az = qz[i];
-      *target[i] = Quatf::from_wxyz(aw * w - ax * bx - ay * by - az * bz, aw * bx + ax * w + ay * bz - az * by,
-                                    aw * by - ax * bz + ay * w + az * bx, aw * bz + ax * by - ay * bx + az * w);
+    JointPose<float>& pose = out[s.joint];
+    if (s.channel == std::uint8_t(CompressedChannel::rotation)) {
+      pose.rotation = compressed_rotation(s.reference, v, s.form >= 2 ? 4u : 3u);
+    } else {
+      (s.channel == std::uint8_t(CompressedChannel::translation) ? pose.translation : pose.scale) = Vec3f{v[0], v[1], v[2]};
     }
   }
 }
