@@ -362,10 +362,10 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
       // Walk the superblocks and blocks: headers and offsets inside the stream, widths ≤ bits; the
       // decoded headers go to the block index.
       // Blocks of zero-width values take no bits: bound the index by the file (ibc_max_index_words).
-      if (clip.index_.size() + std::uint64_t(t.controls / ibc_block_controls + 1) * (1 + t.components) >
+      if (clip.index_.size() + std::uint64_t(t.controls / ibc_block_controls + 1) * ibc_index_words >
           ibc_max_index_words(bytes.size()))
         return r.fail(track_at + 6, "spacing: the block index would pass " + std::to_string(ibc_max_index_words(bytes.size())) +
-                                        " words (16 per byte of the file, + 2^20): too many empty blocks");
+                                        " words (32 per byte of the file, + 2^20): too many empty blocks");
       t.first_index = std::uint32_t(clip.index_.size());
       const std::uint8_t* stream = bytes.data() + stream_offset;
       std::uint64_t pos = bit_offset;
@@ -393,7 +393,7 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
         for (unsigned c = 0; c < t.components; ++c) header += swidth[c] + t.width_bits;
         if (past(header)) return overrun(block);
         std::uint64_t row = 0;
-        std::uint32_t entry[4];
+        std::uint32_t entry[ibc_index_words] = {0, 0, 0, 0, 0, 0};
         std::uint64_t base_at = pos + std::uint64_t(t.components) * t.width_bits;
         for (unsigned c = 0; c < t.components; ++c) {
           const unsigned width = t.width_base + compressed_value(stream, pos + c * t.width_bits, t.width_bits);
@@ -401,14 +401,14 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
             return r.fail(std::size_t(stream_offset + (pos >> 3)), "block width: " + std::to_string(width) + " > the track's " +
                                                                      std::to_string(bits) + " bits (track " + std::to_string(k) + ")");
           row += width;
-          // base < 2^bits + 2^swidth ≤ 2^25 < 2^ibc_index_base_bits; width ≤ 24 fits above it.
-          entry[c] = (sbase[c] + compressed_value(stream, base_at, swidth[c])) | std::uint32_t(width) << ibc_index_base_bits;
+          entry[c] = sbase[c] + compressed_value(stream, base_at, swidth[c]);  // < 2^bits + 2^swidth ≤ 2^25
+          entry[5] |= std::uint32_t(width) << (8 * c);
           base_at += swidth[c];
         }
         pos += header;
         if (past(row * count)) return overrun(block);
-        clip.index_.push_back(std::uint32_t(pos));
-        clip.index_.insert(clip.index_.end(), entry, entry + t.components);
+        entry[4] = std::uint32_t(pos);
+        clip.index_.insert(clip.index_.end(), entry, entry + ibc_index_words);
         pos += row * count;
       }
       for (unsigned c = 0; c < t.components; ++c) {
@@ -478,10 +478,9 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
 namespace {
 
 // Block index entry of control point `control` of a track whose block index starts at `first`.
-template <unsigned Comps>
 [[gnu::always_inline]] inline const std::uint32_t* index_entry(const std::uint32_t* index, std::uint32_t first,
                                                                std::uint32_t control) noexcept {
-  return index + first + (control / ibc_block_controls) * (1 + Comps);
+  return index + first + (control / ibc_block_controls) * ibc_index_words;
 }
 
 // The quantised indices of control point `control` of a track (any block): its block's decoded
@@ -489,13 +488,13 @@ template <unsigned Comps>
 template <unsigned Comps>
 [[gnu::always_inline]] inline void control_indices(const std::uint32_t* index, std::uint32_t first, const std::uint8_t* stream,
                                                    std::uint32_t control, std::uint32_t* idx) noexcept {
-  const std::uint32_t* e = index_entry<Comps>(index, first, control);
-  unsigned row = 0;
-  for (unsigned c = 0; c < Comps; ++c) row += e[1 + c] >> ibc_index_base_bits;
-  std::uint64_t pos = e[0] + std::uint64_t(control % ibc_block_controls) * row;
+  const std::uint32_t* e = index_entry(index, first, control);
+  const std::uint32_t widths = e[5];
+  const unsigned row = (widths * 0x01010101u) >> 24;  // the widths' sum (each ≤ 24: no carry)
+  std::uint64_t pos = e[4] + std::uint64_t(control % ibc_block_controls) * row;
   for (unsigned c = 0; c < Comps; ++c) {
-    const unsigned width = e[1 + c] >> ibc_index_base_bits;
-    idx[c] = (e[1 + c] & ((1u << ibc_index_base_bits) - 1)) + compressed_value(stream, pos, width);
+    const unsigned width = (widths >> (8 * c)) & 0xff;
+    idx[c] = e[c] + compressed_value(stream, pos, width);
     pos += width;
   }
 }
@@ -527,52 +526,62 @@ void spline_values(const CompressedTrack& t, const CompressedClip& clip, std::ui
   }
 }
 
-// The runtime's evaluation of one spline track at piece sample x (≥ 0) into `pose`: segment and
-// parameter, the block's decoded header from the index (no stream header read), the Degree + 1
-// control points — one 8-byte load each when a row fits — weighted in float, then the rotation or
-// vector.  Every field is loaded before the pose is stored (the stores may alias nothing it reads).
+// The runtime's values of one spline track at piece sample x (≥ 0): segment and parameter, the
+// block's decoded header from the index (no stream header read), the Degree + 1 control points —
+// one 8-byte load each when a row fits — weighted in float: min + step · Σ w·index per component.
 template <unsigned Degree, unsigned Comps>
 [[gnu::always_inline]] inline void sample_spline(const CompressedSpline& s, const std::uint32_t* index, const std::uint8_t* stream,
-                                                 double x, JointPose<float>& pose) noexcept {
+                                                 double x, float* v) noexcept {
   const double ux = x * s.inv_spacing;
   auto seg = std::uint32_t(ux);
   if (double(seg + 1) * double(s.spacing) <= x) ++seg;  // x / spacing exactly at a knot
   if (seg > s.last_segment) seg = s.last_segment;
   const auto u = float((x - double(seg) * double(s.spacing)) * s.inv_spacing);
   std::array<float, 4> w;
-  if constexpr (Degree == 3) w = bspline_weights(u);
-  else w = linear_weights(u);
+  if constexpr (Degree == 3) {  // bspline_weights with products by 1/6 (no division in the hot path)
+    constexpr float sixth = 1.0f / 6.0f;
+    const float t = u, r = 1.0f - t, t2 = t * t, t3 = t2 * t;
+    w = {r * r * r * sixth, (0.5f * t3 - t2) + 4.0f * sixth, (-0.5f * t3 + 0.5f * t2) + (0.5f * t + sixth), t3 * sixth};
+  } else {
+    w = linear_weights(u);
+  }
   float acc[Comps] = {};
   const std::uint32_t i0 = seg % ibc_block_controls;
   if (i0 + Degree < ibc_block_controls) {  // all control points in one block (the common case)
-    const std::uint32_t* e = index_entry<Comps>(index, s.first_index, seg);
-    std::uint32_t base[Comps];
-    unsigned width[Comps], row = 0;
-    for (unsigned c = 0; c < Comps; ++c) {
-      base[c] = e[1 + c] & ((1u << ibc_index_base_bits) - 1);
-      width[c] = e[1 + c] >> ibc_index_base_bits;
-      row += width[c];
-    }
-    std::uint64_t pos = e[0] + std::uint64_t(i0) * row;
+    // The block's header in lane form: bases loaded as a vector, widths and their prefix sums
+    // (one multiplication each: bytes ≤ 24 never carry) widened from bytes.
+    const std::uint32_t* e = index_entry(index, s.first_index, seg);
+    using U64x4 = std::uint64_t __attribute__((vector_size(32)));
+    using I32x4 = std::int32_t __attribute__((vector_size(16)));
+    using U8x4 = std::uint8_t __attribute__((vector_size(4)));
+    using F32x4 = float __attribute__((vector_size(16)));
+    const std::uint32_t widths = e[5], befores = widths * 0x01010100u;
+    const unsigned row = (widths * 0x01010101u) >> 24;
+    I32x4 basev;
+    __builtin_memcpy(&basev, e, sizeof basev);
+    U8x4 wb, bb;
+    __builtin_memcpy(&wb, &widths, 4);
+    __builtin_memcpy(&bb, &befores, 4);
+    const U64x4 mask = (U64x4{1, 1, 1, 1} << __builtin_convertvector(wb, U64x4)) - 1;
+    const U64x4 before = __builtin_convertvector(bb, U64x4);
+    std::uint64_t pos = e[4] + std::uint64_t(i0) * row;
     if (row <= 56) {
+      // The components in the lanes of a vector (GCC vector extensions: AVX2's variable shifts in
+      // the x86-64-v3 clone, SSE2 emulation in the baseline): per control point one 8-byte load,
+      // each lane shifted to its component, masked, its base added, converted, weighted.
+      F32x4 accv{};
       for (unsigned k = 0; k <= Degree; ++k, pos += row) {
         std::uint64_t word;
         __builtin_memcpy(&word, stream + (pos >> 3), 8);
         if constexpr (std::endian::native == std::endian::big) word = __builtin_bswap64(word);
-        word >>= (pos & 7);
-        for (unsigned c = 0; c < Comps; ++c) {
-          const auto off = std::uint32_t(word & ((std::uint64_t(1) << width[c]) - 1));
-          word >>= width[c];
-          acc[c] += w[k] * float(base[c] + off);
-        }
+        const U64x4 offsets = (U64x4{} + word) >> (before + (pos & 7)) & mask;
+        accv += w[k] * __builtin_convertvector(__builtin_convertvector(offsets, I32x4) + basev, F32x4);
       }
+      for (unsigned c = 0; c < Comps; ++c) acc[c] = accv[c];
     } else {
       for (unsigned k = 0; k <= Degree; ++k, pos += row) {
-        std::uint64_t p = pos;
-        for (unsigned c = 0; c < Comps; ++c) {
-          acc[c] += w[k] * float(base[c] + compressed_value(stream, p, width[c]));
-          p += width[c];
-        }
+        for (unsigned c = 0; c < Comps; ++c)
+          acc[c] += w[k] * float(std::uint32_t(basev[c]) + compressed_value(stream, pos + before[c], (widths >> (8 * c)) & 0xff));
       }
     }
   } else {
@@ -582,13 +591,7 @@ template <unsigned Degree, unsigned Comps>
       for (unsigned c = 0; c < Comps; ++c) acc[c] += w[k] * float(idx[c]);
     }
   }
-  float v[4];
   for (unsigned c = 0; c < Comps; ++c) v[c] = s.min[c] + s.step[c] * acc[c];
-  if (s.channel == std::uint8_t(CompressedChannel::rotation)) {
-    pose.rotation = compressed_rotation(s.reference, v, Comps);
-  } else {
-    (s.channel == std::uint8_t(CompressedChannel::translation) ? pose.translation : pose.scale) = Vec3f{v[0], v[1], v[2]};
-  }
 }
 
 }  // namespace
@@ -628,6 +631,11 @@ void decode_frame(const CompressedClip& clip, std::size_t frame_index, std::span
   }
 }
 
+// Clones for x86-64-v3 (AVX2, FMA, BMI2: Haswell, Zen and later; resolved once at load) and the
+// baseline.  clang and other targets: the baseline only.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+[[gnu::target_clones("arch=x86-64-v3", "default")]]
+#endif
 void sample_compressed(const CompressedClip& clip, double frame, std::span<JointPose<float>> local) noexcept {
   INBETWEEN_ASSERT(local.size() == clip.joints());
   double x = frame - clip.first_frame();
@@ -641,12 +649,21 @@ void sample_compressed(const CompressedClip& clip, double frame, std::span<Joint
   const std::uint32_t* index = clip.block_index().data();
   const std::uint8_t* stream = clip.stream();
   JointPose<float>* out = local.data();
+  // The pose's absent and constant values are copied above; each spline track's values, then its
+  // rotation or vector, written once (every field of the track loaded before the store).
   for (const CompressedSpline& s : clip.splines(piece)) {
+    float v[4];
     switch (s.form) {
-      case 1: sample_spline<3, 3>(s, index, stream, x, out[s.joint]); break;
-      case 0: sample_spline<1, 3>(s, index, stream, x, out[s.joint]); break;
-      case 3: sample_spline<3, 4>(s, index, stream, x, out[s.joint]); break;
-      default: sample_spline<1, 4>(s, index, stream, x, out[s.joint]); break;
+      case 1: sample_spline<3, 3>(s, index, stream, x, v); break;
+      case 0: sample_spline<1, 3>(s, index, stream, x, v); break;
+      case 3: sample_spline<3, 4>(s, index, stream, x, v); break;
+      default: sample_spline<1, 4>(s, index, stream, x, v); break;
+    }
+    JointPose<float>& pose = out[s.joint];
+    if (s.channel == std::uint8_t(CompressedChannel::rotation)) {
+      pose.rotation = compressed_rotation(s.reference, v, s.form >= 2 ? 4u : 3u);
+    } else {
+      (s.channel == std::uint8_t(CompressedChannel::translation) ? pose.translation : pose.scale) = Vec3f{v[0], v[1], v[2]};
     }
   }
 }

@@ -125,15 +125,17 @@ template <Real T>
   return reference * rel;
 }
 
-/// Bits of a block index entry's base index; the width sits above them.
-inline constexpr unsigned ibc_index_base_bits = 27;
+/// Words of a block's entry in the block index: base index of components 0 … 3 (0 past the
+/// track's components), the bit position of the block's first control point, and the components'
+/// widths, one per byte (component c at bits 8c).
+inline constexpr unsigned ibc_index_words = 6;
 
-/// Largest block index (words) a file of `file_bytes` bytes may need: 16 words per byte + 2^20.  A
+/// Largest block index (words) a file of `file_bytes` bytes may refer to: 32 words per byte + 2^20.  A
 /// block of zero-width values takes no bits, so the frame count alone does not bound the index;
 /// a file whose tracks need more is refused (no compressor output comes near it: a block costs
 /// at least its width fields or its values).
 [[nodiscard]] constexpr std::uint64_t ibc_max_index_words(std::uint64_t file_bytes) noexcept {
-  return 16 * file_bytes + (std::uint64_t(1) << 20);
+  return 32 * file_bytes + (std::uint64_t(1) << 20);
 }
 
 /// A spline track as the runtime sampler reads it (built on load from its CompressedTrack).
@@ -195,8 +197,8 @@ class CompressedClip {
   /// The bit stream of control points (padded with ibc_stream_padding zero bytes).
   [[nodiscard]] const std::uint8_t* stream() const noexcept { return bytes_.data() + stream_offset_; }
   /// The block index built on load (not in the file): per spline track, in track order from its
-  /// first_index, per block 1 + components words: the bit position of the block's first control
-  /// point, then per component base | width << ibc_index_base_bits (the decoded block header).
+  /// first_index, per block ibc_index_words words: the decoded block header (bases, position of
+  /// the first control point, widths).
   [[nodiscard]] std::span<const std::uint32_t> block_index() const noexcept { return index_; }
   /// The spline tracks of piece `p`, in track order, with their runtime constants (built on load).
   [[nodiscard]] std::span<const CompressedSpline> splines(std::size_t p) const noexcept {
