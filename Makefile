@@ -22,7 +22,7 @@ DEBS := g++ cmake make pkg-config libgtest-dev libgmock-dev libbenchmark-dev lib
         pybind11-dev python3-dev python3-pytest python3-numpy libhwy-dev libxsimd-dev \
         libassimp-dev assimp-testmodels python3-distributed python3-dask
 
-.PHONY: all deps configure build test demo screenshots bench bench-ozz asan fuzz clean
+.PHONY: all deps configure build test demo screenshots bench bench-ozz bench-acl asan fuzz clean
 
 all: build
 
@@ -127,6 +127,18 @@ OZZ_CXXFLAGS ?=
 bench-ozz: configure
 	OZZ_SRC="$(OZZ_SRC)" OZZ_CXXFLAGS="$(OZZ_CXXFLAGS)" BUILD="$(BUILD)" PRESET="$(PRESET)" JOBS="$(JOBS)" \
 	  BENCH_MIN_TIME="$(BENCH_MIN_TIME)" CXX="$(CXX)" tools/bench/bench_ozz.sh
+
+# ACL 2.1 (nfrechette/acl) against inbetween's compression on the CMU clips of assimp-testmodels,
+# by inbetween's clip-error metric (issue 24).  ACL is not packaged in Debian: give its source tree
+# (git clone --recursive https://github.com/nfrechette/acl, with its external/rtm submodule); it is
+# header-only, compiled into one benchmark in build/acl, nothing is downloaded.  Not part of `make
+# bench` or `make test`; it rewrites the tracked reference bench/acl_reference.json that `make bench`
+# reports against.  tools/bench/bench_acl.sh says what it does step by step.
+ACL_SRC ?=
+ACL_CXXFLAGS ?=
+bench-acl: configure
+	ACL_SRC="$(ACL_SRC)" ACL_CXXFLAGS="$(ACL_CXXFLAGS)" BUILD="$(BUILD)" PRESET="$(PRESET)" JOBS="$(JOBS)" \
+	  BENCH_MIN_TIME="$(BENCH_MIN_TIME)" CXX="$(CXX)" tools/bench/bench_acl.sh
 
 asan:
 	$(MAKE) test PRESET=asan

@@ -359,8 +359,14 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
       if (controls >= (std::uint64_t(1) << 31)) return r.fail(track_at + 6, "spacing: 2^31 control points or more");
       t.controls = std::uint32_t(controls);
       // Walk the superblocks and blocks: headers and offsets inside the stream, widths ≤ bits.
-      t.first_block = std::uint32_t(clip.blocks_.size());
-      t.first_superblock = std::uint32_t(clip.superblocks_.size());
+      // Walk the superblocks and blocks: headers and offsets inside the stream, widths ≤ bits; the
+      // decoded headers go to the block index.
+      // Blocks of zero-width values take no bits: bound the index by the file (ibc_max_index_words).
+      if (clip.index_.size() + std::uint64_t(t.controls / ibc_block_controls + 1) * ibc_index_words >
+          ibc_max_index_words(bytes.size()))
+        return r.fail(track_at + 6, "spacing: the block index would pass " + std::to_string(ibc_max_index_words(bytes.size())) +
+                                        " words (32 per byte of the file, + 2^20): too many empty blocks");
+      t.first_index = std::uint32_t(clip.index_.size());
       const std::uint8_t* stream = bytes.data() + stream_offset;
       std::uint64_t pos = bit_offset;
       const auto past = [&](std::uint64_t need) { return pos > stream_bits || need > stream_bits - pos; };
@@ -369,15 +375,16 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
                                         " runs past the " + std::to_string(stream_bits) + "-bit stream");
       };
       unsigned swidth[4] = {0, 0, 0, 0};
+      std::uint32_t sbase[4] = {0, 0, 0, 0};
       for (std::uint32_t first = 0, block = 0; first < t.controls; first += ibc_block_controls, ++block) {
         if (block % ibc_superblock_blocks == 0) {
           if (past(std::uint64_t(t.components) * (t.bits + ibc_width_bits))) return overrun(block);
-          clip.superblocks_.push_back(std::uint32_t(pos));
           for (unsigned c = 0; c < t.components; ++c) {
             swidth[c] = compressed_value(stream, pos + c * ibc_width_bits, ibc_width_bits);
             if (swidth[c] > t.bits)
               return r.fail(std::size_t(stream_offset + (pos >> 3)), "superblock width: " + std::to_string(swidth[c]) +
                                                                        " > the track's " + std::to_string(bits) + " bits (track " + std::to_string(k) + ")");
+            sbase[c] = compressed_value(stream, pos + t.components * ibc_width_bits + c * t.bits, t.bits);
           }
           pos += std::uint64_t(t.components) * (t.bits + ibc_width_bits);
         }
@@ -385,17 +392,23 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
         std::uint64_t header = 0;
         for (unsigned c = 0; c < t.components; ++c) header += swidth[c] + t.width_bits;
         if (past(header)) return overrun(block);
-        clip.blocks_.push_back(std::uint32_t(pos));
         std::uint64_t row = 0;
+        std::uint32_t entry[ibc_index_words] = {0, 0, 0, 0, 0, 0};
+        std::uint64_t base_at = pos + std::uint64_t(t.components) * t.width_bits;
         for (unsigned c = 0; c < t.components; ++c) {
           const unsigned width = t.width_base + compressed_value(stream, pos + c * t.width_bits, t.width_bits);
           if (width > t.bits)
             return r.fail(std::size_t(stream_offset + (pos >> 3)), "block width: " + std::to_string(width) + " > the track's " +
                                                                      std::to_string(bits) + " bits (track " + std::to_string(k) + ")");
           row += width;
+          entry[c] = sbase[c] + compressed_value(stream, base_at, swidth[c]);  // < 2^bits + 2^swidth ≤ 2^25
+          entry[5] |= std::uint32_t(width) << (8 * c);
+          base_at += swidth[c];
         }
         pos += header;
         if (past(row * count)) return overrun(block);
+        entry[4] = std::uint32_t(pos);
+        clip.index_.insert(clip.index_.end(), entry, entry + ibc_index_words);
         pos += row * count;
       }
       for (unsigned c = 0; c < t.components; ++c) {
@@ -425,6 +438,33 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
   }
   if (r.at != stream_offset)
     return r.fail(28, "stream offset: " + std::to_string(stream_offset) + ", the track table ends at " + std::to_string(r.at));
+  // The runtime tables: per piece the rest pose (absent and constant values) and the spline list.
+  clip.rest_.assign(pieces * joints, JointPose<float>{});
+  clip.piece_splines_.assign(1, 0);
+  for (std::size_t k = 0; k < clip.tracks_.size(); ++k) {
+    const CompressedTrack& t = clip.tracks_[k];
+    const std::size_t piece = k / (3 * joints), joint = (k / 3) % joints;
+    const unsigned channel = unsigned(k % 3);
+    JointPose<float>& rest = clip.rest_[piece * joints + joint];
+    if (t.kind == CompressedTrackKind::constant) {
+      if (channel == 1) rest.rotation = t.reference;
+      else (channel == 0 ? rest.translation : rest.scale) = Vec3f{t.min[0], t.min[1], t.min[2]};
+    } else if (t.kind == CompressedTrackKind::spline) {
+      CompressedSpline s;
+      s.inv_spacing = 1.0 / double(t.spacing);
+      s.spacing = t.spacing;
+      s.last_segment = t.controls - 1 - t.degree;
+      s.first_index = t.first_index;
+      s.joint = std::uint32_t(joint);
+      s.channel = std::uint8_t(channel);
+      s.form = std::uint8_t((t.components - 3) * 2 + (t.degree == 3 ? 1 : 0));
+      s.min = t.min;
+      s.step = t.step;
+      s.reference = t.reference;
+      clip.splines_.push_back(s);
+    }
+    if (k % (3 * joints) == 3 * joints - 1) clip.piece_splines_.push_back(std::uint32_t(clip.splines_.size()));
+  }
   clip.stream_offset_ = stream_offset;
   clip.first_frame_ = first_frame;
   clip.frame_rate_ = frame_rate;
@@ -437,53 +477,121 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
 
 namespace {
 
-// Spline values of one track at segment `seg`, local parameter u; Degree and Comps fixed so the
-// loops unroll (the runtime's hot path).
+// Block index entry of control point `control` of a track whose block index starts at `first`.
+[[gnu::always_inline]] inline const std::uint32_t* index_entry(const std::uint32_t* index, std::uint32_t first,
+                                                               std::uint32_t control) noexcept {
+  return index + first + (control / ibc_block_controls) * ibc_index_words;
+}
+
+// The quantised indices of control point `control` of a track (any block): its block's decoded
+// header from the index, then the offsets at their widths.
+template <unsigned Comps>
+[[gnu::always_inline]] inline void control_indices(const std::uint32_t* index, std::uint32_t first, const std::uint8_t* stream,
+                                                   std::uint32_t control, std::uint32_t* idx) noexcept {
+  const std::uint32_t* e = index_entry(index, first, control);
+  const std::uint32_t widths = e[5];
+  const unsigned row = (widths * 0x01010101u) >> 24;  // the widths' sum (each ≤ 24: no carry)
+  std::uint64_t pos = e[4] + std::uint64_t(control % ibc_block_controls) * row;
+  for (unsigned c = 0; c < Comps; ++c) {
+    const unsigned width = (widths >> (8 * c)) & 0xff;
+    idx[c] = e[c] + compressed_value(stream, pos, width);
+    pos += width;
+  }
+}
+
+// Spline values of one track at segment `seg`, local parameter u, in the reference arithmetic
+// (T = double: decode_frame, which compression's guarantee is measured on).
 template <unsigned Degree, unsigned Comps, Real T>
-[[gnu::always_inline]] inline void spline_values_fixed(const CompressedTrack& t, const CompressedClip& clip, std::uint64_t seg,
-                                                       T u, const T* step, T* out) noexcept {
+void spline_values_reference(const CompressedTrack& t, const CompressedClip& clip, std::uint32_t seg, T u, T* out) noexcept {
   std::array<T, 4> w;
   if constexpr (Degree == 3) w = bspline_weights(u);
   else w = linear_weights(u);
-  const std::uint8_t* stream = clip.stream();
-  const std::uint32_t* blocks = clip.blocks().data();
-  const std::uint32_t* superblocks = clip.superblocks().data();
   T acc[Comps] = {};
-  const auto first = std::uint32_t(seg);
-  const std::uint32_t b0 = first / ibc_block_controls, i0 = first % ibc_block_controls;
-  CompressedBlock block;
-  compressed_block_fixed<Comps>(t, stream, blocks, superblocks, b0, block);
-  std::uint32_t idx[4];
-  if (i0 + Degree < ibc_block_controls) {  // all control points in one block (the common case)
-    std::uint64_t pos = block.values + std::uint64_t(i0) * block.row;
-    for (unsigned k = 0; k <= Degree; ++k, pos += block.row)
-      for (unsigned c = 0; c < Comps; ++c)
-        acc[c] += w[k] * T(block.base[c] + compressed_value(stream, pos + block.before[c], block.width[c]));
-  } else {
-    std::uint32_t current = b0;
-    for (unsigned k = 0; k <= Degree; ++k) {
-      const std::uint32_t control = first + k;
-      if (control / ibc_block_controls != current) {
-        current = control / ibc_block_controls;
-        compressed_block(t, stream, blocks, superblocks, current, block);
-      }
-      compressed_control(block, stream, Comps, control % ibc_block_controls, idx);
-      for (unsigned c = 0; c < Comps; ++c) acc[c] += w[k] * T(idx[c]);
-    }
+  std::uint32_t idx[Comps];
+  for (unsigned k = 0; k <= Degree; ++k) {
+    control_indices<Comps>(clip.block_index().data(), t.first_index, clip.stream(), seg + k, idx);
+    for (unsigned c = 0; c < Comps; ++c) acc[c] += w[k] * T(idx[c]);
   }
-  for (unsigned c = 0; c < Comps; ++c) out[c] = T(t.min[c]) + step[c] * acc[c];
+  for (unsigned c = 0; c < Comps; ++c) out[c] = T(t.min[c]) + T(compressed_step(t, c)) * acc[c];
 }
 
 template <Real T>
-[[gnu::always_inline]] inline void spline_values(const CompressedTrack& t, const CompressedClip& clip, std::uint64_t seg, T u,
-                                                 const T* step, T* out) noexcept {
+void spline_values(const CompressedTrack& t, const CompressedClip& clip, std::uint32_t seg, T u, T* out) noexcept {
   if (t.components == 3) {
-    if (t.degree == 3) spline_values_fixed<3, 3>(t, clip, seg, u, step, out);
-    else spline_values_fixed<1, 3>(t, clip, seg, u, step, out);
+    if (t.degree == 3) spline_values_reference<3, 3>(t, clip, seg, u, out);
+    else spline_values_reference<1, 3>(t, clip, seg, u, out);
   } else {
-    if (t.degree == 3) spline_values_fixed<3, 4>(t, clip, seg, u, step, out);
-    else spline_values_fixed<1, 4>(t, clip, seg, u, step, out);
+    if (t.degree == 3) spline_values_reference<3, 4>(t, clip, seg, u, out);
+    else spline_values_reference<1, 4>(t, clip, seg, u, out);
   }
+}
+
+// The runtime's values of one spline track at piece sample x (≥ 0): segment and parameter, the
+// block's decoded header from the index (no stream header read), the Degree + 1 control points —
+// one 8-byte load each when a row fits — weighted in float: min + step · Σ w·index per component.
+template <unsigned Degree, unsigned Comps>
+[[gnu::always_inline]] inline void sample_spline(const CompressedSpline& s, const std::uint32_t* index, const std::uint8_t* stream,
+                                                 double x, float* v) noexcept {
+  const double ux = x * s.inv_spacing;
+  auto seg = std::uint32_t(ux);
+  if (double(seg + 1) * double(s.spacing) <= x) ++seg;  // x / spacing exactly at a knot
+  if (seg > s.last_segment) seg = s.last_segment;
+  const auto u = float((x - double(seg) * double(s.spacing)) * s.inv_spacing);
+  std::array<float, 4> w;
+  if constexpr (Degree == 3) {  // bspline_weights with products by 1/6 (no division in the hot path)
+    constexpr float sixth = 1.0f / 6.0f;
+    const float t = u, r = 1.0f - t, t2 = t * t, t3 = t2 * t;
+    w = {r * r * r * sixth, (0.5f * t3 - t2) + 4.0f * sixth, (-0.5f * t3 + 0.5f * t2) + (0.5f * t + sixth), t3 * sixth};
+  } else {
+    w = linear_weights(u);
+  }
+  float acc[Comps] = {};
+  const std::uint32_t i0 = seg % ibc_block_controls;
+  if (i0 + Degree < ibc_block_controls) {  // all control points in one block (the common case)
+    // The block's header in lane form: bases loaded as a vector, widths and their prefix sums
+    // (one multiplication each: bytes ≤ 24 never carry) widened from bytes.
+    const std::uint32_t* e = index_entry(index, s.first_index, seg);
+    using U64x4 = std::uint64_t __attribute__((vector_size(32)));
+    using I32x4 = std::int32_t __attribute__((vector_size(16)));
+    using U8x4 = std::uint8_t __attribute__((vector_size(4)));
+    using F32x4 = float __attribute__((vector_size(16)));
+    const std::uint32_t widths = e[5], befores = widths * 0x01010100u;
+    const unsigned row = (widths * 0x01010101u) >> 24;
+    I32x4 basev;
+    __builtin_memcpy(&basev, e, sizeof basev);
+    U8x4 wb, bb;
+    __builtin_memcpy(&wb, &widths, 4);
+    __builtin_memcpy(&bb, &befores, 4);
+    const U64x4 mask = (U64x4{1, 1, 1, 1} << __builtin_convertvector(wb, U64x4)) - 1;
+    const U64x4 before = __builtin_convertvector(bb, U64x4);
+    std::uint64_t pos = e[4] + std::uint64_t(i0) * row;
+    if (row <= 56) {
+      // The components in the lanes of a vector (GCC vector extensions: AVX2's variable shifts in
+      // the x86-64-v3 clone, SSE2 emulation in the baseline): per control point one 8-byte load,
+      // each lane shifted to its component, masked, its base added, converted, weighted.
+      F32x4 accv{};
+      for (unsigned k = 0; k <= Degree; ++k, pos += row) {
+        std::uint64_t word;
+        __builtin_memcpy(&word, stream + (pos >> 3), 8);
+        if constexpr (std::endian::native == std::endian::big) word = __builtin_bswap64(word);
+        const U64x4 offsets = (U64x4{} + word) >> (before + (pos & 7)) & mask;
+        accv += w[k] * __builtin_convertvector(__builtin_convertvector(offsets, I32x4) + basev, F32x4);
+      }
+      for (unsigned c = 0; c < Comps; ++c) acc[c] = accv[c];
+    } else {
+      for (unsigned k = 0; k <= Degree; ++k, pos += row) {
+        for (unsigned c = 0; c < Comps; ++c)
+          acc[c] += w[k] * float(std::uint32_t(basev[c]) + compressed_value(stream, pos + before[c], (widths >> (8 * c)) & 0xff));
+      }
+    }
+  } else {
+    std::uint32_t idx[Comps];
+    for (unsigned k = 0; k <= Degree; ++k) {
+      control_indices<Comps>(index, s.first_index, stream, seg + k, idx);
+      for (unsigned c = 0; c < Comps; ++c) acc[c] += w[k] * float(idx[c]);
+    }
+  }
+  for (unsigned c = 0; c < Comps; ++c) v[c] = s.min[c] + s.step[c] * acc[c];
 }
 
 }  // namespace
@@ -512,9 +620,8 @@ void decode_frame(const CompressedClip& clip, std::size_t frame_index, std::span
       }
       const std::uint64_t seg = std::min<std::uint64_t>(frame_index / t.spacing, t.controls - 1 - t.degree);
       const double u = double(frame_index - seg * t.spacing) / double(t.spacing);
-      double step[4], v[4];
-      for (unsigned c = 0; c < t.components; ++c) step[c] = compressed_step(t, c);
-      spline_values(t, clip, seg, u, step, v);
+      double v[4];
+      spline_values(t, clip, std::uint32_t(seg), u, v);
       if (ch == 1) {
         pose.rotation = compressed_rotation(t.reference.cast<double>(), v, t.components);
       } else {
@@ -524,6 +631,11 @@ void decode_frame(const CompressedClip& clip, std::size_t frame_index, std::span
   }
 }
 
+// Clones for x86-64-v3 (AVX2, FMA, BMI2: Haswell, Zen and later; resolved once at load) and the
+// baseline.  clang and other targets: the baseline only.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+[[gnu::target_clones("arch=x86-64-v3", "default")]]
+#endif
 void sample_compressed(const CompressedClip& clip, double frame, std::span<JointPose<float>> local) noexcept {
   INBETWEEN_ASSERT(local.size() == clip.joints());
   double x = frame - clip.first_frame();
@@ -532,33 +644,26 @@ void sample_compressed(const CompressedClip& clip, double frame, std::span<Joint
   if (x > last) x = last;
   const std::size_t piece = clip.piece_of(std::size_t(x));
   x -= double(clip.pieces()[piece]);
-  const auto tracks = clip.tracks().subspan(piece * 3 * clip.joints(), 3 * clip.joints());
-  for (std::size_t j = 0; j < local.size(); ++j) {
-    JointPose<float>& pose = local[j];
-    for (unsigned ch = 0; ch < 3; ++ch) {
-      const CompressedTrack& t = tracks[3 * j + ch];
-      if (t.kind == CompressedTrackKind::spline) {
-        const double u = x / double(t.spacing);
-        std::uint64_t seg = std::uint64_t(u);
-        if (seg > t.controls - 1 - t.degree) seg = t.controls - 1 - t.degree;
-        float v[4];
-        spline_values(t, clip, seg, float(u - double(seg)), t.step.data(), v);
-        if (ch == 1) {
-          pose.rotation = compressed_rotation(t.reference, v, t.components);
-        } else {
-          (ch == 0 ? pose.translation : pose.scale) = Vec3f{v[0], v[1], v[2]};
-        }
-      } else if (t.kind == CompressedTrackKind::constant) {
-        if (ch == 1) {
-          pose.rotation = t.reference;
-        } else {
-          (ch == 0 ? pose.translation : pose.scale) = Vec3f{t.min[0], t.min[1], t.min[2]};
-        }
-      } else {
-        if (ch == 0) pose.translation = {};
-        if (ch == 1) pose.rotation = {};
-        if (ch == 2) pose.scale = {1, 1, 1};
-      }
+  const auto rest = clip.rest_pose(piece);
+  std::memcpy(static_cast<void*>(local.data()), rest.data(), rest.size_bytes());
+  const std::uint32_t* index = clip.block_index().data();
+  const std::uint8_t* stream = clip.stream();
+  JointPose<float>* out = local.data();
+  // The pose's absent and constant values are copied above; each spline track's values, then its
+  // rotation or vector, written once (every field of the track loaded before the store).
+  for (const CompressedSpline& s : clip.splines(piece)) {
+    float v[4];
+    switch (s.form) {
+      case 1: sample_spline<3, 3>(s, index, stream, x, v); break;
+      case 0: sample_spline<1, 3>(s, index, stream, x, v); break;
+      case 3: sample_spline<3, 4>(s, index, stream, x, v); break;
+      default: sample_spline<1, 4>(s, index, stream, x, v); break;
+    }
+    JointPose<float>& pose = out[s.joint];
+    if (s.channel == std::uint8_t(CompressedChannel::rotation)) {
+      pose.rotation = compressed_rotation(s.reference, v, s.form >= 2 ? 4u : 3u);
+    } else {
+      (s.channel == std::uint8_t(CompressedChannel::translation) ? pose.translation : pose.scale) = Vec3f{v[0], v[1], v[2]};
     }
   }
 }

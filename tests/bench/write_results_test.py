@@ -556,5 +556,113 @@ class BlendSection(unittest.TestCase):
         self.assertTrue(cells[6].startswith("missed"), cells)
 
 
+class Acl(unittest.TestCase):
+    """acl_section (issue 24): ACL 2.1's recorded figures (acl_clip_bench.json, one `make bench-acl` run,
+    ACL v2.1.0 commit 414689d5, 2026-11-28, same machine, with inbetween's side of that run) next to
+    inbetween's, target ≤ 0.9× ACL's bytes at E with inbetween's error ≤ E."""
+
+    TITLE = "### ACL 2.1 vs inbetween compression"
+    LABEL = "01_01 (31 joints × 2752 frames)"
+
+    def doc(self):
+        return json.loads((DATA / "acl_clip_bench.json").read_text(encoding="utf-8"))
+
+    def cells(self, doc, r=None, e="0.01", label=LABEL):
+        text = wr.render(r or results_of(load_docs()), "cmd", "2026-11-28", "1.00", None, None, "no node",
+                         acl=(doc, "the recorded reference"))
+        header, rows = tables(text)[next(t for t in tables(text) if t.startswith(self.TITLE))]
+        self.assertEqual(header[9], "target ≤ 0.9× and error ≤ E")
+        return next(c for c in rows if c[0] == label and c[1] == e)
+
+    def inject(self, doc, stem, e, bytes_, error):
+        clip = next(c for c in doc["clips"] if c["clip"] == stem + ".bvh")
+        case = next(c for c in clip["cases"] if c["error_bound"] == e)
+        case["inbetween"] = {"bytes": bytes_, "measured_error": {"max": error}, "compress_seconds": 1.0,
+                             "decode_ns_per_joint": {"sequential": 10.0, "random": 12.0}}
+        return case["acl"]["bytes"]
+
+    def test_same_run_inbetween_side(self):
+        doc = self.doc()
+        case = doc["clips"][0]["cases"][0]
+        ours, acl = case["inbetween"], case["acl"]
+        c = self.cells(doc)
+        self.assertEqual(c[6], f"{wr.fmt_bytes(ours['bytes'])} ({doc['clips'][0]['raw_float32_bytes'] / ours['bytes']:.3g}:1)")
+        self.assertEqual(c[8], f"{ours['bytes'] / acl['bytes']:.3f}")
+        self.assertEqual(c[9], "met" if ours["bytes"] <= 0.9 * acl["bytes"] else
+                         f"missed ({ours['bytes'] / acl['bytes']:.3f}× > 0.9×)")
+
+    def test_acl_figures_without_inbetween_are_not_measured(self):
+        doc = self.doc()
+        for clip in doc["clips"]:
+            for case in clip["cases"]:
+                case.pop("inbetween", None)
+        c = self.cells(doc)
+        acl = doc["clips"][0]["cases"][0]["acl"]
+        raw = doc["clips"][0]["raw_float32_bytes"]
+        self.assertEqual(c[2], wr.fmt_bytes(raw))
+        self.assertEqual(c[3], f"{wr.fmt_bytes(acl['bytes'])} ({raw / acl['bytes']:.3g}:1)")
+        self.assertEqual(c[4], f"{acl['measured_error']['max']:.4g} / {acl['acl_error']:.4g}")
+        self.assertEqual(c[6], "—")
+        self.assertEqual(c[9], "not measured")
+        boxing = self.cells(doc, label="Boxing_Toes (21 joints × 3069 frames)")
+        self.assertTrue(boxing[5].startswith("not reachable: error "), boxing)
+
+    def test_target_is_bytes_ratio_and_error_bound(self):
+        doc = self.doc()
+        acl = self.inject(doc, "01_01", 0.01, 0, 0.005)
+        for factor, error, verdict in ((0.8, 0.005, "met"), (0.95, 0.005, "missed (0.950× > 0.9×)"),
+                                       (0.9005, 0.005, "missed (0.900× > 0.9×)"), (0.5, 0.011, "missed (error > E)")):
+            self.inject(doc, "01_01", 0.01, acl * factor, error)
+            c = self.cells(doc)
+            self.assertEqual(c[7], f"{error:g} / —")
+            self.assertEqual(c[8], f"{factor:.3f}")
+            self.assertEqual(c[9], verdict, c)
+
+    def test_the_float_runtime_error_counts(self):
+        doc = self.doc()
+        acl = self.inject(doc, "01_01", 0.01, 0, 0.009)
+        self.inject(doc, "01_01", 0.01, acl * 0.8, 0.009)
+        case = doc["clips"][0]["cases"][0]
+        case["inbetween"]["runtime_error"] = {"max": 0.0101}
+        c = self.cells(doc)
+        self.assertEqual(c[7], "0.009 / 0.0101")
+        self.assertEqual(c[9], "missed (error > E)")
+
+    def test_inbetween_from_the_in_tree_counters(self):
+        doc = self.doc()
+        for clip in doc["clips"]:
+            for case in clip["cases"]:
+                case.pop("inbetween", None)
+        acl = doc["clips"][0]["cases"][1]["acl"]
+        # bench/compress_bench.cpp's names and counters (ns_per_joint is seconds per joint: an inverted rate)
+        bench = {"context": {}, "benchmarks": [
+            {"name": "BM_CompressClip/01_01/E=0.1/iterations:1", "run_name": "BM_CompressClip/01_01/E=0.1/iterations:1",
+             "run_type": "iteration", "cpu_time": 2.0, "time_unit": "s"},
+            {"name": "BM_CompressedSample/01_01/E=0.1/sequential", "run_name": "BM_CompressedSample/01_01/E=0.1/sequential",
+             "run_type": "iteration", "cpu_time": 1.0, "time_unit": "ns", "bytes": acl["bytes"] * 0.7, "error": 0.09,
+             "ns_per_joint": 4.2e-8}]}
+        r = results_of(load_docs())
+        r.add_json("inbetween_bench_compress", bench)
+        c = self.cells(doc, r, "0.1")
+        self.assertEqual(c[7], "0.09 (stored)")
+        self.assertEqual(c[8], "0.700")
+        self.assertEqual(c[9], "met")
+        text = wr.render(r, "cmd", "2026-11-28", "1.00", None, None, "no node", acl=(doc, "the recorded reference"))
+        rows = [[c.strip() for c in line.strip().strip("|").split("|")] for line in text.splitlines()
+                if line.startswith(f"| {self.LABEL} | 0.1 |")]
+        self.assertEqual(len(rows), 2)  # the size table's row and the decode table's
+        self.assertTrue(rows[1][3].startswith("42 / "), rows[1])
+        self.assertEqual(rows[1][-1], "2.00 s")
+
+    def test_read_acl_prefers_the_live_run(self):
+        with tempfile.TemporaryDirectory() as d:
+            live, ref = Path(d) / "live.json", Path(d) / "ref.json"
+            self.assertIsNone(wr.read_acl(live, ref))
+            ref.write_text(json.dumps({"clips": [], "context": {"date": "ref"}}), encoding="utf-8")
+            self.assertEqual(wr.read_acl(live, ref)[0]["context"]["date"], "ref")
+            live.write_text(json.dumps({"clips": [], "context": {"date": "live"}}), encoding="utf-8")
+            self.assertEqual(wr.read_acl(live, ref)[0]["context"]["date"], "live")
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -41,7 +41,7 @@ const std::vector<ThirdParty>& third_party_table() {
       // inbetween::eigen (*_eigen.cpp); tests and benchmarks use it as an independent reference.
       {"Eigen", {"Eigen/", "unsupported/Eigen/"}, R"(src/[a-z]+/[a-z_]+_eigen\.cpp|tests/.*|bench/.*)"},
       // inbetween::io privately; the tool, the tests and the fuzz targets read JSON themselves.
-      {"nlohmann-json", {"nlohmann/"}, R"(src/io/.*|apps/.*|tests/.*|fuzz/.*|python/src/.*)"},
+      {"nlohmann-json", {"nlohmann/"}, R"(src/io/.*|apps/.*|tests/.*|fuzz/.*|python/src/.*|tools/bench/acl_clip_bench\.cpp)"},
       {"tinygltf", {"tiny_gltf.h"}, R"(src/io/.*|tests/io/.*|tests/support/.*)"},
       {"tinyobjloader", {"tiny_obj_loader.h"}, R"(src/io/.*)"},
       {"assimp", {"assimp/"}, R"(src/io/.*|tests/io/.*)"},
@@ -54,6 +54,8 @@ const std::vector<ThirdParty>& third_party_table() {
       {"Boost", {"boost/"}, R"(bench/.*)"},
       {"glm", {"glm/"}, R"(bench/.*)"},
       {"xsimd", {"xsimd/"}, R"(bench/.*)"},
+      // out of tree, from a source tree the user gives (`make bench-acl`): ACL and its Realtime Math
+      {"ACL", {"acl/", "rtm/"}, R"(tools/bench/acl_clip_bench\.cpp)"},
   };
   return table;
 }

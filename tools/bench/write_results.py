@@ -25,6 +25,14 @@ table says "not run" and why.
 ozz-animation is not packaged in Debian: `make bench-ozz OZZ_SRC=…` (tools/bench/bench_ozz.sh) runs
 tools/bench/ozz_rig_bench.cpp out of tree and writes build/ozz/ozz_rig_bench.json; when that file
 exists (`--ozz-json`), its table joins the section, otherwise a line says how to produce it.
+
+ACL 2.1 (issue 24) is not packaged either: `make bench-acl ACL_SRC=…` (tools/bench/bench_acl.sh)
+writes build/acl/acl_clip_bench.json and the tracked reference bench/acl_reference.json.  The
+"ACL 2.1 vs inbetween compression" table takes ACL's figures from the former when it exists
+(`--acl-json`), else from the latter (`--acl-reference`), and inbetween's from the same JSON when
+acl_clip_bench measured both sides, else from this run's counters (inbetween_bench_clips'
+BM_ClipRaw/<clip>: raw_float32_bytes; inbetween_bench_compress's BM_CompressedSample/<clip>/E=<E>/
+sequential|random: bytes, error, ns_per_joint; BM_CompressClip/<clip>/E=<E>: compression time).
 """
 
 from __future__ import annotations
@@ -53,6 +61,8 @@ COMPARISON_FILTERS = {
     "inbetween_bench_tracks": r"BM_Rig.*/(25|64|71|551|1024)/2$",
     "inbetween_bench_io": r"BM_Bvh",
     "inbetween_bench_blend": r"BM_BlendPoses<float>|BM_CharacterUpdate",
+    "inbetween_bench_clips": r"BM_ClipRaw",  # issue 24's ACL table, with the next line
+    "inbetween_bench_compress": r"BM_CompressedSample|BM_CompressClip",
 }
 
 RIG_SIZES = (25, 64, 71, 551, 1024)
@@ -68,6 +78,10 @@ BVH_TARGET = 10.0  # issue 20: reading and baking 01_03.bvh at least 10× faster
 THREEJS_PROGRAM = "bvh_threejs"  # tools/bench/bvh_threejs.mjs; its JSON is <bench dir>/bvh_threejs.json
 THREEJS_SCRIPT = ROOT / "tools" / "bench" / "bvh_threejs.mjs"
 THREEJS_REPETITIONS = 5
+ACL_PROGRAM = "acl_clip_bench"  # tools/bench/acl_clip_bench.cpp, run by `make bench-acl`
+DEFAULT_ACL_JSON = ROOT / "build" / "acl" / f"{ACL_PROGRAM}.json"
+DEFAULT_ACL_REFERENCE = ROOT / "bench" / "acl_reference.json"
+ACL_SIZE_TARGET = 0.9  # issue 24: at most 0.9× ACL's bytes at the same E and D, error ≤ E on every frame and joint
 
 
 # ----------------------------------------------------------------------------- reading results
@@ -628,10 +642,148 @@ def compiler_of(executable: str) -> str:
     return found[-1] if found else "unknown"
 
 
+# Issue 24: ACL 2.1 against inbetween's compression on the CMU clips (make bench-acl / bench/acl_reference.json).
+def read_acl(live: Path, reference: Path) -> tuple[dict, str] | None:
+    """ACL's figures: `make bench-acl`'s JSON when it exists, else the tracked reference; and which one."""
+    for path, what in ((live, "this machine's `make bench-acl` run"), (reference, "the recorded reference")):
+        if path.is_file():
+            return json.loads(path.read_text(encoding="utf-8")), f"{what} (`{path.relative_to(ROOT) if path.is_relative_to(ROOT) else path}`)"
+    return None
+
+
+def fmt_bytes(x: float | None) -> str:
+    return "—" if x is None else f"{x:,.0f}".replace(",", " ")
+
+
+def acl_inbetween_side(r: Results, case: dict, stem: str) -> dict:
+    """inbetween's figures for one clip and E: from acl_clip_bench's JSON (same run) or the in-tree bench."""
+    def worst(*errors: float | None) -> float | None:
+        """The error the target counts: the larger of the double decoder's and the float runtime's."""
+        known = [e for e in errors if e is not None]
+        return max(known) if known else None
+
+    def value(x: float | dict | None) -> float | None:
+        return x.get("max") if isinstance(x, dict) else x
+
+    ours = case.get("inbetween")
+    if ours:
+        ref, rt = value(ours.get("measured_error")), value(ours.get("runtime_error"))
+        return {"bytes": ours.get("bytes"), "error": worst(ref, rt), "ref": ref, "rt": rt,
+                "seq": ours.get("decode_ns_per_joint", {}).get("sequential"),
+                "rnd": ours.get("decode_ns_per_joint", {}).get("random"),
+                "seq_fastest": ours.get("decode_ns_per_joint", {}).get("sequential_fastest"),
+                "seconds": ours.get("compress_seconds"), "where": "acl_clip_bench"}
+    # bench/compress_bench.cpp: BM_CompressedSample/<clip>/E=<E>/sequential|random (counters bytes, error: the
+    # double decoder's, ns_per_joint: seconds per joint, a rate inverted) and BM_CompressClip/<clip>/E=<E>,
+    # registered with Iterations(1), which Google Benchmark appends to the name.
+    tag = f"{stem}/E={case['error_bound']:g}"
+    sample = f"BM_CompressedSample/{tag}/"
+
+    def ns(name: str) -> float | None:
+        s_per_joint = r.counter(name, "ns_per_joint")
+        return None if s_per_joint is None else s_per_joint * 1e9
+
+    name = f"BM_CompressClip/{tag}"
+    name = next((k for k in r.cpu_ns if k == name or k.startswith(name + "/iterations:")), name)
+    t = r.time(name)
+    return {"bytes": r.counter(sample + "sequential", "bytes"), "error": r.counter(sample + "sequential", "error"),
+            "ref": r.counter(sample + "sequential", "error"), "rt": None,
+            "seq": ns(sample + "sequential"), "rnd": ns(sample + "random"), "seq_fastest": None,
+            "seconds": None if t is None else t / 1e9, "where": "inbetween_bench_compress"}
+
+
+def acl_section(r: Results, acl: tuple[dict, str] | None) -> list[str]:
+    """Issue 24's table: ACL's bytes, errors and decode times next to inbetween's, per clip and E."""
+    title = "### ACL 2.1 vs inbetween compression (`make bench-acl`, out of tree; `inbetween_bench_compress`)"
+    if acl is None:
+        return [title, "", "not run: ACL is not packaged and bench/acl_reference.json is missing; "
+                "`make bench-acl ACL_SRC=/path/to/acl` measures it.", ""]
+    doc, source = acl
+    ctx = doc.get("context", {})
+    sizes, speeds, wheres = [], [], set()
+    for clip in doc.get("clips", []):
+        stem = Path(clip["clip"]).stem
+        raw = r.counter(f"BM_ClipRaw/{stem}", "raw_float32_bytes") or clip.get("raw_float32_bytes")
+        label = f"{stem} ({clip['joints']} joints × {clip['frames']} frames)"
+        for case in clip["cases"]:
+            e = case["error_bound"]
+            a, held = case["acl"], case["acl_held_to_error"]
+            ours = acl_inbetween_side(r, case, stem)
+            a_err = a["measured_error"]["max"] if isinstance(a["measured_error"], dict) else a["measured_error"]
+            if held.get("reached", True):
+                held_cell = f"{fmt_bytes(held['bytes'])} (threshold {held['threshold']:.3g})"
+            else:
+                floor = held["measured_error"]["max"] if isinstance(held["measured_error"], dict) else held["measured_error"]
+                full = held.get("full_rotations")
+                full_err = None if full is None else full["measured_error"]
+                full_err = full_err.get("max") if isinstance(full_err, dict) else full_err
+                held_cell = (f"not reachable: error {fmt_num(floor)} at threshold 0 ({fmt_bytes(held['bytes'])} B)"
+                             + ("" if full is None else f"; with full-precision rotations {fmt_bytes(full['bytes'])} B, "
+                                f"error {fmt_num(full_err)}"))
+            q = ratio(ours["bytes"], a["bytes"])
+            wheres.add(ours["where"])
+            if ours["bytes"] is None:
+                target = "not measured"
+            elif ours["error"] is None or ours["error"] > e:
+                target = "missed (error > E)"
+            else:  # 3 decimals: 1.003× must not print as 1×
+                target = "met" if q <= ACL_SIZE_TARGET else f"missed ({q:.3f}× > {ACL_SIZE_TARGET:g}×)"
+            sizes.append([label, f"{e:g}", fmt_bytes(raw),
+                          f"{fmt_bytes(a['bytes'])} ({fmt_num(ratio(raw, a['bytes']))}:1)",
+                          f"{fmt_num(a_err, 4)} / {fmt_num(a['acl_error'], 4)}", held_cell,
+                          "—" if ours["bytes"] is None else f"{fmt_bytes(ours['bytes'])} ({fmt_num(ratio(raw, ours['bytes']))}:1)",
+                          (f"{fmt_num(ours['ref'], 4)} (stored)" if ours["where"] == "inbetween_bench_compress"
+                           else f"{fmt_num(ours['ref'], 4)} / {fmt_num(ours['rt'], 4)}"),
+                          "—" if q is None else f"{q:.3f}", target])
+            dec = a["decode_ns_per_joint"]
+            speeds.append([label, f"{e:g}", f"{fmt_num(dec['sequential'])} / {fmt_num(dec['random'])}",
+                           f"{fmt_num(ours['seq'])} / {fmt_num(ours['rnd'])}",
+                           "—" if ours["seq"] is None else f"{ours['seq'] / dec['sequential']:.2f}",
+                           f"{fmt_num(dec.get('sequential_fastest'))} / {fmt_num(ours['seq_fastest'])}",
+                           f"{a['compress_seconds']:.2f} s",
+                           "—" if ours["seconds"] is None else f"{ours['seconds']:.2f} s"])
+    out = [title, "",
+           "Issue 24: the CMU clips of Debian's assimp-testmodels (01_01 and 01_03 in CMU's unit of 5.644 cm, "
+           "Boxing_Toes in cm), error bound E and shell distance D = "
+           f"{doc['clips'][0].get('shell', 3) if doc.get('clips') else 3:g} in clip units.  Error = inbetween's "
+           "metric (`clip_error`, scene/sampled_clip.hpp: the joint's origin and the points at D along its local "
+           "axes, raw vs decompressed world transforms, largest distance over every frame and joint); ACL's own "
+           "figure (`calculate_compression_error`, same points without the origin, in float) beside it.  ACL: "
+           f"{ctx.get('acl_version', '?')} (commit {ctx.get('acl_commit', '?')}), level "
+           f"{ctx.get('compression_level', 'high')}, `qvvf_transform_error_metric`, every track's precision E, "
+           "ACL's default settings otherwise; \"held to E\" is the ACL threshold found by bisection at which "
+           "inbetween's metric is ≤ E.  ACL's figures come from " + source + f", {ctx.get('date', '?')} on "
+           f"{ctx.get('machine', '?')} (inbetween {ctx.get('inbetween_commit', '?')}).  Target: inbetween's "
+           f"bytes ≤ {ACL_SIZE_TARGET:g}× ACL's at E, with its error ≤ E, the larger of the double decoder's "
+           "(`decompress`, the compressor's guarantee) and the float runtime's (`sample_compressed` at the same "
+           "frames; ACL is measured on its float runtime too).  Raw = frames × joints × 10 float32.", ""]
+    if "acl_clip_bench" in wheres:
+        out += ["inbetween's side comes from the same `acl_clip_bench` run (same binary, decode passes "
+                "interleaved with ACL's).", ""]
+    elif "inbetween_bench_compress" in wheres:
+        out += ["inbetween's side comes from this run's `inbetween_bench_compress` (bench/compress_bench.cpp: the "
+                "error stored at compression, the larger of the decoder's and the float runtime's; raw sizes from "
+                "`inbetween_bench_clips`).", ""]
+    out += table(["clip", "E", "raw float32 B", "ACL at E: B (ratio)", "ACL error: ours / ACL's",
+                  "ACL held to E: B", "inbetween: B (ratio)", "inbetween error: decoder / float runtime",
+                  "inbetween / ACL at E",
+                  f"target ≤ {ACL_SIZE_TARGET:g}× and error ≤ E"], sizes)
+    out += ["", "Decode: ns per joint to sample a whole pose into a caller's buffer, at the clip's frames in order / "
+            "at random times (ACL: `decompress_tracks` with `default_transform_decompression_settings`, median of "
+            f"{ctx.get('decode_repetitions', '?')} passes; in `acl_clip_bench` both sides' passes alternate and each "
+            "round moves both output buffers to another of 16 places, since the sampler's time was seen to depend on "
+            "where its buffers and code lie; the fastest round is shown too).  Target: inbetween's time per joint "
+            "≤ ACL's on the same clip and machine (ratio ≤ 1).  Compression time is reported, not a target.", ""]
+    out += table(["clip", "E", "ACL ns/joint (in order / random)", "inbetween ns/joint (in order / random)",
+                  "inbetween / ACL (in order)", "fastest round in order: ACL / inbetween", "ACL compression",
+                  "inbetween compression"], speeds)
+    return out + [""]
+
+
 # ----------------------------------------------------------------------------- document
 def render(r: Results, command: str, when: str, load: str, build_dir: Path | None = None,
            ozz: Results | None = None, threejs: Results | str | None = None,
-           ozz_blend: Results | None = None) -> str:
+           ozz_blend: Results | None = None, acl: tuple[dict, str] | None = None) -> str:
     lines = [BEGIN, "# Benchmark results (generated)", "",
              "Written by `make bench` (`tools/bench/write_results.py`) from the Google Benchmark programs in "
              "`bench/`, each comparison's two sides in one binary.  Times are CPU-time medians; ratios, "
@@ -642,6 +794,7 @@ def render(r: Results, command: str, when: str, load: str, build_dir: Path | Non
     lines += rig_simd_section(r)
     lines += blend_section(r, ozz_blend)
     lines += bvh_section(r, threejs)
+    lines += acl_section(r, acl)
     lines.append(END)
     return "\n".join(lines) + "\n"
 
@@ -750,6 +903,10 @@ def main(argv: list[str] | None = None) -> int:
                     help="`make bench-ozz`'s ozz_rig_bench JSON; its table is added when the file exists")
     ap.add_argument("--ozz-blend-json", default=str(DEFAULT_OZZ_BLEND_JSON),
                     help="`make bench-ozz`'s ozz_blend_bench JSON; its table is added when the file exists")
+    ap.add_argument("--acl-json", default=str(DEFAULT_ACL_JSON),
+                    help="`make bench-acl`'s acl_clip_bench JSON; ACL's figures come from it when the file exists")
+    ap.add_argument("--acl-reference", default=str(DEFAULT_ACL_REFERENCE),
+                    help="ACL's recorded figures (bench/acl_reference.json), used when --acl-json does not exist")
     ap.add_argument("--date", help="date to print (default: now, UTC)")
     ap.add_argument("--load", help="load average to print (default: os.getloadavg())")
     ap.add_argument("--command", help="command to print (default: this invocation)")
@@ -767,7 +924,8 @@ def main(argv: list[str] | None = None) -> int:
     command = args.command or "python3 tools/bench/write_results.py " + " ".join(
         shlex.quote(a) for a in (argv if argv is not None else sys.argv[1:]))
     section = render(r, command, when, load, Path(args.build_dir), read_ozz(Path(args.ozz_json)), threejs,
-                     read_ozz_blend(Path(args.ozz_blend_json)))
+                     read_ozz_blend(Path(args.ozz_blend_json)),
+                     read_acl(Path(args.acl_json), Path(args.acl_reference)))
     results = Path(args.results)
     old = results.read_text(encoding="utf-8") if results.exists() else ""
     target = Path(args.output) if args.output else results

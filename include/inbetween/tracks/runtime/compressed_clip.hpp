@@ -73,8 +73,7 @@ struct CompressedTrack {
   std::uint64_t bit_offset = 0;  ///< first bit of the track's first block in the bit stream
   std::uint8_t width_base = 0;   ///< smallest offset width of the track's blocks (≤ bits)
   std::uint8_t width_bits = 0;   ///< bits of a block's width field (≤ 5): width = width_base + field
-  std::uint32_t first_block = 0; ///< index of the track's first block in the clip's block table (set on load)
-  std::uint32_t first_superblock = 0; ///< index of the track's first superblock in the clip's superblock table (set on load)
+  std::uint32_t first_index = 0; ///< word of the track's first block in the clip's block index (set on load)
   std::array<float, 4> min{};    ///< spline: per-component lower end of the range; constant: the value (w, x, y, z for a rotation)
   std::array<float, 4> step{};   ///< spline: per-component quantisation step (≥ 0): value = min + step · index
   Quatf reference{};             ///< rotation spline: q = reference ⊗ q_rel; constant rotation: the value normalised (set on load)
@@ -126,6 +125,33 @@ template <Real T>
   return reference * rel;
 }
 
+/// Words of a block's entry in the block index: base index of components 0 … 3 (0 past the
+/// track's components), the bit position of the block's first control point, and the components'
+/// widths, one per byte (component c at bits 8c).
+inline constexpr unsigned ibc_index_words = 6;
+
+/// Largest block index (words) a file of `file_bytes` bytes may refer to: 32 words per byte + 2^20.  A
+/// block of zero-width values takes no bits, so the frame count alone does not bound the index;
+/// a file whose tracks need more is refused (no compressor output comes near it: a block costs
+/// at least its width fields or its values).
+[[nodiscard]] constexpr std::uint64_t ibc_max_index_words(std::uint64_t file_bytes) noexcept {
+  return 32 * file_bytes + (std::uint64_t(1) << 20);
+}
+
+/// A spline track as the runtime sampler reads it (built on load from its CompressedTrack).
+struct CompressedSpline {
+  double inv_spacing = 1;        ///< 1 / spacing
+  std::uint32_t spacing = 1;     ///< frames per knot interval
+  std::uint32_t last_segment = 0;  ///< controls − 1 − degree: the last segment
+  std::uint32_t first_index = 0;   ///< word of the track's first block in the block index
+  std::uint32_t joint = 0;       ///< the joint it drives
+  std::uint8_t channel = 0;      ///< CompressedChannel
+  std::uint8_t form = 0;         ///< (components − 3) · 2 + (degree == 3): which specialised decoder
+  std::array<float, 4> min{};    ///< per-component lower end of the range
+  std::array<float, 4> step{};   ///< per-component quantisation step
+  Quatf reference{};             ///< rotation: q = reference ⊗ q_rel
+};
+
 /// A checked compressed clip: owns the .ibc bytes and the parsed track table.  Only
 /// load_compressed_clip() makes one, so every offset and width in it is in bounds.
 class CompressedClip {
@@ -170,11 +196,25 @@ class CompressedClip {
   [[nodiscard]] std::span<const std::uint8_t> bytes() const noexcept { return bytes_; }
   /// The bit stream of control points (padded with ibc_stream_padding zero bytes).
   [[nodiscard]] const std::uint8_t* stream() const noexcept { return bytes_.data() + stream_offset_; }
-  /// Bit position of every block in the stream (all spline tracks' blocks, in track order; a
-  /// track's start at its first_block) — the index built on load.
-  [[nodiscard]] std::span<const std::uint32_t> blocks() const noexcept { return blocks_; }
-  /// Bit position of every superblock in the stream (a track's start at its first_superblock).
-  [[nodiscard]] std::span<const std::uint32_t> superblocks() const noexcept { return superblocks_; }
+  /// The block index built on load (not in the file): per spline track, in track order from its
+  /// first_index, per block ibc_index_words words: the decoded block header (bases, position of
+  /// the first control point, widths).
+  [[nodiscard]] std::span<const std::uint32_t> block_index() const noexcept { return index_; }
+  /// The spline tracks of piece `p`, in track order, with their runtime constants (built on load).
+  [[nodiscard]] std::span<const CompressedSpline> splines(std::size_t p) const noexcept {
+    return std::span<const CompressedSpline>(splines_).subspan(piece_splines_[p], piece_splines_[p + 1] - piece_splines_[p]);
+  }
+  /// The pose of piece `p` with every absent and constant track's value (spline tracks: identity),
+  /// joints() entries; the sampler copies it before evaluating the splines (built on load).
+  [[nodiscard]] std::span<const JointPose<float>> rest_pose(std::size_t p) const noexcept {
+    return std::span<const JointPose<float>>(rest_).subspan(p * parents_.size(), parents_.size());
+  }
+  /// Bytes of the in-memory runtime tables built on load (block index, spline table, rest poses;
+  /// not part of the file).
+  [[nodiscard]] std::size_t runtime_bytes() const noexcept {
+    return index_.size() * sizeof(std::uint32_t) + splines_.size() * sizeof(CompressedSpline) +
+           piece_splines_.size() * sizeof(std::uint32_t) + rest_.size() * sizeof(JointPose<float>);
+  }
 
  private:
   friend Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes);
@@ -184,7 +224,10 @@ class CompressedClip {
   std::vector<std::string> names_;
   std::vector<std::uint32_t> pieces_;
   std::vector<CompressedTrack> tracks_;
-  std::vector<std::uint32_t> blocks_, superblocks_;
+  std::vector<std::uint32_t> index_;
+  std::vector<CompressedSpline> splines_;
+  std::vector<std::uint32_t> piece_splines_;
+  std::vector<JointPose<float>> rest_;
   std::size_t frames_ = 0, stream_offset_ = 0;
   double first_frame_ = 0, frame_rate_ = 0, error_bound_ = 0, measured_error_ = 0, shell_ = 0;
 };
@@ -200,15 +243,6 @@ class CompressedClip {
 /// The quantisation step of component c of a spline track in double (the stored float).
 [[nodiscard]] inline double compressed_step(const CompressedTrack& t, unsigned c) noexcept { return double(t.step[c]); }
 
-/// One block of a spline track, its header read: per component the base index and the offsets' width.
-struct CompressedBlock {
-  std::uint32_t base[4] = {0, 0, 0, 0};   ///< per component: index of offset 0
-  unsigned width[4] = {0, 0, 0, 0};       ///< per component: offset width (bits)
-  unsigned before[4] = {0, 0, 0, 0};      ///< per component: bits of the earlier components in a row
-  unsigned row = 0;                       ///< bits of one control point's offsets
-  std::uint64_t values = 0;               ///< bit position of the block's first offset
-};
-
 /// One quantised value of the stream: `bits` bits at bit position `bit` (LSB first).
 [[gnu::always_inline]] inline std::uint32_t compressed_value(const std::uint8_t* stream, std::uint64_t bit,
                                                              unsigned bits) noexcept {
@@ -216,50 +250,6 @@ struct CompressedBlock {
   __builtin_memcpy(&word, stream + (bit >> 3), 8);
   if constexpr (std::endian::native == std::endian::big) word = __builtin_bswap64(word);
   return std::uint32_t((word >> (bit & 7)) & ((std::uint64_t(1) << bits) - 1));
-}
-
-/// Reads the header of block `block` (control points block · ibc_block_controls …) of spline track
-/// `t` with Comps components: its superblock's bases and widths, then its own.
-template <unsigned Comps>
-[[gnu::always_inline]] inline void compressed_block_fixed(const CompressedTrack& t, const std::uint8_t* stream,
-                                                          const std::uint32_t* blocks, const std::uint32_t* superblocks,
-                                                          std::uint32_t block, CompressedBlock& out) noexcept {
-  const unsigned bits = t.bits, wbits = t.width_bits;
-  const std::uint64_t spos = superblocks[t.first_superblock + block / ibc_superblock_blocks];
-  std::uint64_t pos = blocks[t.first_block + block];
-  // Every header field at a fixed offset: the superblock's widths, then its bases; the block's
-  // width fields, then its bases (at the superblock's widths).
-  unsigned swidth[Comps], row = 0;
-  std::uint32_t sbase[Comps];
-  for (unsigned c = 0; c < Comps; ++c) {
-    swidth[c] = compressed_value(stream, spos + c * ibc_width_bits, ibc_width_bits);
-    sbase[c] = compressed_value(stream, spos + Comps * ibc_width_bits + c * bits, bits);
-    out.width[c] = t.width_base + compressed_value(stream, pos + c * wbits, wbits);
-  }
-  pos += Comps * wbits;
-  for (unsigned c = 0; c < Comps; ++c) {
-    out.base[c] = sbase[c] + compressed_value(stream, pos, swidth[c]);
-    pos += swidth[c];
-    out.before[c] = row;
-    row += out.width[c];
-  }
-  out.row = row;
-  out.values = pos;
-}
-
-/// compressed_block_fixed for t.components (3 or 4).
-[[gnu::always_inline]] inline void compressed_block(const CompressedTrack& t, const std::uint8_t* stream,
-                                                    const std::uint32_t* blocks, const std::uint32_t* superblocks,
-                                                    std::uint32_t block, CompressedBlock& out) noexcept {
-  if (t.components == 3) compressed_block_fixed<3>(t, stream, blocks, superblocks, block, out);
-  else compressed_block_fixed<4>(t, stream, blocks, superblocks, block, out);
-}
-
-/// The quantised indices of control point `i` (within the block) of a block read by compressed_block.
-[[gnu::always_inline]] inline void compressed_control(const CompressedBlock& b, const std::uint8_t* stream, unsigned components,
-                                                      std::uint32_t i, std::uint32_t* idx) noexcept {
-  const std::uint64_t pos = b.values + std::uint64_t(i) * b.row;
-  for (unsigned c = 0; c < components; ++c) idx[c] = b.base[c] + compressed_value(stream, pos + b.before[c], b.width[c]);
 }
 
 /// The local pose of every joint at sample `frame_index` (< frames(), asserted), in double: the
