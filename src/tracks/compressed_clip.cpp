@@ -584,11 +584,42 @@ template <unsigned Degree, unsigned Comps>
           acc[c] += w[k] * float(std::uint32_t(basev[c]) + compressed_value(stream, pos + before[c], (widths >> (8 * c)) & 0xff));
       }
     }
-  } else {
-    std::uint32_t idx[Comps];
+  } else {  // the control points straddle two blocks: each read with its own block's lanes
+    using U64x4 = std::uint64_t __attribute__((vector_size(32)));
+    using I32x4 = std::int32_t __attribute__((vector_size(16)));
+    using U8x4 = std::uint8_t __attribute__((vector_size(4)));
+    using F32x4 = float __attribute__((vector_size(16)));
+    const std::uint32_t* e0 = index_entry(index, s.first_index, seg);
+    F32x4 accv{};
+    bool scalar = false;
     for (unsigned k = 0; k <= Degree; ++k) {
-      control_indices<Comps>(index, s.first_index, stream, seg + k, idx);
-      for (unsigned c = 0; c < Comps; ++c) acc[c] += w[k] * float(idx[c]);
+      const std::uint32_t i = i0 + k;
+      const std::uint32_t* e = i < ibc_block_controls ? e0 : e0 + ibc_index_words;
+      const std::uint32_t at = i < ibc_block_controls ? i : i - ibc_block_controls;
+      const std::uint32_t widths = e[5], befores = widths * 0x01010100u;
+      const unsigned row = (widths * 0x01010101u) >> 24;
+      scalar |= row > 56;
+      I32x4 basev;
+      __builtin_memcpy(&basev, e, sizeof basev);
+      U8x4 wb, bb;
+      __builtin_memcpy(&wb, &widths, 4);
+      __builtin_memcpy(&bb, &befores, 4);
+      const std::uint64_t pos = e[4] + std::uint64_t(at) * row;
+      std::uint64_t word;
+      __builtin_memcpy(&word, stream + (pos >> 3), 8);
+      if constexpr (std::endian::native == std::endian::big) word = __builtin_bswap64(word);
+      const U64x4 offsets = (U64x4{} + word) >> (__builtin_convertvector(bb, U64x4) + (pos & 7)) &
+                            ((U64x4{1, 1, 1, 1} << __builtin_convertvector(wb, U64x4)) - 1);
+      accv += w[k] * __builtin_convertvector(__builtin_convertvector(offsets, I32x4) + basev, F32x4);
+    }
+    if (!scalar) [[likely]] {
+      for (unsigned c = 0; c < Comps; ++c) acc[c] = accv[c];
+    } else {  // a row past 56 bits: one load per component
+      std::uint32_t idx[Comps];
+      for (unsigned k = 0; k <= Degree; ++k) {
+        control_indices<Comps>(index, s.first_index, stream, seg + k, idx);
+        for (unsigned c = 0; c < Comps; ++c) acc[c] += w[k] * float(idx[c]);
+      }
     }
   }
   for (unsigned c = 0; c < Comps; ++c) v[c] = s.min[c] + s.step[c] * acc[c];

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 namespace inbetween {
 namespace {
@@ -99,6 +100,72 @@ TEST(CompressedClip, FloatSamplerAgreesWithTheReference) {
   sample_compressed(*clip, 1e300, run);
   decode_frame(*clip, 9, ref);
   EXPECT_NEAR(run[0].translation.x, ref[0].translation.x, 1e-6);
+}
+
+// Seeded: one joint over 250 frames, a cubic translation at spacing 1 (253 control points: 22
+// blocks in 2 superblocks) and a linear 4-component rotation at spacing 3, whose offsets change
+// width every 12 control points (rows of 0 … 66 bits: the sampler's one-load and per-component
+// paths).  At seeded fractional frames the float sampler agrees with the splines evaluated in
+// double from the quantised values themselves (not through the file or its block index).
+TEST(CompressedClip, SamplerAtFractionalFramesMatchesTheSplines) {
+  const unsigned seed = 2411;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937 rng(seed);
+  CompressedClipParts p;
+  p.parents = {-1};
+  p.names = {"root"};
+  p.frames = 250;
+  p.first_frame = -7;
+  p.frame_rate = 30;
+  const auto random_values = [&](std::size_t controls, unsigned comps) {
+    std::vector<std::uint32_t> v(controls * comps);
+    for (std::size_t first = 0; first < controls; first += 12) {
+      for (unsigned c = 0; c < comps; ++c) {
+        const unsigned width = std::uniform_int_distribution<unsigned>(0, 22)(rng);
+        const std::uint32_t base = std::uniform_int_distribution<std::uint32_t>(0, 1u << 20)(rng);
+        for (std::size_t i = first; i < std::min(controls, first + 12); ++i)
+          v[i * comps + c] = base + (std::uniform_int_distribution<std::uint32_t>(0, (1u << width) - 1)(rng) >> 1);
+      }
+    }
+    return v;
+  };
+  CompressedTrack tr;
+  tr.kind = CompressedTrackKind::spline, tr.degree = 3, tr.spacing = 1, tr.bits = 23;
+  tr.min = {-3, 1, 0.25f, 0}, tr.step = {1e-6f, 2e-6f, 5e-7f, 0};
+  CompressedTrack rot;
+  rot.kind = CompressedTrackKind::spline, rot.components = 4, rot.degree = 1, rot.spacing = 3, rot.bits = 23;
+  rot.min = {-1, -1, -1, 0.5f}, rot.step = {2e-7f, 2e-7f, 2e-7f, 1e-7f};
+  rot.reference = normalized(Quatd::from_wxyz(0.9, 0.1, -0.3, 0.2)).cast<float>();
+  const std::size_t tr_controls = compressed_segments(250, 1) + 3, rot_controls = compressed_segments(250, 3) + 1;
+  p.tracks = {tr, rot, CompressedTrack{}};
+  p.values = {random_values(tr_controls, 3), random_values(rot_controls, 4), {}};
+  const auto clip = load_compressed_clip(write_compressed_clip(p));
+  ASSERT_TRUE(clip) << clip.error().describe();
+  // The spline of track t in double at sample x, straight from the values.
+  const auto spline = [&](const CompressedTrack& t, const std::vector<std::uint32_t>& values, double x, double* out) {
+    const std::size_t controls = values.size() / t.components;
+    const std::size_t seg = std::min<std::size_t>(std::size_t(x / t.spacing), controls - 1 - t.degree);
+    const double u = (x - double(seg * t.spacing)) / double(t.spacing);
+    const auto w = t.degree == 3 ? bspline_weights(u) : linear_weights(u);
+    for (unsigned c = 0; c < t.components; ++c) {
+      double acc = 0;
+      for (unsigned k = 0; k <= t.degree; ++k) acc += w[k] * double(values[(seg + k) * t.components + c]);
+      out[c] = double(t.min[c]) + double(t.step[c]) * acc;
+    }
+  };
+  std::vector<JointPose<float>> run(1);
+  std::uniform_real_distribution<double> any(0, 249);
+  for (int n = 0; n < 400; ++n) {
+    const double x = n < 250 ? double(n) + (n % 2 ? 0.5 : 0.0) * (n < 249) : any(rng);
+    sample_compressed(*clip, p.first_frame + x, run);
+    double t[4], q[4];
+    spline(tr, p.values[0], x, t);
+    spline(rot, p.values[1], x, q);
+    const Quatd expected = rot.reference.cast<double>() * normalized(Quatd::from_wxyz(q[3], q[0], q[1], q[2]));
+    const double scale = std::max({std::abs(t[0]), std::abs(t[1]), std::abs(t[2])}) + 1;
+    EXPECT_LT(norm(Vec3d{t[0], t[1], t[2]} - run[0].translation.cast<double>()), compressed_sample_tolerance * scale) << "x " << x;
+    EXPECT_LT(angle_between(expected, run[0].rotation.cast<double>()), compressed_sample_tolerance) << "x " << x;
+  }
 }
 
 bool finite_pose(const JointPose<double>& p) {

@@ -152,7 +152,8 @@ struct CompressedSpline {
   Quatf reference{};             ///< rotation: q = reference ⊗ q_rel
 };
 
-/// A checked compressed clip: owns the .ibc bytes and the parsed track table.  Only
+/// A checked compressed clip: owns the .ibc bytes, the parsed track table and the runtime tables
+/// built on load (block index, spline list, rest poses: runtime_bytes()).  Only
 /// load_compressed_clip() makes one, so every offset and width in it is in bounds.
 class CompressedClip {
  public:
@@ -264,7 +265,9 @@ inline constexpr double compressed_sample_tolerance = 1e-5;
 
 /// The runtime sampler: the local pose of every joint at `frame` (a frame number, clamped to the
 /// clip's frames; fractional frames evaluate the splines between samples) in float, read in place
-/// from the bit stream (four control points per spline track).  local.size() == joints()
+/// from the bit stream (four control points per cubic track, two per linear one) with the block
+/// headers from the block index built on load (block_index(); docs/compression.md, "The runtime
+/// sampler").  local.size() == joints()
 /// (asserted).  Never allocates, noexcept.
 void sample_compressed(const CompressedClip& clip, double frame, std::span<JointPose<float>> local) noexcept;
 
