@@ -90,9 +90,7 @@ def main():
         clusters, results = {}, {1: [], 2: [], "1x1": []}
         for n in (1, 2):
             t0 = time.perf_counter()
-            cluster = distributed.LocalCluster(n_workers=n, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                               dashboard_address="127.0.0.1:0", worker_dashboard_address="127.0.0.1:0",
-                                       silence_logs=40)
+            cluster = batch.local_cluster(n)  # the batch's own local cluster and its settings
             client = distributed.Client(cluster)
             clusters[n] = (cluster, client, time.perf_counter() - t0)
             timed_run({"jobs": manifest["jobs"][:4]}, folder, client)  # warm-up: imports in the workers

@@ -91,9 +91,7 @@ def temporaries(folder):
 def client():
     """A local cluster of 2 single-threaded worker processes on 127.0.0.1, shared by the tests that
     need no fresh one."""
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                                       dashboard_address="127.0.0.1:0", worker_dashboard_address="127.0.0.1:0",
-                                       silence_logs=40)
+    cluster = batch.local_cluster(2)
     c = distributed.Client(cluster)
     yield c
     c.close()
