@@ -27,11 +27,6 @@ float float_down(double v) {
   if (double(f) > v) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
   return f;
 }
-float float_up(double v) {
-  float f = float(v);
-  if (double(f) < v) f = std::nextafter(f, std::numeric_limits<float>::infinity());
-  return f;
-}
 
 // Rotation angle between unit quaternions (radians, in [0, π]).
 double angle(const Quatd& a, const Quatd& b) {
