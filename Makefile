@@ -146,7 +146,7 @@ asan:
 # Each libFuzzer target for FUZZ_SECONDS (asan preset); the corpus grows in build/asan/fuzz/corpus-*,
 # crashes land in build/asan/fuzz/artifacts-*/ (see fuzz/README.md for what to do with them).
 FUZZ_SECONDS ?= 60
-FUZZ_TARGETS := scene curve csv rotation_line obj environment gltf bvh assimp surface
+FUZZ_TARGETS := scene curve csv rotation_line obj environment gltf bvh assimp surface ibc
 fuzz:
 	$(MAKE) configure PRESET=asan
 	cmake --build --preset asan -j $(JOBS) --target $(addprefix inbetween_fuzz_,$(FUZZ_TARGETS))
