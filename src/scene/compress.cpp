@@ -513,7 +513,9 @@ double Search::exact_error(const std::vector<Option>& options, ClipError* where)
 
 }  // namespace
 
-SampledClip decompress(const CompressedClip& clip) {
+namespace {
+// A SampledClip with the compressed clip's joints and frames, its poses still to fill.
+SampledClip same_frames_as(const CompressedClip& clip) {
   SampledClip out;
   out.parents.assign(clip.parents().begin(), clip.parents().end());
   out.names.assign(clip.names().begin(), clip.names().end());
@@ -521,19 +523,19 @@ SampledClip decompress(const CompressedClip& clip) {
   out.frame_rate = clip.frame_rate();
   out.frames = clip.frames();
   out.poses.resize(out.frames * out.joints());
+  return out;
+}
+}  // namespace
+
+SampledClip decompress(const CompressedClip& clip) {
+  SampledClip out = same_frames_as(clip);
   for (std::size_t f = 0; f < out.frames; ++f)
     decode_frame(clip, f, std::span<JointPose<double>>(out.poses).subspan(f * out.joints(), out.joints()));
   return out;
 }
 
 SampledClip sample_float(const CompressedClip& clip) {
-  SampledClip out;
-  out.parents.assign(clip.parents().begin(), clip.parents().end());
-  out.names.assign(clip.names().begin(), clip.names().end());
-  out.first_frame = clip.first_frame();
-  out.frame_rate = clip.frame_rate();
-  out.frames = clip.frames();
-  out.poses.resize(out.frames * out.joints());
+  SampledClip out = same_frames_as(clip);
   std::vector<JointPose<float>> local(out.joints());
   for (std::size_t f = 0; f < out.frames; ++f) {
     sample_compressed(clip, clip.first_frame() + double(f), local);
