@@ -84,10 +84,7 @@ void BM_PoseBlockConversion(benchmark::State& state) {
 template <class T>
 void BM_CharacterUpdate(benchmark::State& state) {
   const auto rig = inbetween_bench::make_rig<T>(int(state.range(0)));
-  std::vector<Track<Vec3<T>>> tv, sv;
-  std::vector<QuatTrack<T>> rv;
-  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
-  const auto clip = build_rig_clip<T>(tv, rv, sv).value();
+  const auto clip = inbetween_bench::fixture_rig_clip(rig);
   const double end = inbetween_bench::rig_end(rig);
   RigClipCursor<T> ca = make_rig_clip_cursor(clip), cb = make_rig_clip_cursor(clip);
   const std::size_t n = clip.joints();
@@ -119,10 +116,7 @@ void BM_CharacterUpdate(benchmark::State& state) {
 void BM_CharacterUpdateSoA(benchmark::State& state) {
   using T = float;
   const auto rig = inbetween_bench::make_rig<T>(int(state.range(0)));
-  std::vector<Track<Vec3<T>>> tv, sv;
-  std::vector<QuatTrack<T>> rv;
-  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
-  const auto clip = build_rig_clip<T>(tv, rv, sv).value();
+  const auto clip = inbetween_bench::fixture_rig_clip(rig);
   const double end = inbetween_bench::rig_end(rig);
   RigClipCursor<T> ca = make_rig_clip_cursor(clip), cb = make_rig_clip_cursor(clip);
   const std::size_t n = clip.joints(), blocks = pose_blocks(n);

@@ -24,10 +24,7 @@ template <class T>
 void BM_RigLongClip(benchmark::State& state) {
   const int joints = int(state.range(0));
   const auto rig = make_rig<T>(joints, rig_long_keys_per_channel, true);
-  std::vector<Track<Vec3<T>>> tv, sv;
-  std::vector<QuatTrack<T>> rv;
-  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
-  const auto clip = build_rig_clip<T>(tv, rv, sv).value();
+  const auto clip = inbetween_bench::fixture_rig_clip(rig);
   const double end = rig_end(rig), step = 1.0 / double(state.range(1));
   RigClipCursor ctx = make_rig_clip_cursor(clip);
   std::vector<JointPose<T>> pose(rig.size());

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "inbetween/tracks/quat_track.hpp"
+#include "inbetween/tracks/runtime/rig_clip.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace inbetween_bench {
@@ -83,6 +84,15 @@ double rig_duration(const std::vector<RigJoint<T>>& rig) {
   double duration = 0;
   for (const auto& j : rig) duration = std::max(duration, double(j.translation.frames().back()));
   return duration;
+}
+
+/// The rig's joints compiled into one RigClip (the fixture's tracks always build).
+template <class T>
+inbetween::RigClip<T> fixture_rig_clip(const std::vector<RigJoint<T>>& rig) {
+  std::vector<inbetween::Track<inbetween::Vec3<T>>> tv, sv;
+  std::vector<inbetween::QuatTrack<T>> rv;
+  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
+  return inbetween::build_rig_clip<T>(tv, rv, sv).value();
 }
 
 }  // namespace inbetween_bench

@@ -238,10 +238,7 @@ void BM_RigMemoryFloor(benchmark::State& state) {
 template <class T>
 void BM_RigRuntime(benchmark::State& state) {
   const auto rig = make_rig<T>(int(state.range(0)));
-  std::vector<Track<Vec3<T>>> tv, sv;
-  std::vector<QuatTrack<T>> rv;
-  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
-  const auto clip = build_rig_clip<T>(tv, rv, sv).value();
+  const auto clip = inbetween_bench::fixture_rig_clip(rig);
   const double end = rig_end(rig), step = 1.0 / double(state.range(1));
   RigClipCursor ctx = make_rig_clip_cursor(clip);
   std::vector<JointPose<T>> pose(rig.size());
@@ -409,10 +406,7 @@ struct ZeroLanes {
 template <class T, RigKernel K>
 void BM_RigKernel(benchmark::State& state) {
   const auto rig = make_rig<T>(int(state.range(0)));
-  std::vector<Track<Vec3<T>>> tv, sv;
-  std::vector<QuatTrack<T>> rv;
-  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
-  const auto clip = build_rig_clip<T>(tv, rv, sv).value();
+  const auto clip = inbetween_bench::fixture_rig_clip(rig);
   const double end = rig_end(rig), step = 1.0 / double(state.range(1));
   bench_rig::hwy_limit_to_avx2(K == RigKernel::hwy_dynamic_avx2);
   const auto sample = [&](T frame, RigClipCursor<T>& ctx, std::span<JointPose<T>> out) {

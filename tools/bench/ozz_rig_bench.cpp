@@ -106,10 +106,7 @@ void play_ozz(benchmark::State& state, int keys) {
 template <class T>
 void play_rig_clip(benchmark::State& state, int keys) {
   const auto rig = make_rig<T>(int(state.range(0)), keys, keys != inbetween_bench::rig_keys_per_channel);
-  std::vector<Track<Vec3<T>>> tv, sv;
-  std::vector<QuatTrack<T>> rv;
-  for (const auto& j : rig) tv.push_back(j.translation), sv.push_back(j.scale), rv.push_back(j.rotation);
-  const auto clip = build_rig_clip<T>(tv, rv, sv).value();
+  const auto clip = inbetween_bench::fixture_rig_clip(rig);
   const double end = rig_end(rig);
   RigClipCursor ctx = make_rig_clip_cursor(clip);
   std::vector<JointPose<T>> pose(clip.joints());
