@@ -40,20 +40,10 @@ void BM_BlendPoses(benchmark::State& state) {
 // Args: joints, layers.
 void BM_BlendPosesSoA(benchmark::State& state) {
   const auto b = inbetween_bench::make_blend_poses<float>(int(state.range(1)), int(state.range(0)));
-  const std::size_t blocks = pose_blocks(b.rest.size());
-  std::vector<std::vector<PoseBlock>> poses(b.layers.size(), std::vector<PoseBlock>(blocks));
-  std::vector<std::vector<float>> masks(b.layers.size());
-  std::vector<BlendLayerSoA> layers;
-  for (std::size_t l = 0; l < b.layers.size(); ++l) {
-    to_pose_blocks(b.layers[l], poses[l]);
-    if (!b.masks[l].empty()) masks[l].resize(blocks * pose_block_joints), to_mask_blocks(b.masks[l], masks[l]);
-    layers.push_back({poses[l], b.weights[l], masks[l]});
-  }
-  std::vector<PoseBlock> rest(blocks), out(blocks);
-  to_pose_blocks(b.rest, rest);
+  inbetween_bench::BlendPosesSoA soa(b);
   for (auto _ : state) {
-    blend_poses(layers, {}, rest, out);
-    benchmark::DoNotOptimize(out.data());
+    blend_poses(soa.layers, {}, soa.rest, soa.out);
+    benchmark::DoNotOptimize(soa.out.data());
     benchmark::ClobberMemory();
   }
   state.counters["ns_per_joint"] = benchmark::Counter(double(state.iterations()) * double(b.rest.size()),

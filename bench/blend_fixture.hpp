@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "inbetween/tracks/runtime/blend.hpp"
 #include "inbetween/tracks/runtime/rig_clip.hpp"
 
 namespace inbetween_bench {
@@ -54,5 +55,31 @@ BlendPoses<T> make_blend_poses(int layers, int joints) {
   }
   return b;
 }
+
+/// The same poses as PoseBlocks (the SoA layout), converted once, with the layers pointing into
+/// them: what a blend on PoseBlocks reads.  Not copyable or movable (the layers hold spans of it).
+struct BlendPosesSoA {
+  std::vector<std::vector<inbetween::PoseBlock>> poses;  ///< per layer
+  std::vector<std::vector<float>> masks;                 ///< per layer (empty: unmasked)
+  std::vector<inbetween::BlendLayerSoA> layers;          ///< spans of poses and masks
+  std::vector<inbetween::PoseBlock> rest, out;           ///< rest pose; output buffer
+
+  explicit BlendPosesSoA(const BlendPoses<float>& b) {
+    using namespace inbetween;
+    const std::size_t blocks = pose_blocks(b.rest.size());
+    poses.assign(b.layers.size(), std::vector<PoseBlock>(blocks));
+    masks.resize(b.layers.size());
+    for (std::size_t l = 0; l < b.layers.size(); ++l) {
+      to_pose_blocks(b.layers[l], poses[l]);
+      if (!b.masks[l].empty()) masks[l].resize(blocks * pose_block_joints), to_mask_blocks(b.masks[l], masks[l]);
+      layers.push_back({poses[l], b.weights[l], masks[l]});
+    }
+    rest.resize(blocks);
+    out.resize(blocks);
+    to_pose_blocks(b.rest, rest);
+  }
+  BlendPosesSoA(const BlendPosesSoA&) = delete;
+  BlendPosesSoA& operator=(const BlendPosesSoA&) = delete;
+};
 
 }  // namespace inbetween_bench

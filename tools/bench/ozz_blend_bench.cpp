@@ -129,25 +129,15 @@ void BM_InbetweenBlend(benchmark::State& state) {
 // idea with the AVX2 width), converted once before timing as ozz's SoaTransforms are.
 void BM_InbetweenBlendSoA(benchmark::State& state) {
   const auto b = make_blend_poses<float>(int(state.range(1)), int(state.range(0)));
-  const std::size_t blocks = pose_blocks(b.rest.size());
-  std::vector<std::vector<PoseBlock>> poses(b.layers.size(), std::vector<PoseBlock>(blocks));
-  std::vector<std::vector<float>> masks(b.layers.size());
-  std::vector<BlendLayerSoA> layers;
-  for (std::size_t l = 0; l < b.layers.size(); ++l) {
-    to_pose_blocks(b.layers[l], poses[l]);
-    if (!b.masks[l].empty()) masks[l].resize(blocks * pose_block_joints), to_mask_blocks(b.masks[l], masks[l]);
-    layers.push_back({poses[l], b.weights[l], masks[l]});
-  }
-  std::vector<PoseBlock> rest(blocks), out(blocks);
-  to_pose_blocks(b.rest, rest);
+  inbetween_bench::BlendPosesSoA blocks(b);
   for (auto _ : state) {
-    blend_poses(layers, {}, rest, out);
-    benchmark::DoNotOptimize(out.data());
+    blend_poses(blocks.layers, {}, blocks.rest, blocks.out);
+    benchmark::DoNotOptimize(blocks.out.data());
     benchmark::ClobberMemory();
   }
   // Same result as the JointPose overload (bit for bit on full groups of 8: the fixture's sizes).
   std::vector<JointPose<float>> soa(b.rest.size()), aos(b.rest.size());
-  from_pose_blocks(out, soa);
+  from_pose_blocks(blocks.out, soa);
   std::vector<BlendLayer<float>> ls;
   for (std::size_t l = 0; l < b.layers.size(); ++l) ls.push_back({b.layers[l], b.weights[l], b.masks[l]});
   blend_poses<float>(ls, {}, b.rest, aos);
