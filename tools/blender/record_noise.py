@@ -84,9 +84,12 @@ def modifier_cases(rng, curves, frames_per_curve):
             frame += float(rng.uniform(3, 25))
         fcurve.update()
         mod = fcurve.modifiers.new('NOISE')
-        # Scale 0 once (Blender's noise is then 0), otherwise 0.3 .. 40 frames.
+        # Scale 0 once (Blender's noise is then 0), otherwise 0.3 .. 40 frames, negative for
+        # every eighth curve (Blender allows it: the noise runs mirrored); strength sometimes < 0.
         mod.scale = 0.0 if index == 0 else f32(10.0 ** rng.uniform(-0.5, 1.6))
-        mod.strength = f32(rng.uniform(0.05, 6.0))
+        if index % 8 == 5:
+            mod.scale = -mod.scale
+        mod.strength = f32(rng.uniform(0.05, 6.0) * (-1.0 if index % 6 == 4 else 1.0))
         mod.phase = f32(rng.uniform(-20.0, 20.0))
         mod.offset = f32(rng.uniform(-60.0, 60.0)) if rng.uniform() < 0.8 else 0.0
         mod.depth = int(rng.integers(0, 9))
