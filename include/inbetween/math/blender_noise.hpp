@@ -14,10 +14,11 @@ float blender_noise(float x, float y, float z) noexcept;
 
 /// Blender's original turbulence, `BLI_noise_turbulence(size, x, y, z, depth)`: the noise at
 /// ((1 + x) / size, (1 + y) / size, (1 + z) / size) plus `depth` octaves, octave k at size·2^−k
-/// weighted 2^−k, divided by the sum of weights; in [0, 1]. Size 0 gives 0 for every octave
-/// (Blender's `BLI_noise_hnoise` returns 0 for size 0), so the result is 0. depth ≤ 0: one octave.
-/// Fallback where Blender would return NaN (NaN/infinite arguments, or a size so small that the
-/// scaled coordinate overflows to infinity): 0.5.
+/// weighted 2^−k, divided by the sum of the weights; in [0, 1]. An octave whose size is 0 adds 0
+/// (Blender's `BLI_noise_hnoise` returns 0 for size 0), so size 0 gives 0. depth ≤ 0: one octave.
+/// Where Blender would produce NaN — NaN or infinite arguments, or an octave whose scaled
+/// coordinate overflows to infinity (|1 + x| / size > FLT_MAX; with size 1 from about depth 126
+/// on) — that octave takes blender_noise's fallback 0.5 instead, so the result is never NaN.
 float blender_turbulence(float size, float x, float y, float z, int depth) noexcept;
 
 /// How the Noise F-curve modifier combines its noise n with the curve's value v
@@ -43,7 +44,8 @@ struct BlenderNoiseParams {
 /// n = blender_turbulence(size, frame − offset, phase, 0.1f, depth), then combined with `value`
 /// as `blend` says. `frame` is the (float) evaluation time the modifier stack hands the modifier;
 /// the modifier's influence and frame range are applied by the caller (the F-curve modifier
-/// stack), not here.
+/// stack), not here: Blender's stack then sets value = influence·result + (1 − influence)·value.
+/// Bit-exact against Blender 3.4.1 on 1 152 recorded samples (docs/blender-noise.md).
 float blender_noise_modifier(float value, float frame, const BlenderNoiseParams& params) noexcept;
 
 }  // namespace inbetween
