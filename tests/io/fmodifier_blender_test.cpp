@@ -204,6 +204,24 @@ TEST_F(BlenderModifiers, WrittenAndReadBackSamplesTheSame) {
   }
 }
 
+TEST(SceneModifiers, SchemaNamesAreTheLibrarysNameTables) {
+  const auto schema = nlohmann::json::parse(slurp(INBETWEEN_SOURCE_DIR "/docs/scene.schema.json"));
+  const auto& kinds = schema.at("$defs").at("fmodifier").at("oneOf");
+  auto as_set = [](auto names) { return std::set<std::string>(names.begin(), names.end()); };
+  auto enum_of = [](const nlohmann::json& j) { return j.at("enum").get<std::set<std::string>>(); };
+  std::set<std::string> types;
+  for (const auto& k : kinds) {
+    const auto& props = k.at("properties");
+    const std::string type = props.at("type").at("const").get<std::string>();
+    types.insert(type);
+    if (type == "generator") EXPECT_EQ(enum_of(props.at("mode")), as_set(inbetween::generator_mode_names));
+    if (type == "function") EXPECT_EQ(enum_of(props.at("function")), as_set(inbetween::builtin_function_names));
+    if (type == "noise") EXPECT_EQ(enum_of(props.at("blend")), as_set(inbetween::noise_blend_names));
+    if (type == "cycles") EXPECT_EQ(enum_of(props.at("after")), as_set(inbetween::cycle_mode_names));
+  }
+  EXPECT_EQ(types, as_set(inbetween::fmodifier_type_names));
+}
+
 TEST(SceneModifiers, BadModifiersNameTheirJsonPointer) {
   const std::string keys = R"("keys": [{"frame": 0, "value": 0}, {"frame": 10, "value": 1}])";
   auto where = [&](const std::string& members) {
