@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "inbetween/tracks/fcurve.hpp"
+#include "inbetween/tracks/runtime/fcurve_clip.hpp"
 #include "support/random.hpp"
 
 namespace inbetween {
@@ -154,6 +155,16 @@ TEST(FCurveModifiers, CyclesFirstThenMoreAndCyclesBelowTheTopDisabled) {
   const FCurve partial = build(line({half}));
   EXPECT_EQ(partial.simple_cycles(), nullptr);
   EXPECT_EQ(partial.sample(15.0f), 0.5f * 5 + 0.5f * 15);
+}
+
+TEST(FCurveModifiers, RuntimeClipTakesAPlainCyclesModifierAndRefusesOtherStacks) {
+  const std::vector<FCurve> plain = {build(line({})), build(line({mod(FCurveCycles{})}))};
+  EXPECT_TRUE(build_fcurve_clip(plain).has_value());
+  const std::vector<FCurve> general = {build(line({})), build(line({mod(FCurveCycles{}), mod(FCurveNoise{})}))};
+  auto clip = build_fcurve_clip(general);
+  ASSERT_FALSE(clip.has_value());
+  EXPECT_EQ(clip.error().code, ErrorCode::unsupported);
+  EXPECT_NE(clip.error().message.find("curve 1"), std::string::npos) << clip.error().message;
 }
 
 TEST(FCurveModifiers, BuildErrorsNameTheModifierMember) {
