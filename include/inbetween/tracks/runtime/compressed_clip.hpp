@@ -291,7 +291,8 @@ inline constexpr double compressed_sample_tolerance = 1e-5;
 /// clip's frames; fractional frames evaluate the splines between samples) in float, read in place
 /// from the bit stream (four control points per cubic track, two per linear one) with the block
 /// headers from the block index built on load (block_index(); docs/compression.md, "The runtime
-/// sampler").  local.size() == joints()
+/// sampler"); the basis weights once per knot spacing, the rotations finished four at a time in
+/// vector lanes (rotation_lanes()).  local.size() == joints()
 /// (asserted).  Never allocates, noexcept.
 void sample_compressed(const CompressedClip& clip, double frame, std::span<JointPose<float>> local) noexcept;
 
