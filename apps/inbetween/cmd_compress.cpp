@@ -55,7 +55,7 @@ void print_summary(const CompressedClip& clip, std::ostream& out) {
       << "bits per channel sample: " << format_number(std::round(8 * bytes / channels * 1000) / 1000) << " (whole file)\n"
       << "bits per stored control value: " << format_number(values > 0 ? std::round(stream_bits / values * 100) / 100 : 0.0)
       << "\n"
-      << "runtime tables bytes: " << clip.runtime_bytes() << " (in memory, built on load: block index, spline table, rest poses)\n";
+      << "runtime tables bytes: " << clip.runtime_bytes() << " (in memory, built on load: block index, spline table, rotation lanes, rest poses)\n";
 }
 
 void run_compress(const CompressArgs& args) {

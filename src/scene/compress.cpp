@@ -2,6 +2,7 @@
 #include "inbetween/scene/compress.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -93,7 +94,8 @@ struct Quantised {
 // (quarter-bit resolution; at max_level indices stay below 2^24).
 constexpr unsigned max_level = 4 * (ibc_max_bits - 1);
 
-Quantised quantise(const std::vector<double>& controls, unsigned dims, std::uint32_t h, unsigned level, unsigned degree) {
+Quantised quantise(const std::vector<double>& controls, unsigned dims, std::uint32_t h, unsigned level, unsigned degree,
+                   std::size_t frames) {
   Quantised q;
   q.track.kind = CompressedTrackKind::spline;
   q.track.degree = std::uint8_t(degree);
@@ -112,14 +114,22 @@ Quantised quantise(const std::vector<double>& controls, unsigned dims, std::uint
   }
   const float step = float(extent * std::exp2(-double(level) / 4));
   std::uint32_t largest = 0;
+  const bool joint = step > 0 && !(degree == 1 && h == 1);  // linear at spacing 1: the samples themselves, rounded
+  std::vector<double> t(n);
+  std::vector<std::uint32_t> rounded(n);
   for (unsigned c = 0; c < dims; ++c) {
     q.track.step[c] = step;
-    for (std::size_t i = 0; i < n; ++i) {
-      double v = step > 0 ? std::round((controls[i * dims + c] - double(q.track.min[c])) / double(step)) : 0.0;
-      v = std::clamp(v, 0.0, double((1u << ibc_max_bits) - 1));
-      q.values[i * dims + c] = std::uint32_t(v);
-      largest = std::max(largest, q.values[i * dims + c]);
+    for (std::size_t i = 0; i < n; ++i)
+      t[i] = step > 0 ? std::clamp((controls[i * dims + c] - double(q.track.min[c])) / double(step), 0.0,
+                                   double((1u << ibc_max_bits) - 2))
+                      : 0.0;
+    if (joint) {
+      round_controls_jointly(t, frames, h, degree, rounded);
+      for (std::size_t i = 0; i < n; ++i) q.values[i * dims + c] = rounded[i];
+    } else {
+      for (std::size_t i = 0; i < n; ++i) q.values[i * dims + c] = std::uint32_t(std::round(t[i]));
     }
+    for (std::size_t i = 0; i < n; ++i) largest = std::max(largest, q.values[i * dims + c]);
   }
   q.track.bits = std::uint8_t(std::bit_width(largest));
   return q;
@@ -227,7 +237,7 @@ class Search {
     return it->second;
   }
   Quantised quantised(TrackWork& k, std::uint32_t h, unsigned degree, unsigned bits) {
-    Quantised q = quantise(fit(k, h, degree), k.dims, h, bits, degree);
+    Quantised q = quantise(fit(k, h, degree), k.dims, h, bits, degree, k.frames);
     if (k.channel == 1) q.track.reference = k.reference;
     return q;
   }
@@ -512,6 +522,68 @@ double Search::exact_error(const std::vector<Option>& options, ClipError* where)
 }
 
 }  // namespace
+
+// Rounds one component's control points (t: in steps above the range's minimum) to integers so
+// that the largest error of the spline at the piece's samples is as small as it can be with each
+// control point at its floor or its ceiling, then the smallest sum of errors: a trellis over the
+// last `degree` choices (2^degree states), each segment's samples scored when its last control
+// point is chosen.  Independent rounding lets the errors of neighbouring control points add up
+// at a sample; choosing them together keeps the spline nearer its fit at the same step.
+void round_controls_jointly(std::span<const double> t, std::size_t frames, std::uint32_t h, unsigned degree,
+                            std::span<std::uint32_t> out) {
+  INBETWEEN_ASSERT(out.size() == t.size() && (degree == 1 || degree == 3) && h >= 1 &&
+                   t.size() == compressed_segments(frames, h) + degree);
+  const std::size_t n = t.size();
+  const unsigned states = 1u << degree;
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  struct Cost {
+    double worst = 0, sum = 0;
+    bool operator<(const Cost& o) const { return worst < o.worst || (worst == o.worst && sum < o.sum); }
+  };
+  std::vector<Cost> cost(states), next(states);
+  std::vector<std::uint8_t> from(n * states, 0);  // per control point and state: the state before it
+  std::vector<double> lo(n);
+  for (std::size_t i = 0; i < n; ++i) lo[i] = std::floor(t[i]);
+  const std::size_t last_segment = n - 1 - degree;
+  const unsigned combos = 2u << degree;  // choices of the segment's degree + 1 control points (bit k: control seg + k)
+  std::array<Cost, 16> segment{};
+  std::array<double, 16> e{};
+  for (std::size_t i = degree; i < n; ++i) {
+    const std::size_t seg = i - degree;
+    const std::size_t f0 = seg * h, f1 = seg == last_segment ? frames : std::min<std::size_t>(frames, f0 + h);
+    // Every combination's worst and summed error over the segment's samples: e = Σ w_k·(lo_k + choice_k − t_k).
+    for (unsigned m = 0; m < combos; ++m) segment[m] = {};
+    for (std::size_t f = f0; f < f1; ++f) {
+      const double u = double(f - seg * h) / double(h);
+      const auto w = degree == 3 ? bspline_weights(u) : linear_weights(u);
+      e[0] = 0;
+      for (unsigned k = 0; k <= degree; ++k) e[0] += w[k] * (lo[seg + k] - t[seg + k]);
+      for (unsigned k = 0; k <= degree; ++k)
+        for (unsigned m = 0; m < (1u << k); ++m) e[m | (1u << k)] = e[m] + w[k];
+      for (unsigned m = 0; m < combos; ++m) {
+        const double a = std::abs(e[m]);
+        segment[m].worst = std::max(segment[m].worst, a), segment[m].sum += a;
+      }
+    }
+    for (unsigned s = 0; s < states; ++s) next[s] = {infinity, infinity};
+    for (unsigned s = 0; s < states; ++s) {
+      for (unsigned b = 0; b < 2; ++b) {
+        const Cost& g = segment[s | (b << degree)];
+        const Cost c{std::max(cost[s].worst, g.worst), cost[s].sum + g.sum};
+        const unsigned to = (s >> 1) | (b << (degree - 1));
+        if (c < next[to]) next[to] = c, from[i * states + to] = std::uint8_t(s);
+      }
+    }
+    std::swap(cost, next);
+  }
+  unsigned s = unsigned(std::min_element(cost.begin(), cost.end()) - cost.begin());
+  for (std::size_t i = n; i-- > degree;) {
+    const std::size_t top = i;  // state s holds controls i − degree + 1 … i: control i is its top bit
+    out[top] = std::uint32_t(lo[top] + double((s >> (degree - 1)) & 1u));
+    s = from[i * states + s];
+  }
+  for (unsigned k = 0; k < degree; ++k) out[k] = std::uint32_t(lo[k] + double((s >> k) & 1u));
+}
 
 namespace {
 // A SampledClip with the compressed clip's joints and frames, its poses still to fill.

@@ -7,6 +7,9 @@
 #include <limits>
 #include <set>
 #include <string_view>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "inbetween/math/assert.hpp"
 
@@ -438,9 +441,12 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
   }
   if (r.at != stream_offset)
     return r.fail(28, "stream offset: " + std::to_string(stream_offset) + ", the track table ends at " + std::to_string(r.at));
-  // The runtime tables: per piece the rest pose (absent and constant values) and the spline list.
+  // The runtime tables: per piece the rest pose (absent and constant values), the spline list
+  // (rotations first, then translations and scales) and the rotations' lanes.
   clip.rest_.assign(pieces * joints, JointPose<float>{});
   clip.piece_splines_.assign(1, 0);
+  clip.piece_lanes_.assign(1, 0);
+  std::vector<CompressedSpline> vectors;
   for (std::size_t k = 0; k < clip.tracks_.size(); ++k) {
     const CompressedTrack& t = clip.tracks_[k];
     const std::size_t piece = k / (3 * joints), joint = (k / 3) % joints;
@@ -461,9 +467,25 @@ Expected<CompressedClip> load_compressed_clip(std::vector<std::uint8_t> bytes) {
       s.min = t.min;
       s.step = t.step;
       s.reference = t.reference;
-      clip.splines_.push_back(s);
+      if (channel != 1) {
+        vectors.push_back(s);
+      } else {
+        const std::size_t lane = clip.splines_.size() - clip.piece_splines_.back();
+        if (lane % 4 == 0) clip.lanes_.emplace_back();
+        CompressedRotationLanes& l = clip.lanes_.back();
+        l.w[lane % 4] = t.reference.w, l.x[lane % 4] = t.reference.x, l.y[lane % 4] = t.reference.y, l.z[lane % 4] = t.reference.z;
+        l.full[lane % 4] = t.components == 4 ? ~std::uint32_t(0) : 0;
+        l.joint[lane % 4] = std::uint32_t(joint);
+        clip.splines_.push_back(s);
+      }
     }
-    if (k % (3 * joints) == 3 * joints - 1) clip.piece_splines_.push_back(std::uint32_t(clip.splines_.size()));
+    if (k % (3 * joints) == 3 * joints - 1) {
+      clip.piece_rotations_.push_back(std::uint32_t(clip.splines_.size() - clip.piece_splines_.back()));
+      clip.splines_.insert(clip.splines_.end(), vectors.begin(), vectors.end());
+      vectors.clear();
+      clip.piece_splines_.push_back(std::uint32_t(clip.splines_.size()));
+      clip.piece_lanes_.push_back(std::uint32_t(clip.lanes_.size()));
+    }
   }
   clip.stream_offset_ = stream_offset;
   clip.first_frame_ = first_frame;
@@ -526,35 +548,47 @@ void spline_values(const CompressedTrack& t, const CompressedClip& clip, std::ui
   }
 }
 
-// The runtime's values of one spline track at piece sample x (≥ 0): segment and parameter, the
-// block's decoded header from the index (no stream header read), the Degree + 1 control points —
-// one 8-byte load each when a row fits — weighted in float: min + step · Σ w·index per component.
-template <unsigned Degree, unsigned Comps>
-[[gnu::always_inline]] inline void sample_spline(const CompressedSpline& s, const std::uint32_t* index, const std::uint8_t* stream,
-                                                 double x, float* v) noexcept {
+using F32x4 = float __attribute__((vector_size(16)));
+using I32x4 = std::int32_t __attribute__((vector_size(16)));
+using U64x4 = std::uint64_t __attribute__((vector_size(32)));
+using U8x4 = std::uint8_t __attribute__((vector_size(4)));
+
+// Segment, parameter and basis weights of the splines of one knot spacing at piece sample x (≥ 0).
+// Every spline of a piece with the same spacing has the same segments (the piece's frames), so
+// the sampler computes these once per spacing, not per track.
+struct SegmentWeights {
+  std::uint32_t spacing = 0;  // 0: not computed yet
+  std::uint32_t seg = 0;
+  std::array<float, 4> cubic{}, linear{};
+};
+[[gnu::always_inline]] inline void segment_weights(const CompressedSpline& s, double x, SegmentWeights& out) noexcept {
   const double ux = x * s.inv_spacing;
   auto seg = std::uint32_t(ux);
   if (double(seg + 1) * double(s.spacing) <= x) ++seg;  // x / spacing exactly at a knot
   if (seg > s.last_segment) seg = s.last_segment;
   const auto u = float((x - double(seg) * double(s.spacing)) * s.inv_spacing);
-  std::array<float, 4> w;
-  if constexpr (Degree == 3) {  // bspline_weights with products by 1/6 (no division in the hot path)
-    constexpr float sixth = 1.0f / 6.0f;
-    const float t = u, r = 1.0f - t, t2 = t * t, t3 = t2 * t;
-    w = {r * r * r * sixth, (0.5f * t3 - t2) + 4.0f * sixth, (-0.5f * t3 + 0.5f * t2) + (0.5f * t + sixth), t3 * sixth};
-  } else {
-    w = linear_weights(u);
-  }
-  float acc[Comps] = {};
+  // bspline_weights with products by 1/6 (no division in the hot path)
+  constexpr float sixth = 1.0f / 6.0f;
+  const float t = u, r = 1.0f - t, t2 = t * t, t3 = t2 * t;
+  out.cubic = {r * r * r * sixth, (0.5f * t3 - t2) + 4.0f * sixth, (-0.5f * t3 + 0.5f * t2) + (0.5f * t + sixth), t3 * sixth};
+  out.linear = linear_weights(u);
+  out.spacing = s.spacing;
+  out.seg = seg;
+}
+
+// The runtime's values of one spline track at segment `seg` with basis weights `w`: the block's
+// decoded header from the index (no stream header read), the Degree + 1 control points — one
+// 8-byte load each when a row fits — weighted in float: min + step · Σ w·index per component, in
+// the lanes of a vector (lanes past the components are 0).
+template <unsigned Degree, unsigned Comps>
+[[gnu::always_inline]] inline F32x4 sample_spline(const CompressedSpline& s, const std::uint32_t* index, const std::uint8_t* stream,
+                                                  std::uint32_t seg, const std::array<float, 4>& w) noexcept {
+  F32x4 accv{};
   const std::uint32_t i0 = seg % ibc_block_controls;
   if (i0 + Degree < ibc_block_controls) {  // all control points in one block (the common case)
     // The block's header in lane form: bases loaded as a vector, widths and their prefix sums
     // (one multiplication each: bytes ≤ 24 never carry) widened from bytes.
     const std::uint32_t* e = index_entry(index, s.first_index, seg);
-    using U64x4 = std::uint64_t __attribute__((vector_size(32)));
-    using I32x4 = std::int32_t __attribute__((vector_size(16)));
-    using U8x4 = std::uint8_t __attribute__((vector_size(4)));
-    using F32x4 = float __attribute__((vector_size(16)));
     const std::uint32_t widths = e[5], befores = widths * 0x01010100u;
     const unsigned row = (widths * 0x01010101u) >> 24;
     I32x4 basev;
@@ -569,7 +603,6 @@ template <unsigned Degree, unsigned Comps>
       // The components in the lanes of a vector (GCC vector extensions: AVX2's variable shifts in
       // the x86-64-v3 clone, SSE2 emulation in the baseline): per control point one 8-byte load,
       // each lane shifted to its component, masked, its base added, converted, weighted.
-      F32x4 accv{};
       for (unsigned k = 0; k <= Degree; ++k, pos += row) {
         std::uint64_t word;
         __builtin_memcpy(&word, stream + (pos >> 3), 8);
@@ -577,20 +610,14 @@ template <unsigned Degree, unsigned Comps>
         const U64x4 offsets = (U64x4{} + word) >> (before + (pos & 7)) & mask;
         accv += w[k] * __builtin_convertvector(__builtin_convertvector(offsets, I32x4) + basev, F32x4);
       }
-      for (unsigned c = 0; c < Comps; ++c) acc[c] = accv[c];
     } else {
       for (unsigned k = 0; k <= Degree; ++k, pos += row) {
         for (unsigned c = 0; c < Comps; ++c)
-          acc[c] += w[k] * float(std::uint32_t(basev[c]) + compressed_value(stream, pos + before[c], (widths >> (8 * c)) & 0xff));
+          accv[c] += w[k] * float(std::uint32_t(basev[c]) + compressed_value(stream, pos + before[c], (widths >> (8 * c)) & 0xff));
       }
     }
   } else {  // the control points straddle two blocks: each read with its own block's lanes
-    using U64x4 = std::uint64_t __attribute__((vector_size(32)));
-    using I32x4 = std::int32_t __attribute__((vector_size(16)));
-    using U8x4 = std::uint8_t __attribute__((vector_size(4)));
-    using F32x4 = float __attribute__((vector_size(16)));
     const std::uint32_t* e0 = index_entry(index, s.first_index, seg);
-    F32x4 accv{};
     bool scalar = false;
     for (unsigned k = 0; k <= Degree; ++k) {
       const std::uint32_t i = i0 + k;
@@ -612,19 +639,69 @@ template <unsigned Degree, unsigned Comps>
                             ((U64x4{1, 1, 1, 1} << __builtin_convertvector(wb, U64x4)) - 1);
       accv += w[k] * __builtin_convertvector(__builtin_convertvector(offsets, I32x4) + basev, F32x4);
     }
-    if (!scalar) [[likely]] {
-      for (unsigned c = 0; c < Comps; ++c) acc[c] = accv[c];
-    } else {  // a row past 56 bits: one load per component
+    if (scalar) [[unlikely]] {  // a row past 56 bits: one load per component
+      accv = F32x4{};
       std::uint32_t idx[Comps];
       for (unsigned k = 0; k <= Degree; ++k) {
         control_indices<Comps>(index, s.first_index, stream, seg + k, idx);
-        for (unsigned c = 0; c < Comps; ++c) acc[c] += w[k] * float(idx[c]);
+        for (unsigned c = 0; c < Comps; ++c) accv[c] += w[k] * float(idx[c]);
       }
     }
   }
-  for (unsigned c = 0; c < Comps; ++c) v[c] = s.min[c] + s.step[c] * acc[c];
+  F32x4 minv, stepv;  // lanes past the components: 0 (a CompressedTrack's min and step start zeroed)
+  __builtin_memcpy(&minv, s.min.data(), sizeof minv);
+  __builtin_memcpy(&stepv, s.step.data(), sizeof stepv);
+  return minv + stepv * accv;
 }
 
+// One spline's values at piece sample x, the weights of its spacing cached in `sw`.
+[[gnu::always_inline]] inline F32x4 spline_at(const CompressedSpline& s, const std::uint32_t* index, const std::uint8_t* stream,
+                                              double x, SegmentWeights& sw) noexcept {
+  if (s.spacing != sw.spacing) [[unlikely]] segment_weights(s, x, sw);
+  switch (s.form) {
+    case 1: return sample_spline<3, 3>(s, index, stream, sw.seg, sw.cubic);
+    case 0: return sample_spline<1, 3>(s, index, stream, sw.seg, sw.linear);
+    case 3: return sample_spline<3, 4>(s, index, stream, sw.seg, sw.cubic);
+    default: return sample_spline<1, 4>(s, index, stream, sw.seg, sw.linear);
+  }
+}
+
+// Four rotations at once, one per lane: the relative rotations' spline values `rel` (x, y, z and,
+// for a 4-component track, w, per row) finished as compressed_rotation() does — w = √(1 − |v|²)
+// or normalised — and multiplied by their references, then stored to their joints (`count` ≤ 4
+// lanes in use).
+[[gnu::always_inline]] inline void finish_rotations(const CompressedRotationLanes& l, const F32x4* rel, unsigned count,
+                                                    JointPose<float>* out) noexcept {
+#if defined(__SSE2__)
+  __m128 x = rel[0], y = rel[1], z = rel[2], w4 = rel[3];
+  _MM_TRANSPOSE4_PS(x, y, z, w4);
+  const __m128 full = _mm_castsi128_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(l.full.data())));
+  const __m128 one = _mm_set1_ps(1.0f), zero = _mm_setzero_ps();
+  const __m128 n3 = x * x + y * y + z * z;
+  const __m128 n2 = _mm_or_ps(_mm_and_ps(full, n3 + w4 * w4), _mm_andnot_ps(full, n3));
+  // 3 components: |v| < 1 → w = √(1 − |v|²), no normalisation; |v| ≥ 1 → w = 0, v / |v|.
+  // 4 components: |q| > 0 → q / |q|; q = 0 → the identity.
+  const __m128 w3 = _mm_sqrt_ps(_mm_max_ps(one - n3, zero));
+  const __m128 norm = _mm_or_ps(_mm_and_ps(full, _mm_cmpgt_ps(n2, zero)), _mm_andnot_ps(full, _mm_cmpge_ps(n2, one)));
+  const __m128 inv = _mm_or_ps(_mm_and_ps(norm, one / _mm_sqrt_ps(n2)), _mm_andnot_ps(norm, one));
+  const __m128 w = _mm_or_ps(_mm_and_ps(full, _mm_or_ps(_mm_and_ps(norm, w4), _mm_andnot_ps(norm, one))), _mm_andnot_ps(full, w3));
+  const __m128 bw = w * inv, bx = x * inv, by = y * inv, bz = z * inv;
+  const __m128 aw = _mm_loadu_ps(l.w.data()), ax = _mm_loadu_ps(l.x.data()), ay = _mm_loadu_ps(l.y.data()),
+               az = _mm_loadu_ps(l.z.data());
+  __m128 qw = aw * bw - ax * bx - ay * by - az * bz;  // reference ⊗ q_rel (Quat's operator*)
+  __m128 qx = aw * bx + ax * bw + ay * bz - az * by;
+  __m128 qy = aw * by - ax * bz + ay * bw + az * bx;
+  __m128 qz = aw * bz + ax * by - ay * bx + az * bw;
+  _MM_TRANSPOSE4_PS(qw, qx, qy, qz);
+  const __m128 q[4] = {qw, qx, qy, qz};
+  for (unsigned k = 0; k < count; ++k) _mm_storeu_ps(&out[l.joint[k]].rotation.w, q[k]);
+#else
+  for (unsigned k = 0; k < count; ++k) {
+    const float v[4] = {rel[k][0], rel[k][1], rel[k][2], rel[k][3]};
+    out[l.joint[k]].rotation = compressed_rotation(Quatf::from_wxyz(l.w[k], l.x[k], l.y[k], l.z[k]), v, l.full[k] ? 4u : 3u);
+  }
+#endif
+}
 }  // namespace
 
 void decode_frame(const CompressedClip& clip, std::size_t frame_index, std::span<JointPose<double>> out) noexcept {
@@ -680,22 +757,27 @@ void sample_compressed(const CompressedClip& clip, double frame, std::span<Joint
   const std::uint32_t* index = clip.block_index().data();
   const std::uint8_t* stream = clip.stream();
   JointPose<float>* out = local.data();
-  // The pose's absent and constant values are copied above; each spline track's values, then its
-  // rotation or vector, written once (every field of the track loaded before the store).
-  for (const CompressedSpline& s : clip.splines(piece)) {
-    float v[4];
-    switch (s.form) {
-      case 1: sample_spline<3, 3>(s, index, stream, x, v); break;
-      case 0: sample_spline<1, 3>(s, index, stream, x, v); break;
-      case 3: sample_spline<3, 4>(s, index, stream, x, v); break;
-      default: sample_spline<1, 4>(s, index, stream, x, v); break;
-    }
-    JointPose<float>& pose = out[s.joint];
-    if (s.channel == std::uint8_t(CompressedChannel::rotation)) {
-      pose.rotation = compressed_rotation(s.reference, v, s.form >= 2 ? 4u : 3u);
-    } else {
-      (s.channel == std::uint8_t(CompressedChannel::translation) ? pose.translation : pose.scale) = Vec3f{v[0], v[1], v[2]};
-    }
+  const std::span<const CompressedSpline> splines = clip.splines(piece);
+  const std::size_t rotations = clip.rotation_count(piece);
+  const CompressedRotationLanes* lanes = clip.rotation_lanes(piece).data();
+  SegmentWeights sw;
+  // The pose's absent and constant values are copied above.  Rotations, a chunk at a time: each
+  // spline's values into `rel`, then four rotations at once in the lanes of a vector
+  // (finish_rotations).  Then each translation and scale spline's values, written once.
+  constexpr std::size_t chunk = 64;
+  F32x4 rel[chunk];
+  for (std::size_t first = 0; first < rotations; first += chunk) {
+    const std::size_t n = std::min(chunk, rotations - first);
+    for (std::size_t i = 0; i < n; ++i) rel[i] = spline_at(splines[first + i], index, stream, x, sw);
+    for (std::size_t i = n; i % 4 != 0; ++i) rel[i] = F32x4{};
+    for (std::size_t i = 0; i < n; i += 4)
+      finish_rotations(lanes[(first + i) / 4], rel + i, unsigned(std::min<std::size_t>(4, n - i)), out);
+  }
+  for (std::size_t i = rotations; i < splines.size(); ++i) {
+    const CompressedSpline& s = splines[i];
+    const F32x4 v = spline_at(s, index, stream, x, sw);
+    (s.channel == std::uint8_t(CompressedChannel::translation) ? out[s.joint].translation : out[s.joint].scale) =
+        Vec3f{v[0], v[1], v[2]};
   }
 }
 

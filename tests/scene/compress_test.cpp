@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "../support/museum_clips.hpp"
 
 namespace inbetween {
@@ -86,6 +89,63 @@ TEST(CompressClip, BadOptionsAndPosesAreNamed) {
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().code, ErrorCode::not_finite);
   EXPECT_EQ(r.error().place(), "/frames/7/joints/0");
+}
+
+// The spline's error at each of `frames` samples for rounded control points `q` of t (decode_frame's
+// segment and basis), the largest |error| — an evaluation independent of the trellis.
+double worst_sample_error(const std::vector<double>& t, const std::vector<std::uint32_t>& q, std::size_t frames, std::uint32_t h,
+                          unsigned degree) {
+  double worst = 0;
+  for (std::size_t f = 0; f < frames; ++f) {
+    const std::size_t seg = std::min<std::size_t>(f / h, t.size() - 1 - degree);
+    const double u = double(f - seg * h) / double(h);
+    const auto w = degree == 3 ? bspline_weights(u) : linear_weights(u);
+    double e = 0;
+    for (unsigned k = 0; k <= degree; ++k) e += w[k] * (double(q[seg + k]) - t[seg + k]);
+    worst = std::max(worst, std::abs(e));
+  }
+  return worst;
+}
+
+// Seeded: on small splines (10 control points) the trellis's largest sample error equals the
+// best of every floor/ceiling choice, enumerated; on long ones it is never above rounding each
+// control point to nearest (one of the choices it weighs) and, for cubic splines on these random
+// fractions, below 0.9 of it (measured: 0.69–0.79 on this seed).
+TEST(CompressClip, JointRoundingIsTheBestFloorOrCeilingChoice) {
+  const unsigned seed = 5113;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(0, 1000);
+  for (unsigned degree : {1u, 3u}) {
+    for (std::uint32_t h : {1u, 2u, 3u}) {
+      if (degree == 1 && h == 1) continue;  // the samples themselves: nothing to trade
+      SCOPED_TRACE("degree " + std::to_string(degree) + " spacing " + std::to_string(h));
+      const std::size_t frames = 1 + h * (10 - degree);  // 10 control points
+      std::vector<double> t(std::size_t(compressed_segments(frames, h)) + degree);
+      ASSERT_EQ(t.size(), 10u);
+      for (double& v : t) v = value(rng);
+      std::vector<std::uint32_t> q(t.size()), best(t.size());
+      round_controls_jointly(t, frames, h, degree, q);
+      double brute = 1e300;
+      for (std::uint32_t m = 0; m < (1u << t.size()); ++m) {
+        for (std::size_t i = 0; i < t.size(); ++i) best[i] = std::uint32_t(std::floor(t[i])) + ((m >> i) & 1u);
+        brute = std::min(brute, worst_sample_error(t, best, frames, h, degree));
+      }
+      for (std::size_t i = 0; i < t.size(); ++i) EXPECT_TRUE(q[i] == std::uint32_t(std::floor(t[i])) || q[i] == std::uint32_t(std::floor(t[i])) + 1);
+      EXPECT_NEAR(worst_sample_error(t, q, frames, h, degree), brute, 1e-12);
+      // Long: against rounding to nearest.
+      const std::size_t long_frames = 3000;
+      std::vector<double> tl(std::size_t(compressed_segments(long_frames, h)) + degree);
+      for (double& v : tl) v = value(rng);
+      std::vector<std::uint32_t> ql(tl.size()), nearest(tl.size());
+      round_controls_jointly(tl, long_frames, h, degree, ql);
+      for (std::size_t i = 0; i < tl.size(); ++i) nearest[i] = std::uint32_t(std::lround(tl[i]));
+      const double joint = worst_sample_error(tl, ql, long_frames, h, degree), rounded = worst_sample_error(tl, nearest, long_frames, h, degree);
+      EXPECT_LE(joint, rounded);
+      // Cubic: no sample is a control point itself, so the choice pays (linear samples at the knots are).
+      if (degree == 3) EXPECT_LT(joint, 0.9 * rounded) << joint << " vs " << rounded;
+    }
+  }
 }
 
 }  // namespace

@@ -168,6 +168,76 @@ TEST(CompressedClip, SamplerAtFractionalFramesMatchesTheSplines) {
   }
 }
 
+// Seeded: 70 joints, one piece of 40 frames, so 66 rotation splines — past the sampler's chunk of
+// 64 and not a multiple of its 4 lanes — mixing 3- and 4-component rotations, degrees 1 and 3,
+// spacings 1 … 4 in turn, 3-component values past |v| = 1 (w = 0, normalised) and a 4-component
+// track that decodes to zero (the reference itself), among translation splines and constants.
+// At every frame the float sampler agrees with decode_frame on every joint (a lane stored to the
+// wrong joint, or a stale weight of another spacing, shows as a whole-value difference).
+TEST(CompressedClip, SamplerLanesAgreeWithTheReferenceOnEveryJoint) {
+  const unsigned seed = 907;
+  SCOPED_TRACE("seed " + std::to_string(seed));
+  std::mt19937 rng(seed);
+  const std::size_t joints = 70, frames = 40;
+  CompressedClipParts p;
+  p.frames = frames;
+  p.frame_rate = 30;
+  std::size_t rotation_splines = 0;
+  for (std::size_t j = 0; j < joints; ++j) {
+    p.parents.push_back(std::int32_t(j) - 1);
+    p.names.push_back("j" + std::to_string(j));
+    for (unsigned ch = 0; ch < 3; ++ch) {
+      CompressedTrack t;
+      std::vector<std::uint32_t> values;
+      const bool spline = (ch == 0 && j % 5 == 0) || (ch == 1 && j % 17 != 3) || (ch == 2 && j % 11 == 4);
+      if (!spline) {
+        if (ch == 1) t.kind = CompressedTrackKind::constant, t.min = {0.5f, -0.5f, 0.5f, 0.5f};
+        p.tracks.push_back(t);
+        p.values.push_back(values);
+        continue;
+      }
+      t.kind = CompressedTrackKind::spline;
+      t.components = ch == 1 && j % 3 == 0 ? 4 : 3;
+      t.degree = j % 2 ? 3 : 1;
+      t.spacing = 1 + std::uint32_t(j % 4);
+      t.bits = 12;
+      if (ch == 1) {
+        ++rotation_splines;
+        // |v| up to 0.8·√3 ≈ 1.39: some samples past the unit ball.
+        for (unsigned c = 0; c < t.components; ++c) t.min[c] = -0.8f, t.step[c] = 1.6f / 4095.0f;
+        if (j == 9) t.min = {}, t.step = {};  // 4 components, all zero: the reference
+        t.reference = normalized(Quatd::from_wxyz(1, 0.1 * double(j % 5), -0.2, 0.05 * double(j % 3))).cast<float>();
+      } else {
+        for (unsigned c = 0; c < 3; ++c) t.min[c] = ch == 0 ? -5.0f : 0.5f, t.step[c] = ch == 0 ? 0.01f : 0.001f;
+      }
+      const std::size_t controls = compressed_segments(frames, t.spacing) + t.degree;
+      for (std::size_t i = 0; i < controls * t.components; ++i) values.push_back(std::uniform_int_distribution<std::uint32_t>(0, 4095)(rng));
+      p.tracks.push_back(t);
+      p.values.push_back(values);
+    }
+  }
+  ASSERT_EQ(rotation_splines, 66u);
+  const auto clip = load_compressed_clip(write_compressed_clip(p));
+  ASSERT_TRUE(clip) << clip.error().describe();
+  EXPECT_EQ(clip->rotation_count(0), rotation_splines);
+  std::vector<JointPose<double>> ref(joints);
+  std::vector<JointPose<float>> run(joints);
+  for (std::size_t f = 0; f < frames; ++f) {
+    decode_frame(*clip, f, ref);
+    sample_compressed(*clip, double(f), run);
+    for (std::size_t j = 0; j < joints; ++j) {
+      // translations ≤ 36 in size, scales ≤ 5: compressed_sample_tolerance relative to |value| + 1
+      EXPECT_LT(norm(ref[j].translation - run[j].translation.cast<double>()), compressed_sample_tolerance * 37) << "frame " << f << " joint " << j;
+      EXPECT_LT(norm(ref[j].scale - run[j].scale.cast<double>()), compressed_sample_tolerance * 6) << "frame " << f << " joint " << j;
+      EXPECT_LT(angle_between(ref[j].rotation, run[j].rotation.cast<double>()), compressed_sample_tolerance)
+          << "frame " << f << " joint " << j;
+      const Quatf& q = run[j].rotation;  // unit length (angle_between alone does not see a scaled rotation)
+      EXPECT_NEAR(std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z), 1.0f, 1e-6f) << "frame " << f << " joint " << j;
+    }
+  }
+  EXPECT_NEAR(angle_between(ref[9].rotation, clip->track(0, 9, CompressedChannel::rotation).reference.cast<double>()), 0, 1e-7);
+}
+
 bool finite_pose(const JointPose<double>& p) {
   return std::isfinite(p.translation.x + p.translation.y + p.translation.z + p.rotation.w + p.rotation.x + p.rotation.y +
                        p.rotation.z + p.scale.x + p.scale.y + p.scale.z);

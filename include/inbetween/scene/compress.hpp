@@ -6,11 +6,15 @@
 ///
 /// Method: every track (a joint's translation, rotation or scale) is absent, constant, or a
 /// uniform cubic B-spline fitted by least squares at a per-track knot spacing, its control points
-/// range-reduced and quantised at a per-track bit width.  Each track gets a share of the error
+/// range-reduced and quantised at a per-track bit width (rounded jointly: round_controls_jointly).  Each track gets a share of the error
 /// budget weighted by its lever (a rotation error moves every descendant's virtual vertices in
 /// proportion to their distance), the cheapest (spacing, bits) meeting its share is chosen, one
 /// global factor on the shares is bisected against the exact metric, and a greedy pass then
 /// relaxes tracks one by one while the exact metric stays within the bound.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
 
 #include "inbetween/math/expected.hpp"
 #include "inbetween/scene/sampled_clip.hpp"
@@ -32,6 +36,16 @@ struct CompressOptions {
 /// pose ({"frames", f, "joints", j}); unsupported for more than 65 535 frames per knot interval
 /// never arises (spacings are small) — and for a clip whose bytes would exceed 4 GiB.
 [[nodiscard]] Expected<CompressedClip> compress_clip(const SampledClip& clip, const CompressOptions& options = {});
+
+/// Rounds the control points of one component of a uniform spline (degree 1 or 3, knot spacing
+/// h ≥ 1, over `frames` samples; t.size() == compressed_segments(frames, h) + degree, asserted),
+/// given in quantisation steps above the range's minimum (t ≥ 0), each to its floor or its ceiling
+/// so that the largest error of the spline at the samples, |Σ w·(out − t)|, is the smallest such a
+/// choice can give (then the smallest sum of errors): a trellis over the last `degree` choices.
+/// Rounding each to nearest lets neighbouring errors add up at a sample; the compressor's
+/// quantiser uses this (docs/compression.md, "Method").  out.size() == t.size().
+void round_controls_jointly(std::span<const double> t, std::size_t frames, std::uint32_t h, unsigned degree,
+                            std::span<std::uint32_t> out);
 
 /// Every sample of a compressed clip, decoded in double (decode_frame), as a SampledClip.
 [[nodiscard]] SampledClip decompress(const CompressedClip& clip);

@@ -152,6 +152,18 @@ struct CompressedSpline {
   Quatf reference{};             ///< rotation: q = reference ⊗ q_rel
 };
 
+/// Four rotation spline tracks of a piece side by side, one per lane (built on load): what the
+/// sampler's rotation pass needs to finish four rotations at once in the lanes of a vector.
+/// Lanes past the piece's rotation splines hold the identity reference and are never stored.
+struct CompressedRotationLanes {
+  std::array<float, 4> w{1, 1, 1, 1};  ///< per lane: the reference's w
+  std::array<float, 4> x{};            ///< per lane: the reference's x
+  std::array<float, 4> y{};            ///< per lane: the reference's y
+  std::array<float, 4> z{};            ///< per lane: the reference's z
+  std::array<std::uint32_t, 4> full{};  ///< per lane: all bits set where the track stores 4 components, else 0
+  std::array<std::uint32_t, 4> joint{};  ///< per lane: the joint it drives
+};
+
 /// A checked compressed clip: owns the .ibc bytes, the parsed track table and the runtime tables
 /// built on load (block index, spline list, rest poses: runtime_bytes()).  Only
 /// load_compressed_clip() makes one, so every offset and width in it is in bounds.
@@ -201,9 +213,17 @@ class CompressedClip {
   /// first_index, per block ibc_index_words words: the decoded block header (bases, position of
   /// the first control point, widths).
   [[nodiscard]] std::span<const std::uint32_t> block_index() const noexcept { return index_; }
-  /// The spline tracks of piece `p`, in track order, with their runtime constants (built on load).
+  /// The spline tracks of piece `p` with their runtime constants (built on load): its rotation
+  /// splines first (rotation_count(p) of them), then its translation and scale splines, each
+  /// group in track order.
   [[nodiscard]] std::span<const CompressedSpline> splines(std::size_t p) const noexcept {
     return std::span<const CompressedSpline>(splines_).subspan(piece_splines_[p], piece_splines_[p + 1] - piece_splines_[p]);
+  }
+  /// Rotation splines of piece `p`: the first rotation_count(p) entries of splines(p).
+  [[nodiscard]] std::size_t rotation_count(std::size_t p) const noexcept { return piece_rotations_[p]; }
+  /// Piece `p`'s rotation splines four to an entry, in the order of splines(p) (built on load).
+  [[nodiscard]] std::span<const CompressedRotationLanes> rotation_lanes(std::size_t p) const noexcept {
+    return std::span<const CompressedRotationLanes>(lanes_).subspan(piece_lanes_[p], piece_lanes_[p + 1] - piece_lanes_[p]);
   }
   /// The pose of piece `p` with every absent and constant track's value (spline tracks: identity),
   /// joints() entries; the sampler copies it before evaluating the splines (built on load).
@@ -214,7 +234,8 @@ class CompressedClip {
   /// not part of the file).
   [[nodiscard]] std::size_t runtime_bytes() const noexcept {
     return index_.size() * sizeof(std::uint32_t) + splines_.size() * sizeof(CompressedSpline) +
-           piece_splines_.size() * sizeof(std::uint32_t) + rest_.size() * sizeof(JointPose<float>);
+           piece_splines_.size() * sizeof(std::uint32_t) + rest_.size() * sizeof(JointPose<float>) +
+           lanes_.size() * sizeof(CompressedRotationLanes) + (piece_lanes_.size() + piece_rotations_.size()) * sizeof(std::uint32_t);
   }
 
  private:
@@ -228,6 +249,9 @@ class CompressedClip {
   std::vector<std::uint32_t> index_;
   std::vector<CompressedSpline> splines_;
   std::vector<std::uint32_t> piece_splines_;
+  std::vector<std::uint32_t> piece_rotations_;
+  std::vector<CompressedRotationLanes> lanes_;
+  std::vector<std::uint32_t> piece_lanes_;
   std::vector<JointPose<float>> rest_;
   std::size_t frames_ = 0, stream_offset_ = 0;
   double first_frame_ = 0, frame_rate_ = 0, error_bound_ = 0, measured_error_ = 0, shell_ = 0;
@@ -267,7 +291,8 @@ inline constexpr double compressed_sample_tolerance = 1e-5;
 /// clip's frames; fractional frames evaluate the splines between samples) in float, read in place
 /// from the bit stream (four control points per cubic track, two per linear one) with the block
 /// headers from the block index built on load (block_index(); docs/compression.md, "The runtime
-/// sampler").  local.size() == joints()
+/// sampler"); the basis weights once per knot spacing, the rotations finished four at a time in
+/// vector lanes (rotation_lanes()).  local.size() == joints()
 /// (asserted).  Never allocates, noexcept.
 void sample_compressed(const CompressedClip& clip, double frame, std::span<JointPose<float>> local) noexcept;
 
