@@ -274,7 +274,8 @@ ojson SceneWriter::action(const RawAction& a, const Loc& loc) {
     ojson cj = ojson::object();
     cj["path"] = name_of_enum(c.path, action_path_names);
     cj["index"] = c.index;
-    for (auto& [key, value] : fcurve(c.curve, at(at(loc, "channels"), k)).items()) cj[key] = value;
+    const ojson curve = fcurve(c.curve, at(at(loc, "channels"), k));
+    for (auto it = curve.begin(); it != curve.end(); ++it) cj[it.key()] = it.value();
     channels.push_back(std::move(cj));
   }
   j["channels"] = std::move(channels);
