@@ -175,6 +175,7 @@ def _strip_doc(obj, track, strip, used_actions):
     if len(strip.modifiers):
         raise ExportError("%s: NLA strip modifiers are not in the scene format" % where)
     used_actions[strip.action.name] = strip.action
+    _warn_combine_negative_scale(obj, strip.blend_type, strip.action, 'strip "%s"' % strip.name)
     doc = {
         "name": strip.name, "action": strip.action.name,
         "frame_start": strip.frame_start, "frame_end": strip.frame_end,
@@ -203,6 +204,17 @@ def _strip_doc(obj, track, strip, used_actions):
     return doc
 
 
+def _warn_combine_negative_scale(obj, blend, action, what):
+    """Blender 3.4's COMBINE blend of a negative scale is NaN (docs/blender-nla-observations.md)."""
+    if blend != "COMBINE" or action is None:
+        return
+    for fc in action.fcurves:
+        if fc.data_path == "scale" and any(k.co[1] < 0 for k in fc.keyframe_points):
+            sys.stderr.write('export_scene: warning: object "%s", %s: COMBINE over action "%s" whose scale[%d] is keyed '
+                             "negative; Blender evaluates that to NaN (docs/blender-nla-observations.md)\n"
+                             % (obj.name, what, action.name, fc.array_index))
+
+
 def _animation_doc(obj, used_actions):
     ad = obj.animation_data
     if ad is None:
@@ -218,6 +230,7 @@ def _animation_doc(obj, used_actions):
     if ad.action is not None:
         used_actions[ad.action.name] = ad.action
         doc["action"] = ad.action.name
+        _warn_combine_negative_scale(obj, ad.action_blend_type, ad.action, "active action")
     doc["action_blend"] = ad.action_blend_type.lower()
     doc["action_influence"] = ad.action_influence
     doc["action_extrapolation"] = ad.action_extrapolation.lower()
