@@ -513,11 +513,19 @@ def observe_channel_defaults():
     obj.scale = (1.5, 1.5, 1.5)
     strip = obj.animation_data.nla_tracks.new().strips.new("s", 10, action)
     strip.extrapolation = "NOTHING"
+    aa, aa_action = _empty_with_action("aa", [("rotation_axis_angle", 2, [(1, 0.5, "LINEAR"), (5, 0.7, "LINEAR")])])
+    aa.rotation_mode = "AXIS_ANGLE"
+    aa.rotation_axis_angle = (0.9, 0.3, 0.5, 1.0)
+    aa_strip = aa.animation_data.nla_tracks.new().strips.new("s", 10, aa_action)
+    aa_strip.extrapolation = "NOTHING"
     o = _at(obj, 30)
+    a = aa.evaluated_get(bpy.context.evaluated_depsgraph_get())
     print("observe: channel defaults: frame 30 (no strip): location %s scale %s quaternion %s; object's own values were "
           "location (5, 6, 7), scale 1.5, quaternion (0.6, 0.8, 0, 0)"
           % (tuple(round(v, 6) for v in o.location), tuple(round(v, 6) for v in o.scale),
              tuple(round(v, 6) for v in o.rotation_quaternion)))
+    print("observe: channel defaults: axis-angle (0.9, 0.3, 0.5, 1) with only its y keyed: at frame 30 %s, world rotation %s"
+          % (tuple(round(v, 6) for v in a.rotation_axis_angle), tuple(round(v, 6) for v in a.matrix_world.to_quaternion())))
 
 
 def observe_eighth_frame():
