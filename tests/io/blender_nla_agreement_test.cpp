@@ -85,6 +85,7 @@ std::set<std::string> features_of(const json& object, const json& actions) {
   if (!object.contains("animation")) return out;
   const json& anim = object.at("animation");
   std::set<std::string> used;
+  if (!anim.value("nla", true)) out.insert("nla:off");
   if (anim.contains("action")) {
     used.insert(anim.at("action").get<std::string>());
     out.insert("active:" + anim.value("action_blend", std::string("replace")));
@@ -99,6 +100,7 @@ std::set<std::string> features_of(const json& object, const json& actions) {
       out.insert("extrapolation:" + strip.value("extrapolation", std::string("hold")));
       if (strip.contains("influence")) out.insert("strip:animated_influence");
       if (strip.contains("strip_time")) out.insert("strip:animated_time");
+      if (strip.value("strip_time_cyclic", false)) out.insert("strip:cyclic_time");
       if (strip.value("reverse", false)) out.insert("strip:reverse");
       if (strip.value("repeat", 1.0) != 1.0) out.insert("strip:repeat");
       if (strip.value("scale", 1.0) != 1.0) out.insert("strip:scale");
@@ -247,8 +249,8 @@ TEST(BlenderNlaAgreement, RecordedScenesCoverEveryFeature) {
   for (const char* r : {"quaternion", "axis_angle", "xyz", "xzy", "yxz", "yzx", "zxy", "zyx"})
     expected.push_back(std::string("rotation_mode:") + r);
   for (const char* s : {"strip:animated_influence", "strip:animated_time", "strip:reverse", "strip:repeat",
-                        "strip:scale", "strip:blend_in_out", "strip:auto_blend", "strip:mute", "track:mute",
-                        "track:solo", "parent_inverse"})
+                        "strip:scale", "strip:blend_in_out", "strip:auto_blend", "strip:mute", "strip:cyclic_time",
+                        "track:mute", "track:solo", "nla:off", "parent_inverse"})
     expected.push_back(s);
   for (const std::string& e : expected) EXPECT_TRUE(seen.count(e)) << "no recorded scene uses " << e;
 }
