@@ -14,7 +14,7 @@ scenes tools/blender/random_nla_scenes.py records).
 
 What the format cannot hold is refused with one message naming the object, action, track or strip,
 exit status 1 and nothing written: bone (pose) animation, drivers, F-curves on other properties,
-muted or disabled F-curves, meta / transition / sound strips, NLA strip modifiers, tweak mode,
+muted or disabled F-curves (or in a muted group), meta / transition / sound strips, NLA strip modifiers, tweak mode,
 non-zero delta transforms, constraints, parents other than an object.
 
 The F-curve members (keys, extrapolation, auto smoothing) come from export_fcurves.fcurve_to_track.
@@ -119,6 +119,8 @@ def fcurve_members(fcurve, where):
     """The F-curve members of the format (keys, extrapolation, auto_smoothing, modifiers) as a dict."""
     if fcurve.mute:
         raise ExportError("%s: the F-curve is muted (unmute or delete it)" % where)
+    if fcurve.group is not None and fcurve.group.mute:
+        raise ExportError('%s: its group "%s" is muted (unmute or delete it)' % (where, fcurve.group.name))
     if not fcurve.is_valid:
         raise ExportError("%s: the F-curve is disabled (its path does not resolve)" % where)
     if len(fcurve.keyframe_points) == 0:
