@@ -3,8 +3,10 @@
 // tests/data/blender_nla/sceneK.json are .blend scenes exported by tools/blender/export_scene.py
 // (scene format version 3: objects with rotation modes and parent inverse matrices, actions, NLA
 // tracks and strips, active actions, F-curve modifiers), sceneK.world.json Blender's matrix_world
-// of every object at 170 fractional frames inside and outside the strips, decomposed into world
-// translation, rotation (unit quaternion w, x, y, z) and scale.  The scenes have no shear (every
+// of every object at 170 fractional frames inside and outside the strips (the float32 times Blender
+// evaluated), decomposed into world translation, rotation (unit quaternion w, x, y, z) and scale.
+// `random_nla_scenes.py --check-reference` shows the documents hold everything Blender uses: a
+// Python NLA evaluator reading them agrees with all 8160 recorded samples (worst 0.39 x tolerance).  The scenes have no shear (every
 // object with children has uniform scale), so the TRS columns are the whole matrix.  Scenes 0-5 use
 // no F-curve modifiers, 6-11 use every type.  The test needs no Blender; the data was made by
 //
@@ -111,6 +113,11 @@ std::set<std::string> features_of(const json& object, const json& actions) {
   }
   for (const json& action : actions) {
     if (!used.count(action.at("name").get<std::string>())) continue;
+    std::map<std::string, int> elements;  // path -> number of keyed elements
+    for (const json& channel : action.at("channels")) ++elements[channel.at("path").get<std::string>()];
+    for (const auto& [path, n] : elements) {
+      if (n < (path == "rotation_quaternion" || path == "rotation_axis_angle" ? 4 : 3)) out.insert("action:some_elements");
+    }
     for (const json& channel : action.at("channels")) {
       for (const json& m : channel.value("modifiers", json::array())) out.insert("modifier:" + m.at("type").get<std::string>());
     }
@@ -250,7 +257,7 @@ TEST(BlenderNlaAgreement, RecordedScenesCoverEveryFeature) {
     expected.push_back(std::string("rotation_mode:") + r);
   for (const char* s : {"strip:animated_influence", "strip:animated_time", "strip:reverse", "strip:repeat",
                         "strip:scale", "strip:blend_in_out", "strip:auto_blend", "strip:mute", "strip:cyclic_time",
-                        "track:mute", "track:solo", "nla:off", "parent_inverse"})
+                        "track:mute", "track:solo", "nla:off", "parent_inverse", "action:some_elements"})
     expected.push_back(s);
   for (const std::string& e : expected) EXPECT_TRUE(seen.count(e)) << "no recorded scene uses " << e;
 }
