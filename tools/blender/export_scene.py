@@ -88,7 +88,7 @@ def _modifier(m):
                "start": _opt_range(m.use_frame_start, m.frame_start), "end": _opt_range(m.use_frame_end, m.frame_end)}
     else:
         raise ValueError("modifier type %s is not in the scene format" % t)
-    if m.mute:
+    if m.mute or not m.is_valid:  # Blender skips a disabled modifier (a Cycles modifier below the top) as a muted one
         out["mute"] = True
     if m.use_influence:
         out["influence"] = m.influence
