@@ -5,8 +5,8 @@
 // tracks and strips, active actions, F-curve modifiers), sceneK.world.json Blender's matrix_world
 // of every object at 170 fractional frames inside and outside the strips (the float32 times Blender
 // evaluated), decomposed into world translation, rotation (unit quaternion w, x, y, z) and scale.
-// `random_nla_scenes.py --check-reference` shows the documents hold everything Blender uses: a
-// Python NLA evaluator reading them agrees with all 8160 recorded samples (worst 0.39 x tolerance).  The scenes have no shear (every
+// tools/blender/nla_reference.py shows the documents hold everything Blender uses: a Python NLA
+// evaluator reading them agrees with all 8160 recorded samples (worst 0.39 x tolerance).  The scenes have no shear (every
 // object with children has uniform scale), so the TRS columns are the whole matrix.  Scenes 0-5 use
 // no F-curve modifiers, 6-11 use every type.  The test needs no Blender; the data was made by
 //
