@@ -503,11 +503,16 @@ Expected<BlenderObject> build_blender_object(const RawObject& raw, const std::ve
       }
       if (rs.blend_in < 0) return fail(ErrorCode::invalid_argument, "blend_in must be ≥ 0", {"blend_in"});
       if (rs.blend_out < 0) return fail(ErrorCode::invalid_argument, "blend_out must be ≥ 0", {"blend_out"});
-      if (rs.blend_in + rs.blend_out > double(st.end - st.start) + 1e-4) {
-        return fail(ErrorCode::invalid_argument,
-                    "blend_in + blend_out (" + shortest_text(rs.blend_in + rs.blend_out) + ") is longer than the strip (" +
-                        shortest_text(double(st.end - st.start)) + " frames)",
-                    {rs.blend_in > double(st.end - st.start) ? "blend_in" : "blend_out"});
+      // Each ramp fits in the strip.  Their sum may not: Blender's auto-blend sets them from the
+      // overlaps with other tracks without clamping (the blend-in ramp then wins, docs/nla.md).
+      const double length_frames = double(st.end - st.start) + 1e-4;
+      for (auto [ramp, member] : {std::pair{rs.blend_in, "blend_in"}, std::pair{rs.blend_out, "blend_out"}}) {
+        if (ramp > length_frames) {
+          return fail(ErrorCode::invalid_argument,
+                      std::string(member) + " (" + shortest_text(ramp) + ") is longer than the strip (" +
+                          shortest_text(double(st.end - st.start)) + " frames)",
+                      {member});
+        }
       }
       st.blend_in = float(rs.blend_in);
       st.blend_out = float(rs.blend_out);

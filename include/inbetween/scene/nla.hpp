@@ -105,7 +105,7 @@ class BlenderObject {
 /// named by strips and the active action exist, strips with scale > 0, repeat > 0, finite frames,
 /// action_frame_end ≥ action_frame_start, frame_end (when given) equal to Blender's
 /// start + (action range) · scale · repeat within float rounding, strips of a track in time order
-/// without overlap, blend_in, blend_out ≥ 0 with blend_in + blend_out ≤ the strip's length, a
+/// without overlap, blend_in and blend_out each in [0, the strip's length] (their sum may exceed it, as auto-blend leaves it), a
 /// constant influence in [0, 1], action_influence in [0, 1], every strip F-curve, and no COMBINE
 /// strip over an action whose scale keys are negative (Blender gives NaN there).
 [[nodiscard]] Expected<BlenderObject> build_blender_object(const RawObject& raw, const std::vector<RawAction>& raw_actions,
