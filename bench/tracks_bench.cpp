@@ -275,7 +275,7 @@ std::vector<FCurve> rig_fcurves(int joints, FrameOf frame_of, CyclesOf cycles_of
         key.value = v[k];
         raw.keys.push_back(key);
       }
-      raw.cycles = cycles_of(k);
+      if (const std::optional<FCurveCycles> c = cycles_of(k)) raw.modifiers = {FCurveModifier{.kind = *c}};
       curves.push_back(build_fcurve(raw).value());
     }
   }

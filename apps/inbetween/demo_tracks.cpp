@@ -36,7 +36,7 @@ void demo_tracks(std::ostream& out) {
                                              : "   (Blender: 5.624999, 2.0)\n");
   }
   RawFCurve cyc;
-  cyc.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset};
+  cyc.modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}}};
   for (auto [x, y] : {std::pair{0., 0.}, {10., 10.}, {20., 4.}}) {
     FCurveKey k;
     k.frame = x;

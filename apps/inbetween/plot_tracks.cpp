@@ -56,11 +56,15 @@ void Plotter::plot_fcurve(const SceneScalarTrack& t) {
       }
     }
   }
-  if (const auto& cycles = t.curve.cycles()) {
+  if (const FCurveCycles* cycles = t.curve.simple_cycles()) {
     pane.pieces.before = cycles->before == CycleMode::none ? "extrapolated (" + std::string(to_string(t.curve.extrapolation())) + ")"
                                                           : "cycled (" + std::string(to_string(cycles->before)) + ")";
     pane.pieces.after = cycles->after == CycleMode::none ? "extrapolated (" + std::string(to_string(t.curve.extrapolation())) + ")"
                                                         : "cycled (" + std::string(to_string(cycles->after)) + ")";
+  } else if (!t.curve.modifiers().empty()) {
+    std::string stack;
+    for (const FCurveModifier& m : t.curve.modifiers()) stack += (stack.empty() ? "" : ", ") + std::string(type_name(m));
+    pane.pieces.before = pane.pieces.after = "modifiers (" + stack + ")";
   } else {
     pane.pieces.before = pane.pieces.after = "extrapolated (" + std::string(to_string(t.curve.extrapolation())) + ")";
   }

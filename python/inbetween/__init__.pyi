@@ -125,7 +125,8 @@ def ease(spec: Mapping[str, Any], t: ArrayLike) -> NDArray:
     """The normalised ease S(t) of an ease dictionary (speed.ease) at normalised times t."""
 
 class Track:
-    """A track from a scene-file track dictionary: scalar F-curve, vector, colour, quaternion or euler."""
+    """A track from a scene-file track dictionary: scalar F-curve (with its "modifiers", Blender's
+    F-curve modifier stack), vector, colour, quaternion or euler."""
     def __init__(self, spec: Mapping[str, Any] | str, fps: float = 24.0) -> None:
         """Builds the track; Error with the place inside spec."""
     @property

@@ -132,6 +132,25 @@ def test_fcurve_track_matches_a_baked_scene(source_dir):
         np.testing.assert_array_equal(got, values[:, idx], err_msg=spec["name"])
 
 
+def test_fcurve_track_takes_modifiers():
+    # Keys y = t (linear); a Generator 1 + 2t - 0.5t^2 replaces them (closed form, exact in float at
+    # these frames), a Stepped modifier below it steps the frame first (time modifiers run last to first).
+    keys = [{"frame": 0, "value": 0, "interpolation": "linear"}, {"frame": 10, "value": 10, "interpolation": "linear"}]
+    gen = {"type": "generator", "coefficients": [1, 2, -0.5]}
+    track = inbetween.Track({"keys": keys, "modifiers": [gen]})
+    t = np.array([-4.0, 0.0, 2.5, 7.0])
+    np.testing.assert_array_equal(track.sample(t), 1 + 2 * t - 0.5 * t * t)
+    stepped = inbetween.Track({"keys": keys, "modifiers": [gen, {"type": "stepped", "step": 2}]})
+    ts = np.trunc(t / 2) * 2
+    np.testing.assert_array_equal(stepped.sample(t), 1 + 2 * ts - 0.5 * ts * ts)
+    with pytest.raises(inbetween.Error) as info:
+        inbetween.Track({"keys": keys, "modifiers": [{"type": "limits"}, {"type": "generator", "coefficients": [1]}]})
+    assert info.value.where == "/modifiers/1/coefficients"
+    with pytest.raises(inbetween.Error) as info:
+        inbetween.Track({"keys": keys, "modifiers": [{"type": "wobble"}]})
+    assert info.value.where == "/modifiers/0/type"
+
+
 def test_arc_length_out_argument():
     c = inbetween.Curve({"type": "natural", "points": [[0, 0], [1, 2], [3, 3], [4, 0]]})
     arc = inbetween.ArcLength(c)

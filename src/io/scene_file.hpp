@@ -30,6 +30,13 @@ namespace inbetween::io_detail {
 /// A track object of "tracks" (any kind); scene_tracks.cpp.
 Expected<RawTrack> read_track(const json& tj, const Loc& loc);
 
+/// The F-curve members of `j` — "keys", "extrapolation", "auto_smoothing", "modifiers" and the
+/// older "cycles" (a first Cycles modifier) — as a RawFCurve: a scalar track, an action channel,
+/// a strip's keyed influence or time.  `j` may have only these members and `extra_members` (the
+/// caller's own, e.g. "name", "path", "index"), else the error names the unknown one.  Errors name
+/// the member's JSON pointer below `loc` (e.g. /tracks/3/modifiers/1/coefficients); scene_tracks.cpp.
+Expected<RawFCurve> read_fcurve_members(const json& j, const Loc& loc, std::initializer_list<std::string_view> extra_members);
+
 /// Keys and options of a quaternion track object (values and tangents as [w, x, y, z]);
 /// scene_tracks.cpp.
 Expected<RawQuatKeys> read_quat_keys(const json& j, const Loc& loc);
@@ -118,6 +125,9 @@ class SceneWriter {
   /// Keys, tangents and options of a quaternion track or channel into `out`.
   void quat_keys(ojson& out, const std::vector<QuatKey<double>>& keys, const std::vector<QuatKeyTangents<double>>& tangents,
                  double distance_factor, bool time_aware, const Loc& loc);
+  /// The F-curve members read_fcurve_members() reads ("keys", "extrapolation", "auto_smoothing",
+  /// "modifiers"), defaults left out, into `out`; `loc` is the place of `out` (for failures).
+  void fcurve_members(ojson& out, const RawFCurve& c, const Loc& loc);
   ojson track(const RawScalarTrack& t, const Loc& loc);  ///< a scalar (F-curve) track
   ojson track(const RawVectorTrack& t, const Loc& loc);  ///< a vector track
   ojson track(const RawQuatTrack& t, const Loc& loc);    ///< a quaternion track

@@ -3,6 +3,9 @@
 // translation, rotation and scale channels, each read and written side by side with one name table
 // per enumeration.
 #include <array>
+#include <initializer_list>
+#include <optional>
+#include <variant>
 #include <cmath>
 #include <span>
 #include <string>
@@ -74,47 +77,200 @@ Expected<int> count_member(const json& obj, const Loc& loc, std::string_view nam
   return int(*v);
 }
 
-Expected<RawScalarTrack> read_scalar_track(const json& j, const Loc& loc) {
-  if (auto ok = only_members(j, loc, {"name", "kind", "keys", "extrapolation", "auto_smoothing", "cycles"}); !ok) {
-    return ok.error();
+// ------------------------------------------------------------------ F-curve modifiers
+constexpr std::span<const std::string_view> kGenModes = enum_names<GeneratorMode>();
+constexpr std::span<const std::string_view> kFunctions = enum_names<BuiltinFunction>();
+constexpr std::span<const std::string_view> kNoiseBlend = enum_names<NoiseBlend>();
+
+// An optional number member that may also be null (off): nullopt when absent or null.
+Expected<std::optional<double>> optional_number(const json& obj, const Loc& loc, std::string_view name) {
+  auto it = obj.find(std::string(name));
+  if (it == obj.end() || it->is_null()) return std::optional<double>{};
+  auto v = number_member(obj, loc, name, std::nullopt);
+  if (!v) return v.error();
+  return std::optional<double>{*v};
+}
+
+// Reads the numbers named in `fields` into their targets (defaults kept when absent).
+Expected<void> numbers_into(const json& obj, const Loc& loc, std::initializer_list<std::pair<std::string_view, double*>> fields) {
+  for (auto [name, target] : fields) {
+    auto v = number_member(obj, loc, name, *target);
+    if (!v) return v.error();
+    *target = *v;
   }
+  return {};
+}
+
+Expected<FCurveCycles> read_cycles(const json& c, const Loc& cp) {
+  FCurveCycles cyc;
+  auto before = enum_member(c, cp, "before", CycleMode::repeat, kCycle);
+  if (!before) return before.error();
+  auto after = enum_member(c, cp, "after", CycleMode::repeat, kCycle);
+  if (!after) return after.error();
+  auto nb = count_member(c, cp, "count_before");
+  if (!nb) return nb.error();
+  auto na = count_member(c, cp, "count_after");
+  if (!na) return na.error();
+  cyc.before = *before;
+  cyc.after = *after;
+  cyc.count_before = *nb;
+  cyc.count_after = *na;
+  return cyc;
+}
+
+#define INBETWEEN_TRY(var, expr) \
+  auto var = (expr);             \
+  if (!var) return var.error()
+
+Expected<FCurveModifier> read_modifier(const json& j, const Loc& loc) {
+  if (!j.is_object()) return error_at(ErrorCode::invalid_argument, "a modifier must be an object", loc);
+  auto type_it = j.find("type");
+  if (type_it == j.end() || !type_it->is_string()) {
+    return error_at(ErrorCode::invalid_argument,
+                    "a modifier needs a \"type\" (one of: " + name_list(fmodifier_type_names) + ")", at(loc, "type"));
+  }
+  const std::string type = type_it->get<std::string>();
+  FCurveModifier m;
+  INBETWEEN_TRY(mute, bool_member(j, loc, "mute", false));
+  m.mute = *mute;
+  INBETWEEN_TRY(influence, optional_number(j, loc, "influence"));
+  m.influence = *influence;
+  if (auto r = j.find("range"); r != j.end() && !r->is_null()) {
+    const Loc rp = at(loc, "range");
+    if (!r->is_object()) return error_at(ErrorCode::invalid_argument, "\"range\" must be an object", rp);
+    if (auto ok = only_members(*r, rp, {"start", "end", "blend_in", "blend_out"}); !ok) return ok.error();
+    FModifierRange range;
+    INBETWEEN_TRY(start, number_member(*r, rp, "start", std::nullopt));
+    INBETWEEN_TRY(end, number_member(*r, rp, "end", std::nullopt));
+    range.start = *start;
+    range.end = *end;
+    if (auto ok = numbers_into(*r, rp, {{"blend_in", &range.blend_in}, {"blend_out", &range.blend_out}}); !ok) return ok.error();
+    m.range = range;
+  }
+  auto members = [&](std::initializer_list<std::string_view> own) -> Expected<void> {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      bool known = it.key() == "type" || it.key() == "mute" || it.key() == "influence" || it.key() == "range";
+      for (std::string_view a : own) known = known || it.key() == a;
+      if (!known) {
+        return error_at(ErrorCode::invalid_argument,
+                        "unknown member \"" + io_detail::truncated(it.key()) + "\" of a " + type +
+                            " modifier (expected type, mute, influence, range or one of: " + name_list(own) + ")",
+                        at(loc, it.key()));
+      }
+    }
+    return {};
+  };
+  if (type == "generator") {
+    if (auto ok = members({"mode", "additive", "coefficients"}); !ok) return ok.error();
+    FCurveGenerator g;
+    INBETWEEN_TRY(mode, enum_member(j, loc, "mode", GeneratorMode::expanded, kGenModes));
+    INBETWEEN_TRY(additive, bool_member(j, loc, "additive", false));
+    g.mode = *mode;
+    g.additive = *additive;
+    if (auto c = j.find("coefficients"); c != j.end()) {
+      const Loc cp = at(loc, "coefficients");
+      if (!c->is_array()) return error_at(ErrorCode::invalid_argument, "\"coefficients\" must be an array of numbers", cp);
+      g.coefficients.clear();
+      for (std::size_t i = 0; i < c->size(); ++i) {
+        INBETWEEN_TRY(v, get_number((*c)[i], at(cp, i)));
+        g.coefficients.push_back(*v);
+      }
+    }
+    m.kind = std::move(g);
+  } else if (type == "function") {
+    if (auto ok = members({"function", "amplitude", "phase_multiplier", "phase_offset", "value_offset", "additive"}); !ok) {
+      return ok.error();
+    }
+    FCurveFunction f;
+    INBETWEEN_TRY(fn, enum_member(j, loc, "function", BuiltinFunction::sin, kFunctions));
+    INBETWEEN_TRY(additive, bool_member(j, loc, "additive", false));
+    f.function = *fn;
+    f.additive = *additive;
+    if (auto ok = numbers_into(j, loc, {{"amplitude", &f.amplitude}, {"phase_multiplier", &f.phase_multiplier},
+                                        {"phase_offset", &f.phase_offset}, {"value_offset", &f.value_offset}});
+        !ok) {
+      return ok.error();
+    }
+    m.kind = f;
+  } else if (type == "envelope") {
+    if (auto ok = members({"reference", "default_min", "default_max", "points"}); !ok) return ok.error();
+    FCurveEnvelope e;
+    if (auto ok = numbers_into(j, loc, {{"reference", &e.reference}, {"default_min", &e.default_min},
+                                        {"default_max", &e.default_max}});
+        !ok) {
+      return ok.error();
+    }
+    if (auto p = j.find("points"); p != j.end()) {
+      const Loc pp = at(loc, "points");
+      if (!p->is_array()) return error_at(ErrorCode::invalid_argument, "\"points\" must be an array", pp);
+      for (std::size_t i = 0; i < p->size(); ++i) {
+        const json& pj = (*p)[i];
+        const Loc ip = at(pp, i);
+        if (!pj.is_object()) return error_at(ErrorCode::invalid_argument, "a point must be an object", ip);
+        if (auto ok = only_members(pj, ip, {"frame", "min", "max"}); !ok) return ok.error();
+        FCurveEnvelopePoint point;
+        INBETWEEN_TRY(frame, number_member(pj, ip, "frame", std::nullopt));
+        INBETWEEN_TRY(mn, number_member(pj, ip, "min", std::nullopt));
+        INBETWEEN_TRY(mx, number_member(pj, ip, "max", std::nullopt));
+        point.frame = *frame, point.min = *mn, point.max = *mx;
+        e.points.push_back(point);
+      }
+    }
+    m.kind = std::move(e);
+  } else if (type == "cycles") {
+    if (auto ok = members({"before", "after", "count_before", "count_after"}); !ok) return ok.error();
+    INBETWEEN_TRY(c, read_cycles(j, loc));
+    m.kind = *c;
+  } else if (type == "noise") {
+    if (auto ok = members({"blend", "scale", "strength", "phase", "offset", "depth"}); !ok) return ok.error();
+    FCurveNoise n;
+    INBETWEEN_TRY(blend, enum_member(j, loc, "blend", NoiseBlend::replace, kNoiseBlend));
+    n.blend = *blend;
+    if (auto ok = numbers_into(j, loc, {{"scale", &n.scale}, {"strength", &n.strength}, {"phase", &n.phase},
+                                        {"offset", &n.offset}});
+        !ok) {
+      return ok.error();
+    }
+    INBETWEEN_TRY(depth, count_member(j, loc, "depth"));
+    n.depth = *depth;
+    m.kind = n;
+  } else if (type == "limits") {
+    if (auto ok = members({"min_x", "max_x", "min_y", "max_y"}); !ok) return ok.error();
+    FCurveLimits l;
+    for (auto [name, target] : {std::pair<std::string_view, std::optional<double>*>{"min_x", &l.min_x},
+                                {"max_x", &l.max_x}, {"min_y", &l.min_y}, {"max_y", &l.max_y}}) {
+      INBETWEEN_TRY(v, optional_number(j, loc, name));
+      *target = *v;
+    }
+    m.kind = l;
+  } else if (type == "stepped") {
+    if (auto ok = members({"step", "offset", "start", "end"}); !ok) return ok.error();
+    FCurveStepped st;
+    if (auto ok = numbers_into(j, loc, {{"step", &st.step}, {"offset", &st.offset}}); !ok) return ok.error();
+    INBETWEEN_TRY(start, optional_number(j, loc, "start"));
+    INBETWEEN_TRY(end, optional_number(j, loc, "end"));
+    st.start = *start;
+    st.end = *end;
+    m.kind = st;
+  } else {
+    return error_at(ErrorCode::invalid_argument,
+                    "unknown modifier type \"" + io_detail::truncated(type) + "\" (expected one of: " +
+                        name_list(fmodifier_type_names) + ")",
+                    at(loc, "type"));
+  }
+  return m;
+}
+
+#undef INBETWEEN_TRY
+
+Expected<RawScalarTrack> read_scalar_track(const json& j, const Loc& loc) {
   RawScalarTrack track;
   auto name = name_of(j, loc);
   if (!name) return name.error();
   track.name = *name;
-  auto extrap = enum_member(j, loc, "extrapolation", Extrapolation::constant, kExtrap);
-  if (!extrap) return extrap.error();
-  auto smooth = enum_member(j, loc, "auto_smoothing", AutoSmoothing::none, kSmooth);
-  if (!smooth) return smooth.error();
-  track.curve.extrapolation = *extrap;
-  track.curve.auto_smoothing = *smooth;
-  if (auto c = j.find("cycles"); c != j.end()) {
-    const Loc cp = at(loc, "cycles");
-    if (!c->is_object()) return error_at(ErrorCode::invalid_argument, "\"cycles\" must be an object", cp);
-    if (auto ok = only_members(*c, cp, {"before", "after", "count_before", "count_after"}); !ok) return ok.error();
-    FCurveCycles cyc;
-    auto before = enum_member(*c, cp, "before", CycleMode::repeat, kCycle);
-    if (!before) return before.error();
-    auto after = enum_member(*c, cp, "after", CycleMode::repeat, kCycle);
-    if (!after) return after.error();
-    auto nb = count_member(*c, cp, "count_before");
-    if (!nb) return nb.error();
-    auto na = count_member(*c, cp, "count_after");
-    if (!na) return na.error();
-    cyc.before = *before;
-    cyc.after = *after;
-    cyc.count_before = *nb;
-    cyc.count_after = *na;
-    track.curve.cycles = cyc;
-  }
-  auto keys = key_array(j, loc, {"frame", "value", "interpolation", "easing", "handle_left_type", "handle_right_type",
-                                 "handle_left", "handle_right", "back", "amplitude", "period"});
-  if (!keys) return keys.error();
-  for (std::size_t i = 0; i < (*keys)->size(); ++i) {
-    auto key = read_fcurve_key((**keys)[i], at(at(loc, "keys"), i));
-    if (!key) return key.error();
-    track.curve.keys.push_back(*key);
-  }
+  auto curve = read_fcurve_members(j, loc, {"name", "kind"});
+  if (!curve) return curve.error();
+  track.curve = std::move(*curve);
   return track;
 }
 
@@ -191,6 +347,65 @@ Expected<RawVectorTrack> read_vector_track(const json& j, const Loc& loc, Vector
 
 // Keys and options of a quaternion track object (values and tangents as [w, x, y, z]).
 }  // namespace
+
+Expected<RawFCurve> read_fcurve_members(const json& j, const Loc& loc, std::initializer_list<std::string_view> extra_members) {
+  static constexpr std::string_view own[] = {"keys", "extrapolation", "auto_smoothing", "modifiers", "cycles"};
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    bool known = false;
+    for (std::string_view a : own) known = known || it.key() == a;
+    for (std::string_view a : extra_members) known = known || it.key() == a;
+    if (!known) {
+      std::string expected;
+      for (std::string_view a : extra_members) expected += std::string(a) + ", ";
+      return error_at(ErrorCode::invalid_argument,
+                      "unknown member \"" + io_detail::truncated(it.key()) + "\" (expected one of: " + expected +
+                          name_list(std::span<const std::string_view>(own)) + ")",
+                      at(loc, it.key()));
+    }
+  }
+  RawFCurve curve;
+  auto extrap = enum_member(j, loc, "extrapolation", Extrapolation::constant, kExtrap);
+  if (!extrap) return extrap.error();
+  auto smooth = enum_member(j, loc, "auto_smoothing", AutoSmoothing::none, kSmooth);
+  if (!smooth) return smooth.error();
+  curve.extrapolation = *extrap;
+  curve.auto_smoothing = *smooth;
+  const auto c = j.find("cycles");
+  const auto mods = j.find("modifiers");
+  if (c != j.end() && mods != j.end()) {
+    return error_at(ErrorCode::invalid_argument,
+                    "\"cycles\" (the older spelling of a first Cycles modifier) and \"modifiers\" together; put the "
+                    "Cycles modifier first in \"modifiers\"",
+                    at(loc, "cycles"));
+  }
+  if (c != j.end()) {
+    const Loc cp = at(loc, "cycles");
+    if (!c->is_object()) return error_at(ErrorCode::invalid_argument, "\"cycles\" must be an object", cp);
+    if (auto ok = only_members(*c, cp, {"before", "after", "count_before", "count_after"}); !ok) return ok.error();
+    auto cyc = read_cycles(*c, cp);
+    if (!cyc) return cyc.error();
+    curve.modifiers.push_back(FCurveModifier{.kind = *cyc});
+  }
+  if (mods != j.end()) {
+    const Loc mp = at(loc, "modifiers");
+    if (!mods->is_array()) return error_at(ErrorCode::invalid_argument, "\"modifiers\" must be an array", mp);
+    for (std::size_t i = 0; i < mods->size(); ++i) {
+      auto m = read_modifier((*mods)[i], at(mp, i));
+      if (!m) return m.error();
+      curve.modifiers.push_back(std::move(*m));
+    }
+  }
+  auto keys = key_array(j, loc, {"frame", "value", "interpolation", "easing", "handle_left_type", "handle_right_type",
+                                 "handle_left", "handle_right", "back", "amplitude", "period"});
+  if (!keys) return keys.error();
+  for (std::size_t i = 0; i < (*keys)->size(); ++i) {
+    auto key = read_fcurve_key((**keys)[i], at(at(loc, "keys"), i));
+    if (!key) return key.error();
+    curve.keys.push_back(*key);
+  }
+  return curve;
+}
+
 
 Expected<RawQuatKeys> read_quat_keys(const json& j, const Loc& loc) {
   RawQuatKeys out;
@@ -396,20 +611,98 @@ void SceneWriter::quat_keys(ojson& out, const std::vector<QuatKey<double>>& keys
   if (!time_aware) out["time_aware"] = false;
 }
 
-ojson SceneWriter::track(const RawScalarTrack& t, const Loc& loc) {
-  ojson j = ojson::object();
-  j["name"] = t.name;
-  j["kind"] = "scalar";
-  const RawFCurve& c = t.curve;
+namespace {
+// A modifier's own members (after "type" and the common ones), defaults left out.
+void modifier_members(SceneWriter& w, ojson& mj, const FCurveModifier& m, const Loc& loc) {
+  auto put = [&](const char* name, double v, double fallback) {
+    if (v != fallback) mj[name] = w.number(v, at(loc, name));
+  };
+  auto put_optional = [&](const char* name, const std::optional<double>& v) {
+    if (v) mj[name] = w.number(*v, at(loc, name));
+  };
+  std::visit(
+      [&](const auto& k) {
+        using T = std::decay_t<decltype(k)>;
+        if constexpr (std::is_same_v<T, FCurveGenerator>) {
+          if (k.mode != GeneratorMode::expanded) mj["mode"] = enum_text(k.mode, kGenModes);
+          if (k.additive) mj["additive"] = true;
+          ojson c = ojson::array();
+          for (std::size_t i = 0; i < k.coefficients.size(); ++i) c.push_back(w.number(k.coefficients[i], at(at(loc, "coefficients"), i)));
+          mj["coefficients"] = std::move(c);
+        } else if constexpr (std::is_same_v<T, FCurveFunction>) {
+          mj["function"] = enum_text(k.function, kFunctions);
+          put("amplitude", k.amplitude, 1);
+          put("phase_multiplier", k.phase_multiplier, 1);
+          put("phase_offset", k.phase_offset, 0);
+          put("value_offset", k.value_offset, 0);
+          if (k.additive) mj["additive"] = true;
+        } else if constexpr (std::is_same_v<T, FCurveEnvelope>) {
+          put("reference", k.reference, 0);
+          put("default_min", k.default_min, -1);
+          put("default_max", k.default_max, 1);
+          ojson pts = ojson::array();
+          for (std::size_t i = 0; i < k.points.size(); ++i) {
+            const Loc pl = at(at(loc, "points"), i);
+            ojson pj = ojson::object();
+            pj["frame"] = w.number(k.points[i].frame, at(pl, "frame"));
+            pj["min"] = w.number(k.points[i].min, at(pl, "min"));
+            pj["max"] = w.number(k.points[i].max, at(pl, "max"));
+            pts.push_back(std::move(pj));
+          }
+          mj["points"] = std::move(pts);
+        } else if constexpr (std::is_same_v<T, FCurveCycles>) {
+          mj["before"] = std::string(to_string(k.before));
+          mj["after"] = std::string(to_string(k.after));
+          if (k.count_before != 0) mj["count_before"] = k.count_before;
+          if (k.count_after != 0) mj["count_after"] = k.count_after;
+        } else if constexpr (std::is_same_v<T, FCurveNoise>) {
+          if (k.blend != NoiseBlend::replace) mj["blend"] = enum_text(k.blend, kNoiseBlend);
+          put("scale", k.scale, 1);
+          put("strength", k.strength, 1);
+          put("phase", k.phase, 1);
+          put("offset", k.offset, 0);
+          if (k.depth != 0) mj["depth"] = k.depth;
+        } else if constexpr (std::is_same_v<T, FCurveLimits>) {
+          put_optional("min_x", k.min_x);
+          put_optional("max_x", k.max_x);
+          put_optional("min_y", k.min_y);
+          put_optional("max_y", k.max_y);
+        } else if constexpr (std::is_same_v<T, FCurveStepped>) {
+          put("step", k.step, 2);
+          put("offset", k.offset, 0);
+          put_optional("start", k.start);
+          put_optional("end", k.end);
+        }
+      },
+      m.kind);
+}
+}  // namespace
+
+void SceneWriter::fcurve_members(ojson& j, const RawFCurve& c, const Loc& loc) {
   if (c.extrapolation != Extrapolation::constant) j["extrapolation"] = std::string(to_string(c.extrapolation));
   if (c.auto_smoothing != AutoSmoothing::none) j["auto_smoothing"] = std::string(to_string(c.auto_smoothing));
-  if (c.cycles) {
-    ojson cj = ojson::object();
-    cj["before"] = std::string(to_string(c.cycles->before));
-    cj["after"] = std::string(to_string(c.cycles->after));
-    cj["count_before"] = c.cycles->count_before;
-    cj["count_after"] = c.cycles->count_after;
-    j["cycles"] = std::move(cj);
+  if (!c.modifiers.empty()) {
+    ojson list = ojson::array();
+    for (std::size_t i = 0; i < c.modifiers.size(); ++i) {
+      const FCurveModifier& m = c.modifiers[i];
+      const Loc ml = at(at(loc, "modifiers"), i);
+      ojson mj = ojson::object();
+      mj["type"] = std::string(type_name(m));
+      if (m.mute) mj["mute"] = true;
+      if (m.influence) mj["influence"] = number(*m.influence, at(ml, "influence"));
+      if (m.range) {
+        const Loc rl = at(ml, "range");
+        ojson rj = ojson::object();
+        rj["start"] = number(m.range->start, at(rl, "start"));
+        rj["end"] = number(m.range->end, at(rl, "end"));
+        if (m.range->blend_in != 0) rj["blend_in"] = number(m.range->blend_in, at(rl, "blend_in"));
+        if (m.range->blend_out != 0) rj["blend_out"] = number(m.range->blend_out, at(rl, "blend_out"));
+        mj["range"] = std::move(rj);
+      }
+      modifier_members(*this, mj, m, ml);
+      list.push_back(std::move(mj));
+    }
+    j["modifiers"] = std::move(list);
   }
   ojson list = ojson::array();
   const FCurveKey defaults;
@@ -431,6 +724,13 @@ ojson SceneWriter::track(const RawScalarTrack& t, const Loc& loc) {
     list.push_back(std::move(kj));
   }
   j["keys"] = std::move(list);
+}
+
+ojson SceneWriter::track(const RawScalarTrack& t, const Loc& loc) {
+  ojson j = ojson::object();
+  j["name"] = t.name;
+  j["kind"] = "scalar";
+  fcurve_members(j, t.curve, loc);
   return j;
 }
 

@@ -280,7 +280,23 @@ Expected<void> check_finite(double v, std::initializer_list<LocationStep> at) {
   return {};
 }
 
-bool has_modifiers(const RawFCurve& c) { return c.cycles.has_value(); }
+// calc_action_range with modifiers: only the last modifier of the stack counts (Blender's comment:
+// "only really care about the last modifier"); a Cycles modifier makes the range unbounded on the
+// sides it repeats, Limits widens it to its frame bounds, any other modifier makes it unbounded.
+void widen_by_modifiers(const RawFCurve& c, float& lo, float& hi) {
+  if (c.modifiers.empty()) return;
+  const FCurveModifier& last = c.modifiers.back();
+  if (const auto* cycles = std::get_if<FCurveCycles>(&last.kind)) {
+    if (cycles->before != CycleMode::none) lo = -kMaxFrame;
+    if (cycles->after != CycleMode::none) hi = kMaxFrame;
+  } else if (const auto* limits = std::get_if<FCurveLimits>(&last.kind)) {
+    if (limits->min_x) lo = std::min(lo, float(*limits->min_x));
+    if (limits->max_x) hi = std::max(hi, float(*limits->max_x));
+  } else {
+    lo = -kMaxFrame;
+    hi = kMaxFrame;
+  }
+}
 
 }  // namespace
 
@@ -295,7 +311,7 @@ Expected<BlenderActions> build_blender_actions(const std::vector<RawAction>& raw
     }
     Action a;
     float lo = std::numeric_limits<float>::max(), hi = -std::numeric_limits<float>::max();
-    bool keyed = false, modified = false;
+    bool keyed = false;
     for (std::size_t j = 0; j < ra.channels.size(); ++j) {
       const RawActionChannel& rc = ra.channels[j];
       const std::size_t p = std::size_t(rc.path);
@@ -320,12 +336,7 @@ Expected<BlenderActions> build_blender_actions(const std::vector<RawAction>& raw
       lo = std::min(lo, keys.front().x);
       hi = std::max(hi, keys.back().x);
       keyed = true;
-      if (has_modifiers(rc.curve)) {
-        // calc_action_range with modifiers: a Cycles modifier makes the range unbounded where it repeats.
-        if (rc.curve.cycles->before != CycleMode::none) lo = -kMaxFrame;
-        if (rc.curve.cycles->after != CycleMode::none) hi = kMaxFrame;
-        modified = true;
-      }
+      widen_by_modifiers(rc.curve, lo, hi);
       a.paths |= std::uint8_t(1u << p);
       a.written |= 1u << slot;
       if (rc.path == ActionPath::rotation_quaternion) {
@@ -335,7 +346,6 @@ Expected<BlenderActions> build_blender_actions(const std::vector<RawAction>& raw
       }
       a.channels.push_back({slot, std::move(*curve)});
     }
-    (void)modified;
     if (keyed) {
       if (lo == hi) hi += 1.0f;
       a.key_start = std::max(lo, -kMaxFrame);

@@ -78,19 +78,17 @@ Expected<FCurve> build_fcurve(const RawFCurve& raw) {
     }
     curve.keys_.push_back(s);
   }
-  if (raw.cycles) {
-    const FCurveCycles& c = *raw.cycles;
-    for (auto [member, count] : {std::pair<const char*, int>{"count_before", c.count_before}, {"count_after", c.count_after}}) {
-      if (count < 0 || count > 32767) {
-        return Error{ErrorCode::invalid_argument, "expected a whole number in 0..32767 (0 = forever)",
-                     {"cycles", std::string(member)}};
-      }
-    }
+  for (std::size_t i = 0; i < raw.modifiers.size(); ++i) {
+    if (auto e = fcurve_detail::check_modifier(raw.modifiers[i], i)) return std::move(*e);
   }
   curve.extrapolation_ = raw.extrapolation;
   curve.smoothing_ = raw.auto_smoothing;
-  curve.cycles_ = raw.cycles;
-  recalc_handles(curve.keys_, raw.extrapolation, raw.auto_smoothing, raw.cycles);
+  curve.modifiers_ = raw.modifiers;
+  // One plain Cycles modifier is the fast path (map_cycles); any other stack runs evaluate_stack.
+  if (raw.modifiers.size() == 1) {
+    if (const FCurveCycles* c = fcurve_detail::leading_cycles(raw.modifiers)) curve.simple_cycles_ = *c;
+  }
+  recalc_handles(curve.keys_, raw.extrapolation, raw.auto_smoothing, fcurve_detail::leading_cycles(raw.modifiers));
   return curve;
 }
 

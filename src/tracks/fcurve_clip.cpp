@@ -14,7 +14,23 @@ namespace inbetween {
 
 using namespace fcurve_clip_detail;
 
+namespace {
+// The runtime compiles keys and one plain Cycles modifier; any other modifier stack is refused.
+std::optional<Error> unsupported_modifiers(std::span<const FCurve> curves) {
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    if (!curves[c].modifiers().empty() && curves[c].simple_cycles() == nullptr) {
+      return Error{ErrorCode::unsupported,
+                   "curve " + std::to_string(c) +
+                       ": the F-curve runtime compiles keys and a lone Cycles modifier only, not this modifier stack "
+                       "(sample it with FCurve::sample)"};
+    }
+  }
+  return std::nullopt;
+}
+}  // namespace
+
 Expected<FCurveClip> build_fcurve_clip(std::span<const FCurve> curves, FCurveClipOptions options) {
+  if (auto e = unsupported_modifiers(curves)) return std::move(*e);
   FCurveClip clip;
   clip.channels_ = curves.size();
   FCurveClipAccess::compile(curves, options, clip);
@@ -27,6 +43,7 @@ Expected<FCurveClip> build_fcurve_rig(std::span<const FCurve> curves, FCurveClip
                  "a rig needs 10 F-curves per joint (location xyz, rotation_quaternion wxyz, scale xyz); got " +
                      std::to_string(curves.size())};
   }
+  if (auto e = unsupported_modifiers(curves)) return std::move(*e);
   FCurveClip clip;
   clip.channels_ = curves.size();
   clip.joints_ = curves.size() / 10;

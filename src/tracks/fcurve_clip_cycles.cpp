@@ -21,7 +21,7 @@ void FCurveClipAccess::compile(std::span<const FCurve> curves, const FCurveClipO
     ch.begin.push_back(std::uint32_t(ch.data.size() / B));
     if (cycles_frames(curves[c])) {
       const auto keys = curves[c].keys();
-      const FCurveCycles& m = *curves[c].cycles();
+      const FCurveCycles& m = *curves[c].simple_cycles();
       const float x0 = keys.front().x, x1 = keys.back().x;
       std::size_t q = 0;
       for (; q < clip.classes_.size(); ++q) {

@@ -228,8 +228,8 @@ void compile_curve(const FCurve& curve, const FCurveClipOptions& options, std::v
 
 // A curve whose Cycles modifier changes some frame: ≥ 2 keys (a period) and a side that cycles.
 bool cycles_frames(const FCurve& curve) {
-  const auto& cy = curve.cycles();
-  return cy && curve.keys().size() >= 2 && (cy->before != CycleMode::none || cy->after != CycleMode::none);
+  const FCurveCycles* cy = curve.simple_cycles();
+  return cy != nullptr && curve.keys().size() >= 2 && (cy->before != CycleMode::none || cy->after != CycleMode::none);
 }
 
 }  // namespace inbetween::fcurve_clip_detail

@@ -76,11 +76,11 @@ FCurve::CycleMap FCurve::map_cycles(float frame) const noexcept {
   // ±inf acts as the largest finite frame: linear extrapolation would give 0·inf and the Cycles
   // modifier fmod(inf, ·), both NaN.
   if (std::isinf(frame)) frame = std::copysign(std::numeric_limits<float>::max(), frame);
-  if (!cycles_) return {frame, 0.0f, 1.0f};
+  if (!simple_cycles_) return {frame, 0.0f, 1.0f};
   const Key& first = keys_.front();
   const Key& last = keys_.back();
   const fcurve_detail::CycleDecision d =
-      fcurve_detail::decide_cycles(*cycles_, first.x, first.y, last.x, last.y, frame);
+      fcurve_detail::decide_cycles(*simple_cycles_, first.x, first.y, last.x, last.y, frame);
   return {d.t, d.offset, d.sign};
 }
 

@@ -348,6 +348,10 @@ float FCurve::sample(float frame, TrackCursor& cursor) const noexcept {
 float FCurve::evaluate_impl(float frame, std::size_t* cursor) const noexcept {
   if (keys_.empty()) return 0.0f;
   if (std::isnan(frame)) return keys_.front().y;
+  if (!modifiers_.empty() && !simple_cycles_) {
+    if (std::isinf(frame)) frame = std::copysign(std::numeric_limits<float>::max(), frame);
+    return evaluate_stack(frame, cursor);
+  }
   const CycleMap m = map_cycles(frame);
   return evaluate_keys(m.t, cursor) + m.offset;
 }
@@ -407,6 +411,14 @@ double FCurve::segment_second_derivative(int index, double t) const noexcept {
 double FCurve::second_derivative(float frame) const noexcept {
   if (keys_.empty() || std::isnan(frame)) return 0.0;
   if (std::isinf(frame)) frame = std::copysign(std::numeric_limits<float>::max(), frame);
+  if (!modifiers_.empty() && !simple_cycles_) {
+    // A general stack: the central difference of the (analytic) derivative, documented in fcurve.hpp.
+    constexpr float h = 1.0f / 256.0f;
+    const float fp = frame + h, fm = frame - h;
+    if (!(fp > fm)) return 0.0;
+    const double out = (derivative(fp) - derivative(fm)) / (double(fp) - double(fm));
+    return std::isfinite(out) ? out : 0.0;
+  }
   const CycleMap m = map_cycles(frame);
   const float t = m.t;
   const int n = int(keys_.size());
@@ -422,8 +434,13 @@ double FCurve::second_derivative(float frame) const noexcept {
 double FCurve::derivative(float frame) const noexcept {
   if (keys_.empty() || std::isnan(frame)) return 0.0;
   if (std::isinf(frame)) frame = std::copysign(std::numeric_limits<float>::max(), frame);
+  if (!modifiers_.empty() && !simple_cycles_) return stack_derivative(frame);
   const CycleMap m = map_cycles(frame);
-  const float t = m.t;
+  const double out = double(m.sign) * keys_derivative(m.t);
+  return std::isfinite(out) ? out : 0.0;
+}
+
+double FCurve::keys_derivative(float t) const noexcept {
   const int n = int(keys_.size());
   double slope = 0.0;
   if (t < keys_.front().x) {
@@ -437,8 +454,7 @@ double FCurve::derivative(float frame) const noexcept {
     k = std::clamp(k, 0, n - 2);
     slope = segment_derivative(k, double(t));
   }
-  const double out = double(m.sign) * slope;
-  return std::isfinite(out) ? out : 0.0;
+  return std::isfinite(slope) ? slope : 0.0;
 }
 
 void FCurve::sample(std::span<const float> frames, std::span<float> out, TrackCursor& cursor) const noexcept {

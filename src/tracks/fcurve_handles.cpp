@@ -521,8 +521,8 @@ void recover_aligned_before_smoothing(Key& k, const Key& computed, Vec2f given_l
   }
 }
 
-bool cycle_aware(const std::optional<FCurveCycles>& cycles) noexcept {
-  if (!cycles) return false;
+bool cycle_aware(const FCurveCycles* cycles) noexcept {
+  if (cycles == nullptr) return false;
   auto periodic = [](CycleMode m) { return m == CycleMode::repeat || m == CycleMode::repeat_offset; };
   return cycles->count_before == 0 && cycles->count_after == 0 && periodic(cycles->before) &&
          periodic(cycles->after);
@@ -531,7 +531,7 @@ bool cycle_aware(const std::optional<FCurveCycles>& cycles) noexcept {
 }  // namespace
 
 void recalc_handles(std::vector<Key>& keys, Extrapolation extrapolation, AutoSmoothing smoothing,
-                    const std::optional<FCurveCycles>& cycles) {
+                    const FCurveCycles* cycles) {
   const int n = int(keys.size());
   if (n < 2) return;
   Key& first = keys[0];

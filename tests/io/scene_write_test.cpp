@@ -24,7 +24,7 @@ RawScene every_member() {
   sc.name = "s";
   sc.curve.extrapolation = Extrapolation::linear;
   sc.curve.auto_smoothing = AutoSmoothing::cont_accel;
-  sc.curve.cycles = FCurveCycles{CycleMode::mirror, CycleMode::repeat_offset, 2, 3};
+  sc.curve.modifiers = {FCurveModifier{.kind = FCurveCycles{CycleMode::mirror, CycleMode::repeat_offset, 2, 3}}};
   FCurveKey k0;
   k0.frame = 1;
   k0.value = 0.1;

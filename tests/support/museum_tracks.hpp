@@ -70,8 +70,8 @@ inline std::vector<FCurveExhibit> museum_fcurves() {
                          key(100.001, -10, HandleType::automatic), key(200, 0, HandleType::automatic)},
                 .auto_smoothing = AutoSmoothing::cont_accel}});
   m.push_back({"cycles with two keys at one value",
-               {.keys = {key(0, 3), key(8, 3)}, .cycles = FCurveCycles{.before = CycleMode::mirror,
-                                                                      .after = CycleMode::repeat_offset}}});
+               {.keys = {key(0, 3), key(8, 3)}, .modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::mirror,
+                                                                      .after = CycleMode::repeat_offset}}}}});
   m.push_back({"elastic with zero amplitude and period", {.keys = {[] {
                                                             FCurveKey k = museum_detail::key(0, 0);
                                                             k.interpolation = Interpolation::elastic;

@@ -255,7 +255,7 @@ FCurve random_cycling_curve(test::Random& rng, bool integral) {
   cy.after = CycleMode(rng.integer(0, 3));
   if (rng.integer(0, 1)) cy.count_before = rng.integer(0, 3);
   if (rng.integer(0, 1)) cy.count_after = rng.integer(0, 3);
-  raw.cycles = cy;
+  raw.modifiers = {FCurveModifier{.kind = cy}};
   return build_fcurve(raw).value();
 }
 
@@ -314,7 +314,7 @@ void cycling_agreement(std::uint64_t seed, bool integral) {
   const auto clip = build_fcurve_clip(curves);
   ASSERT_TRUE(clip) << clip.error().describe();
   EXPECT_EQ(clip->cycling_channels(), std::size_t(std::count_if(curves.begin(), curves.end(), [](const FCurve& c) {
-              return c.cycles()->before != CycleMode::none || c.cycles()->after != CycleMode::none;
+              return c.simple_cycles()->before != CycleMode::none || c.simple_cycles()->after != CycleMode::none;
             })));
   auto ctx = make_fcurve_clip_cursor(*clip);
   CycleCheck check;
@@ -351,7 +351,7 @@ TEST(FCurveClipCycles, BlendersRecordedMirrorAndOffsetExample) {
   const std::pair<double, double> keys[] = {{0.0, 0.0}, {10.0, 10.0}, {20.0, 4.0}};
   for (const auto& [x, y] : keys)
     raw.keys.push_back(FCurveKey{.frame = x, .value = y, .interpolation = Interpolation::linear});
-  raw.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset};
+  raw.modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}}};
   const std::vector<FCurve> curves{build_fcurve(raw).value()};
   const auto clip = build_fcurve_clip(curves);
   ASSERT_TRUE(clip);
@@ -377,7 +377,7 @@ TEST(FCurveClipCycles, WalkCycleRigAgreesAndNormalises) {
       RawFCurve raw;
       for (int i = 0; i <= 24; i += 6) raw.keys.push_back(FCurveKey{.frame = double(i), .value = rng.uniform<double>(-1, 1)});
       raw.keys.back().value = raw.keys.front().value;  // a closed loop
-      raw.cycles = FCurveCycles{.before = CycleMode::repeat, .after = k < 3 ? CycleMode::repeat_offset : CycleMode::repeat};
+      raw.modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::repeat, .after = k < 3 ? CycleMode::repeat_offset : CycleMode::repeat}}};
       curves.push_back(build_fcurve(raw).value());
     }
   }
@@ -440,7 +440,7 @@ TEST(FCurveClip, RunsOfChannelsKeyedTogetherChangeNoValue) {
       FCurveCycles cy;
       cy.before = CycleMode(rng.integer(1, 3));
       cy.after = CycleMode(rng.integer(1, 3));
-      raw.cycles = cy;
+      raw.modifiers = {FCurveModifier{.kind = cy}};
     }
     push_joint(raw, curves);
   }

@@ -112,7 +112,7 @@ TEST(FCurve, ElasticAndBackDefaults) {
 
 TEST(FCurve, CyclesMirrorBeforeRepeatOffsetAfter) {
   // Blender 3.4.1: LINEAR keys (0,0),(10,10),(20,4), Cycles before MIRROR, after REPEAT_OFFSET.
-  RawFCurve raw{.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}};
+  RawFCurve raw{.modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}}}};
   for (auto [x, y] : {std::pair{0., 0.}, {10., 10.}, {20., 4.}}) {
     FCurveKey k = inserted(x, y);
     k.interpolation = Interpolation::linear;
@@ -131,7 +131,7 @@ TEST(FCurve, CyclesMirrorBeforeRepeatOffsetAfter) {
 // value everywhere (no change per cycle, so no offset); otherwise the offset saturates, finite.
 TEST(FCurve, RepeatOffsetWithAnOverflowingCycleCountStaysANumber) {
   for (const double last_value : {3.0, 4.0}) {
-    RawFCurve raw{.cycles = FCurveCycles{.before = CycleMode::repeat_offset, .after = CycleMode::repeat_offset}};
+    RawFCurve raw{.modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::repeat_offset, .after = CycleMode::repeat_offset}}}};
     FCurveKey a = inserted(0, 3), b = inserted(double(std::numeric_limits<float>::denorm_min()), last_value);
     a.interpolation = b.interpolation = Interpolation::linear;
     raw.keys = {a, b};
@@ -147,7 +147,7 @@ TEST(FCurve, RepeatOffsetWithAnOverflowingCycleCountStaysANumber) {
 
 TEST(FCurve, CycleCountLimitsRepetition) {
   // With one cycle after, the second copy is not played: plain (constant) extrapolation takes over.
-  RawFCurve raw{.cycles = FCurveCycles{.before = CycleMode::none, .after = CycleMode::repeat, .count_after = 1}};
+  RawFCurve raw{.modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::none, .after = CycleMode::repeat, .count_after = 1}}}};
   FCurveKey a = inserted(0, 0), b = inserted(10, 10);
   a.interpolation = b.interpolation = Interpolation::linear;
   raw.keys = {a, b};
@@ -358,7 +358,7 @@ TEST(FCurve, CyclesRepeatIsPeriodic) {
   test::Random rng(test::seed_for(5006));
   SCOPED_TRACE(rng.trace());
   for (int trial = 0; trial < 50; ++trial) {
-    RawFCurve raw{.cycles = FCurveCycles{}};
+    RawFCurve raw{.modifiers = {FCurveModifier{.kind = FCurveCycles{}}}};
     double x = 0;
     for (int i = 0; i < 4; ++i) {
       raw.keys.push_back(inserted(x, rng.uniform(-5.0, 5.0)));
@@ -384,7 +384,8 @@ TEST(FCurve, CursorGivesExactlyTheSearchedValue) {
   std::vector<RawFCurve> curves;
   for (const auto& ex : test::museum_fcurves()) curves.push_back(ex.curve);
   for (int trial = 0; trial < 30; ++trial) {
-    RawFCurve raw{.cycles = trial % 3 ? std::nullopt : std::optional<FCurveCycles>(FCurveCycles{})};
+    RawFCurve raw;
+    if (trial % 3 == 0) raw.modifiers = {FCurveModifier{.kind = FCurveCycles{}}};
     double x = rng.uniform(-20.0, 20.0);
     for (int i = 0; i < rng.integer(2, 30); ++i) {
       FCurveKey k = inserted(x, rng.uniform(-5.0, 5.0));
@@ -453,11 +454,11 @@ TEST(FCurveBuild, RejectsBadKeysNamingTheKey) {
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(json_pointer(r.error().location), "/keys/0");
 
-  RawFCurve bad_count{.keys = {inserted(0, 0)}, .cycles = FCurveCycles{.count_after = -1}};
+  RawFCurve bad_count{.keys = {inserted(0, 0)}, .modifiers = {FCurveModifier{.kind = FCurveCycles{.count_after = -1}}}};
   r = build_fcurve(bad_count);
   ASSERT_FALSE(r.has_value());
   EXPECT_EQ(r.error().code, ErrorCode::invalid_argument);
-  EXPECT_EQ(json_pointer(r.error().location), "/cycles/count_after");
+  EXPECT_EQ(json_pointer(r.error().location), "/modifiers/0/count_after");
 }
 
 TEST(FCurveNames, RoundTrip) {
@@ -554,7 +555,7 @@ TEST(FCurveDerivative, CyclesMirrorNegatesAndRepeatOffsetKeepsTheSlope) {
   // The Blender-measured curve of CyclesMirrorBeforeRepeatOffsetAfter: linear (0,0),(10,10),(20,4),
   // mirror before, repeat_offset after.  Frame −5 mirrors frame 5 (slope 1 → −1); frame −15 mirrors
   // frame 15 of the backward copy (slope −0.6 → +0.6); frame 25 repeats frame 5 (slope 1).
-  RawFCurve raw{.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}};
+  RawFCurve raw{.modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}}}};
   for (auto [x, y] : {std::pair{0., 0.}, {10., 10.}, {20., 4.}}) {
     FCurveKey k = inserted(x, y);
     k.interpolation = Interpolation::linear;
@@ -602,7 +603,7 @@ TEST(FCurveSecondDerivative, BezierWithLinearFrameIsTheCubicsClosedForm) {
 TEST(FCurveSecondDerivative, CyclesKeepTheSignOnAMirroredCopy) {
   // d²/dframe² of y(c − frame) is y″: a mirrored copy keeps the second derivative's sign while
   // the first derivative flips; repeat_offset adds a constant.
-  RawFCurve raw{.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}};
+  RawFCurve raw{.modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}}}};
   raw.keys = {test::museum_detail::free_key(0, 1, {-3, -3}, {3, 5}), test::museum_detail::free_key(9, 7, {6, 0}, {12, 14})};
   const FCurve c = build(raw);
   for (float x : {0.5f, 2.f, 4.5f, 7.25f}) {

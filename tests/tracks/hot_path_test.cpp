@@ -116,9 +116,9 @@ TEST(HotPath, CyclingFCurveClipSamplingNeverAllocates) {
     k.value = double((i * 7) % 5);
     raw.keys.push_back(k);
   }
-  raw.cycles = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset};
+  raw.modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::mirror, .after = CycleMode::repeat_offset}}};
   std::vector<FCurve> curves(20, *build_fcurve(raw));
-  raw.cycles = FCurveCycles{.before = CycleMode::repeat, .after = CycleMode::mirror, .count_before = 2};
+  raw.modifiers = {FCurveModifier{.kind = FCurveCycles{.before = CycleMode::repeat, .after = CycleMode::mirror, .count_before = 2}}};
   curves[3] = *build_fcurve(raw);
   const auto clip = build_fcurve_rig(curves);
   ASSERT_TRUE(clip);

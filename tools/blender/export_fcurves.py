@@ -11,12 +11,14 @@ exported as "<action>.<data path>.<component>".  Handles are written as Blender 
 (absolute frame/value); inbetween recomputes the automatic and vector ones exactly as Blender's
 FCurve.update() does, so a curve whose handles are up to date evaluates to Blender's numbers.
 
-Only what inbetween reproduces is exported: keyframes, extrapolation, auto smoothing and a Cycles
-modifier that is the first modifier at full influence without a frame range.  Curves with other
-modifiers, baked samples or drivers are skipped with a warning on stderr.
+Exported: keyframes, extrapolation, auto smoothing and every F-curve modifier of Blender 3.4 (Generator,
+Built-in Function, Envelope, Cycles, Noise, Limits, Stepped) with its mute, influence and restricted
+frame range.  Skipped with a warning on stderr: baked sample curves, drivers, and a Stepped modifier
+with a restricted range (Blender's Python API cannot read that range).
 
 The module can also be imported (the agreement test does): fcurve_to_track(fcurve, name) returns
-one track as a dict, export_scene(scene, action_name=None) the whole document.
+one track as a dict, modifiers_to_list(fcurve) its modifier stack, export_scene(scene,
+action_name=None) the whole document.
 """
 
 import json
@@ -43,22 +45,60 @@ def curve_name(owner, fcurve):
     return "%s.%s.%s" % (owner, fcurve.data_path, comp)
 
 
-def _cycles(fcurve):
-    """The Cycles modifier as a dict, None when absent; raises ValueError when not exportable."""
-    mods = list(fcurve.modifiers)
-    if not mods:
-        return None
-    first = mods[0]
-    if len(mods) > 1 or first.type != "CYCLES":
-        raise ValueError("modifiers other than a single Cycles modifier are not supported")
-    if first.mute:
-        return None
-    if first.use_restricted_range or first.use_influence:
-        raise ValueError("a Cycles modifier with a frame range or influence is not supported")
-    return {
-        "before": first.mode_before.lower(), "after": first.mode_after.lower(),
-        "count_before": int(first.cycles_before), "count_after": int(first.cycles_after),
-    }
+GENERATOR_MODES = {"POLYNOMIAL": "expanded", "POLYNOMIAL_FACTORISED": "factorised"}
+
+
+def modifier_to_dict(m):
+    """One F-curve modifier as the scene format's modifier object (docs/scene-format.md), every member
+    written; raises ValueError for what the format cannot hold."""
+    out = {}
+    t = m.type
+    if t == "GENERATOR":
+        out = {"type": "generator", "mode": GENERATOR_MODES[m.mode], "additive": bool(m.use_additive),
+               "coefficients": [float(c) for c in m.coefficients]}
+    elif t == "FNGENERATOR":
+        out = {"type": "function", "function": m.function_type.lower(), "amplitude": m.amplitude,
+               "phase_multiplier": m.phase_multiplier, "phase_offset": m.phase_offset,
+               "value_offset": m.value_offset, "additive": bool(m.use_additive)}
+    elif t == "ENVELOPE":
+        out = {"type": "envelope", "reference": m.reference_value, "default_min": m.default_min,
+               "default_max": m.default_max,
+               "points": [{"frame": p.frame, "min": p.min, "max": p.max} for p in m.control_points]}
+    elif t == "CYCLES":
+        out = {"type": "cycles", "before": m.mode_before.lower(), "after": m.mode_after.lower(),
+               "count_before": int(m.cycles_before), "count_after": int(m.cycles_after)}
+    elif t == "NOISE":
+        out = {"type": "noise", "blend": m.blend_type.lower(), "scale": m.scale, "strength": m.strength,
+               "phase": m.phase, "offset": m.offset, "depth": int(m.depth)}
+    elif t == "LIMITS":
+        out = {"type": "limits",
+               "min_x": m.min_x if m.use_min_x else None, "max_x": m.max_x if m.use_max_x else None,
+               "min_y": m.min_y if m.use_min_y else None, "max_y": m.max_y if m.use_max_y else None}
+    elif t == "STEPPED":
+        # Blender's Python API names the step range frame_start/frame_end, hiding the restricted range's
+        # members of the same names: a restricted range on a Stepped modifier cannot be read.
+        if m.use_restricted_range:
+            raise ValueError("a Stepped modifier with a restricted frame range (Blender's Python API cannot read "
+                             "that range: its frame_start/frame_end are the step range's)")
+        out = {"type": "stepped", "step": m.frame_step, "offset": m.frame_offset,
+               "start": m.frame_start if m.use_frame_start else None,
+               "end": m.frame_end if m.use_frame_end else None}
+    else:
+        raise ValueError("a %s modifier (not a Blender 3.4 F-curve modifier inbetween knows)" % t)
+    # A modifier Blender has disabled (a Cycles modifier once evaluated below the top) does nothing,
+    # as a muted one.
+    out["mute"] = bool(m.mute) or not m.is_valid
+    if m.use_influence:
+        out["influence"] = m.influence
+    if m.use_restricted_range and t != "STEPPED":
+        out["range"] = {"start": m.frame_start, "end": m.frame_end, "blend_in": m.blend_in,
+                        "blend_out": m.blend_out}
+    return out
+
+
+def modifiers_to_list(fcurve):
+    """The F-curve's modifier stack (top first) as a list of modifier objects."""
+    return [modifier_to_dict(m) for m in fcurve.modifiers]
 
 
 def fcurve_to_track(fcurve, name):
@@ -80,9 +120,9 @@ def fcurve_to_track(fcurve, name):
         "extrapolation": fcurve.extrapolation.lower(),
         "auto_smoothing": fcurve.auto_smoothing.lower(),
     }
-    cycles = _cycles(fcurve)
-    if cycles is not None:
-        track["cycles"] = cycles
+    modifiers = modifiers_to_list(fcurve)
+    if modifiers:
+        track["modifiers"] = modifiers
     return track
 
 

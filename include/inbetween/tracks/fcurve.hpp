@@ -2,7 +2,8 @@
 /// Scalar animation curves with Blender's F-curve semantics (Blender 3.4): per-key interpolation of
 /// the segment to the key's right (constant, linear, Bézier, Penner easings), Bézier handle types
 /// recomputed as Blender recomputes them (including auto-smoothing "continuous acceleration"),
-/// overshooting handles corrected, constant/linear extrapolation and the Cycles modifier.
+/// overshooting handles corrected, constant/linear extrapolation and Blender's F-curve modifiers
+/// (fmodifier.hpp).
 ///
 /// Blender stores and evaluates F-curves in single precision, and its results depend on that
 /// rounding (key snapping, Cycles boundaries, the Bézier root finder).  A built FCurve therefore
@@ -20,6 +21,7 @@
 #include "inbetween/math/vec.hpp"
 #include "inbetween/timing/penner.hpp"
 #include "inbetween/math/enum_names.hpp"
+#include "inbetween/tracks/fmodifier.hpp"
 #include "inbetween/tracks/track.hpp"
 
 namespace inbetween {
@@ -97,30 +99,6 @@ constexpr std::span<const std::string_view> enum_names<AutoSmoothing>() noexcept
   return auto_smoothing_names;
 }
 
-/// Repetition mode on one side of a Cycles modifier.
-enum class CycleMode : std::uint8_t {
-  none,           ///< no cycling on this side
-  repeat,         ///< repeat the keyed range
-  repeat_offset,  ///< repeat, shifted by (last value − first value) per cycle
-  mirror,         ///< alternate forwards and backwards copies
-};
-
-/// File and command-line names of the CycleMode enumerators, in declaration order.
-inline constexpr std::array<std::string_view, 4> cycle_mode_names = {"none", "repeat", "repeat_offset", "mirror"};
-/// The name table of CycleMode (math/enum_names.hpp).
-template <>
-constexpr std::span<const std::string_view> enum_names<CycleMode>() noexcept {
-  return cycle_mode_names;
-}
-
-/// Blender's Cycles modifier (as the first and only modifier, full influence, no frame range).
-struct FCurveCycles {
-  CycleMode before = CycleMode::repeat;  ///< before the first key
-  CycleMode after = CycleMode::repeat;   ///< after the last key
-  int count_before = 0;                  ///< number of copies before; 0 = forever (0..32767)
-  int count_after = 0;                   ///< number of copies after; 0 = forever (0..32767)
-};
-
 /// One key as authored.  Frames and values are in the curve's units; handles are absolute
 /// (frame, value) points.  Handles of free and aligned sides are used as given (aligned ones
 /// re-aligned); those of vector, automatic and auto_clamped sides are recomputed when the curve
@@ -147,7 +125,8 @@ struct RawFCurve {
   std::vector<FCurveKey> keys;                            ///< at least one key
   Extrapolation extrapolation = Extrapolation::constant;  ///< outside the keyed range
   AutoSmoothing auto_smoothing = AutoSmoothing::none;     ///< for automatic handles
-  std::optional<FCurveCycles> cycles;                     ///< the Cycles modifier, if any
+  /// Blender's F-curve modifiers in stack order (first = top of Blender's list); fmodifier.hpp.
+  std::vector<FCurveModifier> modifiers;
 };
 
 /// A built F-curve: validated keys (single precision, as Blender stores them) with their handles
@@ -201,6 +180,12 @@ class FCurve {
   /// one-sided derivatives of the keyed range); outside the keys the extrapolation's slope (0 for
   /// constant), and with the Cycles modifier the slope of the cycled copy (negated on the
   /// backward copies of `mirror`).  Blender's 1e-4 snap of sample() to a key's value is ignored.
+  /// Any other modifier stack: the chain rule through it, in double — time modifiers multiply by
+  /// their own d t'/d t (Cycles ±1, Limits and Stepped 0 where they clamp or snap, else 1), value
+  /// modifiers by their closed-form partial derivatives (Generator, Function, Envelope, Limits), the
+  /// influence blend and its ramp over blend in/out included; Noise counts by the central difference
+  /// of its turbulence over ±1/64 frame.  Where sample() jumps (Stepped, Limits edges, a range's end
+  /// without blend out) the one-sided derivative of the piece holding `frame`.
   /// NaN gives 0; never NaN for a built curve.
   [[nodiscard]] double derivative(float frame) const noexcept;
 
@@ -210,8 +195,10 @@ class FCurve {
   /// unbounded); linear and constant segments 0; the Penner easings their closed forms
   /// (penner_ease_acceleration).  At an interior key the segment to the right counts, at the last
   /// key the one to the left; outside the keys 0 (constant and linear extrapolation); with the
-  /// Cycles modifier that of the cycled copy (a mirrored copy keeps its sign).  NaN gives 0; never
-  /// NaN for a built curve.
+  /// Cycles modifier that of the cycled copy (a mirrored copy keeps its sign).  Any other modifier
+  /// stack: the central difference of derivative() over ±1/256 frame (exact for the polynomial
+  /// pieces up to O(h²); meaningless within 1/256 frame of a jump).  NaN gives 0; never NaN for a
+  /// built curve.
   [[nodiscard]] double second_derivative(float frame) const noexcept;
 
   /// The stored keys, with recomputed handles.
@@ -220,8 +207,11 @@ class FCurve {
   [[nodiscard]] Extrapolation extrapolation() const noexcept { return extrapolation_; }
   /// Curve-level handle smoothing.
   [[nodiscard]] AutoSmoothing auto_smoothing() const noexcept { return smoothing_; }
-  /// The Cycles modifier, if any.
-  [[nodiscard]] const std::optional<FCurveCycles>& cycles() const noexcept { return cycles_; }
+  /// The modifier stack, as authored (fmodifier.hpp).
+  [[nodiscard]] std::span<const FCurveModifier> modifiers() const noexcept { return modifiers_; }
+  /// The Cycles modifier when it is the whole stack, unmuted, at full influence and without a frame
+  /// range (the common case that the runtime, FCurveClip, folds); nullptr otherwise.
+  [[nodiscard]] const FCurveCycles* simple_cycles() const noexcept { return simple_cycles_ ? &*simple_cycles_ : nullptr; }
 
  private:
   friend Expected<FCurve> build_fcurve(const RawFCurve& raw);
@@ -233,6 +223,9 @@ class FCurve {
     float sign = 1;    // d t / d frame: −1 on a mirrored copy
   };
   CycleMap map_cycles(float frame) const noexcept;
+  float evaluate_stack(float frame, std::size_t* cursor) const noexcept;        // fmodifier_eval.cpp
+  double stack_derivative(float frame) const noexcept;                          // fmodifier_eval.cpp
+  double keys_derivative(float t) const noexcept;  // d value / d t of the keys alone at (mapped) frame t
   double segment_derivative(int index, double t) const noexcept;
   double segment_second_derivative(int index, double t) const noexcept;
   double extrapolation_slope(bool before) const noexcept;
@@ -244,15 +237,19 @@ class FCurve {
   std::vector<Key> keys_;
   Extrapolation extrapolation_ = Extrapolation::constant;
   AutoSmoothing smoothing_ = AutoSmoothing::none;
-  std::optional<FCurveCycles> cycles_;
+  std::vector<FCurveModifier> modifiers_;
+  std::optional<FCurveCycles> simple_cycles_;  // the stack is this one plain Cycles modifier
 };
 
 /// Validates `raw` (≥ 1 key; frames finite and strictly increasing, also after rounding to single
 /// precision; frames, values, handles and easing parameters finite and within ±1e30, so that they
-/// fit single precision; cycle counts in 0..32767) and builds
+/// fit single precision) and its modifiers (fmodifier.hpp: every number finite and within ±1e30;
+/// cycle counts and noise depth in 0..32767; a generator's coefficient count; envelope points in
+/// increasing frame order, default_min ≠ default_max; step > 0; influence in [0, 1]; a range with
+/// start ≤ end and blend in/out ≥ 0) and builds
 /// the curve: handles clamped to their key's side, then recomputed as Blender's FCurve.update()
 /// does.  Error locations: {"keys", i} or {"keys", i, "frame"} for a key, {"keys"} when there is
-/// none, {"cycles", "count_before"} / {"cycles", "count_after"} for a count.
+/// none, {"modifiers", i, member} for a modifier's member (e.g. {"modifiers", 1, "coefficients"}).
 [[nodiscard]] Expected<FCurve> build_fcurve(const RawFCurve& raw);
 
 /// The lower-case Blender name of each enumerator ("auto_clamped", "repeat_offset", …).

@@ -207,7 +207,8 @@ class FCurveClip {
 };
 
 /// Compiles curves (any number) into a clip; channel c is curves[c].  Curves with a Cycles modifier
-/// are folded at sampling (see the file comment).  No errors today (the Expected leaves room).
+/// are folded at sampling (see the file comment).  Error (unsupported): a curve with a modifier
+/// stack other than one plain Cycles modifier (FCurve::simple_cycles), which the runtime does not compile.
 [[nodiscard]] Expected<FCurveClip> build_fcurve_clip(std::span<const FCurve> curves, FCurveClipOptions options = {});
 
 /// Compiles 10 curves per joint (curves[10·j + k], k: location x y z, rotation_quaternion w x y z,
