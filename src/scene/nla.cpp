@@ -62,29 +62,30 @@ float strip_action_time(const Strip& s, float t) noexcept {
 }
 
 // nlastrips_ctime_get_strip: the strip of a track that acts at `t`, and the time its controls are
-// evaluated at (clamped to the strip when held); nullptr when none.
+// evaluated at (clamped to the strip when held); nullptr when none.  Blender walks the strips in
+// order; the strips of a track are sorted and do not overlap, so a binary search on the starts
+// finds the same strip in O(log n): inside a strip (the earlier of two that touch at `t`), before
+// the first (only a `hold` strip acts, at its start), between two (the earlier one unless
+// `nothing`, at its end) or after the last (unless `nothing`, at its end).
 const Strip* strip_at(std::span<const Strip> strips, float t, float& clamped) noexcept {
-  const Strip* found = nullptr;
   clamped = t;
-  for (std::size_t i = 0; i < strips.size(); ++i) {
-    const Strip& s = strips[i];
-    if ((t >= s.start && t <= s.end) || s.no_time_map) return s.muted ? nullptr : &s;
-    if (t < s.start) {
-      if (i == 0) {
-        if (s.extrapolation == NlaExtrapolation::hold) found = &s;
-        clamped = s.start;
-      } else {
-        const Strip& previous = strips[i - 1];
-        if (previous.extrapolation != NlaExtrapolation::nothing) found = &previous;
-        clamped = previous.end;
-      }
-      break;
-    }
-    if (t > s.end && i + 1 == strips.size()) {
-      if (s.extrapolation != NlaExtrapolation::nothing) found = &s;
-      clamped = s.end;
-      break;
-    }
+  if (strips.empty() || std::isnan(t)) return nullptr;
+  if (strips.size() == 1 && strips[0].no_time_map) return strips[0].muted ? nullptr : &strips[0];
+  // k = number of strips that start at or before t.
+  const std::size_t k = std::size_t(
+      std::upper_bound(strips.begin(), strips.end(), t, [](float time, const Strip& s) { return time < s.start; }) -
+      strips.begin());
+  const Strip* found = nullptr;
+  if (k == 0) {
+    if (strips[0].extrapolation == NlaExtrapolation::hold) found = &strips[0];
+    clamped = strips[0].start;
+  } else if (k >= 2 && t <= strips[k - 2].end) {
+    return strips[k - 2].muted ? nullptr : &strips[k - 2];  // touching strips: the earlier one
+  } else if (t <= strips[k - 1].end) {
+    return strips[k - 1].muted ? nullptr : &strips[k - 1];
+  } else {
+    if (strips[k - 1].extrapolation != NlaExtrapolation::nothing) found = &strips[k - 1];
+    clamped = strips[k - 1].end;
   }
   if (found == nullptr || found->muted) return nullptr;
   return found;
