@@ -132,6 +132,38 @@ TEST(SceneNlaBlender, WriterRoundTripsVersion3) {
   }
 }
 
+// --space local for Blender objects: compose(parent world, local) is the world transform, with the
+// local columns parent_inverse · local (the recorded parent_inverse case: three levels, a
+// non-identity parent_inverse, three rotation modes).
+TEST(SceneNlaBlender, LocalSpaceComposesToWorld) {
+  for (const auto& c : recorded().at("cases")) {
+    if (c.at("case") != "parent_inverse") continue;
+    auto scene = parse_scene(c.at("scene").dump());
+    ASSERT_TRUE(scene) << scene.error().message;
+    std::vector<double> world(scene->columns().size()), local(scene->columns().size());
+    SceneCursor a(*scene), b(*scene);
+    const auto nodes = scene->objects();
+    for (double f : {-4.0, 3.25, 9.5, 17.75, 30.0}) {
+      scene->sample(f, world, a, Space::world);
+      scene->sample(f, local, b, Space::local);
+      for (std::size_t i = 0; i < nodes.size(); ++i) {
+        if (!nodes[i].parent) continue;
+        auto trs = [&](const std::vector<double>& v, std::size_t object) {
+          std::size_t k = 0;
+          while (scene->columns()[k].name != nodes[object].name + ".translation.x") ++k;
+          const double* x = v.data() + k;
+          return Transform<double>{{x[0], x[1], x[2]}, Quatd::from_wxyz(x[3], x[4], x[5], x[6]), {x[7], x[8], x[9]}};
+        };
+        const Transform<double> composed = compose(trs(world, *nodes[i].parent), trs(local, i));
+        const Transform<double> expected = trs(world, i);
+        EXPECT_LT(norm(composed.translation - expected.translation), 1e-9) << nodes[i].name << " frame " << f;
+        EXPECT_LT(std::fabs(std::fabs(dot(normalized(composed.rotation), normalized(expected.rotation))) - 1), 1e-12);
+        EXPECT_LT(norm(composed.scale - expected.scale), 1e-9);
+      }
+    }
+  }
+}
+
 // A small valid version-3 scene, changed by each bad-input test.
 nlohmann::json base_scene() {
   return nlohmann::json::parse(R"({
