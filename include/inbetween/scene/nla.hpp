@@ -31,28 +31,32 @@ inline constexpr std::array<std::uint8_t, 6> blender_path_slots = {0, 3, 6, 10, 
 namespace nla_detail {
 /// A built action: its F-curves by channel slot.
 struct Action {
+  /// One F-curve and the channel slot it writes.
   struct Channel {
-    std::uint8_t slot = 0;  // index into the channel values
-    FCurve curve;           // the F-curve
+    std::uint8_t slot = 0;  ///< index into the channel values
+    FCurve curve;           ///< the F-curve
   };
-  std::vector<Channel> channels;
-  std::uint8_t paths = 0;    // bit p: the action animates ActionPath p
-  std::uint32_t domain = 0;  // bit k: the NLA writes channel slot k for this action (a quaternion: all four)
-  std::uint32_t written = 0;  // bit k: the action has an F-curve for slot k
-  float key_start = 0, key_end = 0;  // Blender's calc_action_range (modifiers included)
-  float range_start = 0, range_end = 0;  // the manual frame range, else the keys' range (new strips)
+  std::vector<Channel> channels;  ///< the F-curves, file order
+  std::uint8_t paths = 0;    ///< bit p: the action animates ActionPath p
+  std::uint32_t domain = 0;  ///< bit k: the NLA writes channel slot k for this action (a quaternion: all four)
+  std::uint32_t written = 0;  ///< bit k: the action has an F-curve for slot k
+  float key_start = 0, key_end = 0;  ///< Blender's calc_action_range (modifiers included)
+  float range_start = 0, range_end = 0;  ///< the manual frame range, else the keys' range (new strips)
 };
 
 /// A built strip (or the active action as Blender's dummy strip), in single precision as Blender stores it.
 struct Strip {
-  std::uint32_t action = 0;
+  std::uint32_t action = 0;  ///< index of the strip's action
+  /// Scene frames, action frames, time scale, repetitions and the influence ramps, as Blender stores them.
   float start = 0, end = 0, actstart = 0, actend = 0, scale = 1, repeat = 1, blend_in = 0, blend_out = 0;
-  float influence = 1;  // the constant of a fixed (user) influence
+  float influence = 1;  ///< the constant of a fixed (user) influence
+  /// Played backwards; muted; animated influence on; time mapping off (the active action unless
+  /// its extrapolation is nothing); cyclic animated strip time.
   bool reverse = false, muted = false, user_influence = false, no_time_map = false, cyclic_time = false;
-  NlaBlend blend = NlaBlend::replace;
-  NlaExtrapolation extrapolation = NlaExtrapolation::hold;
-  std::optional<FCurve> influence_curve;  // animated influence
-  std::optional<FCurve> time_curve;       // animated strip time
+  NlaBlend blend = NlaBlend::replace;                        ///< blend type
+  NlaExtrapolation extrapolation = NlaExtrapolation::hold;  ///< extrapolation
+  std::optional<FCurve> influence_curve;  ///< animated influence
+  std::optional<FCurve> time_curve;       ///< animated strip time
 };
 }  // namespace nla_detail
 
