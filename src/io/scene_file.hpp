@@ -8,6 +8,7 @@
 //   scene_objects.cpp  "objects" (hierarchy, rest transform, channels) and "skins"
 //   scene_paths.cpp    "paths" and an object's "path" legs (speed, orientation), version 2
 //   scene_cameras.cpp  an object's "camera", version 2
+//   scene_nla.cpp      "actions" and an object's Blender members (rotation modes, parent_inverse, NLA), version 3
 //
 // Readers check shape only (build_scene() checks values) and put structured locations on their
 // errors; the writer writes what the readers read, member for member, defaults left out.

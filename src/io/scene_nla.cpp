@@ -1,7 +1,8 @@
 // The scene file's Blender parts (version 3, docs/scene-format.md "Version 3: actions and NLA"):
 // the document's "actions", and an object's "rotation_mode", base rotations, "parent_inverse" and
 // "animation" (NLA tracks and strips), read and written side by side.  F-curves (action channels,
-// a strip's influence and strip_time) are read and written as scalar tracks without name and kind.
+// a strip's influence and strip_time) have the members of a scalar track without name and kind
+// (read_fcurve_members / fcurve_members of scene_tracks.cpp).
 #include <string>
 #include <string_view>
 #include <utility>
@@ -19,22 +20,10 @@ constexpr std::span<const std::string_view> kBlends{nla_blend_names};
 constexpr std::span<const std::string_view> kExtrapolations{nla_extrapolation_names};
 constexpr std::span<const std::string_view> kPaths{action_path_names};
 
-// F-curve members of an object that also has `extra` members: read through the scalar-track reader
-// (so that every F-curve member it knows is read here too), the extra members removed first.
+// An F-curve object with the caller's `extra` members (the F-curve members are read_fcurve_members()'s).
 Expected<RawFCurve> read_fcurve_object(const json& j, const Loc& loc, std::initializer_list<std::string_view> extra) {
   if (!j.is_object()) return error_at(ErrorCode::invalid_argument, "expected an F-curve object, found " + type_name(j), loc);
-  for (std::string_view member : {"name", "kind"}) {
-    if (j.contains(std::string(member))) {
-      return error_at(ErrorCode::invalid_argument, "unknown member \"" + std::string(member) + "\" (an F-curve has no name or kind)",
-                      at(loc, std::string(member)));
-    }
-  }
-  json copy = j;
-  for (std::string_view member : extra) copy.erase(std::string(member));
-  copy["name"] = "";
-  auto track = read_track(copy, loc);
-  if (!track) return track.error();
-  return std::get<RawScalarTrack>(std::move(*track)).curve;
+  return read_fcurve_members(j, loc, extra);
 }
 
 Expected<void> needs_version_3(const json& obj, const Loc& loc, const Context& cx, std::string_view member) {
@@ -258,10 +247,9 @@ std::string name_of_enum(Enum v, const std::array<std::string_view, N>& names) {
 }  // namespace
 
 ojson SceneWriter::fcurve(const RawFCurve& c, const Loc& loc) {
-  ojson track = this->track(RawScalarTrack{std::string(), c}, loc);
-  track.erase("name");
-  track.erase("kind");
-  return track;
+  ojson j = ojson::object();
+  fcurve_members(j, c, loc);
+  return j;
 }
 
 ojson SceneWriter::action(const RawAction& a, const Loc& loc) {
@@ -274,8 +262,7 @@ ojson SceneWriter::action(const RawAction& a, const Loc& loc) {
     ojson cj = ojson::object();
     cj["path"] = name_of_enum(c.path, action_path_names);
     cj["index"] = c.index;
-    const ojson curve = fcurve(c.curve, at(at(loc, "channels"), k));
-    for (auto it = curve.begin(); it != curve.end(); ++it) cj[it.key()] = it.value();
+    fcurve_members(cj, c.curve, at(at(loc, "channels"), k));
     channels.push_back(std::move(cj));
   }
   j["channels"] = std::move(channels);
