@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -27,7 +28,7 @@ using namespace io_detail;
 Expected<RawScene> read_scene(const json& root, Context cx) {
   const Loc doc;
   if (!root.is_object()) return error_at(ErrorCode::invalid_argument, "a scene must be a JSON object", doc);
-  if (auto ok = only_members(root, doc, {"inbetween", "fps", "range", "tracks", "paths", "objects", "skins"}); !ok) return ok.error();
+  if (auto ok = only_members(root, doc, {"inbetween", "fps", "range", "tracks", "paths", "objects", "skins", "actions"}); !ok) return ok.error();
   RawScene scene;
   auto version = root.find("inbetween");
   if (version == root.end()) {
@@ -36,7 +37,7 @@ Expected<RawScene> read_scene(const json& root, Context cx) {
   if (!version->is_number_integer() || version->get<long long>() < scene_format_version_min ||
       version->get<long long>() > scene_format_version_max) {
     return error_at(ErrorCode::unsupported,
-                    "unsupported format version " + io_detail::short_dump(*version) + " (this reader knows 1 and 2)",
+                    "unsupported format version " + io_detail::short_dump(*version) + " (this reader knows 1, 2 and 3)",
                     {"inbetween"});
   }
   cx.version = int(version->get<long long>());
@@ -65,6 +66,7 @@ Expected<RawScene> read_scene(const json& root, Context cx) {
     }
   }
   if (auto ok = read_paths(root, cx, scene); !ok) return ok.error();
+  if (auto ok = read_actions(root, cx, scene); !ok) return ok.error();
   if (auto o = root.find("objects"); o != root.end()) {
     if (!o->is_array()) return error_at(ErrorCode::invalid_argument, "\"objects\" must be an array", {"objects"});
     for (std::size_t i = 0; i < o->size(); ++i) {
@@ -155,13 +157,20 @@ Expected<Scene> parse_scene(std::string_view json_text, std::string_view source_
 Expected<std::string> write_scene_json(const RawScene& scene, const SceneWriteOptions& options) {
   io_detail::SceneWriter w;
   ojson root = ojson::object();
-  root["inbetween"] = 2;
+  const bool version_3 = !scene.actions.empty() ||
+                         std::any_of(scene.objects.begin(), scene.objects.end(), [](const RawObject& o) { return o.blender; });
+  root["inbetween"] = version_3 ? 3 : 2;
   root["fps"] = w.number(scene.fps, {"fps"});
   root["range"] = w.numbers({scene.range[0], scene.range[1]}, {"range"});
   if (!scene.paths.empty()) {
     ojson paths = ojson::array();
     for (const RawScenePath& p : scene.paths) paths.push_back(w.path(p));
     root["paths"] = std::move(paths);
+  }
+  if (!scene.actions.empty()) {
+    ojson actions = ojson::array();
+    for (std::size_t i = 0; i < scene.actions.size(); ++i) actions.push_back(w.action(scene.actions[i], {"actions", i}));
+    root["actions"] = std::move(actions);
   }
   if (!scene.tracks.empty()) {
     ojson tracks = ojson::array();

@@ -8,6 +8,7 @@
 //   scene_objects.cpp  "objects" (hierarchy, rest transform, channels) and "skins"
 //   scene_paths.cpp    "paths" and an object's "path" legs (speed, orientation), version 2
 //   scene_cameras.cpp  an object's "camera", version 2
+//   scene_nla.cpp      "actions" and an object's Blender members (rotation modes, parent_inverse, NLA), version 3
 //
 // Readers check shape only (build_scene() checks values) and put structured locations on their
 // errors; the writer writes what the readers read, member for member, defaults left out.
@@ -62,6 +63,11 @@ Expected<RawPathLeg> read_leg(const json& lj, const Loc& loc, const Context& cx)
 /// An object's "camera" (version 2; the object's caller checks the version); scene_cameras.cpp.
 Expected<RawCameraViewd> read_camera(const json& cj, const Loc& loc);
 
+/// Version 3: the document's "actions" into scene.actions (shape only); scene_nla.cpp.
+Expected<void> read_actions(const json& root, const Context& cx, RawScene& scene);
+/// Version 3: an object's rotation_mode, rotation_euler, rotation_axis_angle, parent_inverse and
+/// animation (sets object.blender when any is present); scene_nla.cpp.
+Expected<void> read_blender_members(const json& oj, const Loc& p, const Context& cx, RawObject& object);
 /// "\"<member>\" is a version-2 member" when `obj` has `member` and the file is version 1.
 Expected<void> needs_version_2(const json& obj, const Loc& loc, const Context& cx, std::string_view member);
 
@@ -143,6 +149,11 @@ class SceneWriter {
   ojson orientation(const RawPathLeg& leg, const Loc& loc);
   ojson leg(const RawPathLeg& leg, const Loc& loc);    ///< one leg of an object's "path"
 
+  // scene_nla.cpp
+  ojson fcurve(const RawFCurve& c, const Loc& loc);  ///< an F-curve object (a scalar track without name and kind)
+  ojson action(const RawAction& a, const Loc& loc);  ///< one element of "actions"
+  /// A Blender object's version-3 members into `j` (nothing unless o.blender).
+  void blender_members(ojson& j, const RawObject& o, const Loc& loc);
   // scene_cameras.cpp
   ojson camera(const RawCameraViewd& c, const Loc& loc);  ///< an object's "camera"
 };

@@ -53,7 +53,8 @@ Expected<void> read_path_and_camera(const json& oj, const Loc& p, const Context&
 
 Expected<RawObject> read_object(const json& oj, const Loc& p, const Context& cx) {
   if (!oj.is_object()) return error_at(ErrorCode::invalid_argument, "an object must be a JSON object", p);
-  if (auto ok = only_members(oj, p, {"name", "parent", "translation", "rotation", "scale", "path", "camera"}); !ok) {
+  if (auto ok = only_members(oj, p, {"name", "parent", "translation", "rotation", "scale", "path", "camera", "rotation_mode",
+                                   "rotation_euler", "rotation_axis_angle", "parent_inverse", "animation"}); !ok) {
     return ok.error();
   }
   RawObject object;
@@ -86,6 +87,7 @@ Expected<RawObject> read_object(const json& oj, const Loc& p, const Context& cx)
     }
   }
   if (auto ok = read_path_and_camera(oj, p, cx, object); !ok) return ok.error();
+  if (auto ok = read_blender_members(oj, p, cx, object); !ok) return ok.error();
   return object;
 }
 
@@ -147,6 +149,7 @@ ojson SceneWriter::object(const RawObject& o, const Loc& loc) {
     }
   }
   if (o.camera) j["camera"] = camera(*o.camera, at(loc, "camera"));
+  blender_members(j, o, loc);
   return j;
 }
 

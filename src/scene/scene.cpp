@@ -260,7 +260,11 @@ Expected<Scene> build_scene(const RawScene& raw) {
     }
   }
 
+  // Version 3: the actions, built once and shared by the Blender objects.
+  auto actions = build_blender_actions(raw.actions);
+  if (!actions) return actions.error();
   const std::size_t n = raw.objects.size();
+  std::vector<std::optional<BlenderObject>> blender_objects(n);
   std::map<std::string, std::size_t> object_index;  // object name → index
   if (n > 0) {
     std::vector<HierarchyNode<double>> nodes;
@@ -287,6 +291,17 @@ Expected<Scene> build_scene(const RawScene& raw) {
                         "a camera's rotation comes from its view: remove \"rotation\" (or view along it with "
                         "\"own_rotation\")",
                         {"objects", i, "rotation"});
+      }
+      if (o.blender) {
+        if (!o.path.empty() || o.camera) {
+          return error_at(ErrorCode::invalid_argument, "a Blender object (rotation_mode, parent_inverse, animation) cannot have a path or a camera",
+                          {"objects", i, o.camera ? "camera" : "path"});
+        }
+        auto blender = build_blender_object(o, raw.actions, *actions);
+        if (!blender) return prepended(blender.error(), {"objects", i});
+        blender_objects[i].emplace(std::move(*blender));
+        nodes.push_back(HierarchyNode<double>{o.name, std::nullopt, TransformTrack<double>{}});
+        continue;
       }
       auto local = build_local(o);
       if (!local) return prepended(local.error(), {"objects", i});
@@ -325,6 +340,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
     for (std::size_t i = 0; i < n; ++i) {
       const RawObject& o = raw.objects[i];
       Scene::ObjectExtra& extra = scene.extras_[i];
+      extra.blender = std::move(blender_objects[i]);
       double distance_before = 0;
       for (std::size_t k = 0; k < o.path.size(); ++k) {
         const RawPathLeg& leg = o.path[k];
@@ -602,7 +618,7 @@ void Scene::sample(double frame, std::span<double> out) const noexcept {
     const ObjectExtra& x = extras_[i];
     const std::optional<std::size_t>& parent = nodes[i].parent;
     const Transform<double> world_T_parent = parent ? get_trs(base + extras_[*parent].column) : Transform<double>{};
-    Transform<double> local = nodes[i].local.sample(frame);
+    Transform<double> local = x.blender ? x.blender->local_transform(frame) : nodes[i].local.sample(frame);
     const ScenePathLeg* leg = nullptr;
     PathSample on_path{};
     if (!x.legs.empty()) {

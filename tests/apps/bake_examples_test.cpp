@@ -59,9 +59,9 @@ TEST(BakeExamples, VersionTwoReadsAndBakesAsVersionOne) {
   const auto r = run_cli("bake \"" + v2.string() + "\"");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.out == slurp(kExpected / "bouncing_cube.csv"));
-  const auto bad = run_cli("bake -", "{\"inbetween\": 3}");
+  const auto bad = run_cli("bake -", "{\"inbetween\": 4}");
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_EQ(bad.err, "inbetween: -: /inbetween: unsupported format version 3 (this reader knows 1 and 2)\n");
+  EXPECT_EQ(bad.err, "inbetween: -: /inbetween: unsupported format version 4 (this reader knows 1, 2 and 3)\n");
 }
 
 // Issue 9, defects 1 and 2: a number beyond double's range and a 100 000-level nesting are user
@@ -83,7 +83,7 @@ TEST(BakeExamples, HugeNumbersAndDeepNestingAreUserErrors) {
   const std::string nested = "{\"inbetween\": " + std::string(500, '[') + std::string(500, ']') + "}";
   r = run_cli("bake -", nested);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "inbetween: -: /inbetween: unsupported format version array (this reader knows 1 and 2)\n");
+  EXPECT_EQ(r.err, "inbetween: -: /inbetween: unsupported format version array (this reader knows 1, 2 and 3)\n");
   const std::string long_string = "{\"inbetween\": \"" + std::string(100000, 'x') + "\"}";
   r = run_cli("bake -", long_string);
   EXPECT_EQ(r.exit_code, 2);

@@ -245,5 +245,59 @@ TEST(SceneHotPath, SampleNeverAllocatesAtAnyObjectCount) {
   }
 }
 
+
+// Version 3: Blender objects with two NLA tracks (every blend type, a keyed influence, animated
+// strip time, repeat and reverse) and an active action, under a parent with a parent_inverse, in
+// every rotation mode: sampling (world and local space) never allocates.
+TEST(SceneHotPath, NlaObjectsNeverAllocate) {
+  RawScene raw;
+  auto curve = [](float a, float b) {
+    RawFCurve c;
+    c.keys = {FCurveKey{.frame = 0, .value = a}, FCurveKey{.frame = 10, .value = b}};
+    return c;
+  };
+  RawAction walk{.name = "Walk"};
+  for (ActionPath path : {ActionPath::location, ActionPath::rotation_euler, ActionPath::rotation_quaternion,
+                          ActionPath::rotation_axis_angle, ActionPath::scale}) {
+    for (int index = 0; index < 3; ++index) walk.channels.push_back({path, index, curve(0.5f + float(index), 1.5f)});
+  }
+  raw.actions = {walk};
+  raw.actions.push_back(walk);
+  raw.actions.back().name = "Lean";
+  const RotationMode modes[] = {RotationMode::quaternion, RotationMode::axis_angle, RotationMode::xyz, RotationMode::zyx};
+  const NlaBlend blends[] = {NlaBlend::replace, NlaBlend::combine, NlaBlend::add, NlaBlend::subtract, NlaBlend::multiply};
+  for (std::size_t i = 0; i < 20; ++i) {
+    RawObject o;
+    o.name = "b" + std::to_string(i);
+    if (i > 0) o.parent = "b" + std::to_string(i - 1);
+    o.blender = true;
+    o.rotation_mode = modes[i % 4];
+    if (i % 3 == 1) o.parent_inverse = Transform<double>{Vec3d{1, 2, 3}, Quatd{}, Vec3d{2, 2, 2}}.to_matrix();
+    RawAnimation an;
+    an.action = "Lean";
+    an.action_blend = blends[(i + 1) % 5];
+    an.action_influence = 0.5;
+    RawNlaStrip base{.action = "Walk", .frame_start = 0, .repeat = 2, .reverse = i % 2 == 0, .extrapolation = NlaExtrapolation::hold};
+    RawNlaStrip upper{.action = "Lean", .frame_start = 4, .blend = blends[i % 5], .extrapolation = NlaExtrapolation::nothing};
+    upper.influence = curve(0, 1);
+    if (i % 2) upper.strip_time = curve(0, 20);
+    an.tracks = {RawNlaTrack{.name = "base", .strips = {base}}, RawNlaTrack{.name = "upper", .strips = {upper}}};
+    o.animation = an;
+    raw.objects.push_back(o);
+  }
+  auto scene = build_scene(raw);
+  ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+  std::vector<double> out(scene->columns().size());
+  SceneCursor cursor(*scene);
+  const long n = allocations_in([&] {
+    for (double frame = -5; frame <= 40; frame += 0.25) {
+      scene->sample(frame, out);
+      scene->sample(frame, out, cursor, Space::local);
+    }
+  });
+  EXPECT_EQ(n, 0);
+  for (double v : out) EXPECT_TRUE(std::isfinite(v));
+}
+
 }  // namespace
 }  // namespace inbetween

@@ -16,7 +16,7 @@ namespace inbetween {
 /// a version-1 file that uses them is an error saying it needs version 2).
 inline constexpr int scene_format_version_min = 1;
 /// The newest scene format version this reader accepts.
-inline constexpr int scene_format_version_max = 2;
+inline constexpr int scene_format_version_max = 3;
 
 /// Reads scene JSON text into a RawScene.  Errors: ErrorCode::parse at TextLine{L, C} ("line L,
 /// column C") for text that is not JSON (also a number beyond double's range, and nesting deeper

@@ -15,10 +15,12 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
 #include "inbetween/curves/any_curve.hpp"
+#include "inbetween/math/mat.hpp"
 #include "inbetween/math/quat.hpp"
 #include "inbetween/math/vec.hpp"
 #include "inbetween/scene/camera_view.hpp"
@@ -139,6 +141,88 @@ struct RawPathLeg {
   std::optional<RawQuatKeys> local_rotation_keys;
 };
 
+/// How a Blender object stores its rotation (file: an object's "rotation_mode", version 3): the
+/// quaternion, the axis-angle or one of the six Euler orders.  The Euler names are Blender's in
+/// lower case, which docs/conventions.md reads as fixed-angle orders: "xyz" = Blender XYZ = R_z·R_y·R_x.
+enum class RotationMode : std::uint8_t { quaternion, axis_angle, xyz, xzy, yxz, yzx, zxy, zyx };
+/// File names of RotationMode, in declaration order.
+inline constexpr std::array<std::string_view, 8> rotation_mode_names = {"quaternion", "axis_angle", "xyz", "xzy",
+                                                                        "yxz",        "yzx",        "zxy", "zyx"};
+
+/// An NLA strip's (or the active action's) blend type, Blender's NlaStrip.blend_type.
+enum class NlaBlend : std::uint8_t { replace, combine, add, subtract, multiply };
+/// File names of NlaBlend, in declaration order.
+inline constexpr std::array<std::string_view, 5> nla_blend_names = {"replace", "combine", "add", "subtract", "multiply"};
+
+/// An NLA strip's (or the active action's) extrapolation, Blender's NlaStrip.extrapolation.
+enum class NlaExtrapolation : std::uint8_t { hold, hold_forward, nothing };
+/// File names of NlaExtrapolation, in declaration order.
+inline constexpr std::array<std::string_view, 3> nla_extrapolation_names = {"hold", "hold_forward", "nothing"};
+
+/// The object property an action channel animates (Blender's F-curve data_path).
+enum class ActionPath : std::uint8_t { location, rotation_euler, rotation_quaternion, rotation_axis_angle, scale };
+/// File names of ActionPath, in declaration order.
+inline constexpr std::array<std::string_view, 5> action_path_names = {"location", "rotation_euler", "rotation_quaternion",
+                                                                      "rotation_axis_angle", "scale"};
+
+/// One F-curve of an action (file: actions[i].channels[j]): a property, an element of it and the
+/// curve (the members of a scalar track: keys, extrapolation, auto_smoothing, modifiers).
+struct RawActionChannel {
+  ActionPath path = ActionPath::location;  ///< the animated property
+  int index = 0;  ///< element of the property: 0..2 (location, rotation_euler, scale), 0..3 (w x y z; angle x y z)
+  RawFCurve curve;  ///< the F-curve (Blender semantics, evaluated in float)
+};
+
+/// A named action (file: "actions"[i], version 3): a set of F-curves that strips and objects use by name.
+struct RawAction {
+  std::string name;  ///< action name (non-empty, unique among actions)
+  /// Blender's manual frame range (use_frame_range); none: the range of the keys.
+  std::optional<std::array<double, 2>> frame_range;
+  std::vector<RawActionChannel> channels;  ///< the F-curves, each (path, index) at most once
+};
+
+/// An NLA action strip (file: an object's animation.tracks[t].strips[s]), Blender's NlaStrip.
+struct RawNlaStrip {
+  std::string name;    ///< strip name (informative)
+  std::string action;  ///< name of one of RawScene::actions
+  double frame_start = 1;                 ///< first frame of the strip in scene time
+  std::optional<double> frame_end;        ///< last frame; none: start + (action range) · scale · repeat (float)
+  std::optional<double> action_frame_start;  ///< first action frame used; none: the action's range start
+  std::optional<double> action_frame_end;    ///< last action frame used; none: the action's range end
+  double scale = 1;       ///< time scale (> 0)
+  double repeat = 1;      ///< number of repetitions (> 0)
+  bool reverse = false;   ///< play backwards
+  NlaBlend blend = NlaBlend::replace;               ///< how it blends onto the strips below
+  NlaExtrapolation extrapolation = NlaExtrapolation::hold;  ///< what it does outside its frames
+  double blend_in = 0;    ///< frames of the influence ramp at the start (≥ 0)
+  double blend_out = 0;   ///< frames of the influence ramp at the end (≥ 0; in + out ≤ length)
+  bool auto_blend = false;  ///< Blender's use_auto_blend (informative: the stored blend_in/out are used)
+  /// Blender's animated influence: none (off: the blend in/out ramps), a constant (on, a fixed
+  /// value in [0, 1]) or an F-curve (on, keyed).
+  std::variant<std::monostate, double, RawFCurve> influence;
+  std::optional<RawFCurve> strip_time;  ///< Blender's animated strip time (use_animated_time); none: off
+  bool strip_time_cyclic = false;       ///< use_animated_time_cyclic
+  bool mute = false;                    ///< a muted strip contributes nothing
+};
+
+/// An NLA track (file: an object's animation.tracks[t]): strips in increasing, non-overlapping frames.
+struct RawNlaTrack {
+  std::string name;                 ///< track name (informative)
+  bool mute = false;                ///< ignored unless some track is solo
+  bool solo = false;                ///< when any track is solo, only solo tracks are evaluated
+  std::vector<RawNlaStrip> strips;  ///< in time order
+};
+
+/// A Blender object's animation data (file: an object's "animation", version 3), Blender's AnimData.
+struct RawAnimation {
+  std::optional<std::string> action;  ///< the active action (evaluated on top of the tracks)
+  NlaBlend action_blend = NlaBlend::replace;                     ///< the active action's blend type
+  double action_influence = 1;                                   ///< its influence, in [0, 1]
+  NlaExtrapolation action_extrapolation = NlaExtrapolation::hold;  ///< its extrapolation
+  bool nla = true;                  ///< Blender's use_nla: false ignores the tracks
+  std::vector<RawNlaTrack> tracks;  ///< bottom to top
+};
+
 /// A named transform: each channel a constant or a track; a parent by name.  Version 2 adds a
 /// path (translation and rotation from a PathMotion per leg) and a camera (rotation from the view).
 struct RawObject {
@@ -160,6 +244,19 @@ struct RawObject {
   /// The camera's view when the object is a camera (file: "camera"); its target, path and track
   /// names are resolved by build_scene().
   std::optional<RawCameraViewd> camera;
+  // Version 3: Blender objects (docs/scene-format.md, "Version 3: actions and NLA").
+  /// How the rotation is stored; with any mode but quaternion the rotation base value is
+  /// rotation_euler or rotation_axis_angle.
+  RotationMode rotation_mode = RotationMode::quaternion;
+  std::optional<Vec3d> rotation_euler;  ///< base Euler angles [x, y, z] in radians (Euler modes)
+  std::optional<Vec4d> rotation_axis_angle;  ///< base [angle, x, y, z] (axis_angle mode), angle in radians
+  /// Blender's matrix_parent_inverse, rows r0..r3 (default identity): world = parent_world · this · local.
+  std::optional<Mat4d> parent_inverse;
+  /// The object's actions and NLA; then translation, rotation and scale must be constants.
+  std::optional<RawAnimation> animation;
+  /// True when the object has any version-3 member (rotation_mode, rotation_euler,
+  /// rotation_axis_angle, parent_inverse, animation): it is evaluated as Blender does.
+  bool blender = false;
 };
 
 /// A skin (file: "skins"[i], version 2): which objects are the joints of a skeleton.  The
@@ -178,6 +275,7 @@ struct RawScene {
   std::vector<RawScenePath> paths;      ///< named curves (version 2), in file order; no columns of their own
   std::vector<RawObject> objects;       ///< objects, in file order (columns after all tracks)
   std::vector<RawSkin> skins;           ///< skins (version 2), in file order; no columns of their own
+  std::vector<RawAction> actions;       ///< Blender actions (version 3), in file order; no columns of their own
 };
 
 }  // namespace inbetween

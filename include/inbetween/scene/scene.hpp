@@ -17,6 +17,7 @@
 #include "inbetween/curves/any_curve.hpp"
 #include "inbetween/math/expected.hpp"
 #include "inbetween/scene/camera_view.hpp"
+#include "inbetween/scene/nla.hpp"
 #include "inbetween/scene/path_motion.hpp"
 #include "inbetween/scene/raw_scene.hpp"
 #include "inbetween/tracks/euler_track.hpp"
@@ -135,6 +136,10 @@ class Scene {
 
   /// The path legs of object `i` (index into objects()); empty for an object not on a path.
   [[nodiscard]] std::span<const ScenePathLeg> path_legs(std::size_t i) const noexcept { return extras_[i].legs; }
+  /// The Blender animation of object `i` (version 3), or nullptr when it has none.
+  [[nodiscard]] const BlenderObject* blender_object(std::size_t i) const noexcept {
+    return extras_[i].blender ? &*extras_[i].blender : nullptr;
+  }
   /// The camera view of object `i`, or nullptr when it is not a camera.
   [[nodiscard]] const CameraView<double>* camera(std::size_t i) const noexcept {
     return extras_[i].camera ? &*extras_[i].camera : nullptr;
@@ -205,6 +210,7 @@ class Scene {
     std::optional<std::size_t> up_path;          // index into paths_
     std::optional<std::size_t> tilt_column;      // output column of the tilt track
     bool continuous = false;                     // rotation made sign-continuous by a cursor
+    std::optional<BlenderObject> blender;        // version 3: a Blender object's actions and NLA
   };
 
   friend Expected<Scene> build_scene(const RawScene& raw);
