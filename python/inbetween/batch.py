@@ -330,7 +330,7 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
     started = datetime.datetime.now(datetime.timezone.utc)
     t0 = time.perf_counter()
 
-    # Planning parses every job with the tool (~0.2 ms each) before the first one can run: in as
+    # Planning parses every job with the tool (~0.02 ms each) before the first one can run: in as
     # many threads as cores (the binding releases the GIL), it is not the batch's serial tail.
     with concurrent.futures.ThreadPoolExecutor(max(1, min(len(jobs), os.cpu_count() or 1))) as pool:
         entries = list(pool.map(lambda ij: _plan(ij[0], ij[1], base_dir), enumerate(jobs)))
