@@ -17,9 +17,8 @@ exit status 1 and nothing written: bone (pose) animation, drivers, F-curves on o
 muted or disabled F-curves (or in a muted group), meta / transition / sound strips, NLA strip modifiers, tweak mode,
 non-zero delta transforms, constraints, parents other than an object.
 
-The F-curve members (keys, extrapolation, auto smoothing) come from export_fcurves.fcurve_to_track.
-Modifiers are written by fcurve_to_track when it writes them (the "modifiers" member of the shared
-format); until it does, _modifiers() below writes them in the same shape.
+The F-curve members (keys, extrapolation, auto smoothing, modifiers) come from
+export_fcurves.fcurve_to_track.
 
 The module can be imported (random_nla_scenes.py does): export_scene_doc(scene) returns the document
 as a dict and raises ExportError for what the format cannot hold.
@@ -50,71 +49,6 @@ class ExportError(Exception):
 # F-curves
 
 
-def _opt_range(enabled, value):
-    return float(value) if enabled else None
-
-
-def _modifier(m):
-    """One F-curve modifier in the shared format's shape (Blender 3.4 RNA names in lower case)."""
-    out = {}
-    t = m.type
-    if t == "GENERATOR":
-        mode = {"POLYNOMIAL": "expanded", "POLYNOMIAL_FACTORISED": "factorised"}[m.mode]
-        out = {"type": "generator", "mode": mode, "additive": bool(m.use_additive),
-               "coefficients": [float(c) for c in m.coefficients]}
-    elif t == "FNGENERATOR":
-        out = {"type": "function", "function": m.function_type.lower(), "amplitude": m.amplitude,
-               "phase_multiplier": m.phase_multiplier, "phase_offset": m.phase_offset,
-               "value_offset": m.value_offset, "additive": bool(m.use_additive)}
-    elif t == "ENVELOPE":
-        out = {"type": "envelope", "reference": m.reference_value, "default_min": m.default_min,
-               "default_max": m.default_max,
-               "points": [{"frame": p.frame, "min": p.min, "max": p.max} for p in m.control_points]}
-    elif t == "CYCLES":
-        out = {"type": "cycles", "before": m.mode_before.lower(), "after": m.mode_after.lower(),
-               "count_before": int(m.cycles_before), "count_after": int(m.cycles_after)}
-    elif t == "NOISE":
-        out = {"type": "noise", "blend": m.blend_type.lower(), "scale": m.scale, "strength": m.strength,
-               "phase": m.phase, "offset": m.offset, "depth": int(m.depth)}
-    elif t == "LIMITS":
-        out = {"type": "limits", "min_x": _opt_range(m.use_min_x, m.min_x), "max_x": _opt_range(m.use_max_x, m.max_x),
-               "min_y": _opt_range(m.use_min_y, m.min_y), "max_y": _opt_range(m.use_max_y, m.max_y)}
-    elif t == "STEPPED":
-        # FModifierStepped's own frame_start / frame_end shadow FModifier's restricted range in RNA,
-        # so a Stepped modifier's restricted range cannot be read from Python.
-        if m.use_restricted_range:
-            raise ValueError("a Stepped modifier with a restricted frame range (its range is not readable from Python)")
-        out = {"type": "stepped", "step": m.frame_step, "offset": m.frame_offset,
-               "start": _opt_range(m.use_frame_start, m.frame_start), "end": _opt_range(m.use_frame_end, m.frame_end)}
-    else:
-        raise ValueError("modifier type %s is not in the scene format" % t)
-    if m.mute or not m.is_valid:  # Blender skips a disabled modifier (a Cycles modifier below the top) as a muted one
-        out["mute"] = True
-    if m.use_influence:
-        out["influence"] = m.influence
-    if m.use_restricted_range:
-        out["range"] = {"start": m.frame_start, "end": m.frame_end,
-                        "blend_in": m.blend_in, "blend_out": m.blend_out}
-    return out
-
-
-def _modifiers(fcurve):
-    """The F-curve's modifier stack, top first (replaced by fcurve_to_track once it writes them)."""
-    return [_modifier(m) for m in fcurve.modifiers]
-
-
-class _WithoutModifiers:
-    """An F-curve seen without its modifiers (for an fcurve_to_track that refuses them)."""
-
-    modifiers = ()
-
-    def __init__(self, fcurve):
-        self._fcurve = fcurve
-
-    def __getattr__(self, name):
-        return getattr(self._fcurve, name)
-
-
 def fcurve_members(fcurve, where):
     """The F-curve members of the format (keys, extrapolation, auto_smoothing, modifiers) as a dict."""
     if fcurve.mute:
@@ -126,17 +60,8 @@ def fcurve_members(fcurve, where):
     if len(fcurve.keyframe_points) == 0:
         raise ExportError("%s: the F-curve has no keyframes (baked samples or a modifier-only curve)" % where)
     try:
-        try:
-            members = export_fcurves.fcurve_to_track(fcurve, "")
-        except ValueError:
-            if len(fcurve.modifiers) == 0:
-                raise
-            members = export_fcurves.fcurve_to_track(_WithoutModifiers(fcurve), "")
+        members = export_fcurves.fcurve_to_track(fcurve, "")  # keys, extrapolation, smoothing, modifiers
         members.pop("name", None)
-        if "modifiers" not in members:
-            members.pop("cycles", None)
-            if len(fcurve.modifiers):
-                members["modifiers"] = _modifiers(fcurve)
     except ValueError as e:
         raise ExportError("%s: %s" % (where, e))
     return members
