@@ -26,7 +26,6 @@ import importlib.util
 import math
 import os
 import random
-import struct
 import sys
 
 import bpy
@@ -48,27 +47,9 @@ TYPES = ["GENERATOR", "FNGENERATOR", "ENVELOPE", "CYCLES", "NOISE", "LIMITS", "S
 FUNCTIONS = ["SIN", "COS", "TAN", "SQRT", "LN", "SINC"]
 
 
-def f32(x):
-    return struct.unpack("f", struct.pack("f", x))[0]
-
-
-def short(x):
-    x = f32(x)
-    for digits in range(6, 10):
-        d = float("%.*g" % (digits, x))
-        if f32(d) == x:
-            return d
-    return x
-
-
-def shorten(value):
-    if isinstance(value, float):
-        return short(value)
-    if isinstance(value, list):
-        return [shorten(v) for v in value]
-    if isinstance(value, dict):
-        return {k: shorten(v) for k, v in value.items()}
-    return value
+# float32 rounding and the shortest text that reads back to the same float32: record_reference.py's.
+reference = _load("record_reference")
+f32, short, shorten = reference.f32, reference.short, reference.shorten
 
 
 def set_common(rng, m, lo, hi):
