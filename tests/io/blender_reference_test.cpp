@@ -23,6 +23,8 @@
 
 #include "inbetween/io/scene.hpp"
 
+#include "support/blender_reference.hpp"
+
 namespace {
 
 const char* const kReferenceFile = INBETWEEN_SOURCE_DIR "/tests/data/blender/fcurves-blender-3.4.1.json";
@@ -36,29 +38,15 @@ const char* const kReferenceFile = INBETWEEN_SOURCE_DIR "/tests/data/blender/fcu
 // without FMA contraction (x86-64 SSE, the default here).
 constexpr double kExact = 0.0;
 
-// Easing segments call the single-precision libm (sinf, cosf, powf, asinf, sqrtf).  With glibc 2.36
-// (Debian 12, the library Blender 3.4.1 was linked with when recording) the result is bit-identical,
-// but sinf, cosf, powf and asinf are not correctly rounded and may differ by one ulp in another libm.
-// One ulp of a term of magnitude at most the curve's range, carried through the two or three float
-// operations that follow (scale by the change, add the start value), stays below 8 float epsilons
-// of the range.
-constexpr double kEasingLibmRelative = 8.0 * FLT_EPSILON;
+// Easing segments call libm: the bound of tests/support/blender_reference.hpp, of the curve's range.
+using inbetween::test::kEasingLibmRelative;
+using inbetween::test::uses_libm_easing;
 
 std::string slurp(const char* path) {
   std::ifstream in(path);
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-bool uses_libm_easing(const nlohmann::json& track) {
-  static const std::set<std::string> plain{"constant", "linear", "bezier"};
-  const auto& keys = track.at("keys");
-  // The last key's interpolation only chooses how to extrapolate (along its handle: no libm).
-  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
-    if (!plain.count(keys[i].at("interpolation").get<std::string>())) return true;
-  }
-  return false;
 }
 
 struct GroupStats {

@@ -23,6 +23,8 @@
 #include "inbetween/io/scene.hpp"
 #include "inbetween/io/scene_write.hpp"
 
+#include "support/blender_reference.hpp"
+
 namespace {
 
 const char* const kReferenceFile = INBETWEEN_SOURCE_DIR "/tests/data/blender/fmodifiers-blender-3.4.1.json";
@@ -31,25 +33,15 @@ const char* const kReferenceFile = INBETWEEN_SOURCE_DIR "/tests/data/blender/fmo
 // the Built-in Function calls the same double-precision libm (glibc's sin, cos, tan, log, sqrt are
 // correctly rounded or the same binary), so the values are Blender's bits.
 constexpr double kExact = 0.0;
-// Easing keys (the recorder uses SINE among the interpolations) call sinf/cosf: the same bound as
-// blender_reference_test.cpp's (one libm ulp carried through the segment's float operations), of the
-// curve's range.
-constexpr double kEasingLibmRelative = 8.0 * FLT_EPSILON;
+// Easing segments call libm: the bound of tests/support/blender_reference.hpp, of the curve's range.
+using inbetween::test::kEasingLibmRelative;
+using inbetween::test::uses_libm_easing;
 
 std::string slurp(const char* path) {
   std::ifstream in(path);
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-bool uses_libm_easing(const nlohmann::json& track) {
-  static const std::set<std::string> plain{"constant", "linear", "bezier"};
-  const auto& keys = track.at("keys");
-  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
-    if (!plain.count(keys[i].at("interpolation").get<std::string>())) return true;
-  }
-  return false;
 }
 
 struct Stats {
