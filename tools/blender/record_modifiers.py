@@ -256,19 +256,7 @@ def main(out_path, seed):
         curves.append({"group": group, "track": track, "frames": [short(x) for x in xs],
                        "values": [short(fc.evaluate(x)) for x in xs]})
 
-    header = {
-        "generator": "tools/blender/record_modifiers.py", "seed": seed,
-        "blender_version": bpy.app.version_string,
-        "blender_build": "%s %s" % (bpy.app.build_hash.decode(), bpy.app.build_platform.decode()),
-    }
-    import json
-    lines = [json.dumps(c, separators=(",", ":")) for c in curves]
-    text = json.dumps(header, separators=(",", ":"))[:-1] + ',"curves":[\n' + ",\n".join(lines) + "\n]}\n"
-    os.makedirs(os.path.dirname(os.path.abspath(out_path)), exist_ok=True)
-    with open(out_path, "w") as f:
-        f.write(text)
-    print("record_modifiers: %d curves, %d samples, %d bytes written to %s" %
-          (len(curves), sum(len(c["frames"]) for c in curves), len(text), out_path))
+    reference.write_recording(out_path, "record_modifiers", seed, curves)
 
 
 if __name__ == "__main__":

@@ -293,8 +293,14 @@ def main(out_path, seed):
         curves.append({"group": "exported from a saved .blend", "track": shorten(tracks[name]),
                        "frames": [short(x) for x in xs], "values": [short(fc.evaluate(x)) for x in xs]})
 
+    write_recording(out_path, "record_reference", seed, curves)
+
+
+def write_recording(out_path, generator, seed, curves):
+    """Writes a recording: a header (generator tools/blender/<generator>.py, seed, Blender's version
+    and build), then one curve per line, so a regenerated file diffs line by line."""
     header = {
-        "generator": "tools/blender/record_reference.py", "seed": seed,
+        "generator": "tools/blender/%s.py" % generator, "seed": seed,
         "blender_version": bpy.app.version_string,
         "blender_build": "%s %s" % (bpy.app.build_hash.decode(), bpy.app.build_platform.decode()),
     }
@@ -303,8 +309,8 @@ def main(out_path, seed):
     os.makedirs(os.path.dirname(os.path.abspath(out_path)), exist_ok=True)
     with open(out_path, "w") as f:
         f.write(text)
-    print("record_reference: %d curves, %d samples, %d bytes written to %s" %
-          (len(curves), sum(len(c["frames"]) for c in curves), len(text), out_path))
+    print("%s: %d curves, %d samples, %d bytes written to %s" %
+          (generator, len(curves), sum(len(c["frames"]) for c in curves), len(text), out_path))
 
 
 if __name__ == "__main__":
