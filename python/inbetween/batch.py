@@ -32,9 +32,9 @@ command-line entry exits 0 when every job succeeded (or was skipped) and 2 when 
 from __future__ import annotations
 
 import argparse
-import concurrent.futures
 import datetime
 import json
+import math
 import os
 import pathlib
 import re
@@ -54,12 +54,12 @@ RETRIES = 1
 #: its own ``distributed.scheduler.allowed-failures`` (Dask's default is the same 3).
 ALLOWED_FAILURES = 3
 #: Jobs per Dask task (``jobs_per_task`` unset): guided self-scheduling — each task takes the jobs
-#: still unassigned divided by this many per worker, so tasks shrink towards the end and the
-#: workers finish together …
-TASKS_PER_WORKER = 2
-#: … of at most this many jobs each (a killed worker's task is rerun whole: outputs already
-#: written are written again, the same bytes).
-MAX_JOBS_PER_TASK = 32
+#: still unassigned divided by the tasks the workers hold at once (_slots), so tasks shrink towards
+#: the end and the workers finish together, at most this many jobs each (a killed worker's task is
+#: rerun whole: outputs already written are written again, the same bytes).  Each task costs the
+#: scheduler, client and worker 3–4 ms of CPU (messages on loopback TCP): 64 jobs of a few ms keep
+#: that under 2 %.
+MAX_JOBS_PER_TASK = 64
 #: Exit codes, as the tool's.
 EXIT_OK, EXIT_INTERNAL, EXIT_FAILED = 0, 1, 2
 #: Longest stderr text kept per job in the summary (characters; the tail is cut).
@@ -156,18 +156,29 @@ def run_jobs(jobs, base_dir):
     return [run_job(args, base_dir) for args in jobs]
 
 
-def _chunks(jobs, n_workers, jobs_per_task=None):
+def _slots(workers, saturation):
+    """The tasks Dask hands the workers at once: for each worker (scheduler_info()["workers"]
+    values) ceil(saturation × its threads), at least 1 (Dask's _task_slots_available); the rest
+    wait in the scheduler's queue for the next free slot.  Without a queue (saturation inf: every
+    task is sent to a worker at once and work stealing balances them) two per thread."""
+    threads = [max(1, int(w.get("nthreads", 1))) for w in workers]
+    if not isinstance(saturation, (int, float)) or math.isinf(saturation) or saturation <= 0:
+        return max(1, 2 * sum(threads))
+    return max(1, sum(max(1, math.ceil(saturation * t)) for t in threads))
+
+
+def _chunks(jobs, slots, jobs_per_task=None):
     """The jobs cut into Dask tasks, in order.  `jobs_per_task` given: tasks of that many jobs.
-    Unset: guided self-scheduling — a task takes ceil(unassigned / (TASKS_PER_WORKER × workers))
-    jobs, at least 1 and at most MAX_JOBS_PER_TASK: few, large tasks first (Dask's per-task cost
-    of 1–3 ms against jobs of a few ms), single jobs last, so no worker waits long on the other's
-    last task."""
+    Unset: guided self-scheduling — a task takes ceil(unassigned / slots) jobs, at least 1 and at
+    most MAX_JOBS_PER_TASK, `slots` being the tasks the workers hold at once (_slots): few, large
+    tasks first (Dask's per-task cost of 3–4 ms of CPU against jobs of a few ms), single jobs last,
+    so no worker waits long on another's last task."""
     chunks, start = [], 0
     while start < len(jobs):
         if jobs_per_task:
             size = jobs_per_task
         else:
-            size = -(-(len(jobs) - start) // (TASKS_PER_WORKER * max(1, n_workers)))
+            size = -(-(len(jobs) - start) // max(1, slots))
             size = max(1, min(MAX_JOBS_PER_TASK, size))
         chunks.append(jobs[start:start + size])
         start += size
@@ -219,25 +230,28 @@ def _sweep(outputs):
     """Removes the tool's temporaries (".<name>.inbetween-XXXXXX") of these outputs: those a worker
     killed between linking and renaming its file, or writing where O_TMPFILE is missing, left."""
     swept = []
-    listings = {}  # one listing per folder: a batch writes many outputs into few folders
-    for out in sorted(set(outputs)):
+    by_folder = {}  # one listing per folder: a batch writes many outputs into few folders
+    for out in set(outputs):
         folder, name = os.path.split(out)
-        prefix = "." + os.fsencode(name)[:_MAX_NAME_IN_TEMP].decode(errors="surrogateescape") + ".inbetween-"
-        if folder not in listings:
+        prefix = "." + os.fsencode(name)[:_MAX_NAME_IN_TEMP].decode(errors="surrogateescape")
+        by_folder.setdefault(folder, set()).add(prefix)
+    for folder in sorted(by_folder):
+        try:
+            entries = os.listdir(folder or ".")
+        except OSError:
+            continue
+        prefixes = by_folder[folder]
+        for e in sorted(entries):
+            m = _TEMP_SUFFIX.search(e)  # the temporary's name: its output's prefix, then the suffix
+            if m is None or e[:m.start()] not in prefixes:
+                continue
+            path = os.path.join(folder, e)
             try:
-                listings[folder] = os.listdir(folder or ".")
+                if os.path.isfile(path) and not os.path.islink(path):
+                    os.unlink(path)
+                    swept.append(path)
             except OSError:
-                listings[folder] = []
-        entries = listings[folder]
-        for e in entries:
-            if e.startswith(prefix) and len(e) == len(prefix) + 6 and _TEMP_SUFFIX.search(e):
-                path = os.path.join(folder, e)
-                try:
-                    if os.path.isfile(path) and not os.path.islink(path):
-                        os.unlink(path)
-                        swept.append(path)
-                except OSError:
-                    pass
+                pass
     return swept
 
 
@@ -288,15 +302,26 @@ def _write_json_atomically(path, doc):
 #: cores with the workers, so their periodic work is made rarer — no work stealing (the scheduler
 #: queues the batch's tasks and hands each to the next free worker, nothing to steal), the event
 #: loop's tick and the memory and system monitors every second instead of every 20–500 ms, no
-#: dashboards.  On 2 cores this took a 2-worker batch of 200 small bakes from 0.70–0.73 s to
-#: 0.66–0.71 s (bench/RESULTS.md, issue 25).
+#: dashboards.  A worker holds one task at a time (saturation 1.0: _chunks balances the workers
+#: exactly), runs no statistical profiler (a stack sample every 10 ms), and its process starts
+#: without Dask's MALLOC_TRIM_THRESHOLD_=65536, which made each bake 10 % slower (the executor
+#: thread's malloc arena gave its pages back after every job; docs/batch.md).
 LOCAL_CLUSTER_CONFIG = {
     "distributed.scheduler.allowed-failures": ALLOWED_FAILURES,
     "distributed.scheduler.work-stealing": False,
+    "distributed.scheduler.worker-saturation": 1.0,
     "distributed.admin.tick.interval": "1s",
     "distributed.worker.memory.monitor-interval": "1s",
     "distributed.admin.system-monitor.interval": "2s",
+    "distributed.worker.profile.enabled": False,
+    "distributed.nanny.pre-spawn-environ": {"OMP_NUM_THREADS": 1, "MKL_NUM_THREADS": 1, "OPENBLAS_NUM_THREADS": 1},
 }
+
+
+#: Dask configuration under which run() submits: every module's frames skipped when Dask looks for
+#: the code that submitted the jobs (distributed.diagnostics.computations.ignore-modules), so it
+#: does not read and tokenize run()'s source for the dashboard on every batch.
+NO_COMPUTATION_CODE = {"distributed.diagnostics.computations.ignore-modules": [".*"]}
 
 
 def local_cluster(n_workers):
@@ -330,10 +355,10 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
     started = datetime.datetime.now(datetime.timezone.utc)
     t0 = time.perf_counter()
 
-    # Planning parses every job with the tool (~0.02 ms each) before the first one can run: in as
-    # many threads as cores (the binding releases the GIL), it is not the batch's serial tail.
-    with concurrent.futures.ThreadPoolExecutor(max(1, min(len(jobs), os.cpu_count() or 1))) as pool:
-        entries = list(pool.map(lambda ij: _plan(ij[0], ij[1], base_dir), enumerate(jobs)))
+    # Planning parses every job with the tool (25 us each, 5 ms for 200 jobs) before the first one
+    # can run.  In one thread: a thread pool made it slower (6-7 ms), its per-call cost being larger
+    # than the parse it spreads.
+    entries = [_plan(i, job, base_dir) for i, job in enumerate(jobs)]
     writers = {}
     for e in entries:  # two jobs writing one file would race: the later one fails
         if e["status"] != "pending":
@@ -368,25 +393,39 @@ def run(manifest, scheduler=None, workers=None, summary=None, force=False, progr
                     cluster = local_cluster(int(workers or os.cpu_count() or 1))
                     own_client = client = Client(cluster)
             address = client.scheduler.address
-            n_workers = len(client.scheduler_info().get("workers", {}))
-            try:
-                allowed_failures = client.run_on_scheduler(lambda dask_scheduler: dask_scheduler.allowed_failures)
-            except Exception:  # noqa: BLE001 (an older scheduler: report the default)
-                pass
+            workers_info = list(client.scheduler_info().get("workers", {}).values())
+            n_workers = len(workers_info)
+            saturation = LOCAL_CLUSTER_CONFIG["distributed.scheduler.worker-saturation"]
+            if cluster is None:  # an existing scheduler's own settings
+                try:
+                    # a lambda: pickled by value, the scheduler need not import inbetween
+                    allowed_failures, saturation = client.run_on_scheduler(
+                        lambda dask_scheduler: (dask_scheduler.allowed_failures,
+                                                getattr(dask_scheduler, "WORKER_SATURATION", float("inf"))))
+                except Exception:  # noqa: BLE001 (an older scheduler: report Dask's defaults)
+                    saturation = 1.1
             bar.update(done, failed, force=True)
             token = f"{os.getpid()}-{int(time.time() * 1e6)}"
-            chunks = _chunks(to_run, n_workers, jobs_per_task)
+            chunks = _chunks(to_run, _slots(workers_info, saturation), jobs_per_task)
             per_task = max(len(chunk) for chunk in chunks)
-            # One map call, not a submit per task: each submit call has the client read the calling
-            # code (inspect.getsource, ~5 ms), which ran serially before any job started.
-            submitted = client.map(run_jobs, [[e["args"] for e in chunk] for chunk in chunks], base_dir=base_dir,
-                                   key=[f"inbetween-jobs-{chunk[0]['index']:09d}-{token}" for chunk in chunks],
-                                   pure=False, retries=RETRIES)
+            # One map call, not a submit per task.  Dask sends the calling code to the scheduler for
+            # its dashboard's "computations" (inspect.getsource: 4 ms here, serial before any job
+            # starts); NO_COMPUTATION_CODE has it skip every frame and send "<Code not available>".
+            with dask.config.set(NO_COMPUTATION_CODE):
+                submitted = client.map(run_jobs, [[e["args"] for e in chunk] for chunk in chunks], base_dir=base_dir,
+                                       key=[f"inbetween-jobs-{chunk[0]['index']:09d}-{token}" for chunk in chunks],
+                                       pure=False, retries=RETRIES)
             futures = dict(zip(submitted, chunks))
-            for f in as_completed(list(futures)):
+            # with_results: the loop thread gathers each result as its task ends, rather than a
+            # round trip from this thread per task (f.result())
+            for f, results in as_completed(list(futures), loop=client.loop, with_results=True, raise_errors=False):
                 chunk = futures[f]
                 try:
-                    for e, r in zip(chunk, f.result()):
+                    if f.status == "error":  # raise_errors=False: (type, exception, traceback)
+                        raise results[1]
+                    if f.status == "cancelled":  # a CancelledError
+                        raise results
+                    for e, r in zip(chunk, results):
                         e.update(status="done" if r["exit_code"] == 0 else "failed", exit_code=r["exit_code"],
                                  message=r["message"], seconds=r["seconds"], worker=r["worker"], stderr=r["stderr"])
                 except Exception as exc:  # noqa: BLE001 (KilledWorker, or the task raised RETRIES + 1 times)
@@ -442,7 +481,8 @@ def main(argv=None) -> int:
     p.add_argument("--summary", help="write the summary (JSON, docs/batch-summary.schema.json) to this file")
     p.add_argument("--force", action="store_true", help="run the jobs whose outputs are newer than their inputs too")
     p.add_argument("--jobs-per-task", type=int, help="jobs sent to a worker as one Dask task (default: the unassigned "
-                                                     "jobs / (2 x workers), 1 to 32: tasks shrink towards the end)")
+                                                     "jobs / the tasks the workers hold at once, 1 to 64: tasks shrink "
+                                                     "towards the end)")
     p.add_argument("--progress", choices=("auto", "always", "never"), default="auto",
                    help="progress bar on standard error: auto (when it is a terminal), always, never")
     a = p.parse_args(argv)

@@ -281,8 +281,8 @@ class Processes:
     def __init__(self):
         self.procs = []
 
-    def start(self, args, log):
-        p = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    def start(self, args, log, env=None, cwd=None):
+        p = subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True, env=env, cwd=cwd)
         self.procs.append(p)
         return p
 
@@ -318,8 +318,15 @@ def test_a_worker_killed_mid_write_loses_nothing(tmp_path, source_dir):
     log = open(tmp_path / "dask.log", "w")
     try:
         scheduler_file = tmp_path / "scheduler.json"
+        # The scheduler's own settings, which the batch reads and reports (allowed-failures) or sizes its
+        # tasks by (worker-saturation); it cannot import inbetween (no PYTHONPATH, started in tmp_path):
+        # what the batch runs on it must travel by value.
+        scheduler_env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+        scheduler_env.update(DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES="5",
+                             DASK_DISTRIBUTED__SCHEDULER__WORKER_SATURATION="3.0")
         procs.start([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", "0",
-                     "--no-dashboard", "--dashboard-address", "127.0.0.1:0", "--scheduler-file", str(scheduler_file)], log)
+                     "--no-dashboard", "--dashboard-address", "127.0.0.1:0", "--scheduler-file", str(scheduler_file)], log,
+                    env=scheduler_env, cwd=tmp_path)
         deadline = time.monotonic() + START_TIMEOUT_S
         while not scheduler_file.exists():
             assert time.monotonic() < deadline, (tmp_path / "dask.log").read_text()
@@ -350,6 +357,8 @@ def test_a_worker_killed_mid_write_loses_nothing(tmp_path, source_dir):
         log.close()
     s = result["s"]
     assert s["counts"] == {"done": 12, "skipped": 0, "failed": 0}, [j["message"] for j in s["jobs"]]
+    assert s["allowed_failures"] == 5, "the scheduler's own setting, not the batch's default"
+    assert s["jobs_per_task"] == 2, "12 jobs over 2 workers x ceil(3.0 x 1 thread) = 6 slots: 2 jobs per task first"
     assert "Remove worker" in (tmp_path / "dask.log").read_text(), "the scheduler saw the worker die"
     refs = reference(tmp_path, [(k, jobs[k]) for k in range(variants)])
     for i, args in enumerate(jobs):
@@ -359,17 +368,31 @@ def test_a_worker_killed_mid_write_loses_nothing(tmp_path, source_dir):
 
 def test_tasks_shrink_towards_the_end_and_keep_every_job_once_in_order():
     """Guided self-scheduling (batch._chunks): the jobs in order, each once; task sizes never grow,
-    stay within 1..MAX_JOBS_PER_TASK, start at unassigned / (TASKS_PER_WORKER × workers) and end at
-    single jobs; a fixed jobs_per_task cuts equal tasks."""
+    stay within 1..MAX_JOBS_PER_TASK, start at unassigned / slots and end at single jobs (two slots
+    or more); a fixed
+    jobs_per_task cuts equal tasks."""
     for n_jobs in (1, 2, 7, 50, 200, 1000):
-        for workers in (1, 2, 8):
-            chunks = batch._chunks(list(range(n_jobs)), workers)
+        for slots in (1, 2, 4, 8, 32):
+            chunks = batch._chunks(list(range(n_jobs)), slots)
             assert [j for c in chunks for j in c] == list(range(n_jobs))
             sizes = [len(c) for c in chunks]
             assert sizes == sorted(sizes, reverse=True), sizes
             assert 1 <= min(sizes) and max(sizes) <= batch.MAX_JOBS_PER_TASK
-            first = -(-n_jobs // (batch.TASKS_PER_WORKER * workers))
+            first = -(-n_jobs // slots)
             assert sizes[0] == max(1, min(batch.MAX_JOBS_PER_TASK, first))
-            assert sizes[-1] == 1
+            if slots > 1:  # one slot: nothing to balance, the remainder is the last task
+                assert sizes[-1] == 1, (n_jobs, slots, sizes)
     assert [len(c) for c in batch._chunks(list(range(7)), 2, jobs_per_task=3)] == [3, 3, 1]
     assert batch._chunks([], 2) == []
+
+
+def test_slots_are_the_tasks_dask_hands_the_workers_at_once():
+    """batch._slots follows the scheduler's queue (distributed.scheduler._task_slots_available):
+    ceil(saturation × threads) per worker, at least 1; without a queue (inf) two per thread."""
+    two_single = [{"nthreads": 1}, {"nthreads": 1}]
+    assert batch._slots(two_single, 1.0) == 2
+    assert batch._slots(two_single, 1.1) == 4  # ceil(1.1) = 2 each: one running, one waiting
+    assert batch._slots([{"nthreads": 8}, {"nthreads": 4}], 1.1) == 9 + 5
+    assert batch._slots([{"nthreads": 8}], 0.5) == 4
+    assert batch._slots([{"nthreads": 3}], float("inf")) == 6
+    assert batch._slots([], 1.0) == 1  # no worker yet: one task at a time until one comes
