@@ -12,7 +12,7 @@ serialises the two workers' fsyncs.  Beside each it runs the machine's ceiling o
 same jobs in 1 and 2 plain processes (a multiprocessing pool, half the jobs each, no Dask).
 
     PYTHONPATH=build/release/python /usr/bin/python3 bench/batch_bench.py [--cli build/release/inbetween]
-        [--scenes 200] [--repeat 5] [--work DIR]
+        [--scenes 200] [--repeat 7] [--work DIR]
 
 Run by `make bench`.  The cluster start (a few seconds) is measured apart: the speed-up is over the
 jobs' wall time, from submitting the first job to the last result.
@@ -160,7 +160,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--cli", default=str(ROOT / "build" / "release" / "inbetween"))
     p.add_argument("--scenes", type=int, default=200)
-    p.add_argument("--repeat", type=int, default=5)
+    p.add_argument("--repeat", type=int, default=7)
     p.add_argument("--work", help="one folder for the scenes and outputs (default: a temporary one in /dev/shm "
                                   "and one in TMPDIR, removed)")
     a = p.parse_args()
