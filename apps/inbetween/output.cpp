@@ -25,7 +25,11 @@ namespace inbetween::cli {
 namespace {
 
 // Text is written with write(2) in pieces of about this size (bounded memory for streamed output).
-constexpr std::size_t kFlushBytes = std::size_t(1) << 18;
+// The buffer is reserved whole once: below glibc's 128 KiB mmap threshold it comes from the heap,
+// whose memory serves the next output of the process too (a batch worker writes thousands).  A
+// buffer grown by doubling to 256 KiB was mapped and unmapped for each output wherever glibc's
+// adaptive threshold is off, as in Dask's workers (MALLOC_TRIM_THRESHOLD_: docs/batch.md).
+constexpr std::size_t kFlushBytes = std::size_t(1) << 16;
 // Symbolic links followed before giving up with ELOOP (Linux's own limit).
 constexpr int kMaxLinkHops = 40;
 // Longest part of the target's name copied into the temporary's name (NAME_MAX is 255).
@@ -134,6 +138,7 @@ void unguard_temp() {
 }  // namespace
 
 OutputFile::OutputFile(const std::string& path) : path_(path) {
+  buffer_.reserve(kFlushBytes);
   if (path.empty() || path == "-") {
     path_ = "standard output";
     if (RunCapture* capture = current_capture()) {

@@ -303,9 +303,7 @@ def _write_json_atomically(path, doc):
 #: queues the batch's tasks and hands each to the next free worker, nothing to steal), the event
 #: loop's tick and the memory and system monitors every second instead of every 20–500 ms, no
 #: dashboards.  A worker holds one task at a time (saturation 1.0: _chunks balances the workers
-#: exactly), runs no statistical profiler (a stack sample every 10 ms), and its process starts
-#: without Dask's MALLOC_TRIM_THRESHOLD_=65536, which made each bake 10 % slower (the executor
-#: thread's malloc arena gave its pages back after every job; docs/batch.md).
+#: exactly) and runs no statistical profiler (a stack sample every 10 ms).
 LOCAL_CLUSTER_CONFIG = {
     "distributed.scheduler.allowed-failures": ALLOWED_FAILURES,
     "distributed.scheduler.work-stealing": False,
@@ -314,7 +312,6 @@ LOCAL_CLUSTER_CONFIG = {
     "distributed.worker.memory.monitor-interval": "1s",
     "distributed.admin.system-monitor.interval": "2s",
     "distributed.worker.profile.enabled": False,
-    "distributed.nanny.pre-spawn-environ": {"OMP_NUM_THREADS": 1, "MKL_NUM_THREADS": 1, "OPENBLAS_NUM_THREADS": 1},
 }
 
 
