@@ -124,8 +124,7 @@ class SceneWriter {
   void vector_keys(ojson& out, const std::vector<TrackKey<V>>& keys, TrackExtend before, TrackExtend after, int dim,
                    const Loc& loc);
   /// Keys, tangents and options of a quaternion track or channel into `out`.
-  void quat_keys(ojson& out, const std::vector<QuatKey<double>>& keys, const std::vector<QuatKeyTangents<double>>& tangents,
-                 double distance_factor, bool time_aware, const Loc& loc);
+  void quat_keys(ojson& out, const RawQuatKeys& curve, const Loc& loc);
   /// The F-curve members read_fcurve_members() reads ("keys", "extrapolation", "auto_smoothing",
   /// "modifiers"), defaults left out, into `out`; `loc` is the place of `out` (for failures).
   void fcurve_members(ojson& out, const RawFCurve& c, const Loc& loc);

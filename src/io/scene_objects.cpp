@@ -134,7 +134,7 @@ ojson SceneWriter::object(const RawObject& o, const Loc& loc) {
   } else {
     const auto& keyed = std::get<RawQuatKeys>(*o.rotation);
     ojson rj = ojson::object();
-    quat_keys(rj, keyed.keys, keyed.tangents, keyed.distance_factor, keyed.time_aware, at(loc, "rotation"));
+    quat_keys(rj, keyed, at(loc, "rotation"));
     j["rotation"] = std::move(rj);
   }
   j["scale"] = vec3_channel(o.scale, at(loc, "scale"));

@@ -515,7 +515,7 @@ ojson SceneWriter::orientation(const RawPathLeg& leg, const Loc& loc) {
   if (leg.local_rotation_keys) {
     ojson rj = ojson::object();
     const RawQuatKeys& keys = *leg.local_rotation_keys;
-    quat_keys(rj, keys.keys, keys.tangents, keys.distance_factor, keys.time_aware, at(loc, "local_rotation"));
+    quat_keys(rj, keys, at(loc, "local_rotation"));
     j["local_rotation"] = std::move(rj);
   } else if (!(o.local_rotation == Quatd{})) {
     j["local_rotation"] = quat(o.local_rotation, at(loc, "local_rotation"));

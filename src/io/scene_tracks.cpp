@@ -461,10 +461,7 @@ Expected<RawQuatTrack> read_quat_track(const json& j, const Loc& loc) {
   track.name = *name;
   auto keys = read_quat_keys(j, loc);
   if (!keys) return keys.error();
-  track.keys = std::move(keys->keys);
-  track.tangents = std::move(keys->tangents);
-  track.distance_factor = keys->distance_factor;
-  track.time_aware = keys->time_aware;
+  track.curve = std::move(*keys);
   return track;
 }
 
@@ -588,8 +585,9 @@ void SceneWriter::vector_keys(ojson& out, const std::vector<TrackKey<V>>& keys, 
   if (after != TrackExtend::constant) out["after"] = enum_text(after, kExtend);
 }
 
-void SceneWriter::quat_keys(ojson& out, const std::vector<QuatKey<double>>& keys, const std::vector<QuatKeyTangents<double>>& tangents,
-               double distance_factor, bool time_aware, const Loc& loc) {
+void SceneWriter::quat_keys(ojson& out, const RawQuatKeys& curve, const Loc& loc) {
+  const auto& keys = curve.keys;
+  const auto& tangents = curve.tangents;
   ojson list = ojson::array();
   const Quatd zero = Quatd::from_wxyz(0, 0, 0, 0);
   for (std::size_t i = 0; i < keys.size(); ++i) {
@@ -607,8 +605,10 @@ void SceneWriter::quat_keys(ojson& out, const std::vector<QuatKey<double>>& keys
     list.push_back(std::move(kj));
   }
   out["keys"] = std::move(list);
-  if (distance_factor != 1.0 / 3.0) out["distance_factor"] = number(distance_factor, at(loc, "distance_factor"));
-  if (!time_aware) out["time_aware"] = false;
+  if (curve.distance_factor != 1.0 / 3.0) {
+    out["distance_factor"] = number(curve.distance_factor, at(loc, "distance_factor"));
+  }
+  if (!curve.time_aware) out["time_aware"] = false;
 }
 
 namespace {
@@ -746,7 +746,7 @@ ojson SceneWriter::track(const RawQuatTrack& t, const Loc& loc) {
   ojson j = ojson::object();
   j["name"] = t.name;
   j["kind"] = "quaternion";
-  quat_keys(j, t.keys, t.tangents, t.distance_factor, t.time_aware, loc);
+  quat_keys(j, t.curve, loc);
   return j;
 }
 

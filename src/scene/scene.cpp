@@ -65,13 +65,11 @@ Expected<Track<Vec3d>> build_vec3_channel(const RawVec3Channel& raw) {
   return build_track(raw.keys, raw.before, raw.after);
 }
 
-Expected<QuatTrack<double>> build_quat_keys(const std::vector<QuatKey<double>>& keys,
-                                            const std::vector<QuatKeyTangents<double>>& tangents, double distance_factor,
-                                            bool time_aware) {
+Expected<QuatTrack<double>> build_quat_keys(const RawQuatKeys& raw) {
   QuatSplineOptions<double> options;
-  options.distance_factor = distance_factor;
-  options.time_aware = time_aware;
-  return build_quat_track(keys, tangents, options);
+  options.distance_factor = raw.distance_factor;
+  options.time_aware = raw.time_aware;
+  return build_quat_track(raw.keys, raw.tangents, options);
 }
 
 // Builds one track; errors are relative to the track object.
@@ -91,7 +89,7 @@ Expected<SceneTrack> build_one(const RawVectorTrack& raw) {
 
 Expected<SceneTrack> build_one(const RawQuatTrack& raw) {
   if (auto ok = check_name(raw.name, {"name"}); !ok) return ok.error();
-  auto track = build_quat_keys(raw.keys, raw.tangents, raw.distance_factor, raw.time_aware);
+  auto track = build_quat_keys(raw.curve);
   if (!track) return track.error();
   return SceneTrack{SceneQuatTrack{raw.name, std::move(*track)}};
 }
@@ -149,7 +147,7 @@ Expected<TransformTrack<double>> build_local(const RawObject& raw) {
     local.rest.rotation = normalized(*c);
   } else {
     const auto& keyed = std::get<RawQuatKeys>(rotation);
-    auto r = build_quat_keys(keyed.keys, keyed.tangents, keyed.distance_factor, keyed.time_aware);
+    auto r = build_quat_keys(keyed);
     if (!r) return prepended(r.error(), {"rotation"});
     local.rotation = std::move(*r);
   }
@@ -375,9 +373,7 @@ Expected<Scene> build_scene(const RawScene& raw) {
           motion.speed.track = std::get<SceneScalarTrack>(tracks[it->second.first]).curve;
         }
         if (leg.local_rotation_keys) {
-          auto r = build_quat_keys(leg.local_rotation_keys->keys, leg.local_rotation_keys->tangents,
-                                   leg.local_rotation_keys->distance_factor,
-                                   leg.local_rotation_keys->time_aware);
+          auto r = build_quat_keys(*leg.local_rotation_keys);
           if (!r) {
             Error e = r.error();
             const auto prefix = at_member({"orientation", "local_rotation"});

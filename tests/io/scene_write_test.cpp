@@ -72,8 +72,8 @@ RawScene every_member() {
   }
   RawQuatTrack q;
   q.name = "q";
-  q.distance_factor = 0.5;
-  q.time_aware = false;
+  q.curve.distance_factor = 0.5;
+  q.curve.time_aware = false;
   QuatKey<double> q0;
   q0.frame = 0;
   q0.value = Quatd::from_wxyz(0.5, 0.5, 0.5, 0.5);
@@ -83,8 +83,8 @@ RawScene every_member() {
   q1.value = Quatd::from_wxyz(0, 1, 0, 0);
   q1.interpolation = QuatInterpolation::squad;
   q1.long_way = true;
-  q.keys = {q0, q1};
-  q.tangents = {{Quatd::from_wxyz(0.1, 0.2, 0.3, 0.4), Quatd::from_wxyz(-0.1, -0.2, -0.3, -0.4)}, {}};
+  q.curve.keys = {q0, q1};
+  q.curve.tangents = {{Quatd::from_wxyz(0.1, 0.2, 0.3, 0.4), Quatd::from_wxyz(-0.1, -0.2, -0.3, -0.4)}, {}};
   s.tracks.push_back(q);
   RawEulerTrack e;
   e.name = "e";

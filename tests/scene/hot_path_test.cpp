@@ -212,7 +212,7 @@ RawScene scene_with(std::size_t objects) {
   raw.tracks.push_back(v);
   RawQuatTrack q;
   q.name = "q";
-  q.keys = {QuatKey<double>{.frame = 0}, QuatKey<double>{.frame = 10, .value = Quatd::from_wxyz(0, 1, 0, 0),
+  q.curve.keys = {QuatKey<double>{.frame = 0}, QuatKey<double>{.frame = 10, .value = Quatd::from_wxyz(0, 1, 0, 0),
                                                         .interpolation = QuatInterpolation::bezier}};
   raw.tracks.push_back(q);
   RawEulerTrack e;

@@ -59,7 +59,7 @@ TEST(BuildScene, ColumnsFollowTracksThenObjects) {
   raw.tracks.push_back(vec2("p", {{1, Vec4d{1, 2, 0, 0}}}));
   RawQuatTrack q;
   q.name = "q";
-  q.keys.push_back(QuatKey<double>{.frame = 1});
+  q.curve.keys.push_back(QuatKey<double>{.frame = 1});
   raw.tracks.push_back(q);
   raw.objects.push_back(object("o"));
   auto scene = build_scene(raw);
@@ -143,12 +143,12 @@ TEST(BuildScene, ErrorsNameTheMemberAsAJsonPointer) {
     RawScene raw;
     RawQuatTrack q;
     q.name = "q";
-    q.distance_factor = 0;
-    q.keys.push_back(QuatKey<double>{.frame = 1});
+    q.curve.distance_factor = 0;
+    q.curve.keys.push_back(QuatKey<double>{.frame = 1});
     raw.tracks.push_back(q);
     EXPECT_EQ(pointer_of(raw), "/tracks/0/distance_factor");
-    std::get<RawQuatTrack>(raw.tracks[0]).distance_factor = 0.5;
-    std::get<RawQuatTrack>(raw.tracks[0]).keys[0].value = Quatd::from_wxyz(0, 0, 0, 0);
+    std::get<RawQuatTrack>(raw.tracks[0]).curve.distance_factor = 0.5;
+    std::get<RawQuatTrack>(raw.tracks[0]).curve.keys[0].value = Quatd::from_wxyz(0, 0, 0, 0);
     EXPECT_EQ(pointer_of(raw), "/tracks/0/keys/0/value");
   }
   {

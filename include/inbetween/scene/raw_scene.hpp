@@ -70,11 +70,10 @@ struct RawQuatKeys {
 
 /// An orientation track (file kind "quaternion"); columns <name>.w .x .y .z.
 struct RawQuatTrack {
-  std::string name;        ///< column prefix (non-empty)
-  std::vector<QuatKey<double>> keys;   ///< ≥ 1 key, frames strictly increasing, non-zero values
-  std::vector<QuatKeyTangents<double>> tangents;  ///< none (all zero) or one per key: glTF cubic tangents
-  double distance_factor = 1.0 / 3.0;  ///< k of Eq. 3.30, in (0, 1]
-  bool time_aware = true;              ///< see QuatSplineOptions::time_aware
+  std::string name;  ///< column prefix (non-empty)
+  /// "keys", "distance_factor" and "time_aware" of the track object, as an object's rotation
+  /// channel holds them: in the file they are members of the track itself (/tracks/i/keys/3).
+  RawQuatKeys curve;
 };
 
 /// Units of the angles of an Euler track's keys.
