@@ -1,7 +1,8 @@
 """Batch bake, convert and compress on Dask (docs/batch.md, issue 25).
 
     python3 -m inbetween.batch MANIFEST.json [--scheduler ADDRESS] [--workers N]
-                               [--summary OUT.json] [--force] [--progress auto|always|never]
+                               [--summary OUT.json] [--force] [--jobs-per-task N]
+                               [--progress auto|always|never]
 
 or from Python, ``inbetween.batch.run("manifest.json", workers=2, summary="summary.json")``.
 
@@ -11,9 +12,10 @@ folder (docs/batch.schema.json)::
 
     {"jobs": [{"args": ["bake", "shots/a.json", "--format", "csv", "-o", "out/a.csv"]}, ...]}
 
-Each job is one Dask task that runs the command in the worker process through the library
-(``inbetween._inbetween._run_cli``: the tool's own code, no subprocess, the GIL released), so its
-output is the tool's, byte for byte, and a failing job reports the tool's message and exit code.
+Each job runs the command in a worker process through the library (``inbetween._inbetween._run_cli``:
+the tool's own code, no subprocess, the GIL released), so its output is the tool's, byte for byte,
+and a failing job reports the tool's message and exit code.  A Dask task holds one or more jobs,
+run one after the other: large tasks first, single jobs at the end (_chunks).
 Without ``scheduler`` a local cluster of the machine's cores (one single-threaded worker process
 each) runs the jobs; with it, the jobs go to an existing Dask scheduler.
 
