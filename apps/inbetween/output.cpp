@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <iostream>
 #include <ostream>
 #include <system_error>
@@ -125,6 +126,13 @@ void guard_temp(const std::string& temp) {
   ::sigaction(SIGINT, &sa, &g_old_int);
   ::sigaction(SIGTERM, &sa, &g_old_term);
   ::sigaction(SIGHUP, &sa, &g_old_hup);
+}
+
+// A fresh name "<folder>/.<name>.inbetween-XXXXXX" beside `target` (random suffix).
+std::string temporary_name(const std::string& folder, const std::string& target) {
+  const auto slash = target.rfind('/');
+  const std::string base = target.substr(slash == std::string::npos ? 0 : slash + 1).substr(0, kMaxNameInTemp);
+  return folder + "/." + base + ".inbetween-" + random_suffix();
 }
 
 void unguard_temp() {
@@ -252,9 +260,60 @@ void OutputFile::write(std::string_view text) {
 
 void OutputFile::commit() {
   flush();
+  if (unnamed_ || !temp_.empty()) {
+    // The file passes to a PendingOutput, which syncs and names it.
+    std::shared_ptr<PendingOutput> pending(new PendingOutput());
+    pending->path_ = path_;
+    pending->target_ = target_;
+    pending->folder_ = folder_;
+    pending->temp_ = std::move(temp_);
+    pending->fd_ = fd_;
+    pending->unnamed_ = unnamed_;
+    temp_.clear();
+    fd_ = -1;
+    unnamed_ = false;
+    committed_ = true;
+    RunCapture* capture = current_capture();
+    if (capture != nullptr && capture->options != nullptr && capture->options->defer_commits) {
+      capture->pending.push_back(std::move(pending));
+      return;
+    }
+    pending->finish();
+    return;
+  }
+  if (owns_fd_) {
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) fail("write failed", errno);
+  }
+  committed_ = true;
+}
+
+PendingOutput::~PendingOutput() {
+  if (done_) return;
+  if (fd_ >= 0) ::close(fd_);  // an unnamed file: closing frees it
+  if (!unnamed_ && !temp_.empty()) {
+    ::unlink(temp_.c_str());
+    unguard_temp();
+  }
+}
+
+void PendingOutput::fail(const std::string& what, int error_number) {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!temp_.empty()) {
+    ::unlink(temp_.c_str());
+    if (!unnamed_) unguard_temp();
+  }
+  done_ = true;  // nothing left for the destructor
+  throw CommandError{path_ + ": " + what + ": " + reason(error_number)};
+}
+
+void PendingOutput::finish() {
+  if (done_) return;
+  // Data on disk before a name points at it: a crash leaves the old file or the new one.
+  if (::fsync(fd_) != 0) fail("write failed", errno);
   if (unnamed_) {
-    // Data on disk before a name points at it: a crash leaves the old file or the new one.
-    if (::fsync(fd_) != 0) fail("write failed", errno);
     const std::string self = "/proc/self/fd/" + std::to_string(fd_);
     // A new target gets the file's name in one step; an existing one is replaced by renaming a
     // temporary name onto it (linkat does not replace).  Only between that link and the rename
@@ -264,7 +323,7 @@ void OutputFile::commit() {
     if (linked != 0 && errno != EEXIST) fail("cannot replace the file", errno);
     if (linked != 0) {
       for (int attempt = 0; attempt < kNameAttempts; ++attempt) {
-        temp_ = temporary_name();
+        temp_ = temporary_name(folder_, target_);
         linked = ::linkat(AT_FDCWD, self.c_str(), AT_FDCWD, temp_.c_str(), AT_SYMLINK_FOLLOW);
         if (linked == 0 || errno != EEXIST) break;
       }
@@ -278,33 +337,20 @@ void OutputFile::commit() {
     }
     const int fd = fd_;
     fd_ = -1;
-    unnamed_ = false;
     if (::close(fd) != 0) fail("write failed", errno);
-  } else if (!temp_.empty()) {
-    // Data on disk before the name points at it: a crash leaves the old file or the new one.
-    if (::fsync(fd_) != 0) fail("write failed", errno);
+  } else {
     const int fd = fd_;
     fd_ = -1;
     if (::close(fd) != 0) fail("write failed", errno);
     if (::rename(temp_.c_str(), target_.c_str()) != 0) fail("cannot replace the file", errno);
     unguard_temp();
-  } else if (owns_fd_) {
-    const int fd = fd_;
-    fd_ = -1;
-    if (::close(fd) != 0) fail("write failed", errno);
   }
-  committed_ = true;
-}
-
-std::string OutputFile::temporary_name() const {
-  const auto slash = target_.rfind('/');
-  const std::string base = target_.substr(slash == std::string::npos ? 0 : slash + 1).substr(0, kMaxNameInTemp);
-  return folder_ + "/." + base + ".inbetween-" + random_suffix();
+  done_ = true;
 }
 
 int OutputFile::create_temporary() {
   for (int attempt = 0; attempt < kNameAttempts; ++attempt) {
-    std::string name = temporary_name();
+    std::string name = temporary_name(folder_, target_);
     const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOCTTY, 0666);
     if (fd >= 0) {
       temp_ = std::move(name);

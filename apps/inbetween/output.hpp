@@ -20,6 +20,36 @@
 
 namespace inbetween::cli {
 
+/// A regular output written in full whose data is not yet synced and which has no name yet: the
+/// second half of OutputFile::commit().  commit() finishes it at once; an in-process run with
+/// CapturedRunOptions::defer_commits (run.hpp) hands it to its caller instead, so that the batch
+/// syncs one job's outputs while the next job computes.  Destroyed unfinished, it leaves nothing
+/// (an unnamed file is freed, a named temporary removed).
+class PendingOutput {
+ public:
+  PendingOutput(const PendingOutput&) = delete;
+  PendingOutput& operator=(const PendingOutput&) = delete;
+  ~PendingOutput();
+
+  /// Syncs the data (fsync) and gives the file the target's name, replacing it whole, as commit()
+  /// does.  Throws CommandError "<path>: <what>: <errno text>" on a failure, the file then removed.
+  void finish();
+
+ private:
+  friend class OutputFile;
+  PendingOutput() = default;
+  /// Closes, removes a named temporary and throws CommandError "<path>: <what>: <errno text>".
+  [[noreturn]] void fail(const std::string& what, int error_number);
+
+  std::string path_;    ///< as given, for messages
+  std::string target_;  ///< the file renamed onto (symbolic links resolved)
+  std::string folder_;  ///< the target's folder
+  std::string temp_;    ///< the named temporary (or the unnamed file's temporary name while it is renamed)
+  int fd_ = -1;          ///< the file's descriptor, owned
+  bool unnamed_ = false; ///< fd_ is an unnamed O_TMPFILE file
+  bool done_ = false;    ///< finished or failed: nothing left for the destructor
+};
+
 /// An output being written: to standard output ("-" or ""), directly to a special file, or to a
 /// temporary file that commit() renames onto the target.  Destroyed without commit(), it removes
 /// its temporary file (the target is untouched); standard output and special files then keep the
@@ -39,8 +69,9 @@ class OutputFile {
   /// caller that writes whole rows never leaves a partial row).  Throws CommandError on a failure.
   void write(std::string_view text);
 
-  /// Flushes, and for a regular target syncs and renames the temporary onto it.  Throws
-  /// CommandError with the reason on failure (the temporary file is then removed).
+  /// Flushes, and for a regular target syncs and renames the temporary onto it (PendingOutput::
+  /// finish(); left to the caller of an in-process run with defer_commits).  Throws CommandError
+  /// with the reason on failure (the temporary file is then removed).
   void commit();
 
   /// True when the output is not a temporary file (standard output or a special file): what was
@@ -52,8 +83,6 @@ class OutputFile {
   void flush();
   /// Closes, removes the temporary file and throws CommandError "<path>: <what>: <errno text>".
   [[noreturn]] void fail(const std::string& what, int error_number);
-  /// A fresh name "<folder>/.<name>.inbetween-XXXXXX" beside the target (random suffix).
-  [[nodiscard]] std::string temporary_name() const;
   /// Creates a named temporary (O_EXCL, mode 0666 less the umask) and sets temp_; the descriptor,
   /// or -1 with errno set.
   int create_temporary();

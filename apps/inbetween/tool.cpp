@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "command.hpp"
+#include "output.hpp"
 #include "run.hpp"
 #include "demo_files.hpp"
 #include "inbetween/io/read_file.hpp"
@@ -258,7 +259,23 @@ CapturedRun run_captured(const std::vector<std::string>& args, const CapturedRun
   run.err = std::move(capture.err).str();
   run.inputs = std::move(capture.inputs);
   run.outputs = std::move(capture.outputs);
+  run.pending = std::move(capture.pending);
   return run;
+}
+
+FinishedOutputs finish_outputs(std::vector<std::shared_ptr<PendingOutput>>& pending) {
+  FinishedOutputs result;
+  try {
+    for (const auto& p : pending) p->finish();
+  } catch (const CommandError& e) {
+    result.exit_code = e.exit_code;
+    result.err = "inbetween: " + inbetween::one_line_excerpt(e.message, kMaxMessageBytes) + "\n";
+  } catch (const std::exception& e) {
+    result.exit_code = kInternal;
+    result.err = std::string("inbetween: internal error: ") + e.what() + "\n";
+  }
+  pending.clear();  // unfinished ones (after a failure) remove their files
+  return result;
 }
 
 }  // namespace inbetween::cli

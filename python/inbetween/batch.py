@@ -34,6 +34,7 @@ command-line entry exits 0 when every job succeeded (or was skipped) and 2 when 
 from __future__ import annotations
 
 import argparse
+import concurrent.futures
 import datetime
 import json
 import math
@@ -135,27 +136,72 @@ def _message(stderr: str) -> str:
     return lines[-1] if lines else ""
 
 
-def run_job(args, base_dir):
-    """Runs one job's command in this (worker) process through the library; what the summary
-    records of it.  A failing command is a result (its exit code and message), not an exception."""
+def _start_job(args, base_dir):
+    """Runs one job's command in this (worker) process through the library, its file outputs left
+    written in full but not yet synced or named; (what the summary records of it, the outputs to
+    finish).  A failing command is a result (its exit code and message), not an exception."""
     from inbetween import _inbetween  # noqa: PLC0415 (imported in the worker)
     start = time.perf_counter()
-    code, out, err, _inputs, _outputs = _inbetween._run_cli(list(args), str(base_dir), False)
+    code, out, err, _inputs, _outputs, pending = _inbetween._run_cli_deferred(list(args), str(base_dir))
     seconds = time.perf_counter() - start
     try:
         from distributed import get_worker
         worker = get_worker().address
     except (ImportError, ValueError):
         worker = ""
-    return {"exit_code": int(code), "message": _message(err) if code else "",
-            "stderr": err[-MAX_STDERR_CHARS:], "stdout_bytes": len(out), "seconds": seconds,
-            "worker": worker, "host": socket.gethostname(), "pid": os.getpid()}
+    record = {"exit_code": int(code), "message": _message(err) if code else "", "stderr": err,
+              "stdout_bytes": len(out), "seconds": seconds, "worker": worker, "host": socket.gethostname(),
+              "pid": os.getpid()}
+    return record, pending
+
+
+def _finish_job(pending):
+    """The tool's last step for a job's outputs (fsync, then the name): (exit code, stderr, seconds)."""
+    start = time.perf_counter()
+    code, err = pending.finish()
+    return int(code), err, time.perf_counter() - start
+
+
+def _end_job(record, finished):
+    """The job's record once its outputs are finished: a failure to sync or name one is the job's
+    failure, with the tool's message (unless the command had already failed: its message stays)."""
+    code, err, seconds = finished
+    record["seconds"] += seconds
+    if code:
+        if not record["exit_code"]:
+            record.update(exit_code=code, message=_message(err))
+        record["stderr"] += err
+    record["stderr"] = record["stderr"][-MAX_STDERR_CHARS:]
+    return record
+
+
+def run_job(args, base_dir):
+    """Runs one job's command in this (worker) process through the library, as the tool would (its
+    outputs synced and named before it returns); what the summary records of it."""
+    record, pending = _start_job(args, base_dir)
+    return _end_job(record, _finish_job(pending))
+
+
+#: Jobs of a task whose outputs may wait to be finished while the next job computes (their
+#: descriptors and page-cache data held meanwhile).
+FINISH_BEHIND = 2
 
 
 def run_jobs(jobs, base_dir):
     """Runs several jobs (lists of arguments) one after the other in this worker: one Dask task,
-    so that jobs of a few milliseconds do not pay the scheduler's per-task cost each."""
-    return [run_job(args, base_dir) for args in jobs]
+    so that jobs of a few milliseconds do not pay the scheduler's per-task cost each.  A job's
+    outputs are synced and named (the tool's last step: fsync, then the name) in a second thread
+    while the next job computes, since the fsync waits on the storage, not on the CPU; before a job
+    starts, the outputs of the job FINISH_BEHIND before it are named.  A worker killed meanwhile
+    leaves nothing of the unfinished outputs (unnamed files), and its task is rerun whole."""
+    started = []
+    with concurrent.futures.ThreadPoolExecutor(1, thread_name_prefix="inbetween-finish") as finisher:
+        for i, args in enumerate(jobs):
+            if i >= FINISH_BEHIND:
+                started[i - FINISH_BEHIND][1].result()
+            record, pending = _start_job(args, base_dir)
+            started.append((record, finisher.submit(_finish_job, pending)))
+        return [_end_job(record, finished.result()) for record, finished in started]
 
 
 def _slots(workers, saturation):

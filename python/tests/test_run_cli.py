@@ -161,3 +161,47 @@ def test_the_tool_killed_mid_write_leaves_nothing(cli, source_dir, tmp_path):
         p.wait()
     assert p.returncode == -signal.SIGKILL
     assert list(out.iterdir()) == []
+
+
+def test_deferred_outputs_are_named_by_finish_with_the_tools_bytes(cli, scene, source_dir, tmp_path):
+    """_run_cli_deferred: the command writes its files in full but leaves the tool's last step (fsync,
+    then the name) to pending.finish(), which gives the tool's bytes, a new file and a replaced one alike."""
+    ref = tmp_path / "ref.csv"
+    cli("bake", scene, "--frames", "0:20:0.5", "-o", ref)
+    ball = source_dir / "examples" / "scenes" / "bouncing_ball.json"
+    cli("convert", ball, tmp_path / "ref.glb")
+    (tmp_path / "old.glb").write_bytes(b"an older file, replaced whole")
+    for args, name, reference in ((["bake", str(scene), "--frames", "0:20:0.5", "-o", "new.csv"], "new.csv", ref),
+                                  (["convert", str(ball), "old.glb"], "old.glb", tmp_path / "ref.glb")):
+        before = sorted(p.name for p in tmp_path.iterdir())
+        code, out, err, _, outputs, pending = _inbetween._run_cli_deferred(args, str(tmp_path))
+        assert code == 0 and out == b"" and outputs == [str(tmp_path / name)]
+        assert len(pending) == 1
+        assert sorted(p.name for p in tmp_path.iterdir()) == before, "nothing named before finish()"
+        assert pending.finish() == (0, "")
+        assert (tmp_path / name).read_bytes() == reference.read_bytes()
+        assert pending.finish() == (0, "")  # once only: nothing left to do
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["new.csv", "old.glb", "ref.csv", "ref.glb"]
+
+
+def test_deferred_outputs_dropped_unfinished_leave_nothing(scene, tmp_path):
+    code, _, _, _, _, pending = _inbetween._run_cli_deferred(
+        ["bake", str(scene), "--frames", "0:20:0.5", "-o", "dropped.csv"], str(tmp_path))
+    assert code == 0 and len(pending) == 1
+    del pending
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_deferred_output_that_cannot_be_named_fails_with_the_tools_message(scene, tmp_path):
+    """The folder removed between the command and finish(): linking the unnamed file fails, reported as
+    the tool reports a failed commit (exit 2, one line naming the file and the reason)."""
+    folder = tmp_path / "gone"
+    folder.mkdir()
+    code, _, _, _, _, pending = _inbetween._run_cli_deferred(
+        ["bake", str(scene), "--frames", "0:20:0.5", "-o", "gone/out.csv"], str(tmp_path))
+    assert code == 0
+    folder.rmdir()  # empty: the unnamed file has no name in it
+    code, err = pending.finish()
+    assert code == 2
+    assert err == f"inbetween: {folder / 'out.csv'}: cannot replace the file: No such file or directory\n"
+    assert list(tmp_path.iterdir()) == []
