@@ -185,22 +185,34 @@ def run_job(args, base_dir):
 #: Jobs of a task whose outputs may wait to be finished while the next job computes (their
 #: descriptors and page-cache data held meanwhile).
 FINISH_BEHIND = 2
+#: Seconds a job's finish may take for the next job's to be done at once rather than behind: in a
+#: tmpfs the fsync costs microseconds and a handoff to the second thread would cost more.
+FINISH_INLINE_BELOW_S = 2e-4
 
 
 def run_jobs(jobs, base_dir):
     """Runs several jobs (lists of arguments) one after the other in this worker: one Dask task,
-    so that jobs of a few milliseconds do not pay the scheduler's per-task cost each.  A job's
-    outputs are synced and named (the tool's last step: fsync, then the name) in a second thread
-    while the next job computes, since the fsync waits on the storage, not on the CPU; before a job
-    starts, the outputs of the job FINISH_BEHIND before it are named.  A worker killed meanwhile
-    leaves nothing of the unfinished outputs (unnamed files), and its task is rerun whole."""
-    started = []
+    so that jobs of a few milliseconds do not pay the scheduler's per-task cost each.
+
+    A job's outputs are synced and named (the tool's last step: fsync, then the name) at once, as
+    the tool does, until one job's finish takes FINISH_INLINE_BELOW_S or longer (a disk, NFS).
+    From then on they are finished in a second thread while the next job computes, since the fsync
+    waits on the storage, not on the CPU; before a job starts, the outputs of the job FINISH_BEHIND
+    before it are named.  A worker killed meanwhile leaves nothing of the unfinished outputs
+    (unnamed files), and its task is rerun whole."""
+    started, behind = [], False
     with concurrent.futures.ThreadPoolExecutor(1, thread_name_prefix="inbetween-finish") as finisher:
         for i, args in enumerate(jobs):
             if i >= FINISH_BEHIND:
                 started[i - FINISH_BEHIND][1].result()
             record, pending = _start_job(args, base_dir)
-            started.append((record, finisher.submit(_finish_job, pending)))
+            if behind:
+                finished = finisher.submit(_finish_job, pending)
+            else:
+                finished = concurrent.futures.Future()
+                finished.set_result(_finish_job(pending))
+                behind = finished.result()[2] >= FINISH_INLINE_BELOW_S
+            started.append((record, finished))
         return [_end_job(record, finished.result()) for record, finished in started]
 
 

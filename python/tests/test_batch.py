@@ -396,3 +396,24 @@ def test_slots_are_the_tasks_dask_hands_the_workers_at_once():
     assert batch._slots([{"nthreads": 8}], 0.5) == 4
     assert batch._slots([{"nthreads": 3}], float("inf")) == 6
     assert batch._slots([], 1.0) == 1  # no worker yet: one task at a time until one comes
+
+
+@pytest.mark.parametrize("inline_below_s", [0.0, 3600.0], ids=["finished-behind", "finished-at-once"])
+def test_a_tasks_jobs_finished_behind_or_at_once_give_the_tools_bytes(tmp_path, rng, monkeypatch, inline_below_s):
+    """run_jobs in this process (no Dask): with every finish counted slow, each job's outputs are
+    synced and named in the second thread while the next job computes; with none, at once.  Either
+    way the outputs are the tool's bytes, nothing else is left, and a job whose output folder is
+    missing fails with the tool's message without stopping the others."""
+    monkeypatch.setattr(batch, "FINISH_INLINE_BELOW_S", inline_below_s)
+    write_scenes(tmp_path, 6, rng)
+    (tmp_path / "out").mkdir()
+    jobs = [["bake", f"shots/s{k:02d}.json", "--frames", "0:20:0.5", "-o", f"out/s{k:02d}.csv"] for k in range(6)]
+    jobs.insert(3, ["bake", "shots/s00.json", "-o", "missing/s00.csv"])
+    results = batch.run_jobs(jobs, str(tmp_path))
+    assert [r["exit_code"] for r in results] == [0, 0, 0, 2, 0, 0, 0]
+    assert results[3]["message"] == f"inbetween: {tmp_path / 'missing' / 's00.csv'}: cannot open for writing: No such file or directory"
+    refs = reference(tmp_path, [(i, a) for i, a in enumerate(jobs) if i != 3])
+    for i, args in enumerate(jobs):
+        if i != 3:
+            assert (tmp_path / args[-1]).read_bytes() == refs[i], args
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == [f"s{k:02d}.csv" for k in range(6)]
