@@ -175,18 +175,12 @@ def _end_job(record, finished):
     return record
 
 
-def run_job(args, base_dir):
-    """Runs one job's command in this (worker) process through the library, as the tool would (its
-    outputs synced and named before it returns); what the summary records of it."""
-    record, pending = _start_job(args, base_dir)
-    return _end_job(record, _finish_job(pending))
-
-
 #: Jobs of a task whose outputs may wait to be finished while the next job computes (their
 #: descriptors and page-cache data held meanwhile).
 FINISH_BEHIND = 2
-#: Seconds a job's finish may take for the next job's to be done at once rather than behind: in a
-#: tmpfs the fsync costs microseconds and a handoff to the second thread would cost more.
+#: Seconds a job's finish may take for the next job's to be done at once rather than behind.  A
+#: frame22 bake's 370 kB CSV took 0.018-0.049 ms to finish in a tmpfs and 0.44-0.72 ms on this
+#: machine's ext4 disk (50 each, 2026-11-28): a handoff to the second thread costs more than the former.
 FINISH_INLINE_BELOW_S = 2e-4
 
 
