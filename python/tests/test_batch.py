@@ -405,6 +405,14 @@ def test_a_tasks_jobs_finished_behind_or_at_once_give_the_tools_bytes(tmp_path, 
     way the outputs are the tool's bytes, nothing else is left, and a job whose output folder is
     missing fails with the tool's message without stopping the others."""
     monkeypatch.setattr(batch, "FINISH_INLINE_BELOW_S", inline_below_s)
+    finished_in = []  # the thread that finished each job's outputs: which path was taken
+    finish = batch._finish_job
+
+    def traced_finish(pending):
+        finished_in.append(threading.current_thread().name)
+        return finish(pending)
+
+    monkeypatch.setattr(batch, "_finish_job", traced_finish)
     write_scenes(tmp_path, 6, rng)
     (tmp_path / "out").mkdir()
     jobs = [["bake", f"shots/s{k:02d}.json", "--frames", "0:20:0.5", "-o", f"out/s{k:02d}.csv"] for k in range(6)]
@@ -417,3 +425,8 @@ def test_a_tasks_jobs_finished_behind_or_at_once_give_the_tools_bytes(tmp_path, 
         if i != 3:
             assert (tmp_path / args[-1]).read_bytes() == refs[i], args
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == [f"s{k:02d}.csv" for k in range(6)]
+    here = threading.current_thread().name
+    if inline_below_s == 0:  # the first finish counts slow: every later one is behind
+        assert finished_in[0] == here and all(t.startswith("inbetween-finish") for t in finished_in[1:]), finished_in
+    else:
+        assert finished_in == [here] * len(jobs), finished_in
